@@ -1,0 +1,5 @@
+import sys
+
+from voxfab.cli import main
+
+sys.exit(main())

@@ -1,0 +1,1 @@
+"""Internals shared by every subpackage: validation, atomic files, rng, progress."""

@@ -1,0 +1,100 @@
+"""Input checks whose messages name the parameter that failed."""
+
+from __future__ import annotations
+
+from enum import Enum
+from typing import TypeVar
+
+import numpy as np
+import numpy.typing as npt
+
+from voxfab.errors import InvalidShapeError
+
+from .typing import BoolGrid
+
+#: Largest side a grid may have anywhere in voxfab (the artist works at 25).
+MAX_SIDE = 256
+
+E = TypeVar("E", bound=Enum)
+
+
+def as_grid(
+    array: npt.ArrayLike,
+    *,
+    name: str = "shape",
+    ndim: int | None = 3,
+    max_side: int = MAX_SIDE,
+    allow_empty: bool = False,
+) -> BoolGrid:
+    """Return ``array`` as a bool grid after checking its type and size.
+
+    Parameters
+    ----------
+    array : array_like
+        A bool array, or integers that are all 0 or 1.
+    name : str
+        The parameter name used in error messages.
+    ndim : int or None
+        Required number of dimensions (``None``: any, at least 1).
+    max_side : int
+        Largest allowed side length.
+    allow_empty : bool
+        Whether a grid with no filled voxel is accepted.
+
+    Returns
+    -------
+    grid : bool ndarray
+        The same data; a view when ``array`` is already bool.
+
+    Raises
+    ------
+    InvalidShapeError
+        On a wrong dtype, dimension, size, or an empty grid.
+    """
+    a = np.asarray(array)
+    if ndim is not None and a.ndim != ndim:
+        raise InvalidShapeError(
+            f"{name}: expected a {ndim}D grid, got {a.ndim}D with shape {a.shape}"
+        )
+    if a.ndim == 0:
+        raise InvalidShapeError(f"{name}: expected an array, got a scalar")
+    if a.dtype != np.bool_:
+        if a.dtype.kind not in "biu" and a.dtype.kind != "f":
+            raise InvalidShapeError(
+                f"{name}: expected a bool or 0/1 array, got dtype {a.dtype}"
+            )
+        if a.size and not np.isin(a, (0, 1)).all():
+            raise InvalidShapeError(
+                f"{name}: expected only 0 and 1 values, got dtype {a.dtype} "
+                f"with values in [{a.min()}, {a.max()}]"
+            )
+        a = a.astype(bool)
+    if any(s > max_side for s in a.shape):
+        raise InvalidShapeError(
+            f"{name}: grid {'x'.join(map(str, a.shape))} is over the limit of "
+            f"{max_side} voxels per side"
+        )
+    if not allow_empty and (a.size == 0 or not a.any()):
+        raise InvalidShapeError(f"{name}: the grid is empty (no filled voxel)")
+    return a
+
+
+def check_choice(value: str | E, enum: type[E], *, name: str) -> E:
+    """Return ``value`` as a member of ``enum``; the error lists valid choices."""
+    if isinstance(value, enum):
+        return value
+    try:
+        return enum(value)
+    except ValueError:
+        choices = ", ".join(repr(m.value) for m in enum)
+        raise InvalidShapeError(
+            f"{name}: unknown choice {value!r}; expected one of {choices}"
+        ) from None
+
+
+def check_positive(value: float, *, name: str) -> float:
+    """Return ``value`` as a float after checking it is finite and > 0."""
+    v = float(value)
+    if not np.isfinite(v) or v <= 0:
+        raise InvalidShapeError(f"{name}: expected a positive number, got {value!r}")
+    return v

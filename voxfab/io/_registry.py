@@ -1,0 +1,130 @@
+"""The format registry: each format module registers readers and writers by extension."""
+
+from __future__ import annotations
+
+import dataclasses
+import importlib
+import struct
+import zlib
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from voxfab._shared.typing import BoolGrid, PathLike
+from voxfab._shared.validate import as_grid
+from voxfab.errors import FormatError, UnknownFormatError, VoxfabError
+
+#: Modules that register formats; imported on first use so `import voxfab` stays light.
+FORMAT_MODULES = (
+    "voxfab.io.npy",
+    "voxfab.io.text",
+    "voxfab.io.vox",
+    "voxfab.io.binvox",
+    "voxfab.io.png",
+    "voxfab.io.mesh",
+)
+
+Reader = Callable[..., "ReadResult"]
+Writer = Callable[[BoolGrid, PathLike], None]
+
+
+@dataclasses.dataclass(frozen=True)
+class ReadResult:
+    """What a reader returns: the grid and notes about what it did.
+
+    Attributes
+    ----------
+    grid : (X, Y, Z) bool ndarray
+    pitch : float or None
+        Millimetres per voxel, when the file says so.
+    notes : tuple of str
+        Things the user should know (a model skipped, voxels dropped, ...).
+    """
+
+    grid: BoolGrid
+    pitch: float | None = None
+    notes: tuple[str, ...] = ()
+
+
+_READERS: dict[str, Reader] = {}
+_WRITERS: dict[str, Writer] = {}
+_loaded = False
+
+
+def register(extension: str, *, reader: Reader | None = None, writer: Writer | None = None) -> None:
+    """Register a reader and/or writer for a file extension (with its dot, lower case)."""
+    ext = extension.lower()
+    if reader is not None:
+        _READERS[ext] = reader
+    if writer is not None:
+        _WRITERS[ext] = writer
+
+
+def _load_all() -> None:
+    global _loaded
+    if not _loaded:
+        for name in FORMAT_MODULES:
+            importlib.import_module(name)
+        _loaded = True
+
+
+def _extension(path: PathLike) -> str:
+    p = Path(path)
+    if p.is_dir():
+        return "/"  # a folder is a PNG slice stack
+    return p.suffix.lower()
+
+
+def readable_formats() -> list[str]:
+    """Extensions that can be read (``"/"`` stands for a folder of PNG slices)."""
+    _load_all()
+    return sorted(_READERS)
+
+
+def writable_formats() -> list[str]:
+    """Extensions that can be written."""
+    _load_all()
+    return sorted(_WRITERS)
+
+
+def read(path: PathLike, **options: Any) -> ReadResult:
+    """Read a voxel grid from a file, choosing the format by extension.
+
+    Raises
+    ------
+    UnknownFormatError
+        For an extension no module registered.
+    FormatError
+        For a missing, corrupt or truncated file.
+    """
+    _load_all()
+    ext = _extension(path)
+    if ext not in _READERS:
+        raise UnknownFormatError(
+            f"{path}: unknown extension {ext or '(none)'!r}; readable: {', '.join(readable_formats())}"
+        )
+    if not Path(path).exists():
+        raise FormatError(f"{path}: no such file")
+    try:
+        result = _READERS[ext](path, **options)
+    except VoxfabError:
+        raise
+    except (OSError, ValueError, KeyError, IndexError, EOFError, struct.error, zlib.error) as exc:
+        # Third-party parsers raise many kinds of errors on corrupt data; the user
+        # only needs to know that this file could not be read.
+        raise FormatError(f"{path}: cannot read as {ext}: {exc}") from exc
+    grid = as_grid(result.grid, name=str(path))
+    return dataclasses.replace(result, grid=grid)
+
+
+def write(grid: np.ndarray, path: PathLike) -> None:
+    """Write a voxel grid, choosing the format by extension. Written atomically."""
+    _load_all()
+    ext = Path(path).suffix.lower()
+    if ext not in _WRITERS:
+        raise UnknownFormatError(
+            f"{path}: cannot write {ext or '(no extension)'!r}; writable: {', '.join(writable_formats())}"
+        )
+    _WRITERS[ext](as_grid(grid, name="shape"), path)

@@ -1,0 +1,145 @@
+"""Net: a single-piece edge unfolding of a voxel surface, and its JSON form."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from voxfab.errors import FormatError
+
+NET_FORMAT = "voxfab-net/1"
+
+
+def _frozen(a: npt.ArrayLike, dtype: type, shape_tail: tuple[int, ...]) -> np.ndarray:
+    arr = np.array(a, dtype=dtype).reshape((-1,) + shape_tail)
+    arr.flags.writeable = False
+    return arr
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Net:
+    """An unfolded voxel surface.
+
+    Faces are listed in the order of :func:`voxfab.shape.surface_graph` (sorted by
+    voxel then direction), so face ``i`` of a net of a shape is face ``i`` of that
+    shape's surface graph.  The net is seen from outside: each face's 2D corners
+    keep the counter-clockwise order its 3D corners have seen from outside.
+
+    Attributes
+    ----------
+    voxel : (F, 3) int ndarray
+    normal : (F, 3) int ndarray
+        Outward unit normals.
+    corners3d : (F, 4, 3) int ndarray
+        Face corners in voxel-corner coordinates, counter-clockwise from outside.
+    corners2d : (F, 4, 2) int ndarray
+        The same corners' positions in the net, in the same order.
+    folds : (M, 2) int ndarray
+        Face index pairs joined by a fold (the other shared edges are cut).
+    seed : int
+    strategy : str
+    mountain, valley, flat : int
+        Counts of folds by type.
+    seams_without_tab_room : int
+        Cut edge pairs where neither side has a free cell for a glue tab.
+    """
+
+    voxel: np.ndarray
+    normal: np.ndarray
+    corners3d: np.ndarray
+    corners2d: np.ndarray
+    folds: np.ndarray
+    seed: int
+    strategy: str
+    mountain: int = 0
+    valley: int = 0
+    flat: int = 0
+    seams_without_tab_room: int = 0
+
+    def __post_init__(self) -> None:
+        for name, dtype, tail in (
+            ("voxel", np.int64, (3,)),
+            ("normal", np.int64, (3,)),
+            ("corners3d", np.int64, (4, 3)),
+            ("corners2d", np.int64, (4, 2)),
+            ("folds", np.int64, (2,)),
+        ):
+            object.__setattr__(self, name, _frozen(getattr(self, name), dtype, tail))
+
+    @property
+    def face_count(self) -> int:
+        """Number of faces F."""
+        return int(self.voxel.shape[0])
+
+    def bounds(self) -> tuple[int, int, int, int]:
+        """``(xmin, ymin, xmax, ymax)`` of the net in face units."""
+        c = self.corners2d.reshape(-1, 2)
+        return (int(c[:, 0].min()), int(c[:, 1].min()), int(c[:, 0].max()), int(c[:, 1].max()))
+
+    def to_dict(self) -> dict[str, Any]:
+        """The ``voxfab-net/1`` JSON object."""
+        return {
+            "format": NET_FORMAT,
+            "seed": int(self.seed),
+            "strategy": self.strategy,
+            "face_count": self.face_count,
+            "mountain": int(self.mountain),
+            "valley": int(self.valley),
+            "flat": int(self.flat),
+            "seams_without_tab_room": int(self.seams_without_tab_room),
+            "faces": [
+                {
+                    "voxel": v.tolist(),
+                    "normal": n.tolist(),
+                    "corners3d": c3.tolist(),
+                    "corners2d": c2.tolist(),
+                }
+                for v, n, c3, c2 in zip(self.voxel, self.normal, self.corners3d, self.corners2d)
+            ],
+            "folds": self.folds.tolist(),
+        }
+
+    def to_json(self) -> str:
+        """Deterministic JSON text (one face per line keeps diffs readable)."""
+        d = self.to_dict()
+        faces = d.pop("faces")
+        folds = d.pop("folds")
+        head = json.dumps(d, sort_keys=True)[:-1]
+        face_lines = ",\n    ".join(json.dumps(f, sort_keys=True) for f in faces)
+        return f'{head}, "faces": [\n    {face_lines}\n  ], "folds": {json.dumps(folds)}}}\n'
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> Net:
+        """Build a net from its JSON object; raises FormatError when malformed."""
+        if not isinstance(data, dict) or data.get("format") != NET_FORMAT:
+            raise FormatError(f"not a {NET_FORMAT} object")
+        try:
+            faces = data["faces"]
+            return cls(
+                voxel=[f["voxel"] for f in faces],
+                normal=[f["normal"] for f in faces],
+                corners3d=[f["corners3d"] for f in faces],
+                corners2d=[f["corners2d"] for f in faces],
+                folds=data["folds"] if data["folds"] else np.zeros((0, 2)),
+                seed=int(data.get("seed", 0)),
+                strategy=str(data.get("strategy", "")),
+                mountain=int(data.get("mountain", 0)),
+                valley=int(data.get("valley", 0)),
+                flat=int(data.get("flat", 0)),
+                seams_without_tab_room=int(data.get("seams_without_tab_room", 0)),
+            )
+        except (KeyError, TypeError, ValueError) as exc:
+            raise FormatError(f"malformed {NET_FORMAT} data: {exc}") from None
+
+    @classmethod
+    def from_json(cls, text: str) -> Net:
+        """Parse ``voxfab-net/1`` JSON text."""
+        try:
+            data = json.loads(text)
+        except json.JSONDecodeError as exc:
+            raise FormatError(f"net JSON: {exc}") from None
+        return cls.from_dict(data)
