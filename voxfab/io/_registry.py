@@ -66,7 +66,11 @@ def _load_all() -> None:
     global _loaded
     if not _loaded:
         for name in FORMAT_MODULES:
-            importlib.import_module(name)
+            try:
+                importlib.import_module(name)
+            except ModuleNotFoundError as exc:
+                if exc.name != name:
+                    raise  # a format module that exists but lacks a dependency is a bug
         _loaded = True
 
 

@@ -8,7 +8,7 @@ from voxfab._shared.rng import as_rng
 from voxfab._shared.typing import BoolGrid
 from voxfab.errors import InvalidShapeError
 
-from ._ops import GRID_SIDE, largest_component
+from ._ops import GRID_SIDE, fill_cavities, largest_component
 
 __all__ = ["ball", "box", "tunnel_cube", "torus", "vase", "random_shape"]
 
@@ -70,7 +70,8 @@ def random_shape(rng: np.random.Generator | int, *, side: int = GRID_SIDE, fill:
     """A random well-formed shape: one 6-connected piece spanning ``side`` along z.
 
     A random lateral walk from the bottom to the top layer is grown by random
-    face-neighbour additions until about ``fill`` of the grid is filled.
+    face-neighbour additions until about ``fill`` of the grid is filled; enclosed
+    cavities are filled.
     """
     gen = as_rng(rng)
     from scipy import ndimage
@@ -88,4 +89,5 @@ def random_shape(rng: np.random.Generator | int, *, side: int = GRID_SIDE, fill:
     while g.sum() < target:
         shell = ndimage.binary_dilation(g, structure) & ~g
         g |= shell & (gen.random(g.shape) < 0.3)
-    return largest_component(g)
+    # Random growth closes off pockets; a shape meant for printing and nets has none.
+    return fill_cavities(largest_component(g))

@@ -29,7 +29,6 @@ from functools import cached_property
 import numpy as np
 import numpy.typing as npt
 
-from voxfab._shared.typing import BoolGrid
 from voxfab._shared.validate import as_grid
 
 __all__ = [
@@ -137,9 +136,11 @@ class SurfaceGraph:
         """``(F, 4)`` vertex id of each face corner, split by the 6-connectivity rule.
 
         Corners are one vertex exactly when they are joined through a chain of
-        faces adjacent in this graph around that point, so a mesh built on these
-        ids is manifold by index: voxels touching only at an edge or a corner get
-        separate vertices there.
+        faces adjacent in this graph around that point, so voxels touching only
+        at a corner get separate vertices there, and so do voxels touching only
+        along an edge unless both ends of that edge are joined around: then the
+        edge is used twice by index (a pinch that only a change of geometry, such
+        as a bridge, can remove).  Every other edge is used by exactly two faces.
         """
         from scipy.sparse import coo_matrix
         from scipy.sparse.csgraph import connected_components
@@ -191,7 +192,6 @@ def surface_graph(grid: npt.ArrayLike) -> SurfaceGraph:
     """
     g = as_grid(grid)
     p = np.pad(g, 1)
-    shape = np.array(p.shape)
     # exposed[x, y, z, d] on the padded grid.
     exposed = np.zeros(p.shape + (6,), dtype=bool)
     for d, (dx, dy, dz) in enumerate(DIRECTIONS):
@@ -226,7 +226,6 @@ def surface_graph(grid: npt.ArrayLike) -> SurfaceGraph:
         neighbor_edge[:, k] = EDGE_OF[ndir, nedge_out]
         fold[:, k] = np.where(valley, FOLD_VALLEY, np.where(flat, FOLD_FLAT, FOLD_MOUNTAIN))
     assert (neighbor >= 0).all() and (neighbor_edge >= 0).all(), "surface graph rule broken"
-    del shape
     return SurfaceGraph(
         voxel=v - 1,
         direction=ds.astype(np.int64),

@@ -1,0 +1,82 @@
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from voxfab.cli import main
+from voxfab.shape import examples
+
+
+def voxfab(*args, cwd=None):
+    return subprocess.run([sys.executable, "-m", "voxfab", *map(str, args)], capture_output=True, text=True, cwd=cwd)
+
+
+def test_version_through_the_real_entry_point():
+    r = voxfab("--version")
+    assert r.returncode == 0
+    assert r.stdout.startswith("voxfab ")
+
+
+def test_info_json_is_one_object_with_the_required_keys(tmp_path):
+    g = examples.random_shape(2)
+    np.save(tmp_path / "s.npy", g)
+    r = voxfab("info", tmp_path / "s.npy", "--json")
+    assert r.returncode == 0, r.stderr
+    info = json.loads(r.stdout)
+    assert {"volume", "extents", "components", "well_formed", "reasons", "surface_faces"} <= set(info)
+    assert info["volume"] == int(g.sum())
+    assert info["well_formed"] is True and info["reasons"] == []
+    assert info["components"] == 1
+
+
+def test_info_reports_reasons_for_a_bad_shape(tmp_path, capsys):
+    g = np.zeros((25, 25, 25), bool)
+    g[0, 0, :3] = g[5, 5, :] = True
+    np.save(tmp_path / "s.npy", g)
+    assert main(["info", str(tmp_path / "s.npy"), "--json"]) == 0
+    info = json.loads(capsys.readouterr().out)
+    assert info["well_formed"] is False
+    assert info["components"] == 2
+    assert any("pieces" in r for r in info["reasons"])
+
+
+@pytest.mark.parametrize(
+    ("setup", "code"),
+    [
+        (lambda p: p.write_bytes(b"\x93NUMPY garbage"), 5),  # corrupt
+        (lambda p: np.save(p, np.zeros((3, 3, 3), bool)), 3),  # empty grid
+        (lambda p: np.save(p, np.ones((300, 2, 2), bool)), 3),  # oversize
+        (lambda p: np.save(p, np.full((2, 2, 2), 7, np.int16)), 3),  # wrong values
+        (lambda p: np.save(p, np.zeros((2, 2), bool)), 3),  # wrong dimension
+    ],
+)
+def test_bad_input_gives_one_line_and_nonzero_exit(tmp_path, setup, code):
+    p = tmp_path / "bad.npy"
+    setup(p)
+    r = voxfab("info", p)
+    assert r.returncode == code
+    assert r.stderr.count("\n") == 1 and r.stderr.startswith("voxfab: error: ")
+    assert "Traceback" not in r.stderr
+
+
+def test_unknown_extension_and_debug_traceback(tmp_path):
+    p = tmp_path / "shape.xyz"
+    p.write_text("hello")
+    r = voxfab("info", p)
+    assert r.returncode == 4 and "unknown extension '.xyz'" in r.stderr
+    r = voxfab("--debug", "info", p)
+    assert "Traceback" in r.stderr
+
+
+def test_build_cli_writes_the_folder(tmp_path):
+    np.save(tmp_path / "s.npy", examples.random_shape(5))
+    (tmp_path / "r.toml").write_text('name = "demo"\n[source]\nfile = "s.npy"\n')
+    r = voxfab("build", tmp_path / "r.toml", "-o", tmp_path / "out")
+    assert r.returncode == 0, r.stderr
+    assert (tmp_path / "out" / "demo" / "manifest.json").exists()
+    (tmp_path / "bad.toml").write_text('[source]\nfile = "s.npy"\nshade = 2\n')
+    r = voxfab("build", tmp_path / "bad.toml", "-o", tmp_path / "out")
+    assert r.returncode == 7
+    assert "bad.toml:3: source.shade: unknown key" in r.stderr

@@ -1,0 +1,39 @@
+"""``voxfab build``: turn recipes into folders of fabrication files."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+HELP = "build recipes (TOML) into DIR/<name>/ with the shape, its outputs and a manifest"
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("recipes", nargs="+", metavar="RECIPE", type=Path, help="recipe files (.toml)")
+    parser.add_argument("-o", "--output", type=Path, default=Path("output"), metavar="DIR",
+                        help="output folder (default: output)")
+    parser.add_argument("--check", action="store_true", help="validate the recipes only, build nothing")
+
+
+def run(args: argparse.Namespace) -> int:
+    import json
+
+    from voxfab.recipe import build, load_recipe
+
+    # Validate every recipe first, so a typo in the last one does not waste a long build.
+    recipes = [load_recipe(path) for path in args.recipes]
+    names = [r.name for r in recipes]
+    duplicates = sorted({n for n in names if names.count(n) > 1})
+    if duplicates:
+        from voxfab.errors import RecipeError
+
+        raise RecipeError(f"several recipes share the name {duplicates[0]!r}; names must be unique")
+    if args.check:
+        for r in recipes:
+            print(f"{r.path}: ok ({r.name})")
+        return 0
+    for recipe in recipes:
+        folder = build(recipe, args.output)
+        manifest = json.loads((folder / "manifest.json").read_text())
+        print(f"{folder}: {len(manifest['files'])} files")
+    return 0

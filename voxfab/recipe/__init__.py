@@ -1,0 +1,20 @@
+"""TOML recipes: a shape source, operations and the outputs to make.
+
+See the README's "Recipe format" section for the keys.
+"""
+
+from ._build import MANIFEST_FORMAT, apply_operation, build, make_shape, make_source
+from ._schema import OperationSpec, OutputSpec, Recipe, SourceSpec, load_recipe
+
+__all__ = [
+    "MANIFEST_FORMAT",
+    "OperationSpec",
+    "OutputSpec",
+    "Recipe",
+    "SourceSpec",
+    "apply_operation",
+    "build",
+    "load_recipe",
+    "make_shape",
+    "make_source",
+]

@@ -1,0 +1,121 @@
+"""Build a recipe: make the shape, apply operations, write outputs and a manifest."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+from pathlib import Path
+
+import numpy as np
+
+from voxfab._shared.atomic import atomic_dir, write_text
+from voxfab._shared.typing import BoolGrid, PathLike
+from voxfab._shared.validate import as_grid
+from voxfab._version import __version__
+from voxfab.errors import RecipeError, VoxfabError
+from voxfab.shape import VoxelShape, canonical_key
+from voxfab.shape import _ops as ops
+
+from ._schema import OperationSpec, Recipe, SourceSpec
+
+MANIFEST_FORMAT = "voxfab-manifest/1"
+
+
+def make_source(source: SourceSpec, base_dir: Path) -> BoolGrid:
+    """Return the grid a source describes (a maker's output or a file's content)."""
+    if source.file is not None:
+        from voxfab import io
+
+        result = io.read(source.file, **dict(source.params))
+        return result.grid
+    from voxfab.digitize import get_maker
+
+    grid = get_maker(source.maker or "")(base_dir=base_dir, **dict(source.params))
+    try:
+        return np.asarray(as_grid(grid, name=f"{source.keypath} (maker {source.maker!r})"))
+    except VoxfabError as exc:
+        raise RecipeError(str(exc)) from None
+
+
+def apply_operation(grid: BoolGrid, op: OperationSpec, base_dir: Path) -> BoolGrid:
+    """Apply one recipe operation to a grid."""
+    params = dict(op.params)
+    if op.op == "fill":
+        return ops.fill_cavities(grid)
+    if op.op == "largest":
+        return ops.largest_component(grid)
+    if op.op == "crop":
+        return ops.crop(grid)
+    if op.op == "rotate":
+        return ops.rotate(grid, params.get("axis", "z"), params.get("turns", 1))
+    if op.op == "mirror":
+        return ops.mirror(grid, params.get("axis", "x"))
+    assert op.source is not None
+    other = make_source(op.source, base_dir)
+    return {"union": ops.union, "intersection": ops.intersection, "difference": ops.difference}[op.op](
+        grid, other
+    )
+
+
+def make_shape(recipe: Recipe) -> VoxelShape:
+    """Make the recipe's shape: its source, then each operation in order."""
+    grid = make_source(recipe.source, recipe.base_dir)
+    for op in recipe.operations:
+        grid = apply_operation(grid, op, recipe.base_dir)
+        if not grid.any():
+            raise RecipeError(f"{recipe.path}: {op.keypath} ({op.op}) left an empty shape")
+    return VoxelShape(grid, recipe.pitch)
+
+
+def _sha256(path: Path) -> str:
+    return hashlib.sha256(path.read_bytes()).hexdigest()
+
+
+def build(recipe: Recipe, outdir: PathLike) -> Path:
+    """Build a recipe into ``outdir/<recipe.name>/``, replacing it only on success.
+
+    Returns
+    -------
+    Path
+        The recipe's output folder, holding ``shape.npy``, ``shape.vox``, each
+        output's files and ``manifest.json``.
+    """
+    from voxfab import io
+    from voxfab._shared.progress import progress
+    from voxfab.fabricate import OutputFile, get_output
+
+    shape = make_shape(recipe)
+    target = Path(outdir) / recipe.name
+    with atomic_dir(target) as tmp:
+        io.write(shape.grid, tmp / "shape.npy")
+        io.write(shape.grid, tmp / "shape.vox")
+        files = [
+            OutputFile("shape.npy", "the voxel shape as a NumPy bool array [x, y, z], z up"),
+            OutputFile("shape.vox", "the voxel shape for MagicaVoxel and other voxel editors"),
+        ]
+        for spec in progress(recipe.outputs, desc="outputs"):
+            func = get_output(spec.name)
+            files += func(shape, tmp, name=recipe.name, seed=recipe.seed, **dict(spec.options))
+        manifest = {
+            "format": MANIFEST_FORMAT,
+            "voxfab": __version__,
+            "recipe": recipe.name,
+            "recipe_file": recipe.path.name,
+            "recipe_sha256": recipe.sha256,
+            "seed": recipe.seed,
+            "pitch_mm": recipe.pitch,
+            "shape": {
+                "volume": shape.volume,
+                "extents": list(shape.extents),
+                "well_formed": shape.well_formed,
+                "reasons": shape.reasons,
+                "key": canonical_key(shape.grid),
+            },
+            "outputs": [spec.name for spec in recipe.outputs],
+            "files": [
+                {"path": f.path, "sha256": _sha256(tmp / f.path), "purpose": f.purpose}
+                for f in sorted(files, key=lambda f: f.path)
+            ],
+        }
+        write_text(tmp / "manifest.json", json.dumps(manifest, indent=2, sort_keys=True) + "\n")
+    return target

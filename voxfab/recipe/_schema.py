@@ -1,0 +1,352 @@
+"""Recipe parsing and validation: TOML in, a frozen Recipe out, every key checked.
+
+A recipe is fully validated before anything runs.  Maker and output options are
+checked against the keyword-only parameters (and type hints) of the function that
+takes them, so each option is declared in exactly one place.
+"""
+
+from __future__ import annotations
+
+import collections.abc
+import dataclasses
+import hashlib
+import inspect
+import re
+import tomllib
+import types
+import typing
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any, Literal, Union
+
+from voxfab._shared.typing import PathLike
+from voxfab.errors import RecipeError, UnknownFormatError
+
+_TOP_KEYS = {"name", "seed", "pitch", "description", "source", "operations", "outputs"}
+_OPERATIONS: dict[str, dict[str, type | tuple]] = {
+    "fill": {},
+    "largest": {},
+    "crop": {},
+    "rotate": {"axis": str, "turns": int},
+    "mirror": {"axis": str},
+    "union": {"source": dict},
+    "intersection": {"source": dict},
+    "difference": {"source": dict},
+}
+_NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]*$")
+
+
+@dataclasses.dataclass(frozen=True)
+class SourceSpec:
+    """Where the shape comes from: a maker with parameters, or a file."""
+
+    maker: str | None
+    file: Path | None
+    params: tuple[tuple[str, Any], ...]
+    keypath: str
+
+
+@dataclasses.dataclass(frozen=True)
+class OperationSpec:
+    """One operation applied to the shape, in order."""
+
+    op: str
+    params: tuple[tuple[str, Any], ...]
+    source: SourceSpec | None
+    keypath: str
+
+
+@dataclasses.dataclass(frozen=True)
+class OutputSpec:
+    """One requested output with its options."""
+
+    name: str
+    options: tuple[tuple[str, Any], ...]
+
+
+@dataclasses.dataclass(frozen=True)
+class Recipe:
+    """A validated recipe.
+
+    Attributes
+    ----------
+    name : str
+        Folder name of the build (``DIR/<name>/``).
+    seed : int
+    pitch : float
+        Millimetres per voxel.
+    source : SourceSpec
+    operations : tuple of OperationSpec
+    outputs : tuple of OutputSpec
+    path : Path
+        The recipe file.
+    sha256 : str
+        Hash of the recipe file's bytes.
+    """
+
+    name: str
+    seed: int
+    pitch: float
+    description: str
+    source: SourceSpec
+    operations: tuple[OperationSpec, ...]
+    outputs: tuple[OutputSpec, ...]
+    path: Path
+    sha256: str
+
+    @property
+    def base_dir(self) -> Path:
+        """The recipe's folder, for relative file names."""
+        return self.path.parent
+
+
+class _Locator:
+    """Find the line of a key path in TOML text (tomllib keeps no positions)."""
+
+    _HEADER = re.compile(r"^\s*\[\[?\s*([^\]]+?)\s*\]\]?")
+
+    def __init__(self, text: str) -> None:
+        self.lines = text.splitlines()
+
+    def line(self, keypath: str) -> int | None:
+        parts = [p for p in re.split(r"\.|\[\d+\]", keypath) if p]
+        index = [int(i) for i in re.findall(r"\[(\d+)\]", keypath)]
+        if not parts:
+            return None
+        key = parts[-1]
+        table = ".".join(parts[:-1])
+        current = ""
+        occurrence: dict[str, int] = {}
+        want = index[0] if index else None
+        for n, raw in enumerate(self.lines, start=1):
+            m = self._HEADER.match(raw)
+            if m:
+                current = m.group(1).replace(" ", "")
+                occurrence[current] = occurrence.get(current, -1) + 1
+                if current == keypath.split("[")[0] and not index:
+                    return n
+                continue
+            if re.match(rf"^\s*{re.escape(key)}\s*=", raw) or re.search(rf"[{{,]\s*{re.escape(key)}\s*=", raw):
+                in_table = current == table or current == table.split(".")[0] or table.startswith(current + ".")
+                if not table:
+                    in_table = current == ""
+                if in_table and (want is None or occurrence.get(current, 0) == want):
+                    return n
+        return None
+
+
+def _error(path: Path, locator: _Locator, keypath: str, message: str) -> RecipeError:
+    line = locator.line(keypath)
+    where = f"{path}:{line}" if line else f"{path}"
+    return RecipeError(f"{where}: {keypath}: {message}")
+
+
+def _type_name(tp: Any) -> str:
+    origin = typing.get_origin(tp)
+    if origin is Literal:
+        return " or ".join(repr(a) for a in typing.get_args(tp))
+    if origin in (Union, types.UnionType):
+        return " or ".join(_type_name(a) for a in typing.get_args(tp))
+    if origin in (list, tuple):
+        args = typing.get_args(tp)
+        return f"list of {_type_name(args[0])}" if args else "list"
+    if tp is type(None):
+        return "none"
+    return getattr(tp, "__name__", str(tp))
+
+
+def check_type(value: Any, tp: Any) -> bool:
+    """Whether a TOML value fits a type hint (int fits float; bool fits only bool)."""
+    if tp is Any or tp is inspect.Parameter.empty:
+        return True
+    origin = typing.get_origin(tp)
+    if origin is Literal:
+        return value in typing.get_args(tp)
+    if origin in (Union, types.UnionType):
+        return any(check_type(value, a) for a in typing.get_args(tp))
+    if origin in (list, tuple, collections.abc.Sequence):
+        if not isinstance(value, list):
+            return False
+        args = typing.get_args(tp)
+        if not args:
+            return True
+        if origin is tuple and not (len(args) == 2 and args[1] is Ellipsis):
+            return len(value) == len(args) and all(check_type(v, a) for v, a in zip(value, args))
+        return all(check_type(v, args[0]) for v in value)
+    if origin is dict:
+        return isinstance(value, dict)
+    if tp is float:
+        return isinstance(value, (int, float)) and not isinstance(value, bool)
+    if tp is int:
+        return isinstance(value, int) and not isinstance(value, bool)
+    if tp is Path:
+        return isinstance(value, str)
+    if tp is type(None):
+        return value is None
+    if isinstance(tp, type):
+        return isinstance(value, tp)
+    return True
+
+
+def keyword_options(func: Callable[..., Any], *, skip: set[str]) -> dict[str, tuple[Any, bool]]:
+    """Return ``{name: (type hint, required)}`` of a function's keyword-only parameters."""
+    sig = inspect.signature(func)
+    hints = typing.get_type_hints(func)
+    out = {}
+    for p in sig.parameters.values():
+        if p.kind is not inspect.Parameter.KEYWORD_ONLY or p.name in skip:
+            continue
+        out[p.name] = (hints.get(p.name, Any), p.default is inspect.Parameter.empty)
+    return out
+
+
+def _check_options(
+    func: Callable[..., Any], given: dict[str, Any], *, skip: set[str], where: str, err: Callable[[str, str], RecipeError]
+) -> None:
+    options = keyword_options(func, skip=skip)
+    for key, value in given.items():
+        if key not in options:
+            known = ", ".join(sorted(options)) or "(none)"
+            raise err(f"{where}.{key}", f"unknown key; {where} accepts: {known}")
+        tp, _ = options[key]
+        if not check_type(value, tp):
+            raise err(f"{where}.{key}", f"expected {_type_name(tp)}, got {type(value).__name__} {value!r}")
+    for key, (_, required) in options.items():
+        if required and key not in given:
+            raise err(f"{where}.{key}", "missing required key")
+
+
+def _parse_source(data: Any, keypath: str, base: Path, err: Callable[[str, str], RecipeError]) -> SourceSpec:
+    from voxfab.digitize import get_maker
+
+    if not isinstance(data, dict):
+        raise err(keypath, f"expected a table, got {type(data).__name__}")
+    has_maker, has_file = "maker" in data, "file" in data
+    if has_maker == has_file:
+        raise err(keypath, "expected exactly one of 'maker' or 'file'")
+    if has_file:
+        extra = set(data) - {"file", "resolution"}
+        if extra:
+            raise err(f"{keypath}.{sorted(extra)[0]}", "unknown key; a file source accepts: file, resolution")
+        if not isinstance(data["file"], str):
+            raise err(f"{keypath}.file", "expected a string path")
+        if "resolution" in data and not check_type(data["resolution"], int):
+            raise err(f"{keypath}.resolution", "expected int")
+        params = tuple(sorted((k, v) for k, v in data.items() if k == "resolution"))
+        return SourceSpec(None, base / data["file"], params, keypath)
+    maker_name = data["maker"]
+    if not isinstance(maker_name, str):
+        raise err(f"{keypath}.maker", "expected a string")
+    try:
+        maker = get_maker(maker_name)
+    except UnknownFormatError as exc:
+        raise err(f"{keypath}.maker", str(exc)) from None
+    params = {k: v for k, v in data.items() if k != "maker"}
+    _check_options(maker, params, skip={"base_dir"}, where=keypath, err=err)
+    return SourceSpec(maker_name, None, tuple(sorted(params.items())), keypath)
+
+
+def load_recipe(path: PathLike) -> Recipe:
+    """Read and fully validate a recipe file.
+
+    Raises
+    ------
+    RecipeError
+        Naming the file, line and key path of the first problem.
+    """
+    from voxfab.fabricate import get_output
+
+    p = Path(path)
+    try:
+        raw = p.read_bytes()
+    except OSError as exc:
+        raise RecipeError(f"{p}: cannot read recipe: {exc.strerror or exc}") from None
+    try:
+        text = raw.decode("utf-8")
+        data = tomllib.loads(text)
+    except UnicodeDecodeError:
+        raise RecipeError(f"{p}: not UTF-8 text") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise RecipeError(f"{p}: invalid TOML: {exc}") from None
+    loc = _Locator(text)
+
+    def err(keypath: str, message: str) -> RecipeError:
+        return _error(p, loc, keypath, message)
+
+    for key in data:
+        if key not in _TOP_KEYS:
+            raise err(key, f"unknown key; a recipe accepts: {', '.join(sorted(_TOP_KEYS))}")
+    name = data.get("name", p.stem)
+    if not isinstance(name, str) or not _NAME.match(name):
+        raise err("name", f"expected a folder-safe name (letters, digits, _ . -), got {name!r}")
+    seed = data.get("seed", 0)
+    if not check_type(seed, int) or seed < 0:
+        raise err("seed", f"expected an integer >= 0, got {seed!r}")
+    pitch = data.get("pitch", 1.0)
+    if not check_type(pitch, float) or pitch <= 0:
+        raise err("pitch", f"expected a positive number (mm per voxel), got {pitch!r}")
+    description = data.get("description", "")
+    if not isinstance(description, str):
+        raise err("description", "expected a string")
+    if "source" not in data:
+        raise RecipeError(f"{p}: missing the [source] table")
+    source = _parse_source(data["source"], "source", p.parent, err)
+
+    ops = []
+    raw_ops = data.get("operations", [])
+    if not isinstance(raw_ops, list):
+        raise err("operations", "expected an array of tables [[operations]]")
+    for i, op in enumerate(raw_ops):
+        kp = f"operations[{i}]"
+        if not isinstance(op, dict) or "op" not in op:
+            raise err(kp, "expected a table with an 'op' key")
+        kind = op["op"]
+        if kind not in _OPERATIONS:
+            raise err(f"{kp}.op", f"unknown operation {kind!r}; expected one of {', '.join(_OPERATIONS)}")
+        allowed = _OPERATIONS[kind]
+        sub = None
+        params = []
+        for key, value in op.items():
+            if key == "op":
+                continue
+            if key not in allowed:
+                known = ", ".join(allowed) or "(no keys)"
+                raise err(f"{kp}.{key}", f"unknown key for op {kind!r}; accepts: {known}")
+            if key == "source":
+                sub = _parse_source(value, f"{kp}.source", p.parent, err)
+                continue
+            if not check_type(value, allowed[key]):
+                raise err(f"{kp}.{key}", f"expected {_type_name(allowed[key])}, got {value!r}")
+            if key == "axis" and value not in ("x", "y", "z"):
+                raise err(f"{kp}.axis", f"expected 'x', 'y' or 'z', got {value!r}")
+            params.append((key, value))
+        if kind in ("union", "intersection", "difference") and sub is None:
+            raise err(kp, f"op {kind!r} needs a 'source' table")
+        ops.append(OperationSpec(kind, tuple(sorted(params)), sub, kp))
+
+    outputs = []
+    raw_out = data.get("outputs", {})
+    if not isinstance(raw_out, dict):
+        raise err("outputs", "expected a table of output tables, e.g. [outputs.mesh]")
+    for out_name in sorted(raw_out):
+        options = raw_out[out_name]
+        if not isinstance(options, dict):
+            raise err(f"outputs.{out_name}", "expected a table")
+        try:
+            func = get_output(out_name)
+        except UnknownFormatError as exc:
+            raise err(f"outputs.{out_name}", str(exc)) from None
+        _check_options(func, options, skip={"name", "seed"}, where=f"outputs.{out_name}", err=err)
+        outputs.append(OutputSpec(out_name, tuple(sorted(options.items()))))
+
+    return Recipe(
+        name=name,
+        seed=int(seed),
+        pitch=float(pitch),
+        description=description,
+        source=source,
+        operations=tuple(ops),
+        outputs=tuple(outputs),
+        path=p,
+        sha256=hashlib.sha256(raw).hexdigest(),
+    )
