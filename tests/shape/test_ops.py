@@ -182,3 +182,10 @@ def test_well_formed_reasons():
 def test_bad_grids_are_refused_with_a_named_message(bad):
     with pytest.raises(InvalidShapeError, match="shape"):
         volume(bad) if bad.dtype.kind != "i" or bad.max() < 2 else exposed_faces(bad)
+
+
+def test_fill_cavities_works_at_the_size_limit():
+    g = np.ones((256, 3, 3), bool)
+    g[100, 1, 1] = False
+    assert cavity_count(g) == 1
+    assert fill_cavities(g).all()

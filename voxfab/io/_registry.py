@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import importlib
+import inspect
 import struct
 import zlib
 from collections.abc import Callable
@@ -14,7 +15,7 @@ import numpy as np
 
 from voxfab._shared.typing import BoolGrid, PathLike
 from voxfab._shared.validate import as_grid
-from voxfab.errors import FormatError, UnknownFormatError, VoxfabError
+from voxfab.errors import FormatError, InvalidShapeError, UnknownFormatError, VoxfabError
 
 #: Modules that register formats; imported on first use so `import voxfab` stays light.
 FORMAT_MODULES = (
@@ -93,6 +94,22 @@ def writable_formats() -> list[str]:
     return sorted(_WRITERS)
 
 
+def _check_options(reader: Reader, options: dict[str, Any], path: PathLike, ext: str) -> None:
+    """Refuse options the reader does not take (e.g. ``resolution`` for a ``.vox``)."""
+    params = inspect.signature(reader).parameters.values()
+    if any(p.kind is inspect.Parameter.VAR_KEYWORD for p in params):
+        return
+    accepted = {p.name for p in params if p.kind is inspect.Parameter.KEYWORD_ONLY}
+    unknown = sorted(set(options) - accepted)
+    if unknown:
+        kind = "a folder of PNG slices" if ext == "/" else f"{ext} files"
+        raise InvalidShapeError(
+            f"{path}: option{'s' if len(unknown) > 1 else ''} {', '.join(unknown)} "
+            f"do{'' if len(unknown) > 1 else 'es'} not apply to {kind}"
+            + (f" (options: {', '.join(sorted(accepted))})" if accepted else "")
+        )
+
+
 def read(path: PathLike, **options: Any) -> ReadResult:
     """Read a voxel grid from a file, choosing the format by extension.
 
@@ -102,15 +119,22 @@ def read(path: PathLike, **options: Any) -> ReadResult:
         For an extension no module registered.
     FormatError
         For a missing, corrupt or truncated file.
+    InvalidShapeError
+        For an option the format does not take, or a grid that is empty or
+        over 256 voxels per side.
     """
     _load_all()
     ext = _extension(path)
+    if not ext and not Path(path).exists():
+        raise FormatError(f"{path}: no such file or folder")
     if ext not in _READERS:
         raise UnknownFormatError(
-            f"{path}: unknown extension {ext or '(none)'!r}; readable: {', '.join(readable_formats())}"
+            f"{path}: unknown extension {ext or '(none)'!r}; readable: "
+            + ", ".join("a folder of PNG slices" if e == "/" else e for e in readable_formats())
         )
     if not Path(path).exists():
         raise FormatError(f"{path}: no such file")
+    _check_options(_READERS[ext], options, path, ext)
     try:
         result = _READERS[ext](path, **options)
     except VoxfabError:

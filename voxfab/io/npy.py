@@ -4,20 +4,44 @@ from __future__ import annotations
 
 import io
 import zipfile
+import zlib
 
 import numpy as np
 
 from voxfab._shared.atomic import write_bytes
 from voxfab._shared.typing import BoolGrid, PathLike
-from voxfab.errors import FormatError
+from voxfab._shared.validate import MAX_SIDE
+from voxfab.errors import FormatError, InvalidShapeError, VoxfabError
 
 from ._registry import ReadResult, register
+
+
+def _check_header(fh: io.BufferedIOBase | zipfile.ZipExtFile, path: PathLike) -> None:
+    """Check the array header before loading: a corrupt or hostile header must not
+    make numpy allocate terabytes."""
+    version = np.lib.format.read_magic(fh)
+    if version == (1, 0):
+        shape, _, dtype = np.lib.format.read_array_header_1_0(fh)
+    else:
+        shape, _, dtype = np.lib.format.read_array_header_2_0(fh)
+    if len(shape) == 3 and max(shape) > MAX_SIDE:
+        raise InvalidShapeError(
+            f"{path}: grid {'x'.join(map(str, shape))} is over the limit of {MAX_SIDE} voxels per side"
+        )
+    if len(shape) != 3:
+        raise InvalidShapeError(f"{path}: expected a 3D grid, got {len(shape)}D with shape {shape}")
+    if dtype.kind not in "biuf":
+        raise InvalidShapeError(f"{path}: expected a bool or 0/1 array, got dtype {dtype}")
 
 
 def read_npy(path: PathLike) -> ReadResult:
     """Read a ``.npy`` file holding one 3D bool or 0/1 array (no pickles)."""
     try:
+        with open(path, "rb") as fh:
+            _check_header(fh, path)
         arr = np.load(path, allow_pickle=False)
+    except VoxfabError:
+        raise
     except (ValueError, OSError, EOFError) as exc:
         raise FormatError(f"{path}: not a valid .npy file ({exc})") from None
     return ReadResult(np.asarray(arr))
@@ -33,8 +57,13 @@ def read_npz(path: PathLike) -> ReadResult:
             name = "shape" if "shape" in names else names[0]
             if name != "shape" and len(names) > 1:
                 raise FormatError(f"{path}: several arrays {names} and none named 'shape'")
+            member_name = f"{name}.npy" if f"{name}.npy" in data.zip.namelist() else name
+            with data.zip.open(member_name) as member:
+                _check_header(member, path)
             arr = np.asarray(data[name])
-    except (ValueError, OSError, EOFError, zipfile.BadZipFile) as exc:
+    except VoxfabError:
+        raise
+    except (ValueError, OSError, EOFError, NotImplementedError, zipfile.BadZipFile, zlib.error) as exc:
         raise FormatError(f"{path}: not a valid .npz file ({exc})") from None
     return ReadResult(arr)
 

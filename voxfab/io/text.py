@@ -1,8 +1,9 @@
 """A plain-text layer format for hand editing and diffs.
 
-One block per z layer, bottom first, each headed ``z = K``; then one row per y
-(highest y first, as on a map), each row one character per x: ``#`` filled,
-``.`` empty.  Blank lines separate blocks; lines starting with ``;`` are comments.
+One block per z layer (every layer, an empty one too), bottom first, each headed
+``z = K``; then one row per y (highest y first, as on a map), each row one
+character per x: ``#`` filled, ``.`` empty.  Blank lines separate blocks; lines
+starting with ``;`` are comments.
 
 Example, a 2x2x1 L::
 
@@ -20,7 +21,8 @@ import numpy as np
 
 from voxfab._shared.atomic import write_text
 from voxfab._shared.typing import BoolGrid, PathLike
-from voxfab.errors import FormatError
+from voxfab._shared.validate import MAX_SIDE
+from voxfab.errors import FormatError, InvalidShapeError
 
 from ._registry import ReadResult, register
 
@@ -31,13 +33,21 @@ _LAYER = re.compile(r"^z\s*=\s*(\d+)\s*$")
 def read_text(path: PathLike) -> ReadResult:
     """Read the layer format; the header fixes the grid size."""
     try:
-        text = open(path, encoding="utf-8").read()
+        with open(path, encoding="utf-8") as fh:
+            text = fh.read()
     except UnicodeDecodeError:
         raise FormatError(f"{path}: not a UTF-8 text file") from None
     lines = text.splitlines()
     if not lines or not _HEADER.match(lines[0]):
         raise FormatError(f"{path}:1: expected the header '; voxfab layers X Y Z'")
     nx, ny, nz = (int(v) for v in _HEADER.match(lines[0]).groups())  # type: ignore[union-attr]
+    # Check the sizes before allocating: a typo must not ask for terabytes.
+    if min(nx, ny, nz) < 1:
+        raise FormatError(f"{path}:1: grid size {nx} {ny} {nz} has a side below 1")
+    if max(nx, ny, nz) > MAX_SIDE:
+        raise InvalidShapeError(
+            f"{path}:1: grid {nx}x{ny}x{nz} is over the limit of {MAX_SIDE} voxels per side"
+        )
     grid = np.zeros((nx, ny, nz), dtype=bool)
     z: int | None = None
     rows: list[tuple[int, str]] = []
@@ -71,6 +81,11 @@ def read_text(path: PathLike) -> ReadResult:
         else:
             rows.append((lineno, line))
     flush()
+    missing = sorted(set(range(nz)) - seen)
+    if missing:
+        # Every layer is written, even an empty one, so a missing layer means a cut file.
+        shown = ", ".join(map(str, missing[:5])) + (", ..." if len(missing) > 5 else "")
+        raise FormatError(f"{path}: {len(missing)} of {nz} layers missing (z = {shown}); truncated file?")
     return ReadResult(grid)
 
 

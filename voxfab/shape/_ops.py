@@ -143,7 +143,10 @@ def label_components(grid: npt.ArrayLike) -> tuple[npt.NDArray[np.int32], int]:
     n : int
         The number of components.
     """
-    g = as_grid(grid, allow_empty=True)
+    return _label(as_grid(grid, allow_empty=True))
+
+
+def _label(g: BoolGrid) -> tuple[npt.NDArray[np.int32], int]:
     if g.size <= _NUMPY_LABEL_LIMIT:
         return _label_numpy(g)
     from scipy import ndimage
@@ -169,7 +172,8 @@ def largest_component(grid: npt.ArrayLike) -> BoolGrid:
 def _outside(g: BoolGrid) -> BoolGrid:
     """Empty voxels 6-connected to the outside of the grid."""
     padded = np.pad(~g, 1, constant_values=True)
-    labels, _ = label_components(padded)
+    # The padded grid may exceed the user-facing size limit by two, so skip as_grid.
+    labels, _ = _label(padded)
     return (labels == labels[0, 0, 0])[1:-1, 1:-1, 1:-1]
 
 

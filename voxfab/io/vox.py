@@ -1,0 +1,289 @@
+"""MagicaVoxel ``.vox``: RIFF-like chunks ``MAIN`` / ``SIZE`` / ``XYZI`` / ``RGBA``.
+
+Layout (ephtracy/voxel-model, ``MagicaVoxel-file-format-vox.txt``)::
+
+    "VOX " int32 version (150; newer editors write 200)
+    chunk := id[4] int32 content_bytes int32 children_bytes content children
+    MAIN  children: [PACK] (SIZE XYZI)+ [RGBA] [MATT/MATL/nTRN/nGRP/nSHP/LAYR/...]
+    SIZE  int32 x, y, z                         (z is up)
+    XYZI  int32 n, then n × uint8 (x, y, z, colour index 1..255)
+    RGBA  256 × uint8 (r, g, b, a); entry i is the colour of index i + 1
+
+Axes: MagicaVoxel is right-handed with z up, as voxfab is, so ``x, y, z`` in the
+file are ``x, y, z`` of the grid ``[x, y, z]`` without any swap.
+
+Reading keeps every voxel of the first model whatever its colour; a file with
+several models or a scene graph is read by taking the first model, with a note.
+Writing gives one model (``SIZE`` + ``XYZI``) in colour index 1, plus a palette,
+as version 150, which every MagicaVoxel since 0.98 opens.
+"""
+
+from __future__ import annotations
+
+import struct
+
+import numpy as np
+
+from voxfab._shared.atomic import write_bytes
+from voxfab._shared.typing import BoolGrid, PathLike
+from voxfab._shared.validate import as_grid
+from voxfab.errors import FormatError, InvalidShapeError
+
+from ._registry import ReadResult, register
+
+__all__ = ["read_vox", "vox_bytes", "write_vox", "VOX_VERSION", "MAX_VOX_SIDE"]
+
+#: Version number written in the header.
+VOX_VERSION = 150
+#: Coordinates are one byte each, so a model has at most 256 voxels per side.
+MAX_VOX_SIDE = 256
+
+_MAGIC = b"VOX "
+_SCENE_CHUNKS = frozenset({b"nTRN", b"nGRP", b"nSHP"})
+_HEADER = struct.Struct("<4sii")
+
+
+def _palette() -> bytes:
+    """The palette written with every file: index 1 a warm light grey, then a grey ramp."""
+    pal = np.zeros((256, 4), dtype=np.uint8)
+    pal[:, 3] = 255
+    pal[0, :3] = (214, 206, 190)
+    ramp = np.linspace(250, 20, 254).round().astype(np.uint8)
+    pal[1:255, :3] = ramp[:, None]
+    pal[255] = 0  # entry 255 would be colour index 256, which does not exist
+    return pal.tobytes()
+
+
+_PALETTE = _palette()
+
+
+def _chunk(chunk_id: bytes, content: bytes, children: bytes = b"") -> bytes:
+    return _HEADER.pack(chunk_id, len(content), len(children)) + content + children
+
+
+def vox_bytes(grid: BoolGrid) -> bytes:
+    """Return the ``.vox`` file content of a grid (deterministic).
+
+    Parameters
+    ----------
+    grid : (X, Y, Z) bool ndarray
+        At most 256 voxels per side.
+
+    Returns
+    -------
+    bytes
+        ``VOX `` header, then ``MAIN`` holding ``SIZE``, ``XYZI`` and ``RGBA``.
+    """
+    g = as_grid(grid, name="shape", max_side=MAX_VOX_SIDE, allow_empty=True)
+    xyz = np.argwhere(g)  # C order: sorted by x, then y, then z
+    xyzi = np.empty((len(xyz), 4), dtype=np.uint8)
+    xyzi[:, :3] = xyz
+    xyzi[:, 3] = 1
+    size = _chunk(b"SIZE", struct.pack("<3i", *g.shape))
+    voxels = _chunk(b"XYZI", struct.pack("<i", len(xyz)) + xyzi.tobytes())
+    rgba = _chunk(b"RGBA", _PALETTE)
+    main = _chunk(b"MAIN", b"", size + voxels + rgba)
+    return _MAGIC + struct.pack("<i", VOX_VERSION) + main
+
+
+def write_vox(grid: BoolGrid, path: PathLike) -> None:
+    """Write a grid as a one-model MagicaVoxel file, atomically."""
+    write_bytes(path, vox_bytes(grid))
+
+
+def _chunks(data: bytes, start: int, end: int, path: PathLike, where: str) -> list[tuple[bytes, int, int]]:
+    """Split ``data[start:end]`` into chunks ``(id, content_start, content_end)``.
+
+    Children of the chunks are skipped (only ``MAIN`` has children in the spec).
+    """
+    out = []
+    pos = start
+    while pos < end:
+        if end - pos < _HEADER.size:
+            raise FormatError(f"{path}: truncated chunk header at byte {pos} in {where}")
+        cid, n_content, n_children = _HEADER.unpack_from(data, pos)
+        if not all(32 <= c < 127 for c in cid):
+            raise FormatError(f"{path}: corrupt chunk id {cid!r} at byte {pos} in {where}")
+        name = cid.decode("ascii")
+        if n_content < 0 or n_children < 0:
+            raise FormatError(f"{path}: chunk {name} at byte {pos} has a negative size")
+        body = pos + _HEADER.size
+        if body + n_content + n_children > end:
+            raise FormatError(
+                f"{path}: chunk {name} at byte {pos} is truncated "
+                f"(needs {n_content + n_children} bytes, {end - body} left in {where})"
+            )
+        out.append((cid, body, body + n_content))
+        pos = body + n_content + n_children
+    return out
+
+
+def _model(
+    data: bytes, size: tuple[int, int], xyzi: tuple[int, int], path: PathLike, *, build: bool = True
+) -> BoolGrid | None:
+    """Check one model's SIZE and XYZI chunks; return its grid when ``build``."""
+    s0, s1 = size
+    if s1 - s0 < 12:
+        raise FormatError(f"{path}: SIZE chunk holds {s1 - s0} bytes, expected 12")
+    dims = struct.unpack_from("<3i", data, s0)
+    if min(dims) < 1:
+        raise FormatError(f"{path}: corrupt model size {dims} (a side below 1)")
+    if max(dims) > MAX_VOX_SIDE:
+        raise InvalidShapeError(
+            f"{path}: grid {'x'.join(map(str, dims))} is over the limit of {MAX_VOX_SIDE} voxels per side"
+        )
+    x0, x1 = xyzi
+    if x1 - x0 < 4:
+        raise FormatError(f"{path}: XYZI chunk holds {x1 - x0} bytes, expected at least 4")
+    (count,) = struct.unpack_from("<i", data, x0)
+    if count < 0 or 4 + 4 * count > x1 - x0:
+        raise FormatError(
+            f"{path}: XYZI chunk is truncated: {count} voxels need {4 + 4 * count} bytes, "
+            f"it holds {x1 - x0}"
+        )
+    xyz = np.frombuffer(data, dtype=np.uint8, count=4 * count, offset=x0 + 4).reshape(count, 4)[:, :3]
+    outside = (xyz >= np.array(dims)).any(axis=1)
+    if outside.any():
+        bad = tuple(int(v) for v in xyz[np.argmax(outside)])
+        raise FormatError(f"{path}: voxel {bad} lies outside the model size {dims}")
+    if not build:
+        return None
+    grid = np.zeros(dims, dtype=bool)
+    grid[xyz[:, 0], xyz[:, 1], xyz[:, 2]] = True
+    return grid
+
+
+class _Cursor:
+    """Reads the STRING and DICT values of the scene-graph chunks, bounds-checked."""
+
+    def __init__(self, data: bytes, start: int, stop: int, path: PathLike, name: str) -> None:
+        self.data, self.pos, self.stop, self.path, self.name = data, start, stop, path, name
+
+    def int32(self) -> int:
+        if self.pos + 4 > self.stop:
+            raise FormatError(f"{self.path}: {self.name} chunk at byte {self.pos} is truncated")
+        (value,) = struct.unpack_from("<i", self.data, self.pos)
+        self.pos += 4
+        return int(value)
+
+    def string(self) -> str:
+        n = self.int32()
+        if n < 0 or self.pos + n > self.stop:
+            raise FormatError(f"{self.path}: {self.name} chunk holds a corrupt string at byte {self.pos}")
+        raw = self.data[self.pos : self.pos + n]
+        self.pos += n
+        return raw.decode("latin-1")
+
+    def dict(self) -> dict[str, str]:
+        n = self.int32()
+        # Each pair takes at least 8 bytes: a bad count must not loop for long.
+        if n < 0 or self.pos + 8 * n > self.stop:
+            raise FormatError(f"{self.path}: {self.name} chunk holds a corrupt DICT at byte {self.pos}")
+        return {self.string(): self.string() for _ in range(n)}
+
+
+#: ``_r`` of a transform without rotation (rows pick x, y, z with + signs).
+_IDENTITY_ROTATION = 4
+
+
+def _rotations(data: bytes, chunks: list[tuple[bytes, int, int]], path: PathLike) -> list[int]:
+    """The ``_r`` rotation codes of every nTRN frame other than the identity."""
+    found = []
+    for cid, start, stop in chunks:
+        if cid != b"nTRN":
+            continue
+        cur = _Cursor(data, start, stop, path, "nTRN")
+        cur.int32()  # node id
+        cur.dict()  # node attributes
+        cur.int32()  # child node id
+        cur.int32()  # reserved
+        cur.int32()  # layer id
+        frames = cur.int32()
+        if frames < 0 or cur.pos + 4 * frames > stop:
+            raise FormatError(f"{path}: nTRN chunk holds a corrupt frame count {frames}")
+        for _ in range(frames):
+            r = cur.dict().get("_r")
+            if r is not None:
+                try:
+                    code = int(r)
+                except ValueError:
+                    raise FormatError(f"{path}: nTRN chunk holds a corrupt rotation {r!r}") from None
+                if code != _IDENTITY_ROTATION:
+                    found.append(code)
+    return found
+
+
+def read_vox(path: PathLike) -> ReadResult:
+    """Read the first model of a MagicaVoxel ``.vox`` file.
+
+    Returns
+    -------
+    ReadResult
+        ``grid`` (X, Y, Z) bool with the model's ``SIZE``; ``notes`` tell when
+        the file held several models or a scene graph.
+
+    Raises
+    ------
+    FormatError
+        On a wrong magic, a truncated or corrupt chunk, a voxel outside its model.
+    InvalidShapeError
+        For a model over 256 voxels on a side.
+    """
+    with open(path, "rb") as fh:
+        data = fh.read()
+    if len(data) < 8 or data[:4] != _MAGIC:
+        raise FormatError(f"{path}: not a MagicaVoxel file (the header 'VOX ' is missing)")
+    (version,) = struct.unpack_from("<i", data, 4)
+    if version <= 0:
+        raise FormatError(f"{path}: corrupt .vox version {version}")
+    if len(data) < 8 + _HEADER.size:
+        raise FormatError(f"{path}: truncated .vox file ({len(data)} bytes)")
+    cid, n_content, n_children = _HEADER.unpack_from(data, 8)
+    if cid != b"MAIN":
+        raise FormatError(f"{path}: the first chunk is {cid!r}, expected MAIN")
+    start = 8 + _HEADER.size + n_content
+    if n_content < 0 or n_children < 0 or start + n_children > len(data):
+        raise FormatError(
+            f"{path}: truncated MAIN chunk (needs {n_content + n_children} bytes, "
+            f"the file holds {len(data) - 8 - _HEADER.size})"
+        )
+    if start + n_children < len(data):
+        raise FormatError(f"{path}: {len(data) - start - n_children} unexpected bytes after MAIN")
+    children = _chunks(data, start, start + n_children, path, "MAIN")
+
+    sizes: list[tuple[int, int]] = []
+    xyzis: list[tuple[int, int]] = []
+    scene = sorted({c.decode() for c, _, _ in children if c in _SCENE_CHUNKS})
+    for cid, start, stop in children:
+        if cid == b"SIZE":
+            if len(sizes) != len(xyzis):
+                raise FormatError(f"{path}: SIZE chunk without its XYZI chunk")
+            sizes.append((start, stop))
+        elif cid == b"XYZI":
+            if len(xyzis) != len(sizes) - 1:
+                raise FormatError(f"{path}: XYZI chunk without a SIZE chunk before it")
+            xyzis.append((start, stop))
+        elif cid == b"RGBA" and stop - start < 1024:
+            raise FormatError(f"{path}: RGBA chunk holds {stop - start} bytes, expected 1024")
+    if not sizes:
+        raise FormatError(f"{path}: no model (SIZE and XYZI chunks) in the file")
+    if len(xyzis) != len(sizes):
+        raise FormatError(f"{path}: the last SIZE chunk has no XYZI chunk")
+    grid = _model(data, sizes[0], xyzis[0], path)
+    # The other models are checked too, so that corruption anywhere is reported.
+    for s, x in zip(sizes[1:], xyzis[1:]):
+        _model(data, s, x, path, build=False)
+    notes: list[str] = []
+    if len(sizes) > 1:
+        notes.append(f"file has {len(sizes)} models; read the first")
+    if scene:
+        notes.append(
+            f"file has a scene graph ({'/'.join(scene)}); read the first model's voxels "
+            "as stored, without the scene's translations and rotations"
+        )
+        if _rotations(data, children, path):
+            notes.append("the scene graph rotates a model; the rotation was not applied")
+    return ReadResult(grid, None, tuple(notes))
+
+
+register(".vox", reader=read_vox, writer=write_vox)
