@@ -7,7 +7,7 @@ import hashlib
 import numpy as np
 import numpy.typing as npt
 
-from ._ops import crop, symmetries
+from ._ops import _apply_move, _rotation_moves, crop, mirror
 
 
 def _key_bytes(g: np.ndarray) -> bytes:
@@ -22,7 +22,16 @@ def canonical_key(grid: npt.ArrayLike, *, symmetric: bool = False) -> str:
     """
     g = crop(grid)
     if symmetric:
-        data = min(_key_bytes(s) for s in symmetries(g, reflections=True))
+        # The encoding starts with the grid's shape, so only the orientations with
+        # the smallest shape can win: encode just those.
+        candidates = [g, mirror(g, "x")]
+        smallest = tuple(sorted(g.shape))
+        data = min(
+            _key_bytes(_apply_move(c, move))
+            for c in candidates
+            for move in _rotation_moves()
+            if tuple(c.shape[a] for a in move[0]) == smallest
+        )
     else:
         data = _key_bytes(g)
     return hashlib.sha256(data).hexdigest()

@@ -266,11 +266,21 @@ def _rotation_matrices() -> tuple[npt.NDArray[np.int64], ...]:
     return tuple(mats)
 
 
-def _apply_matrix(g: BoolGrid, m: npt.NDArray[np.int64]) -> BoolGrid:
-    # new axis `row` reads old axis `col`, reversed where the sign is negative.
-    perm = [int(np.flatnonzero(m[row])[0]) for row in range(3)]
+@lru_cache(maxsize=1)
+def _rotation_moves() -> tuple[tuple[tuple[int, ...], tuple[int, ...]], ...]:
+    """Each rotation as (axis order, axes to flip), the form numpy applies directly."""
+    moves = []
+    for m in _rotation_matrices():
+        # New axis `row` reads old axis `perm[row]`, reversed where the sign is negative.
+        perm = tuple(int(np.flatnonzero(m[row])[0]) for row in range(3))
+        flips = tuple(row for row in range(3) if m[row, perm[row]] < 0)
+        moves.append((perm, flips))
+    return tuple(moves)
+
+
+def _apply_move(g: BoolGrid, move: tuple[tuple[int, ...], tuple[int, ...]]) -> BoolGrid:
+    perm, flips = move
     out = np.transpose(g, perm)
-    flips = tuple(row for row in range(3) if m[row, perm[row]] < 0)
     if flips:
         out = np.flip(out, axis=flips)
     return np.ascontiguousarray(out)
@@ -279,7 +289,7 @@ def _apply_matrix(g: BoolGrid, m: npt.NDArray[np.int64]) -> BoolGrid:
 def rotations(grid: npt.ArrayLike) -> list[BoolGrid]:
     """Return the 24 rotations of the grid (the identity first)."""
     g = as_grid(grid, allow_empty=True)
-    return [_apply_matrix(g, m) for m in _rotation_matrices()]
+    return [_apply_move(g, move) for move in _rotation_moves()]
 
 
 def rotate(grid: npt.ArrayLike, axis: str = "z", quarter_turns: int = 1) -> BoolGrid:

@@ -1,0 +1,210 @@
+"""``voxfab repo`` through the real entry point."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from voxfab import io
+from voxfab.cli import main
+from voxfab.cli._common import load_shape
+from voxfab.repo import Repository
+from voxfab.shape import crop, examples, mirror, rotate, volume
+
+
+def voxfab(*args: object, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [sys.executable, "-m", "voxfab", *map(str, args)], capture_output=True, text=True, cwd=cwd
+    )
+
+
+@pytest.fixture
+def files(tmp_path: Path) -> dict[str, Path]:
+    """Shape files: two random shapes, a rotated and a mirrored copy, a bad shape."""
+    a = examples.random_shape(4, fill=0.08)
+    b = examples.random_shape(5, fill=0.08)
+    out = {
+        "a": tmp_path / "a.npy",
+        "b": tmp_path / "b.txt",
+        "a_rot": tmp_path / "a_rot.npy",
+        "a_mir": tmp_path / "a_mir.npy",
+        "ball": tmp_path / "ball.npy",
+    }
+    io.write(a, out["a"])
+    io.write(b, out["b"])
+    io.write(rotate(a, "x", 1), out["a_rot"])
+    io.write(mirror(a, "z"), out["a_mir"])
+    io.write(examples.ball(3), out["ball"])
+    return out
+
+
+def test_add_list_show_export_remove_in_subprocesses(tmp_path: Path, files: dict[str, Path]) -> None:
+    repo = tmp_path / "r.sqlite"
+    a = io.read(files["a"]).grid
+    b = io.read(files["b"]).grid
+    na, nb = f"{volume(a):05d}.001", f"{volume(b):05d}.001"
+
+    r = voxfab("repo", "add", files["a"], files["b"], files["a"], "--repo", repo)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.splitlines() == [f"{na} created", f"{nb} created", f"{na} exists"]
+
+    r = voxfab("repo", "list", "--json", "--repo", repo)
+    assert r.returncode == 0, r.stderr
+    listing = json.loads(r.stdout)
+    assert [s["name"] for s in listing["shapes"]] == sorted([na, nb])
+    by_name = {s["name"]: s for s in listing["shapes"]}
+    assert by_name[na] == {"name": na, "volume": volume(a), "extents": list(crop(a).shape), "draft": False}
+
+    r = voxfab("repo", "export", na, tmp_path / "out.txt", "--repo", repo)
+    assert r.returncode == 0, r.stderr
+    assert np.array_equal(io.read(tmp_path / "out.txt").grid, crop(a))
+
+    r = voxfab("repo", "remove", na, "--repo", repo)
+    assert r.returncode == 0 and r.stdout.strip() == f"{na} removed"
+    r = voxfab("repo", "show", na, "--repo", repo)
+    assert r.returncode == 8
+    assert r.stderr == f"voxfab: error: {na}: no such shape in {repo}\n"
+    assert r.stdout == ""
+
+
+def test_add_symmetric_finds_rotated_and_mirrored(tmp_path: Path, files: dict[str, Path], capsys) -> None:
+    repo = str(tmp_path / "r.sqlite")
+    assert main(["repo", "add", str(files["a"]), "--repo", repo]) == 0
+    name = capsys.readouterr().out.split()[0]
+    assert main(["repo", "add", str(files["a_rot"]), str(files["a_mir"]), "--symmetric", "--repo", repo]) == 0
+    assert capsys.readouterr().out.splitlines() == [f"{name} exists", f"{name} exists"]
+    # Without --symmetric the mirrored copy is a new shape of the same volume.
+    assert main(["repo", "add", str(files["a_mir"]), "--repo", repo]) == 0
+    assert capsys.readouterr().out.strip() == f"{name[:5]}.002 created"
+
+
+def test_not_well_formed_is_refused_then_stored_as_draft(tmp_path: Path, files: dict[str, Path], capsys) -> None:
+    repo = str(tmp_path / "r.sqlite")
+    assert main(["repo", "add", str(files["ball"]), "--repo", repo]) == 8
+    captured = capsys.readouterr()
+    assert captured.out == ""
+    lines = captured.err.splitlines()
+    assert len(lines) == 1
+    assert lines[0].startswith(f"voxfab: error: {files['ball']}: not well formed: extents (7, 7, 7)")
+    assert "--draft" in lines[0]
+
+    assert main(["repo", "add", str(files["ball"]), "--draft", "--repo", repo]) == 0
+    captured = capsys.readouterr()
+    draft = captured.out.split()[0]
+    assert captured.out == f"{draft} created\n" and draft.startswith("draft-")
+    assert "stored as a draft" in captured.err
+
+    assert main(["repo", "show", draft, "--json", "--repo", repo]) == 0
+    info = json.loads(capsys.readouterr().out)
+    assert info["draft"] is True and info["rank"] is None and info["reasons"]
+    assert info["meta"] == {"source": str(files["ball"])}
+
+    assert main(["repo", "list", "--repo", repo]) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert len(out) == 1 and out[0].split() == [draft, str(volume(examples.ball(3))), "7x7x7", "draft"]
+
+
+def test_show_text_and_list_text(tmp_path: Path, files: dict[str, Path], capsys) -> None:
+    repo = str(tmp_path / "r.sqlite")
+    assert main(["repo", "add", str(files["b"]), str(files["a"]), "--repo", repo]) == 0
+    names = [line.split()[0] for line in capsys.readouterr().out.splitlines()]
+    assert main(["repo", "list", "--repo", repo]) == 0
+    rows = [line.split() for line in capsys.readouterr().out.splitlines()]
+    assert [row[0] for row in rows] == sorted(names)
+    assert main(["repo", "show", names[0], "--repo", repo]) == 0
+    text = capsys.readouterr().out
+    assert f"name: {names[0]}\n" in text
+    assert "rank: 1\n" in text and "draft: no\n" in text
+    assert f"meta.source: {files['b']}\n" in text
+
+
+def test_load_shape_reads_repository_names(tmp_path: Path, files: dict[str, Path]) -> None:
+    repo = tmp_path / "r.sqlite"
+    with Repository(repo) as r:
+        name = r.add(io.read(files["a"]).grid).name
+    shape, loaded_name, notes = load_shape(name, repo)
+    assert loaded_name == name and notes == []
+    assert np.array_equal(shape.grid, crop(io.read(files["a"]).grid))
+
+
+def test_default_repository_in_the_working_folder(tmp_path: Path, files: dict[str, Path]) -> None:
+    r = voxfab("repo", "add", files["a"], cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert (tmp_path / "output" / "repository.sqlite").is_file()
+    r = voxfab("repo", "list", cwd=tmp_path)
+    assert r.returncode == 0 and len(r.stdout.splitlines()) == 1
+
+
+@pytest.mark.parametrize(
+    ("argv", "code", "message"),
+    [
+        (["list"], 8, "no repository at {missing}"),
+        (["show", "00025.001"], 8, "no repository at {missing}"),
+        (["remove", "00025.001"], 8, "no repository at {missing}"),
+        (["export", "00025.001", "{tmp}/x.npy"], 8, "no repository at {missing}"),
+    ],
+)
+def test_missing_repository_is_not_created(tmp_path: Path, capsys, argv, code, message) -> None:
+    missing = tmp_path / "missing.sqlite"
+    argv = [a.format(tmp=tmp_path) for a in argv]
+    assert main(["repo", *argv, "--repo", str(missing)]) == code
+    err = capsys.readouterr().err
+    assert err == f"voxfab: error: {message.format(missing=missing)}\n"
+    assert not missing.exists()
+
+
+def test_errors_are_one_line_with_exit_codes(tmp_path: Path, files: dict[str, Path], capsys) -> None:
+    repo = str(tmp_path / "r.sqlite")
+    assert main(["repo", "add", str(files["a"]), "--repo", repo]) == 0
+    capsys.readouterr()
+    (tmp_path / "bad.npy").write_bytes(b"\x93NUMPY garbage")
+    (tmp_path / "x.xyz").write_text("?")
+    cases = [
+        (["add", str(tmp_path / "bad.npy")], 5, "bad.npy"),
+        (["add", str(tmp_path / "x.xyz")], 4, "x.xyz"),
+        (["add", str(tmp_path / "nothere.npy")], 5, "nothere.npy: no such file"),
+        (["show", "nonsense"], 8, "'nonsense': not a shape name"),
+        (["remove", "99999.999"], 8, "99999.999: no such shape"),
+        (["export", "99999.999", str(tmp_path / "o.npy")], 8, "99999.999: no such shape"),
+    ]
+    for argv, code, fragment in cases:
+        assert main(["repo", *argv, "--repo", repo]) == code, argv
+        captured = capsys.readouterr()
+        lines = captured.err.splitlines()
+        assert len(lines) == 1 and lines[0].startswith("voxfab: error: "), captured.err
+        assert fragment in lines[0]
+        assert "Traceback" not in captured.err
+    with Repository(repo, create=False) as r:
+        assert len(r) == 1
+
+
+def test_corrupt_repository_file_in_subprocess(tmp_path: Path) -> None:
+    bad = tmp_path / "bad.sqlite"
+    bad.write_bytes(b"garbage" * 1000)
+    r = voxfab("repo", "list", "--repo", bad)
+    assert r.returncode == 8
+    assert r.stderr.startswith(f"voxfab: error: {bad}: not a voxfab repository")
+    assert len(r.stderr.splitlines()) == 1 and "Traceback" not in r.stderr
+    r = voxfab("repo", "list", "--repo", bad, "--debug")
+    assert r.returncode == 8 and "Traceback" in r.stderr
+
+
+def test_missing_action_is_a_usage_error() -> None:
+    r = voxfab("repo")
+    assert r.returncode == 2
+    assert "ACTION" in r.stderr or "required" in r.stderr
+
+
+def test_module_imports_stay_light() -> None:
+    code = (
+        "import sys, voxfab.cli.repo; "
+        "print(sorted(m for m in ('scipy', 'trimesh', 'sqlite3', 'voxfab.repo') if m in sys.modules))"
+    )
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.strip() == "[]"

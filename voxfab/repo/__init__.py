@@ -1,0 +1,27 @@
+"""The shape repository: the artist's named shapes in one SQLite file.
+
+A well-formed shape is named ``VVVVV.NNN``: its volume (voxel count) zero-padded
+to five digits, then its three-digit rank among the shapes of that volume in
+insertion order.  Names are stable: removing a shape renumbers nothing and its
+name is never given again.  Shapes that are not well formed may be kept as drafts
+(``draft-N``).  Equal shapes, up to translation (or up to the 48 cube symmetries
+on request), are stored once, found through indexed canonical keys.
+
+Only this package touches :mod:`sqlite3`.  See :class:`Repository`.
+"""
+
+from ._records import DRAFT_PATTERN, MAX_RANK, NAME_PATTERN, format_name
+from ._repository import DEFAULT_PATH, AddResult, Entry, Repository
+from ._sqlite import SCHEMA_VERSION
+
+__all__ = [
+    "Repository",
+    "AddResult",
+    "Entry",
+    "DEFAULT_PATH",
+    "SCHEMA_VERSION",
+    "MAX_RANK",
+    "NAME_PATTERN",
+    "DRAFT_PATTERN",
+    "format_name",
+]

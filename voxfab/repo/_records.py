@@ -1,0 +1,151 @@
+"""What the repository stores per shape, computed before any lock is taken."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import re
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from voxfab._shared.typing import BoolGrid
+from voxfab._shared.validate import as_grid
+from voxfab.errors import RepositoryError
+from voxfab.shape import canonical_key, crop, well_formed_reasons
+
+__all__ = [
+    "MAX_RANK",
+    "NAME_PATTERN",
+    "DRAFT_PATTERN",
+    "Record",
+    "check_grid",
+    "encode_meta",
+    "prepare",
+    "encode_bits",
+    "decode_bits",
+    "format_name",
+    "draft_name",
+    "check_name",
+]
+
+#: Ranks run 001..999 per volume.
+MAX_RANK = 999
+#: A repository name: 5-digit zero-padded volume, a dot, 3-digit rank.
+NAME_PATTERN = re.compile(r"^(\d{5})\.(\d{3})$")
+#: The id of a draft (a stored shape that is not well formed).
+DRAFT_PATTERN = re.compile(r"^draft-(\d+)$")
+
+
+@dataclasses.dataclass(frozen=True)
+class Record:
+    """One shape ready to insert.
+
+    Attributes
+    ----------
+    volume : int
+        Number of filled voxels.
+    extents : (int, int, int)
+        Size of the cropped grid along x, y, z in voxels.
+    bits : bytes
+        ``np.packbits`` of the cropped grid raveled in C order.
+    key, symmetric_key : str
+        :func:`voxfab.shape.canonical_key` up to translation, and up to the 48 cube symmetries.
+    reasons : tuple of str
+        Why the shape is not well formed (empty when it is).
+    meta : str or None
+        The metadata as JSON text with sorted keys.
+    """
+
+    volume: int
+    extents: tuple[int, int, int]
+    bits: bytes
+    key: str
+    symmetric_key: str
+    reasons: tuple[str, ...]
+    meta: str | None
+
+
+def encode_bits(cropped: BoolGrid) -> bytes:
+    """Pack a bool grid (C order) into bytes, 8 voxels per byte."""
+    return np.packbits(np.ascontiguousarray(cropped).ravel()).tobytes()
+
+
+def decode_bits(bits: bytes, extents: tuple[int, int, int]) -> BoolGrid:
+    """Inverse of :func:`encode_bits`: a writable ``extents``-shaped bool grid."""
+    n = extents[0] * extents[1] * extents[2]
+    flat = np.unpackbits(np.frombuffer(bits, dtype=np.uint8), count=n)
+    return flat.astype(bool).reshape(extents)
+
+
+def encode_meta(meta: Mapping[str, Any] | None) -> str | None:
+    """Return ``meta`` as JSON text (sorted keys), or None."""
+    if meta is None:
+        return None
+    if not isinstance(meta, Mapping):
+        raise RepositoryError(f"meta: expected a mapping of JSON values, got {type(meta).__name__}")
+    try:
+        return json.dumps(dict(meta), sort_keys=True, allow_nan=False, separators=(",", ":"))
+    except (TypeError, ValueError) as exc:
+        raise RepositoryError(f"meta: cannot store as JSON ({exc})") from None
+
+
+def check_grid(grid: npt.ArrayLike, *, name: str = "shape") -> BoolGrid:
+    """Return ``grid`` as a bool grid that has at least one filled voxel.
+
+    Raises
+    ------
+    InvalidShapeError
+        For a wrong dtype or a grid over the size limit.
+    RepositoryError
+        For an empty grid (nothing to store, not even as a draft).
+    """
+    g = as_grid(grid, name=name, allow_empty=True)
+    if not g.any():
+        raise RepositoryError(f"{name}: the grid is empty; an empty shape cannot be stored")
+    return g
+
+
+def prepare(
+    grid: BoolGrid,
+    *,
+    meta: str | None = None,
+    key: str | None = None,
+    symmetric_key: str | None = None,
+) -> Record:
+    """Compute everything stored for a grid checked by :func:`check_grid`.
+
+    ``meta`` is JSON text from :func:`encode_meta`; ``key`` and ``symmetric_key``
+    may be passed when already computed.
+    """
+    c = crop(grid)
+    return Record(
+        volume=int(np.count_nonzero(c)),
+        extents=(int(c.shape[0]), int(c.shape[1]), int(c.shape[2])),
+        bits=encode_bits(c),
+        key=key or canonical_key(c),
+        symmetric_key=symmetric_key or canonical_key(c, symmetric=True),
+        reasons=tuple(well_formed_reasons(c)),
+        meta=meta,
+    )
+
+
+def format_name(volume: int, rank: int) -> str:
+    """Return ``VVVVV.NNN`` for a volume and a rank (1..999)."""
+    return f"{volume:05d}.{rank:03d}"
+
+
+def draft_name(row_id: int) -> str:
+    """Return the id of the draft stored in row ``row_id``."""
+    return f"draft-{row_id}"
+
+
+def check_name(name: object) -> str:
+    """Return ``name`` if it looks like a shape name or a draft id, else raise RepositoryError."""
+    if not isinstance(name, str) or not (NAME_PATTERN.match(name) or DRAFT_PATTERN.match(name)):
+        raise RepositoryError(
+            f"{name!r}: not a shape name (expected VVVVV.NNN such as 00797.001, or draft-N)"
+        )
+    return name

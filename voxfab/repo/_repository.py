@@ -1,0 +1,444 @@
+"""The shape repository: named voxel shapes in one SQLite file."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import sqlite3
+from collections.abc import Iterable, Iterator, Mapping, Sequence
+from pathlib import Path
+from types import TracebackType
+from typing import Any
+
+import numpy.typing as npt
+
+from voxfab._shared.typing import BoolGrid, PathLike
+from voxfab.errors import RepositoryError
+from voxfab.shape import canonical_key
+
+from ._records import (
+    MAX_RANK,
+    Record,
+    check_grid,
+    check_name,
+    decode_bits,
+    draft_name,
+    encode_meta,
+    format_name,
+    prepare,
+)
+from ._sqlite import connect, immediate, sqlite_errors
+
+__all__ = ["DEFAULT_PATH", "AddResult", "Entry", "Repository"]
+
+#: Where the CLI keeps the repository unless told otherwise (relative to the working folder).
+DEFAULT_PATH = Path("output") / "repository.sqlite"
+
+_ORDER = "ORDER BY draft, volume, rank, id"
+
+
+@dataclasses.dataclass(frozen=True)
+class AddResult:
+    """What :meth:`Repository.add` did.
+
+    Attributes
+    ----------
+    name : str
+        ``VVVVV.NNN``, or ``draft-N`` for a shape stored as a draft.
+    created : bool
+        False when an equal shape was already stored (``name`` is its name).
+    reasons : tuple of str
+        Why the shape is not well formed (non-empty only for drafts).
+    """
+
+    name: str
+    created: bool
+    reasons: tuple[str, ...] = ()
+
+    @property
+    def draft(self) -> bool:
+        """Whether the name is a draft id."""
+        return self.name.startswith("draft-")
+
+
+@dataclasses.dataclass(frozen=True)
+class Entry:
+    """One row of :meth:`Repository.list`.
+
+    Attributes
+    ----------
+    name : str
+        ``VVVVV.NNN`` or ``draft-N``.
+    volume : int
+        Filled voxels.
+    extents : (int, int, int)
+        Bounding-box size along x, y, z in voxels.
+    draft : bool
+        Whether the shape is a draft (not well formed, unnamed).
+    """
+
+    name: str
+    volume: int
+    extents: tuple[int, int, int]
+    draft: bool
+
+
+class Repository:
+    """Named voxel shapes stored in one SQLite file.
+
+    A well-formed shape (see :func:`voxfab.shape.well_formed_reasons`) gets the name
+    ``VVVVV.NNN``: its volume zero-padded to 5 digits, then its 3-digit rank among the
+    shapes of that volume in insertion order (``001`` first).  Names are stable:
+    :meth:`remove` does not renumber the other shapes and a removed name is never
+    given again, so rank ``N`` means "the N-th shape of that volume ever added".
+
+    Equal shapes are stored once: a shape is looked up by its canonical key
+    (:func:`voxfab.shape.canonical_key`, indexed), up to translation or, with
+    ``symmetric=True``, up to the 48 symmetries of the cube.
+
+    Several processes may use the same file at once: each write runs in a
+    ``BEGIN IMMEDIATE`` transaction and names are UNIQUE in the schema.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The database file (default ``output/repository.sqlite``).
+    create : bool
+        Create the file (and its folder) when missing.  Otherwise a missing file
+        raises :class:`RepositoryError`.
+
+    Raises
+    ------
+    RepositoryError
+        No file with ``create=False``, or a file that is not a voxfab repository.
+
+    Examples
+    --------
+    >>> import tempfile, numpy as np
+    >>> column = np.ones((1, 1, 25), bool)
+    >>> with tempfile.TemporaryDirectory() as d, Repository(f"{d}/r.sqlite") as repo:
+    ...     repo.add(column).name, repo.add(column).created
+    ('00025.001', False)
+    """
+
+    def __init__(self, path: PathLike = DEFAULT_PATH, *, create: bool = True) -> None:
+        self._path = Path(path)
+        self._conn: sqlite3.Connection | None = connect(self._path, create=create)
+
+    # -- life cycle -------------------------------------------------------------
+
+    @property
+    def path(self) -> Path:
+        """The database file."""
+        return self._path
+
+    def close(self) -> None:
+        """Close the connection (idempotent)."""
+        if self._conn is not None:
+            self._conn.close()
+            self._conn = None
+
+    def __enter__(self) -> Repository:
+        return self
+
+    def __exit__(
+        self, exc_type: type[BaseException] | None, exc: BaseException | None, tb: TracebackType | None
+    ) -> None:
+        self.close()
+
+    def __repr__(self) -> str:
+        state = "closed" if self._conn is None else "open"
+        return f"Repository({str(self._path)!r}, {state})"
+
+    @property
+    def _db(self) -> sqlite3.Connection:
+        if self._conn is None:
+            raise RepositoryError(f"{self._path}: the repository is closed")
+        return self._conn
+
+    # -- adding -----------------------------------------------------------------
+
+    def add(
+        self,
+        grid: npt.ArrayLike,
+        *,
+        symmetric: bool = False,
+        draft: bool = False,
+        meta: Mapping[str, Any] | None = None,
+    ) -> AddResult:
+        """Store a shape and name it, unless an equal shape is stored already.
+
+        Parameters
+        ----------
+        grid : (X, Y, Z) bool array_like
+            The shape; only its cropped content is stored.
+        symmetric : bool
+            Also treat rotated and mirrored copies (48 cube symmetries) as equal.
+        draft : bool
+            Store a shape that is not well formed as an unnamed draft (id
+            ``draft-N``) instead of refusing it.  A well-formed shape is named as usual.
+        meta : mapping, optional
+            JSON-compatible metadata (seed, source, ...), shown by :meth:`show`.
+
+        Returns
+        -------
+        AddResult
+            The new name and ``created=True``, or the stored equal shape's name and
+            ``created=False`` (then nothing is written, ``meta`` included).
+
+        Raises
+        ------
+        RepositoryError
+            A shape that is not well formed (without ``draft``; the message lists the
+            reasons), an empty grid, bad ``meta``, or all 999 ranks of the volume used.
+        InvalidShapeError
+            A grid of a wrong dtype or over the size limit.
+        """
+        return self.add_many([grid], symmetric=symmetric, draft=draft, metas=[meta])[0]
+
+    def add_many(
+        self,
+        grids: Iterable[npt.ArrayLike],
+        *,
+        symmetric: bool = False,
+        draft: bool = False,
+        metas: Sequence[Mapping[str, Any] | None] | None = None,
+    ) -> list[AddResult]:
+        """Add several shapes in one transaction: all are stored, or none is.
+
+        Same rules as :meth:`add` (a shape equal to an earlier one in the same call
+        gets its name).  One transaction makes bulk loading much faster.
+
+        Parameters
+        ----------
+        grids : iterable of (X, Y, Z) bool array_like
+        symmetric, draft : bool
+            As in :meth:`add`.
+        metas : sequence of (mapping or None), optional
+            One metadata mapping per grid.
+
+        Returns
+        -------
+        list of AddResult
+            In the order of ``grids``.
+        """
+        grids = list(grids)
+        if metas is None:
+            metas = [None] * len(grids)
+        if len(metas) != len(grids):
+            raise RepositoryError(f"metas: expected {len(grids)} entries, got {len(metas)}")
+        # Everything is computed before the write lock is taken, so the lock is held
+        # only for the index lookups and the inserts.  A shape found by a first
+        # lock-free lookup needs neither its other key nor its well-formedness
+        # computed again: equal shapes share them.
+        results: list[AddResult | None] = []
+        pending: list[tuple[int, Record]] = []
+        for i, (grid, m) in enumerate(zip(grids, metas)):
+            label = "shape" if len(grids) == 1 else f"shape {i}"
+            g = check_grid(grid, name=label)
+            meta = encode_meta(m)
+            key = canonical_key(g, symmetric=symmetric)
+            found = self._lookup(key, symmetric=symmetric)
+            if found is not None:
+                name, reasons = found
+                if reasons and not draft:
+                    raise _not_well_formed(label, reasons)
+                results.append(AddResult(name, False, reasons))
+                continue
+            if symmetric:
+                record = prepare(g, meta=meta, symmetric_key=key)
+            else:
+                record = prepare(g, meta=meta, key=key)
+            if record.reasons and not draft:
+                raise _not_well_formed(label, record.reasons)
+            results.append(None)
+            pending.append((i, record))
+        if pending:
+            db = self._db
+            with sqlite_errors(self._path), immediate(db):
+                for i, record in pending:
+                    results[i] = self._insert(db, record, symmetric=symmetric)
+        return [r for r in results if r is not None]
+
+    def _lookup(self, key: str, *, symmetric: bool) -> tuple[str, tuple[str, ...]] | None:
+        """Name and reasons of the first stored shape with this canonical key, or None."""
+        column = "symmetric_key" if symmetric else "key"
+        with sqlite_errors(self._path):
+            row = self._db.execute(
+                f"SELECT name, reasons FROM shapes WHERE {column} = ? {_ORDER} LIMIT 1", (key,)
+            ).fetchone()
+        return None if row is None else (row[0], tuple(json.loads(row[1])))
+
+    def _insert(self, db: sqlite3.Connection, r: Record, *, symmetric: bool) -> AddResult:
+        column, key = ("symmetric_key", r.symmetric_key) if symmetric else ("key", r.key)
+        row = db.execute(f"SELECT name FROM shapes WHERE {column} = ? {_ORDER} LIMIT 1", (key,)).fetchone()
+        if row is not None:
+            return AddResult(row[0], False, r.reasons)
+        values = (r.volume, *r.extents, r.bits, r.key, r.symmetric_key, json.dumps(list(r.reasons)), r.meta)
+        insert = (
+            "INSERT INTO shapes (name, rank, draft, volume, nx, ny, nz, bits, key, symmetric_key, reasons, meta)"
+            " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)"
+        )
+        if r.reasons:
+            row_id = db.execute(insert, (None, None, 1, *values)).lastrowid
+            name = draft_name(int(row_id))
+            db.execute("UPDATE shapes SET name = ? WHERE id = ?", (name, row_id))
+            return AddResult(name, True, r.reasons)
+        last = db.execute("SELECT last_rank FROM rank_counters WHERE volume = ?", (r.volume,)).fetchone()
+        rank = (last[0] if last else 0) + 1
+        if rank > MAX_RANK:
+            raise RepositoryError(
+                f"volume {r.volume}: all {MAX_RANK} ranks {r.volume:05d}.001-{r.volume:05d}.{MAX_RANK} "
+                "have been given (removed names are not reused); cannot name another shape of this volume"
+            )
+        db.execute(
+            "INSERT INTO rank_counters (volume, last_rank) VALUES (?, ?)"
+            " ON CONFLICT (volume) DO UPDATE SET last_rank = excluded.last_rank",
+            (r.volume, rank),
+        )
+        name = format_name(r.volume, rank)
+        db.execute(insert, (name, rank, 0, *values))
+        return AddResult(name, True, ())
+
+    # -- reading ----------------------------------------------------------------
+
+    def _row(self, name: str, columns: str) -> tuple[Any, ...]:
+        check_name(name)
+        with sqlite_errors(self._path):
+            row = self._db.execute(f"SELECT {columns} FROM shapes WHERE name = ?", (name,)).fetchone()
+        if row is None:
+            raise RepositoryError(f"{name}: no such shape in {self._path}")
+        return tuple(row)
+
+    def get(self, name: str) -> BoolGrid:
+        """Return the stored (cropped) grid of ``name``.
+
+        Returns
+        -------
+        (X, Y, Z) bool ndarray
+            A new writable array the size of the shape's bounding box.
+
+        Raises
+        ------
+        RepositoryError
+            For a malformed or unknown name.
+        """
+        bits, nx, ny, nz = self._row(name, "bits, nx, ny, nz")
+        return decode_bits(bits, (nx, ny, nz))
+
+    def find(self, grid: npt.ArrayLike, *, symmetric: bool = False) -> str | None:
+        """Return the name of the stored shape equal to ``grid``, or None.
+
+        Equal means the same voxels up to translation, and with ``symmetric`` up to
+        the 48 cube symmetries.  Drafts are found too (their ``draft-N`` id).
+        """
+        found = self._lookup(canonical_key(grid, symmetric=symmetric), symmetric=symmetric)
+        return None if found is None else found[0]
+
+    def list(self) -> list[Entry]:
+        """Return every stored shape: named ones by volume then rank, then drafts by volume."""
+        with sqlite_errors(self._path):
+            rows = self._db.execute(f"SELECT name, volume, nx, ny, nz, draft FROM shapes {_ORDER}").fetchall()
+        return [Entry(name, volume, (nx, ny, nz), bool(d)) for name, volume, nx, ny, nz, d in rows]
+
+    def show(self, name: str) -> dict[str, Any]:
+        """Return what is known about ``name`` as a JSON-compatible dict.
+
+        Keys: ``name``, ``volume``, ``rank`` (None for drafts), ``extents``,
+        ``draft``, ``reasons`` (why a draft is not well formed), ``key`` and
+        ``symmetric_key`` (canonical sha256 keys), ``meta`` (None if none stored).
+        """
+        volume, rank, nx, ny, nz, d, reasons, key, skey, meta = self._row(
+            name, "volume, rank, nx, ny, nz, draft, reasons, key, symmetric_key, meta"
+        )
+        return {
+            "name": name,
+            "volume": volume,
+            "rank": rank,
+            "extents": [nx, ny, nz],
+            "draft": bool(d),
+            "reasons": json.loads(reasons),
+            "key": key,
+            "symmetric_key": skey,
+            "meta": None if meta is None else json.loads(meta),
+        }
+
+    def export(self, name: str, path: PathLike) -> Path:
+        """Write the shape ``name`` to ``path`` through :func:`voxfab.io.write` (format by extension).
+
+        Returns
+        -------
+        Path
+            ``path``.
+        """
+        from voxfab import io
+
+        grid = self.get(name)
+        io.write(grid, path)
+        return Path(path)
+
+    # -- removing ---------------------------------------------------------------
+
+    def remove(self, name: str) -> None:
+        """Delete ``name``.  Other shapes keep their names and the name is not reused.
+
+        Raises
+        ------
+        RepositoryError
+            For a malformed or unknown name.
+        """
+        check_name(name)
+        db = self._db
+        with sqlite_errors(self._path), immediate(db):
+            deleted = db.execute("DELETE FROM shapes WHERE name = ?", (name,)).rowcount
+        if deleted == 0:
+            raise RepositoryError(f"{name}: no such shape in {self._path}")
+
+    def check(self) -> list[str]:
+        """Return the problems found in the file (an empty list when it is sound).
+
+        Runs SQLite's ``PRAGMA integrity_check`` and checks that every name matches
+        its row (``VVVVV.NNN`` from volume and rank, ``draft-N`` from the row id),
+        that no rank exceeds its volume's counter, and that each stored grid holds
+        ``volume`` voxels.
+        """
+        problems: list[str] = []
+        with sqlite_errors(self._path):
+            db = self._db
+            problems += [r[0] for r in db.execute("PRAGMA integrity_check") if r[0] != "ok"]
+            rows = db.execute(
+                "SELECT s.id, s.name, s.volume, s.rank, s.draft, s.nx, s.ny, s.nz, s.bits, c.last_rank"
+                " FROM shapes s LEFT JOIN rank_counters c ON c.volume = s.volume ORDER BY s.id"
+            ).fetchall()
+        for row_id, name, volume, rank, d, nx, ny, nz, bits, last in rows:
+            expected = draft_name(row_id) if d else format_name(volume, rank)
+            if name != expected:
+                problems.append(f"row {row_id}: name {name!r}, expected {expected!r}")
+            if not d and (last is None or rank > last):
+                problems.append(f"row {row_id}: rank {rank} beyond the counter {last} of volume {volume}")
+            count = int(decode_bits(bits, (nx, ny, nz)).sum())
+            if count != volume:
+                problems.append(f"row {row_id}: {count} voxels stored, volume says {volume}")
+        return problems
+
+    # -- container protocol -----------------------------------------------------
+
+    def __len__(self) -> int:
+        with sqlite_errors(self._path):
+            return int(self._db.execute("SELECT count(*) FROM shapes").fetchone()[0])
+
+    def __iter__(self) -> Iterator[str]:
+        """Iterate over the names in :meth:`list` order (a snapshot)."""
+        return iter([e.name for e in self.list()])
+
+    def __contains__(self, name: object) -> bool:
+        if not isinstance(name, str):
+            return False
+        with sqlite_errors(self._path):
+            return self._db.execute("SELECT 1 FROM shapes WHERE name = ?", (name,)).fetchone() is not None
+
+
+def _not_well_formed(label: str, reasons: Sequence[str]) -> RepositoryError:
+    return RepositoryError(
+        f"{label}: not well formed: {'; '.join(reasons)} (pass draft=True to store it as a draft)"
+    )

@@ -1,0 +1,167 @@
+"""SQLite storage of the repository: connection settings, versioned schema, transactions.
+
+This module (with the rest of ``voxfab.repo``) is the only code in voxfab that
+touches :mod:`sqlite3`.
+
+The schema version lives in ``PRAGMA user_version`` and the file is marked as a
+voxfab repository by ``PRAGMA application_id``.  ``_MIGRATIONS[v]`` holds the
+statements that take a file from version ``v`` to ``v + 1``; opening a file
+applies the missing ones inside one ``BEGIN IMMEDIATE`` transaction, so several
+processes may open (and create) the same file at the same time.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import sqlite3
+from collections.abc import Iterator
+from pathlib import Path
+
+from voxfab.errors import RepositoryError
+
+__all__ = ["SCHEMA_VERSION", "APPLICATION_ID", "BUSY_TIMEOUT_S", "connect", "immediate", "sqlite_errors"]
+
+#: Version of the schema written by this code (``PRAGMA user_version``).
+SCHEMA_VERSION = 1
+#: ``PRAGMA application_id`` of a voxfab repository: the bytes "VXFB".
+APPLICATION_ID = 0x56584642
+#: How long a writer waits for another process's write lock before giving up.
+BUSY_TIMEOUT_S = 60.0
+
+_MIGRATIONS: tuple[tuple[str, ...], ...] = (
+    # 0 -> 1: shapes with their canonical keys; per-volume rank counters.
+    (
+        """
+        CREATE TABLE shapes (
+            id INTEGER PRIMARY KEY AUTOINCREMENT,
+            name TEXT UNIQUE,
+            volume INTEGER NOT NULL CHECK (volume > 0),
+            rank INTEGER CHECK (rank BETWEEN 1 AND 999),
+            nx INTEGER NOT NULL CHECK (nx > 0),
+            ny INTEGER NOT NULL CHECK (ny > 0),
+            nz INTEGER NOT NULL CHECK (nz > 0),
+            bits BLOB NOT NULL,
+            key TEXT NOT NULL,
+            symmetric_key TEXT NOT NULL,
+            draft INTEGER NOT NULL CHECK (draft IN (0, 1)),
+            reasons TEXT NOT NULL DEFAULT '[]',
+            meta TEXT,
+            UNIQUE (volume, rank),
+            CHECK ((draft = 1) = (rank IS NULL))
+        )
+        """,
+        "CREATE INDEX shapes_key ON shapes (key)",
+        "CREATE INDEX shapes_symmetric_key ON shapes (symmetric_key)",
+        "CREATE INDEX shapes_order ON shapes (draft, volume, rank, id)",
+        # The last rank ever given per volume: removed names are never given again.
+        """
+        CREATE TABLE rank_counters (
+            volume INTEGER PRIMARY KEY,
+            last_rank INTEGER NOT NULL CHECK (last_rank BETWEEN 1 AND 999)
+        )
+        """,
+    ),
+)
+assert len(_MIGRATIONS) == SCHEMA_VERSION
+
+
+@contextlib.contextmanager
+def sqlite_errors(path: Path) -> Iterator[None]:
+    """Turn :class:`sqlite3.Error` into a one-line :class:`RepositoryError` naming ``path``."""
+    try:
+        yield
+    except sqlite3.Error as exc:
+        detail = " ".join(str(exc).split())
+        if isinstance(exc, sqlite3.OperationalError) and "locked" in detail:
+            detail += f" (another process kept it busy; waited up to {BUSY_TIMEOUT_S:g} s)"
+        raise RepositoryError(f"{path}: {detail}") from exc
+
+
+@contextlib.contextmanager
+def immediate(conn: sqlite3.Connection) -> Iterator[sqlite3.Connection]:
+    """Run the block in a ``BEGIN IMMEDIATE`` transaction: committed on success, rolled back on error.
+
+    ``IMMEDIATE`` takes the write lock before the first read, so a read-then-write
+    (such as allocating the next rank) cannot interleave with another writer.
+    """
+    conn.execute("BEGIN IMMEDIATE")
+    try:
+        yield conn
+    except BaseException:
+        with contextlib.suppress(sqlite3.Error):
+            conn.execute("ROLLBACK")
+        raise
+    conn.execute("COMMIT")
+
+
+def _pragma(conn: sqlite3.Connection, name: str) -> int:
+    return int(conn.execute(f"PRAGMA {name}").fetchone()[0])
+
+
+def _check_header(path: Path, version: int, app: int) -> None:
+    if version > 0 and app != APPLICATION_ID:
+        raise RepositoryError(f"{path}: an SQLite file that is not a voxfab repository")
+    if version > SCHEMA_VERSION:
+        raise RepositoryError(
+            f"{path}: repository schema {version} is newer than this voxfab supports ({SCHEMA_VERSION})"
+        )
+
+
+def _migrate(conn: sqlite3.Connection, path: Path, *, create: bool) -> None:
+    version, app = _pragma(conn, "user_version"), _pragma(conn, "application_id")
+    _check_header(path, version, app)
+    if version == SCHEMA_VERSION:
+        return
+    if version == 0 and not create:
+        raise RepositoryError(f"{path}: not a voxfab repository (no schema)")
+    with immediate(conn):
+        # Read again under the write lock: another process may have migrated meanwhile.
+        version, app = _pragma(conn, "user_version"), _pragma(conn, "application_id")
+        _check_header(path, version, app)
+        if version == 0:
+            if conn.execute("SELECT count(*) FROM sqlite_master").fetchone()[0]:
+                raise RepositoryError(f"{path}: an SQLite file that is not a voxfab repository")
+            conn.execute(f"PRAGMA application_id = {APPLICATION_ID}")
+        for step in _MIGRATIONS[version:]:
+            for statement in step:
+                conn.execute(statement)
+        conn.execute(f"PRAGMA user_version = {SCHEMA_VERSION}")
+
+
+def connect(path: Path, *, create: bool) -> sqlite3.Connection:
+    """Open (and with ``create`` make or upgrade) the repository file at ``path``.
+
+    The connection is in autocommit mode: writers use :func:`immediate`.  The file
+    is put in WAL mode (readers never block the writer) with ``synchronous=NORMAL``:
+    a crashed process cannot corrupt it; a power cut may lose the last commits.
+
+    Raises
+    ------
+    RepositoryError
+        If ``create`` is false and there is no file, or the file is not a voxfab
+        repository (or a newer schema).
+    """
+    if path.is_dir():
+        raise RepositoryError(f"{path}: is a folder, not a repository file")
+    if not path.exists():
+        if not create:
+            raise RepositoryError(f"no repository at {path}")
+        path.parent.mkdir(parents=True, exist_ok=True)
+    uri = f"{path.resolve().as_uri()}?mode={'rwc' if create else 'rw'}"
+    with sqlite_errors(path):
+        conn = sqlite3.connect(uri, uri=True, timeout=BUSY_TIMEOUT_S, isolation_level=None)
+    try:
+        with sqlite_errors(path):
+            conn.execute(f"PRAGMA busy_timeout = {int(BUSY_TIMEOUT_S * 1000)}")
+            try:
+                _migrate(conn, path, create=create)
+            except sqlite3.DatabaseError as exc:
+                if "not a database" in str(exc):
+                    raise RepositoryError(f"{path}: not a voxfab repository (not an SQLite file)") from exc
+                raise
+            conn.execute("PRAGMA journal_mode = WAL")
+            conn.execute("PRAGMA synchronous = NORMAL")
+    except BaseException:
+        conn.close()
+        raise
+    return conn
