@@ -15,7 +15,12 @@ import numpy as np
 from voxfab.errors import UnknownFormatError
 
 #: Maker name → ``"module:function"``.
-MAKERS: dict[str, str] = {}
+MAKERS: dict[str, str] = {
+    "focal": "voxfab.digitize._recipes:make_focal",
+    "implicit": "voxfab.digitize._recipes:make_implicit",
+    "revolution": "voxfab.digitize._recipes:make_revolution",
+    "tube": "voxfab.digitize._recipes:make_tube",
+}
 
 
 def available_makers() -> list[str]:

@@ -1,0 +1,72 @@
+"""Recipe makers and the shipped recipes."""
+
+from __future__ import annotations
+
+import inspect
+import tomllib
+import typing
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from voxfab.digitize import MAKERS, available_makers, get_maker
+from voxfab.errors import InvalidShapeError, UnknownFormatError
+from voxfab.shape import well_formed_reasons
+
+RECIPES = Path(__file__).resolve().parents[2] / "recipes"
+SHIPPED = sorted(RECIPES.rglob("*.toml"))
+OUTPUTS = {"mesh", "net", "slices", "pictures"}
+
+
+def test_registry():
+    assert {"revolution", "tube", "focal", "implicit"} <= set(MAKERS)
+    assert available_makers() == sorted(MAKERS)
+    with pytest.raises(UnknownFormatError, match="unknown maker 'nope'"):
+        get_maker("nope")
+
+
+@pytest.mark.parametrize("name", sorted(MAKERS))
+def test_maker_interface(name):
+    maker = get_maker(name)
+    sig = inspect.signature(maker)
+    hints = typing.get_type_hints(maker)
+    assert all(p.kind is inspect.Parameter.KEYWORD_ONLY for p in sig.parameters.values())
+    assert "base_dir" in sig.parameters
+    assert all(p in hints for p in sig.parameters)
+
+
+def test_the_shipped_set_is_complete():
+    names = {p.stem for p in SHIPPED}
+    assert {"queen", "king", "rook", "bishop", "pawn", "spinning_top", "interlaced", "egg", "torus4d_slice", "vase"} <= names
+    queen = tomllib.loads((RECIPES / "chess" / "queen.toml").read_text())["source"]
+    assert queen["curve"].startswith("x^2 + y^2") and queen["generatrix"].endswith(".svg")
+
+
+@pytest.mark.parametrize("path", SHIPPED, ids=[p.stem for p in SHIPPED])
+def test_shipped_recipe_makes_a_well_formed_solid(path):
+    recipe = tomllib.loads(path.read_text(encoding="utf-8"))
+    assert set(recipe["outputs"]) == OUTPUTS
+    params = dict(recipe["source"])
+    maker = get_maker(params.pop("maker"))
+    for value in params.values():
+        if isinstance(value, str) and Path(value).suffix in (".svg", ".png", ".json", ".csv"):
+            assert (path.parent / value).is_file(), value
+            assert (path.parent / value).stat().st_size < 20_000
+    grid = maker(base_dir=path.parent, **params)
+    assert grid.dtype == bool and grid.shape == (25, 25, 25)
+    assert well_formed_reasons(grid) == []
+    assert params.get("mode", "solid") == "solid"
+    # deterministic
+    assert np.array_equal(grid, maker(base_dir=path.parent, **params))
+
+
+def test_makers_report_bad_parameters(tmp_path):
+    with pytest.raises(InvalidShapeError, match="^generatrix"):
+        get_maker("revolution")(base_dir=tmp_path, generatrix="missing.svg")
+    with pytest.raises(InvalidShapeError, match="^spine"):
+        get_maker("tube")(base_dir=tmp_path, spine=["t", "0"])
+    with pytest.raises(InvalidShapeError, match="^radius"):
+        get_maker("focal")(base_dir=tmp_path, foci=[[0, 0, 0], [3, 0, 0]], radius=1.0)
+    with pytest.raises(InvalidShapeError, match="^expression"):
+        get_maker("implicit")(base_dir=tmp_path, expression="x^2 + y^2 + z^2 + 1")
