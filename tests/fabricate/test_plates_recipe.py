@@ -1,0 +1,60 @@
+"""The ``slices`` recipe output and the plates.json report."""
+
+from __future__ import annotations
+
+import json
+import typing
+
+import ezdxf
+import pytest
+
+from voxfab.fabricate import get_output
+from voxfab.fabricate.plates import PlatesReport, make_slices, recipe_output
+from voxfab.shape import VoxelShape, examples
+
+
+def test_recipe_output_signature_resolves() -> None:
+    assert get_output("slices") is recipe_output
+    hints = typing.get_type_hints(recipe_output)
+    assert hints["axis"] is str and hints["thickness"] is float and hints["step"] is bool
+    assert hints["sheet"] is str and hints["dowel"] is float and hints["kerf"] is float
+
+
+def test_recipe_output_writes_sheets_pdf_and_report(tmp_path) -> None:
+    shape = VoxelShape(examples.tunnel_cube(9), 2.0)
+    files = recipe_output(shape, tmp_path, name="tunnel", seed=0, thickness=2.1, sheet="100x80", kerf=0.1)
+    paths = [f.path for f in files]
+    assert all(p.startswith("slices/") for p in paths)
+    for p in paths:
+        assert (tmp_path / p).is_file()
+    assert "slices/assembly.pdf" in paths and "slices/plates.json" in paths
+    assert not any(p.endswith((".step", ".stl")) for p in paths)  # step=False by default
+    report = json.loads((tmp_path / "slices/plates.json").read_text())
+    assert report["format"] == "voxfab-plates/1" and report["name"] == "tunnel"
+    n_sheets = report["sheets"]
+    assert sum(p.endswith(".dxf") for p in paths) == n_sheets == sum(p.endswith(".svg") for p in paths)
+    assert report["layers"] == 9
+    assert report["plates"] == len(report["plates_list"]) == report["pieces"] > 9
+    assert report["drift"] == pytest.approx(9 * 2.1 - 9 * 2.0)
+    assert report["stack_height"] == pytest.approx(18.9)
+    assert report["material_area"] == pytest.approx(sum(p["area"] for p in report["plates_list"]), abs=0.01)
+    assert 0 < report["material_fraction"] < 1
+    doc = ezdxf.readfile(tmp_path / "slices/sheet-01.dxf")
+    assert not doc.audit().has_errors
+    # same inputs, same bytes
+    again = tmp_path / "again"
+    recipe_output(shape, again, name="tunnel", seed=0, thickness=2.1, sheet="100x80", kerf=0.1)
+    for p in paths:
+        assert (again / p).read_bytes() == (tmp_path / p).read_bytes()
+
+
+def test_report_counts_and_is_frozen() -> None:
+    result = make_slices(VoxelShape(examples.box(4, 4, 3), 3.0), thickness=1.0, sheet="100x100")
+    r = result.report
+    assert isinstance(r, PlatesReport)
+    assert (r.layers, r.pieces, r.plates_per_layer, r.plates) == (3, 3, 3, 9)
+    assert r.sheets == len(result.sheets) and r.dowels == len(result.stack.dowels) > 0
+    assert r.drift == pytest.approx(0.0)
+    assert r.sheet_area == pytest.approx(r.sheets * 100 * 100)
+    with pytest.raises(AttributeError):
+        r.plates = 1  # type: ignore[misc]

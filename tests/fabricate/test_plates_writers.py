@@ -1,0 +1,95 @@
+"""Sheet writers (DXF R12, SVG) and the assembly PDF: audits, read-backs, determinism."""
+
+from __future__ import annotations
+
+import math
+import re
+
+import ezdxf
+import numpy as np
+import pytest
+from lxml import etree
+
+from voxfab.fabricate.plates import (
+    assembly_pdf,
+    make_slices,
+    sheet_dxf,
+    sheet_svg,
+    write_dxf,
+    write_svg,
+)
+from voxfab.shape import VoxelShape, examples
+
+
+@pytest.fixture(scope="module")
+def result():
+    return make_slices(VoxelShape(examples.vase(10), 3.0), sheet="60x50", thickness=3.0)
+
+
+def _signed_area(xy: np.ndarray) -> float:
+    x, y = xy[:, 0], xy[:, 1]
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+
+
+def test_dxf_audits_clean_and_reads_back_the_geometry(result, tmp_path) -> None:
+    assert len(result.sheets) >= 2
+    for sheet in result.sheets:
+        path = tmp_path / f"s{sheet.index}.dxf"
+        write_dxf(sheet, path)
+        doc = ezdxf.readfile(path)
+        assert doc.dxfversion == "AC1009"
+        auditor = doc.audit()
+        assert not auditor.has_errors and not auditor.has_fixes
+        assert {"CUT", "SCORE", "ENGRAVE"} <= {layer.dxf.name for layer in doc.layers}
+        assert doc.layers.get("CUT").dxf.color == 1 and doc.layers.get("SCORE").dxf.color == 5
+        msp = doc.modelspace()
+        cut = [e for e in msp.query("POLYLINE") if e.dxf.layer == "CUT"]
+        circles = list(msp.query("CIRCLE"))
+        assert all(e.is_closed for e in cut)
+        assert len(cut) == sum(len(p.cut) for p in sheet.parts)
+        assert len(circles) == sum(len(p.circles) for p in sheet.parts)
+        # signed ring areas (holes are clockwise) minus the dowel circles = material
+        area = sum(_signed_area(np.array([tuple(v.dxf.location)[:2] for v in e.vertices])) for e in cut)
+        area -= sum(math.pi * c.dxf.radius**2 for c in circles)
+        assert area == pytest.approx(sheet.material_area, rel=1e-9)
+        assert len(msp.query('POLYLINE[layer=="SCORE"]')) == sum(len(p.score) for p in sheet.parts)
+        assert len(msp.query('POLYLINE[layer=="ENGRAVE"]')) == sum(len(p.engrave) for p in sheet.parts)
+        # every vertex lies on the sheet
+        pts = np.array([tuple(v.dxf.location)[:2] for e in msp.query("POLYLINE") for v in e.vertices])
+        assert pts.min() >= 0 and (pts <= (sheet.width, sheet.height)).all()
+
+
+def test_dxf_and_svg_are_byte_identical_for_equal_inputs(result) -> None:
+    again = make_slices(VoxelShape(examples.vase(10), 3.0), sheet="60x50", thickness=3.0)
+    for a, b in zip(result.sheets, again.sheets):
+        assert sheet_dxf(a) == sheet_dxf(b)
+        assert sheet_svg(a) == sheet_svg(b)
+
+
+def test_svg_is_in_mm_with_flipped_y(result, tmp_path) -> None:
+    sheet = result.sheets[0]
+    path = tmp_path / "s.svg"
+    write_svg(sheet, path)
+    root = etree.parse(str(path)).getroot()
+    assert root.get("width") == "60mm" and root.get("height") == "50mm"
+    assert root.get("viewBox") == "0 0 60 50"
+    ns = {"s": "http://www.w3.org/2000/svg"}
+    groups = {g.get("id"): g for g in root.findall("s:g", ns)}
+    assert groups["CUT"].get("stroke") == "#FF0000" and groups["SCORE"].get("stroke") == "#0000FF"
+    paths = groups["CUT"].findall("s:path", ns)
+    assert len(paths) == len(sheet.parts)
+    assert sum(p.get("d").count("M") for p in paths) == sum(len(p.cut) for p in sheet.parts)
+    assert len(groups["CUT"].findall("s:circle", ns)) == sum(len(p.circles) for p in sheet.parts)
+    first = re.match(r"M(\S+) (\S+)", paths[0].get("d"))
+    x, y = sheet.parts[0].cut[0][0]
+    assert float(first.group(1)) == pytest.approx(x, abs=1e-4)
+    assert float(first.group(2)) == pytest.approx(sheet.height - y, abs=1e-4)
+
+
+def test_assembly_pdf_is_deterministic_with_a_page_per_25_layers() -> None:
+    tall = make_slices(VoxelShape(examples.box(1, 1, 26), 2.0), thickness=2.0, dowel=0)
+    a = assembly_pdf(tall.stack, title="tower")
+    assert a.startswith(b"%PDF")
+    assert a == assembly_pdf(tall.stack, title="tower")
+    assert len(re.findall(rb"/Type /Page\b", a)) == 2
+    assert b"CreationDate" not in a

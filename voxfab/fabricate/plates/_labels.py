@@ -1,0 +1,224 @@
+"""Single-stroke plate labels: a tiny stroke font and a placement search.
+
+Labels are engraved as open polylines (one laser pass, no fonts needed by the
+shop).  A label goes where the next plate of the stack covers it, so it is
+hidden in the finished sculpture; when no such place is big enough it goes
+anywhere on the plate, and at worst it is shrunk to the smallest size.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import numpy.typing as npt
+
+from voxfab.errors import InvalidShapeError
+
+#: Glyph box: 4 units wide, 6 units tall; strokes as polylines in those units.
+_GLYPH_HEIGHT = 6.0
+_GLYPHS: dict[str, tuple[tuple[tuple[float, float], ...], ...]] = {
+    "0": (((0, 0), (4, 0), (4, 6), (0, 6), (0, 0)), ((0, 0), (4, 6))),
+    "1": (((1, 5), (2, 6), (2, 0)), ((1, 0), (3, 0))),
+    "2": (((0, 6), (4, 6), (4, 3), (0, 3), (0, 0), (4, 0)),),
+    "3": (((0, 6), (4, 6), (4, 0), (0, 0)), ((1, 3), (4, 3))),
+    "4": (((0, 6), (0, 3), (4, 3)), ((3, 6), (3, 0))),
+    "5": (((4, 6), (0, 6), (0, 3), (4, 3), (4, 0), (0, 0)),),
+    "6": (((4, 6), (0, 6), (0, 0), (4, 0), (4, 3), (0, 3)),),
+    "7": (((0, 6), (4, 6), (1.5, 0)),),
+    "8": (((0, 0), (4, 0), (4, 6), (0, 6), (0, 0)), ((0, 3), (4, 3))),
+    "9": (((4, 3), (0, 3), (0, 6), (4, 6), (4, 0), (0, 0)),),
+    "-": (((0.5, 3), (3.5, 3)),),
+    ".": (((1.5, 0), (2.5, 0), (2.5, 1), (1.5, 1), (1.5, 0)),),
+}
+_WIDTH = {".": 4.0}
+_GAP = 1.5
+
+#: Label heights tried, as fractions of the pitch, largest first.
+_HEIGHTS = (0.6, 0.45, 0.32, 0.22)
+#: Smallest label height in mm that is still engraved legibly.
+MIN_HEIGHT = 0.8
+
+
+def text_size(text: str, height: float) -> tuple[float, float]:
+    """Width and height in mm of ``text`` drawn ``height`` mm tall."""
+    units = sum(_WIDTH.get(ch, 4.0) for ch in text) + _GAP * (len(text) - 1)
+    return units * height / _GLYPH_HEIGHT, height
+
+
+def text_strokes(text: str, height: float) -> tuple[npt.NDArray[np.float64], ...]:
+    """Polylines of ``text`` in mm, ``height`` tall, lower-left corner at the origin.
+
+    Parameters
+    ----------
+    text : str
+        Digits, ``'-'`` and ``'.'`` only.
+    height : float
+        Glyph height in mm.
+
+    Returns
+    -------
+    strokes : tuple of (n, 2) float ndarray
+        Open polylines (closed glyphs repeat their first point).
+    """
+    scale = height / _GLYPH_HEIGHT
+    out = []
+    x = 0.0
+    for ch in text:
+        if ch not in _GLYPHS:
+            raise InvalidShapeError(f"label: no stroke glyph for {ch!r} in {text!r}")
+        for stroke in _GLYPHS[ch]:
+            out.append((np.asarray(stroke, dtype=np.float64) + (x, 0.0)) * scale)
+        x += _WIDTH.get(ch, 4.0) + _GAP
+    return tuple(out)
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Label:
+    """An engraved label placed on a plate.
+
+    Attributes
+    ----------
+    text : str
+        The plate number (``"layer-piece"``, plus ``".copy"`` when a layer takes
+        several plates).
+    strokes : tuple of (n, 2) float ndarray
+        Polylines in the plate's frame (mm).
+    height : float
+        Glyph height in mm.
+    hidden : bool
+        Whether the next plate of the stack covers the label.
+    complete : bool
+        False when the plate was too small even for the smallest label and
+        the strokes were clipped to the plate.
+    origin : (float, float)
+        Lower-left corner of the text box on the plate (mm).
+    turned : bool
+        Whether the text reads upwards (turned 90° counter-clockwise).
+    """
+
+    text: str
+    strokes: tuple[npt.NDArray[np.float64], ...]
+    height: float
+    hidden: bool
+    complete: bool = True
+    origin: tuple[float, float] = (0.0, 0.0)
+    turned: bool = False
+
+
+def _render(text: str, height: float, origin: tuple[float, float], turned: bool) -> tuple[npt.NDArray[np.float64], ...]:
+    strokes = text_strokes(text, height)
+    if turned:
+        # turned 90° counter-clockwise: (x, y) → (h − y, x), reading upwards
+        strokes = tuple(np.column_stack([height - s[:, 1], s[:, 0]]) for s in strokes)
+    return tuple(s + origin for s in strokes)
+
+
+def relabel(label: Label, text: str) -> Label | None:
+    """The same placement with another text of the same length, or None if it cannot be reused."""
+    if len(text) != len(label.text) or not label.complete:
+        return None
+    strokes = _render(text, label.height, label.origin, label.turned)
+    return dataclasses.replace(label, text=text, strokes=strokes)
+
+
+def _fit(
+    region: object, core: object, width: float, height: float, step: float, pole: tuple[float, float]
+) -> tuple[float, float] | None:
+    """Lower-left corner of a ``width × height`` box inside ``region`` nearest ``pole``.
+
+    Box centres are tried on a ``step`` lattice, only inside ``core``: the
+    region shrunk by half the box's short side (a necessary condition).
+    """
+    import shapely
+
+    x0, y0, x1, y1 = region.bounds
+    if x1 - x0 < width or y1 - y0 < height:
+        return None
+    cx0, cy0, cx1, cy1 = core.bounds
+    step = max(step, max(cx1 - cx0, cy1 - cy0) / 48.0)  # at most ~48² candidates
+    # lattice through the pole, so the pole itself is always tried
+    xs = pole[0] + step * np.arange(np.ceil((cx0 - pole[0]) / step - 1e-9), np.floor((cx1 - pole[0]) / step + 1e-9) + 1)
+    ys = pole[1] + step * np.arange(np.ceil((cy0 - pole[1]) / step - 1e-9), np.floor((cy1 - pole[1]) / step + 1e-9) + 1)
+    gx, gy = (a.ravel() for a in np.meshgrid(xs, ys, indexing="ij"))
+    shapely.prepare(core)
+    keep = shapely.contains_xy(core, gx, gy)
+    gx, gy = gx[keep] - width / 2.0, gy[keep] - height / 2.0
+    if len(gx) == 0:
+        return None
+    order = np.argsort(np.hypot(gx + width / 2 - pole[0], gy + height / 2 - pole[1]), kind="stable")
+    gx, gy = gx[order], gy[order]
+    shapely.prepare(region)
+    # nearest candidates first, in small batches: the first fit is usually close
+    for lo in range(0, len(gx), 64):
+        bx, by = gx[lo:lo + 64], gy[lo:lo + 64]
+        ok = shapely.contains(region, shapely.box(bx, by, bx + width, by + height))
+        if ok.any():
+            i = int(np.argmax(ok))
+            return float(bx[i]), float(by[i])
+    return None
+
+
+def place_label(text: str, plate: object, hidden_region: object, *, pitch: float, clearance: float) -> Label:
+    """Place ``text`` on ``plate``, inside ``hidden_region`` when it fits.
+
+    Parameters
+    ----------
+    text : str
+        The label text.
+    plate : shapely.Polygon
+        The plate in mm, dowel holes already cut out.
+    hidden_region : shapely geometry
+        Part of the plate that the next plate covers (mm).
+    pitch : float
+        Voxel pitch in mm; label sizes scale with it.
+    clearance : float
+        Distance in mm kept between the label and any edge of its region.
+
+    Returns
+    -------
+    Label
+        Horizontal when it fits, else turned 90° counter-clockwise.
+    """
+    from shapely.ops import polylabel
+
+    heights = [max(MIN_HEIGHT, f * pitch) for f in _HEIGHTS]
+    heights = sorted(set(heights), reverse=True)
+    tight = min(clearance, 0.1)
+    passes = ((hidden_region, True, clearance), (hidden_region, True, tight), (plate, False, clearance), (plate, False, tight))
+    for region, hidden, clear in passes:
+        inner = region.buffer(-clear, join_style="mitre")
+        if inner.is_empty:
+            continue
+        parts = getattr(inner, "geoms", [inner])
+        biggest = max(parts, key=lambda p: p.area)
+        c = polylabel(biggest, tolerance=0.05 * pitch)
+        pole = (c.x, c.y)
+        for h in heights:
+            w, _ = text_size(text, h)
+            core = inner.buffer(-min(w, h) / 2.0, join_style="mitre")
+            if core.is_empty:
+                continue
+            # a coarse lattice first; a fine one only where the coarse one found no room
+            for step in (max(0.1, 0.125 * pitch), max(0.025, 0.03 * pitch)):
+                for turned, (bw, bh) in ((False, (w, h)), (True, (h, w))):
+                    at = _fit(inner, core, bw, bh, step, pole)
+                    if at is not None:
+                        return Label(text, _render(text, h, at, turned), h, hidden, origin=at, turned=turned)
+    # Nothing fits: smallest size centred on the plate's pole, clipped to the
+    # plate so that no stroke can reach a neighbouring part on the sheet.
+    import shapely
+
+    h = heights[-1]
+    w, _ = text_size(text, h)
+    parts = getattr(plate, "geoms", [plate])
+    c = polylabel(max(parts, key=lambda p: p.area), tolerance=0.05 * pitch)
+    at = (c.x - w / 2, c.y - h / 2)
+    lines = [shapely.LineString(s + at) for s in text_strokes(text, h)]
+    inside = shapely.intersection(lines, plate.buffer(-min(clearance, 0.25 * pitch)))
+    strokes = []
+    for g in inside:
+        for part in getattr(g, "geoms", [g]):
+            if part.geom_type == "LineString" and not part.is_empty:
+                strokes.append(np.asarray(part.coords, dtype=np.float64))
+    return Label(text, tuple(strokes), h, False, complete=False)

@@ -1,0 +1,126 @@
+"""The slice-plate report: counts, material, stack height drift, warnings."""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import Any
+
+from ._nest import Sheet
+from ._stack import PlateStack
+
+FORMAT = "voxfab-plates/1"
+
+
+@dataclasses.dataclass(frozen=True)
+class PlatesReport:
+    """What a plate stack takes to make, and what to watch for.
+
+    Lengths in mm, areas in mm².
+
+    Attributes
+    ----------
+    axis : str
+        Slicing axis.
+    pitch, thickness : float
+        Voxel pitch and measured plate thickness.
+    plates_per_layer : int
+    layers, pieces, plates, sheets, dowels : int
+        Counts.
+    sheet_width, sheet_height : float
+    material_area : float
+        Area of all plates (dowel holes removed, no kerf).
+    sheet_area : float
+        Area of all sheets used.
+    material_fraction : float
+        ``material_area / sheet_area``.
+    shape_height, stack_height, drift : float
+        Voxel height ``layers × pitch``, plate stack height
+        ``layers × plates_per_layer × thickness`` and their difference.
+    dowel_diameter, kerf, min_width : float
+    dowel_length : float
+        Length of one dowel: it goes through the plates of two layers.
+    labels_hidden : int
+        Labels placed where the next plate covers them.
+    labels_clipped : int
+        Labels clipped because the plate is too small for them.
+    unsupported : tuple of str
+        Pieces sharing no area with a neighbouring layer.
+    thin : tuple of str
+        Pieces with a part narrower than ``min_width``.
+    undowelled : tuple of str
+        Pieces with a neighbour but no room for a dowel hole.
+    """
+
+    axis: str
+    pitch: float
+    thickness: float
+    plates_per_layer: int
+    layers: int
+    pieces: int
+    plates: int
+    sheets: int
+    dowels: int
+    sheet_width: float
+    sheet_height: float
+    material_area: float
+    sheet_area: float
+    material_fraction: float
+    shape_height: float
+    stack_height: float
+    drift: float
+    dowel_diameter: float
+    dowel_length: float
+    kerf: float
+    min_width: float
+    labels_hidden: int
+    labels_clipped: int
+    unsupported: tuple[str, ...]
+    thin: tuple[str, ...]
+    undowelled: tuple[str, ...]
+
+    def to_json(self) -> dict[str, Any]:
+        """The report as a JSON-ready dict (with a ``format`` key)."""
+        data = dataclasses.asdict(self)
+        for key in ("unsupported", "thin", "undowelled"):
+            data[key] = list(data[key])
+        return {"format": FORMAT, **data}
+
+
+def _r(v: float) -> float:
+    return round(float(v), 6) + 0.0
+
+
+def make_report(stack: PlateStack, sheets: tuple[Sheet, ...], *, kerf: float = 0.0) -> PlatesReport:
+    """Build the report of a plate stack nested on ``sheets``."""
+    material = sum(p.area for p in stack.plates)
+    width = sheets[0].width if sheets else 0.0
+    height = sheets[0].height if sheets else 0.0
+    sheet_area = len(sheets) * width * height
+    return PlatesReport(
+        axis=stack.axis,
+        pitch=_r(stack.pitch),
+        thickness=_r(stack.thickness),
+        plates_per_layer=stack.plates_per_layer,
+        layers=len(stack.layers),
+        pieces=sum(len(pcs) for pcs in stack.layers),
+        plates=len(stack.plates),
+        sheets=len(sheets),
+        dowels=len(stack.dowels),
+        sheet_width=_r(width),
+        sheet_height=_r(height),
+        material_area=_r(material),
+        sheet_area=_r(sheet_area),
+        material_fraction=_r(material / sheet_area) if sheet_area else 0.0,
+        shape_height=_r(stack.nominal_height),
+        stack_height=_r(stack.height),
+        drift=_r(stack.drift),
+        dowel_diameter=_r(stack.dowel_diameter),
+        dowel_length=_r(2 * stack.plates_per_layer * stack.thickness),
+        kerf=_r(kerf),
+        min_width=_r(stack.min_width),
+        labels_hidden=sum(p.label.hidden for p in stack.plates),
+        labels_clipped=sum(not p.label.complete for p in stack.plates),
+        unsupported=stack.unsupported,
+        thin=stack.thin,
+        undowelled=stack.undowelled,
+    )
