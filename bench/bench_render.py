@@ -1,0 +1,91 @@
+"""Benchmark: pictures of 25³ shapes (3D views, slice sheet, net, triptych, turntable).
+
+Run: python bench/bench_render.py
+Goals: a 25³ render under 1 s; a triptych under 3 s.
+The triptych is timed drawing the net found once by the net engine
+(``voxfab.unfold.unfold``, timed on its own row: its search time is the net
+engine's budget, not rendering).
+"""
+
+from __future__ import annotations
+
+import statistics
+import time
+from collections.abc import Callable
+
+import numpy as np
+
+from voxfab import render
+from voxfab.shape import examples, exposed_faces
+
+
+def timed(fn: Callable[[], object], runs: int) -> tuple[float, float]:
+    fn()  # warm caches (font loading, first numpy allocations)
+    times = []
+    for _ in range(runs):
+        t = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t)
+    return statistics.median(times), max(times)
+
+
+def engine():  # noqa: ANN201 - the unfold function or None
+    import voxfab.unfold as unfold
+
+    return getattr(unfold, "unfold", None)
+
+
+def main() -> None:
+    shapes = {
+        "random 25^3 (seed 1)": examples.random_shape(1),
+        "random 25^3 dense (seed 2)": examples.random_shape(2, fill=0.45),
+        "ball r=12": examples.ball(12),
+        "torus": examples.torus(9, 3.5),
+        "vase": examples.vase(),
+    }
+    rows: list[tuple[str, str, float, float, str]] = []
+    for label, g in shapes.items():
+        info = f"{int(g.sum())} vox, {exposed_faces(g)} faces"
+        med, worst = timed(lambda g=g: render.png_bytes(render.render(g, view="iso", size=800)), 5)
+        rows.append((f"render iso 800px + PNG: {label}", info, med, worst, "< 1 s"))
+    g = shapes["random 25^3 (seed 1)"]
+    med, worst = timed(lambda: render.render(g, view="z", size=800), 5)
+    rows.append(("render z 800px: random 25^3", "", med, worst, "< 1 s"))
+    med, worst = timed(lambda: render.slice_sheet(g, size=800), 5)
+    rows.append(("slice sheet 800px: random 25^3", "", med, worst, ""))
+    med, worst = timed(lambda: render.turntable_frames(g, frames=36, size=400), 1)
+    rows.append(("turntable 36 x 400px: random 25^3", "", med, worst, ""))
+
+    unfold = engine()
+    if unfold is None:
+        print("note: voxfab.unfold.unfold is not installed: the triptych is timed with the net panel's message")
+    for label in ("random 25^3 (seed 1)", "ball r=12"):
+        g = shapes[label]
+        net = None
+        if unfold is not None:
+            t = time.perf_counter()
+            net = unfold(g, rng=0)
+            spent = time.perf_counter() - t
+            rows.append((f"net engine unfold (once, not render): {label}", f"{net.face_count} faces", spent, spent,
+                         ""))
+            med, worst = timed(lambda g=g, net=net: render.net_picture(net, g, size=800), 3)
+            rows.append((f"net picture 800px: {label}", f"{net.face_count} faces", med, worst, ""))
+
+        def draw(g=g, net=net, label=label) -> None:
+            img = render.triptych(g, name=label, net=net, rng=0, panel=800)
+            render.png_bytes(img)
+            render.pdf_bytes(img, title=label)
+
+        med, worst = timed(draw, 3)
+        what = "given net" if net is not None else "no engine"
+        rows.append((f"triptych 3x800px PNG+PDF ({what}): {label}", "", med, worst, "< 3 s"))
+
+    width = max(len(r[0]) for r in rows)
+    print(f"{'case':<{width}} {'shape':>24} {'median s':>9} {'max s':>7}  goal")
+    for name, info, med, worst, goal in rows:
+        print(f"{name:<{width}} {info:>24} {med:9.3f} {worst:7.3f}  {goal}")
+
+
+if __name__ == "__main__":
+    np.seterr(all="ignore")
+    main()

@@ -1,0 +1,55 @@
+import typing
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from voxfab.errors import RecipeError
+from voxfab.fabricate import get_output
+from voxfab.render import png_bytes, recipe_output, render, view_filename
+from voxfab.shape import VoxelShape, examples
+
+
+def test_signature_types_resolve_for_the_recipe_loader():
+    hints = typing.get_type_hints(recipe_output)
+    assert hints["size"] is int and hints["views"] == list[str] and hints["triptych"] is bool
+    assert get_output("pictures") is recipe_output
+
+
+def test_writes_views_slices_triptych_and_turntable(tmp_path):
+    shape = VoxelShape(examples.torus(5, 2), pitch=2.0)
+    files = recipe_output(shape, tmp_path, name="ring", seed=2, size=120, views=["iso", "-z"],
+                          triptych=True, turntable=True, frames=4, slices=True)
+    names = [f.path for f in files]
+    assert names == ["render_iso.png", "render_neg_z.png", "slices.png", "triptych.png", "triptych.pdf",
+                     "turntable.gif"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(names)
+    assert all(f.purpose for f in files)
+    assert (tmp_path / "render_neg_z.png").read_bytes() == png_bytes(render(shape, view="-z", size=120))
+    with Image.open(tmp_path / "turntable.gif") as im:
+        assert im.n_frames == 4
+    assert (tmp_path / "triptych.pdf").read_bytes().startswith(b"%PDF")
+    # Deterministic: a second build gives the same bytes.
+    again = tmp_path / "again"
+    again.mkdir()
+    recipe_output(shape, again, name="ring", seed=2, size=120, views=["iso", "-z"], triptych=True,
+                  turntable=True, frames=4, slices=True)
+    for n in names:
+        assert (again / n).read_bytes() == (tmp_path / n).read_bytes(), n
+
+
+def test_defaults_write_iso_and_triptych(tmp_path):
+    files = recipe_output(VoxelShape(np.ones((2, 2, 2), dtype=bool)), tmp_path, name="cube", seed=0, size=100)
+    assert [f.path for f in files] == ["render_iso.png", "triptych.png", "triptych.pdf"]
+
+
+@pytest.mark.parametrize(("options", "text"), [({"views": ["top"]}, "top"), ({"size": 5}, "size"),
+                                                ({"color": "nope"}, "color")])
+def test_bad_options_are_recipe_errors(tmp_path, options, text):
+    with pytest.raises(RecipeError, match=text):
+        recipe_output(VoxelShape(examples.ball(2)), tmp_path, name="b", seed=0, **options)
+
+
+def test_view_filenames():
+    assert [view_filename(v) for v in ("iso", "x", "-x", "-z")] == [
+        "render_iso.png", "render_x.png", "render_neg_x.png", "render_neg_z.png"]

@@ -1,0 +1,108 @@
+import importlib.util
+import re
+import zlib
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from voxfab.errors import UnfoldError
+from voxfab.render import net_picture, pdf_bytes, png_bytes, render, slice_sheet, triptych, triptych_layout
+from voxfab.render._triptych import make_net
+
+_spec = importlib.util.spec_from_file_location("_tree_net", Path(__file__).with_name("_tree_net.py"))
+_mod = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(_mod)
+tree_net = _mod.tree_net
+
+BOX = np.ones((2, 1, 1), dtype=bool)
+
+
+def parse_pdf(data):
+    """Check the xref table against the bytes and return {object number: body}."""
+    start = int(re.search(rb"startxref\n(\d+)\n%%EOF\n$", data).group(1))
+    xref = data[start:].split(b"trailer")[0].split(b"\n")
+    count = int(xref[1].split()[1])
+    objects = {}
+    for i in range(1, count):
+        off = int(xref[2 + i].split()[0])
+        assert data[off:].startswith(b"%d 0 obj\n" % i)
+        objects[i] = data[off : data.index(b"\nendobj\n", off)]
+    return objects
+
+
+def test_triptych_holds_net_slices_and_3d_under_the_title():
+    net = tree_net(BOX)
+    img = triptych(BOX, name="two cubes", net=net, panel=300)
+    lay = triptych_layout(300)
+    assert img.size == (lay.width, lay.height)
+    a = np.asarray(img)
+    expected = [net_picture(net, BOX, size=300), slice_sheet(BOX, size=300, height=300), render(BOX, size=300)]
+    for pic, (left, top, right, bottom) in zip(expected, lay.panels):
+        assert np.array_equal(a[top:bottom, left:right], np.asarray(pic))
+    title = a[: lay.title_height]
+    assert (title.sum(axis=-1) < 200).sum() > 50  # the name is written
+
+
+def test_triptych_png_and_pdf_are_deterministic_and_the_pdf_is_sound():
+    net = tree_net(BOX)
+    img = triptych(BOX, name="two cubes", net=net, panel=200)
+    assert png_bytes(img) == png_bytes(triptych(BOX, name="two cubes", net=net, panel=200))
+    data = pdf_bytes(img, title="two cubes")
+    assert data == pdf_bytes(triptych(BOX, name="two cubes", net=net, panel=200), title="two cubes")
+    assert data.startswith(b"%PDF-1.4") and b"CreationDate" not in data and b"ModDate" not in data
+    objs = parse_pdf(data)
+    image_obj = objs[5]
+    w, h = img.size
+    assert b"/Width %d /Height %d" % (w, h) in image_obj
+    stream = image_obj.split(b"stream\n", 1)[1].rsplit(b"\nendstream", 1)[0]
+    assert int(re.search(rb"/Length (\d+)", image_obj).group(1)) == len(stream)
+    assert zlib.decompress(stream) == img.convert("RGB").tobytes()
+    assert b"(two cubes)" in objs[6]
+
+
+def test_without_a_net_engine_or_net_the_panel_says_why(monkeypatch):
+    import voxfab.unfold as unfold
+
+    def refuse(grid, *, rng):
+        raise UnfoldError("shape: 1 enclosed cavity")
+
+    monkeypatch.setattr(unfold, "unfold", refuse, raising=False)
+    with pytest.raises(UnfoldError):
+        make_net(BOX, rng=0)
+    img = triptych(BOX, name="x", panel=200)
+    lay = triptych_layout(200)
+    left, top, right, bottom = lay.panels[0]
+    panel = np.asarray(img)[top:bottom, left:right]
+    assert (panel.sum(axis=-1) < 500).any()  # the message is written
+
+
+def test_triptych_uses_the_engine_net_by_seed():
+    unfold = pytest.importorskip("voxfab.unfold")
+    if not hasattr(unfold, "unfold"):
+        pytest.skip("voxfab.unfold.unfold not available")
+    from voxfab.shape import examples
+
+    g = examples.ball(2)
+    a = png_bytes(triptych(g, name="ball", rng=3, panel=200))
+    assert a == png_bytes(triptych(g, name="ball", rng=3, panel=200))
+    assert a == png_bytes(triptych(g, name="ball", net=unfold.unfold(g, rng=3), panel=200))
+
+
+def test_pdf_renders_in_poppler_like_the_png(tmp_path):
+    import shutil
+    import subprocess
+
+    from PIL import Image
+
+    if shutil.which("pdftoppm") is None:
+        pytest.skip("poppler's pdftoppm is not installed")
+    net = tree_net(BOX)
+    img = triptych(BOX, name="two cubes", net=net, panel=160)
+    (tmp_path / "t.pdf").write_bytes(pdf_bytes(img, title="two cubes", dpi=150))
+    subprocess.run(["pdftoppm", "-r", "150", "-png", "-singlefile", str(tmp_path / "t.pdf"), str(tmp_path / "p")],
+                   check=True, capture_output=True)
+    with Image.open(tmp_path / "p.png") as im:
+        back = np.asarray(im.convert("RGB")).astype(int)
+    assert back.shape == np.asarray(img).shape
+    assert np.abs(back - np.asarray(img).astype(int)).mean() < 12  # the same picture, resampled by poppler

@@ -1,0 +1,189 @@
+"""Animations: a turntable around one shape, and a GIF of any sequence of grids.
+
+Frames are palette images on the fixed palette of :func:`palette_for` (background
+plus 255 shades of the cube colour), which is exactly the colour model of the
+rasterizer, so no quantization happens and the bytes are reproducible.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+from typing import TYPE_CHECKING
+
+import numpy as np
+import numpy.typing as npt
+
+from voxfab._shared.atomic import write_bytes
+from voxfab._shared.progress import progress
+from voxfab._shared.typing import PathLike
+from voxfab._shared.validate import as_grid
+from voxfab.errors import InvalidShapeError
+from voxfab.shape import VoxelShape, bounding_box
+
+from ._image import gif_bytes
+from ._raster import DEFAULT_COLOR, Frame, fit_frame, palette_for, parse_color, rasterize, to_indexed
+from ._render import Color, check_size, shape_grid
+from ._views import ISO_AZIMUTH, ISO_ELEVATION, Camera, View, camera_for, orbit_camera
+
+if TYPE_CHECKING:
+    from PIL import Image
+
+__all__ = ["turntable_frames", "animation_frames", "save_turntable", "save_animation"]
+
+
+def _palette_image(indexed: npt.NDArray[np.uint8], palette: list[int]) -> Image.Image:
+    from PIL import Image
+
+    h, w = indexed.shape
+    im = Image.frombytes("P", (w, h), np.ascontiguousarray(indexed).tobytes())
+    im.putpalette(palette)
+    return im
+
+
+def _frame_image(grid: npt.NDArray[np.bool_], camera: Camera, frame: Frame, palette: list[int],
+                 k: int) -> Image.Image:
+    """One palette frame; with k > 1 drawn k times larger, averaged down and mapped to the palette."""
+    if k == 1:
+        return _palette_image(to_indexed(rasterize(grid, camera, frame)), palette)
+    big = Frame(frame.width * k, frame.height * k, frame.scale * k, frame.ox * k, frame.oy * k)
+    from PIL import Image
+
+    pal = np.asarray(palette, dtype=np.uint8).reshape(-1, 3)
+    rgb = Image.fromarray(pal[to_indexed(rasterize(grid, camera, big))]).reduce(k)
+    target = _palette_image(np.zeros((1, 1), dtype=np.uint8), palette)
+    return rgb.quantize(palette=target, dither=Image.Dither.NONE)
+
+
+def _antialias(scale: float, antialias: int | None) -> int:
+    if antialias is None:
+        return 1 if scale >= 10.0 else min(3, math.ceil(10.0 / scale))
+    if isinstance(antialias, bool) or not isinstance(antialias, (int, np.integer)) or not 1 <= antialias <= 8:
+        raise InvalidShapeError(f"antialias: expected an integer in 1..8, got {antialias!r}")
+    return int(antialias)
+
+
+def _check_frames(frames: int) -> int:
+    if isinstance(frames, bool) or not isinstance(frames, (int, np.integer)) or not 1 <= frames <= 720:
+        raise InvalidShapeError(f"frames: expected an integer in 1..720, got {frames!r}")
+    return int(frames)
+
+
+def turntable_frames(
+    shape: VoxelShape | npt.ArrayLike,
+    *,
+    frames: int = 36,
+    size: int = 400,
+    elevation: float = ISO_ELEVATION,
+    background: Color = "white",
+    color: Color = DEFAULT_COLOR,
+    antialias: int | None = None,
+) -> list[Image.Image]:
+    """Pictures of ``shape`` turning once around the vertical axis.
+
+    The scale is fixed by the bounding box's diagonal, so the shape never jumps
+    or leaves the picture; frame 0 is the isometric view.
+
+    Returns
+    -------
+    list of PIL.Image.Image
+        ``frames`` palette pictures of ``size × size`` pixels.
+    """
+    grid = shape_grid(shape)
+    n = _check_frames(frames)
+    px = check_size(size)
+    if not -90.0 < float(elevation) < 90.0:
+        raise InvalidShapeError(f"elevation: expected degrees strictly between -90 and 90, got {elevation}")
+    palette = palette_for(parse_color(color, name="color"), parse_color(background, name="background"))
+    lo, hi = (np.asarray(b) for b in bounding_box(grid))
+    diagonal = float(np.linalg.norm(hi - lo))
+    scale = 0.92 * px / diagonal
+    k = _antialias(scale, antialias)
+    out = []
+    for i in progress(range(n), total=n, desc="turntable"):
+        camera = orbit_camera(ISO_AZIMUTH + 360.0 * i / n, float(elevation))
+        # Centre on the box centre itself, not on its projected outline, so the axis stays still.
+        centre = (lo + hi) / 2.0
+        frame = Frame(px, px, scale, px / 2.0 - scale * float(centre @ camera.right),
+                      px / 2.0 + scale * float(centre @ camera.up))
+        out.append(_frame_image(grid, camera, frame, palette, k))
+    return out
+
+
+def animation_frames(
+    grids: Iterable[VoxelShape | npt.ArrayLike],
+    *,
+    view: str | View = "iso",
+    size: int = 400,
+    background: Color = "white",
+    color: Color = DEFAULT_COLOR,
+    antialias: int | None = None,
+) -> list[Image.Image]:
+    """Pictures of a sequence of shapes (e.g. a swept tube as its profile turns), one per grid.
+
+    All frames share one framing, fitted to the union of the shapes' bounding
+    boxes, so the animation does not jitter.
+
+    Returns
+    -------
+    list of PIL.Image.Image
+        One palette picture of ``size × size`` pixels per grid.
+    """
+    items = [as_grid(g.grid if isinstance(g, VoxelShape) else g, name=f"grids[{i}]", allow_empty=True)
+             for i, g in enumerate(grids)]
+    if not items:
+        raise InvalidShapeError("grids: an animation needs at least one shape")
+    px = check_size(size)
+    camera: Camera = camera_for(view)
+    boxes = [bounding_box(g) for g in items if g.any()]
+    if not boxes:
+        raise InvalidShapeError("grids: every shape is empty")
+    lo = np.min([b[0] for b in boxes], axis=0)
+    hi = np.max([b[1] for b in boxes], axis=0)
+    frame = fit_frame(lo, hi, camera, width=px, height=px)
+    palette = palette_for(parse_color(color, name="color"), parse_color(background, name="background"))
+    k = _antialias(frame.scale, antialias)
+    return [_frame_image(g, camera, frame, palette, k) for g in progress(items, total=len(items), desc="frames")]
+
+
+def _check_duration(duration_ms: int) -> int:
+    if isinstance(duration_ms, bool) or not isinstance(duration_ms, (int, np.integer)) or duration_ms < 10:
+        raise InvalidShapeError(f"duration_ms: expected an integer >= 10, got {duration_ms!r}")
+    return int(duration_ms)
+
+
+def save_turntable(
+    shape: VoxelShape | npt.ArrayLike,
+    path: PathLike,
+    *,
+    frames: int = 36,
+    size: int = 400,
+    duration_ms: int = 80,
+    elevation: float = ISO_ELEVATION,
+    background: Color = "white",
+    color: Color = DEFAULT_COLOR,
+) -> int:
+    """Write a looping turntable GIF of ``shape``; return the number of frames rendered."""
+    d = _check_duration(duration_ms)
+    pics = turntable_frames(shape, frames=frames, size=size, elevation=elevation, background=background,
+                            color=color)
+    write_bytes(path, gif_bytes(pics, duration_ms=d))
+    return len(pics)
+
+
+def save_animation(
+    grids: Iterable[VoxelShape | npt.ArrayLike],
+    path: PathLike,
+    *,
+    view: str | View = "iso",
+    size: int = 400,
+    duration_ms: int = 80,
+    background: Color = "white",
+    color: Color = DEFAULT_COLOR,
+) -> int:
+    """Write a looping GIF with one frame per shape of ``grids``; return the number of frames rendered."""
+    d = _check_duration(duration_ms)
+    pics = animation_frames(grids, view=view, size=size, background=background, color=color)
+    write_bytes(path, gif_bytes(pics, duration_ms=d))
+    return len(pics)
+
