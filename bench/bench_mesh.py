@@ -1,0 +1,131 @@
+"""Benchmark of voxfab.fabricate.mesh against a manifold3d union of cubes, with size limits.
+
+Run ``python bench/bench_mesh.py``.  Each case runs in a fresh subprocess so its
+peak resident memory (``ru_maxrss``) is its own.  Goals (issue 4):
+
+* at least 100x faster than a manifold3d union of unit cubes on a 25³ random blob;
+  (cases report the best of 5 runs, the 256³ shell of 2; the union, which takes seconds, runs once)
+* a 25³ worst case (3D checkerboard, the most faces) under 100 ms;
+* a 256³ one-voxel sphere shell under 5 s and 2 GB;
+* random noise at 256³ refused with a clear error before memory runs out.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+import time
+
+CASES = ["cubes_union", "blob", "blob_split", "checker", "checker_bridge", "shell256", "noise256"]
+
+
+def _shell(n: int = 256, r: float = 120.0):
+    import numpy as np
+    from scipy import ndimage
+
+    c = np.arange(n) - (n - 1) / 2
+    d = np.sqrt(c[:, None, None] ** 2 + c[None, :, None] ** 2 + c[None, None, :] ** 2)
+    ball = d <= r
+    # One voxel thick and face-connected: ball voxels with an outside voxel among their 26 neighbours.
+    return ball & ~ndimage.binary_erosion(ball, np.ones((3, 3, 3), bool))
+
+
+def run_case(name: str) -> dict[str, object]:
+    import numpy as np
+
+    from voxfab.errors import VoxfabError
+    from voxfab.fabricate.mesh import build_mesh, check_mesh, voxel_mesh
+    from voxfab.shape import examples
+
+    blob = examples.random_shape(0)
+    out: dict[str, object] = {"case": name}
+    if name == "cubes_union":
+        import manifold3d as m3d
+
+        cubes = [m3d.Manifold.cube((1.0, 1.0, 1.0)).translate(tuple(map(float, p))) for p in np.argwhere(blob)]
+        t = time.perf_counter()
+        u = m3d.Manifold.batch_boolean(cubes, m3d.OpType.Add)
+        tris = u.num_tri()  # the union is lazy: this forces it
+        out.update(seconds=time.perf_counter() - t, triangles=tris, voxels=int(blob.sum()), volume=u.volume())
+        return out
+    if name in ("blob", "blob_split"):
+        build_mesh(examples.box(2, 2, 2))  # warm imports
+        times = []
+        for _ in range(5):
+            t = time.perf_counter()
+            r = build_mesh(blob, contacts="bridge" if name == "blob" else "split")
+            times.append(time.perf_counter() - t)
+        out.update(seconds=min(times), triangles=r.report.triangles, voxels=int(blob.sum()),
+                   bodies=r.report.bodies, bridges=r.bridges, volume=r.report.volume)
+        return out
+    if name in ("checker", "checker_bridge"):
+        g = np.indices((25, 25, 25)).sum(axis=0) % 2 == 0
+        build_mesh(examples.box(2, 2, 2))
+        times = []
+        for _ in range(1 if name == "checker_bridge" else 5):
+            t = time.perf_counter()
+            r = build_mesh(g, fill=False, contacts="split" if name == "checker" else "bridge")
+            times.append(time.perf_counter() - t)
+        out.update(seconds=min(times), triangles=r.report.triangles, bodies=r.report.bodies, bridges=r.bridges)
+        return out
+    if name == "shell256":
+        g = _shell()
+        times = []
+        for _ in range(2):
+            t = time.perf_counter()
+            r = build_mesh(g, fill=False)
+            times.append(time.perf_counter() - t)
+        plain = voxel_mesh(g, merge=False)
+        check_mesh(plain)
+        out.update(seconds=min(times), triangles=r.report.triangles, unmerged_triangles=len(plain.triangles),
+                   voxels=int(g.sum()), contacts=r.contacts, shells=r.report.shells)
+        return out
+    if name == "noise256":
+        g = np.random.default_rng(0).random((256, 256, 256)) < 0.5
+        t = time.perf_counter()
+        try:
+            build_mesh(g)
+            out.update(error="none (no refusal!)")
+        except VoxfabError as exc:
+            out.update(error=f"{type(exc).__name__}: {exc}")
+        out.update(seconds=time.perf_counter() - t)
+        return out
+    raise SystemExit(f"unknown case {name}")
+
+
+def main() -> None:
+    if len(sys.argv) == 3 and sys.argv[1] == "--case":
+        import resource
+
+        res = run_case(sys.argv[2])
+        res["peak_rss_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+        print(json.dumps(res))
+        return
+    results = {}
+    for case in CASES:
+        run = subprocess.run([sys.executable, __file__, "--case", case], capture_output=True, text=True)
+        if run.returncode != 0:
+            print(f"{case}: failed\n{run.stderr[-2000:]}")
+            continue
+        results[case] = json.loads(run.stdout.strip().splitlines()[-1])
+    print(f"{'case':<16}{'seconds':>10}{'peak MB':>10}{'triangles':>11}  notes")
+    for case, r in results.items():
+        notes = {k: v for k, v in r.items() if k not in ("case", "seconds", "peak_rss_mb", "triangles")}
+        print(f"{case:<16}{r['seconds']:>10.3f}{r['peak_rss_mb']:>10.0f}{r.get('triangles', ''):>11}  {notes}")
+    if "cubes_union" in results and "blob" in results:
+        u, b, s = results["cubes_union"], results["blob"], results.get("blob_split", {})
+        print(f"\nspeed-up over the manifold3d union of cubes: {u['seconds'] / b['seconds']:.0f}x with bridges, "
+              f"{u['seconds'] / s.get('seconds', float('nan')):.0f}x split (goal >= 100x)")
+    if "checker" in results:
+        print(f"25³ checkerboard: {results['checker']['seconds'] * 1000:.0f} ms (goal < 100 ms)")
+    if "shell256" in results:
+        r = results["shell256"]
+        print(f"256³ shell: {r['seconds']:.2f} s, {r['peak_rss_mb']:.0f} MB peak (goals < 5 s, < 2048 MB)")
+    if "noise256" in results:
+        r = results["noise256"]
+        print(f"256³ noise: refused in {r['seconds']:.2f} s at {r['peak_rss_mb']:.0f} MB peak")
+
+
+if __name__ == "__main__":
+    main()

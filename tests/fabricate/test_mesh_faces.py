@@ -1,0 +1,103 @@
+"""Mesh from voxel faces: manifold by index, exact volume and box, no T-junctions."""
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis.extra.numpy import arrays
+
+from voxfab.fabricate.mesh import MeshData, check_mesh, voxel_mesh
+from voxfab.shape import examples, exposed_faces
+
+grids = arrays(np.bool_, st.tuples(st.integers(1, 5), st.integers(1, 5), st.integers(1, 5)), elements=st.booleans())
+
+
+def _edge_counts(m: MeshData) -> np.ndarray:
+    """How many triangles use each undirected edge, counted by vertex index."""
+    t = m.triangles
+    e = np.sort(np.stack([t, np.roll(t, -1, axis=1)], axis=2).reshape(-1, 2), axis=1)
+    _, counts = np.unique(e, axis=0, return_counts=True)
+    return counts
+
+
+def _area(m: MeshData) -> float:
+    v = m.vertices[m.triangles]
+    return float(np.linalg.norm(np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0]), axis=1).sum() / 2)
+
+
+def _t_junctions(m: MeshData) -> int:
+    """Vertices lying strictly inside some triangle edge (brute force, small meshes only)."""
+    t = m.triangles
+    a = m.vertices[t.ravel()]
+    b = m.vertices[np.roll(t, -1, axis=1).ravel()]
+    p = m.vertices
+    ab = b - a
+    ap = p[:, None, :] - a[None]
+    s = np.einsum("vek,ek->ve", ap, ab) / np.einsum("ek,ek->e", ab, ab)
+    dist = np.linalg.norm(ap - s[..., None] * ab[None], axis=2)
+    return int(np.count_nonzero((dist < 1e-9) & (s > 1e-9) & (s < 1 - 1e-9)))
+
+
+@pytest.mark.parametrize(
+    "grid",
+    [examples.box(3, 4, 5), examples.tunnel_cube(5), examples.ball(6), examples.torus(6, 2), examples.vase(12)],
+    ids=["box", "tunnel", "ball", "torus", "vase"],
+)
+def test_examples_are_closed_with_exact_volume_and_box(grid):
+    pitch = 1.5
+    m = voxel_mesh(grid, pitch=pitch)
+    assert (_edge_counts(m) == 2).all()
+    r = check_mesh(m, expected_volume=grid.sum() * pitch**3)
+    assert r.bodies == 1
+    lo, hi = np.array(r.bounds)
+    nz = np.argwhere(grid)
+    assert np.allclose(lo, nz.min(axis=0) * pitch) and np.allclose(hi, (nz.max(axis=0) + 1) * pitch)
+
+
+def test_merging_keeps_the_surface_and_shrinks_the_mesh():
+    g = examples.ball(8)
+    plain = voxel_mesh(g, merge=False)
+    merged = voxel_mesh(g)
+    assert plain.triangles.shape[0] == 2 * exposed_faces(g)
+    assert merged.triangles.shape[0] < 0.7 * plain.triangles.shape[0]
+    assert _area(merged) == pytest.approx(_area(plain)) == pytest.approx(exposed_faces(g))
+    assert voxel_mesh(examples.box(25, 25, 25)).triangles.shape[0] == 12
+
+
+def test_merged_mesh_has_no_t_junctions():
+    for g in (examples.tunnel_cube(5), examples.ball(4), examples.random_shape(3, side=6, fill=0.4)):
+        m = voxel_mesh(g)
+        assert _t_junctions(m) == 0
+        check_mesh(m, expected_volume=float(g.sum()))
+
+
+def test_edge_contact_closed_at_both_ends_gets_midpoints():
+    # Two voxels touch along an edge whose both ends are shared through full layers
+    # below and above: without a midpoint the edge would be in four triangles.
+    g = np.zeros((3, 3, 3), bool)
+    g[:, :, 0] = g[:, :, 2] = True
+    g[0, 0, 1] = g[1, 1, 1] = True
+    for merge in (False, True):
+        m = voxel_mesh(g, merge=merge)
+        assert (_edge_counts(m) == 2).all()
+        check_mesh(m, expected_volume=float(g.sum()))
+
+
+@settings(max_examples=60, deadline=None)
+@given(grids, st.booleans())
+def test_any_grid_gives_a_manifold_mesh(g, merge):
+    if not g.any():
+        return
+    m = voxel_mesh(g, pitch=2.0, merge=merge)
+    check_mesh(m, expected_volume=g.sum() * 8.0)
+    assert (_edge_counts(m) == 2).all()
+    assert _area(m) == pytest.approx(exposed_faces(g) * 4.0)
+
+
+def test_parts_follow_face_connected_components():
+    g = np.zeros((5, 1, 1), bool)
+    g[[0, 2, 4]] = True
+    m = voxel_mesh(g)
+    assert m.part_count == 3
+    r = check_mesh(m, expected_volume=3.0)
+    assert r.bodies == 3

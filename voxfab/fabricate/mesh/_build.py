@@ -1,0 +1,416 @@
+"""From a voxel shape to a checked, print-ready mesh."""
+
+from __future__ import annotations
+
+import dataclasses
+from enum import Enum
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from voxfab._shared.validate import as_grid, check_choice, check_positive
+from voxfab.errors import FabricationError, InvalidShapeError
+from voxfab.shape import VoxelShape, crop, exposed_faces, fill_cavities
+
+from ._check import MeshReport, check_mesh
+from ._contacts import bridge_boxes, bridged_grid, find_contacts
+from ._data import MeshData
+from ._faces import voxel_mesh
+
+#: Most exposed voxel faces a mesh may have.  Meshing and checking need about
+#: 1.3 kB per face at peak on top of about 1 GB for the surface graph of a 256³
+#: grid (measured: a 256³ one-voxel sphere shell, 0.54 M faces, peaks at 1.7 GB),
+#: so this keeps a mesh near 3 GB.  Random noise at 256³ has about 25 M faces and
+#: is refused after a count that costs a fraction of a second.
+MAX_FACES = 1_500_000
+#: Thinnest wall a 0.4 mm nozzle prints reliably (two perimeters), mm.
+MIN_WALL = 0.8
+#: Default width of a contact bridge, mm (at most :data:`BRIDGE_MAX_FRACTION` of the pitch).
+BRIDGE_WIDTH = 1.0
+BRIDGE_DEFAULT_FRACTION = 0.6
+BRIDGE_MAX_FRACTION = 0.9
+#: Default engraving depth of a label, mm.
+ENGRAVE_DEPTH = 0.6
+#: Smallest letter height that prints legibly when engraved, mm.
+MIN_LETTER = 3.0
+
+
+class ContactMode(Enum):
+    """What to do with voxels that touch only along an edge or at a corner."""
+
+    BRIDGE = "bridge"
+    SPLIT = "split"
+    ERROR = "error"
+
+
+@dataclasses.dataclass(frozen=True)
+class MeshResult:
+    """A checked mesh and what was done to make it.
+
+    Attributes
+    ----------
+    mesh : MeshData
+        The mesh in mm, minimum corner at the origin.
+    report : MeshReport
+        The checker's measures of ``mesh``.
+    pitch : float
+        Millimetres per voxel used.
+    contacts : int
+        Edge-only and corner-only contacts found in the shape.
+    bridges : int
+        Bridge boxes added.
+    warnings : tuple of str
+        Printability warnings, one line each.
+    """
+
+    mesh: MeshData
+    report: MeshReport
+    pitch: float
+    contacts: int
+    bridges: int
+    warnings: tuple[str, ...]
+
+
+def parse_magnet(spec: str) -> tuple[float, float]:
+    """Parse ``"DxH"`` (diameter × depth in mm), e.g. ``"6x3"``."""
+    parts = str(spec).lower().replace("×", "x").split("x")
+    try:
+        d, h = (float(p) for p in parts)
+    except ValueError:
+        raise InvalidShapeError(f"magnet: expected DIAMETERxDEPTH in mm such as 6x3, got {spec!r}") from None
+    return check_positive(d, name="magnet diameter"), check_positive(h, name="magnet depth")
+
+
+def resolve_pitch(grid: npt.NDArray[np.bool_], *, pitch: float | None, size: float | None, default: float) -> float:
+    """Millimetres per voxel from a pitch, or from a target size of the longest side."""
+    if pitch is not None and size is not None:
+        raise InvalidShapeError("pitch and size: give one of them, not both")
+    if size is not None:
+        return check_positive(size, name="size") / max(grid.shape)
+    return check_positive(pitch if pitch is not None else default, name="pitch")
+
+
+def hollow_out(grid: npt.NDArray[np.bool_], wall: int) -> npt.NDArray[np.bool_]:
+    """Keep a wall of ``wall`` voxels and open each inner cavity with a drain hole.
+
+    The wall is every voxel within Chebyshev distance ``wall`` of the outside,
+    so it is at least ``wall`` voxels thick along every axis and a cavity never
+    touches the outside, not even at a corner.  Each cavity gets one drain: a
+    one-voxel column from its lowest voxel nearest the cavity's centre straight
+    down to the outside.
+    """
+    from scipy import ndimage
+
+    g = fill_cavities(grid)
+    inner = ndimage.binary_erosion(g, structure=np.ones((3, 3, 3), bool), iterations=wall, border_value=0)
+    shell = g & ~inner
+    labels, n = ndimage.label(inner, structure=ndimage.generate_binary_structure(3, 1))
+    if n == 0:
+        return shell
+    idx = np.argwhere(labels > 0)
+    lab = labels[idx[:, 0], idx[:, 1], idx[:, 2]]
+    zmin = np.full(n + 1, np.iinfo(np.int64).max)
+    np.minimum.at(zmin, lab, idx[:, 2])
+    centre = np.stack([np.bincount(lab, weights=idx[:, a], minlength=n + 1) for a in range(2)], axis=1)
+    centre /= np.maximum(np.bincount(lab, minlength=n + 1), 1)[:, None]
+    low = idx[idx[:, 2] == zmin[lab]]
+    low_lab = labels[low[:, 0], low[:, 1], low[:, 2]]
+    dist = np.hypot(low[:, 0] - centre[low_lab, 0], low[:, 1] - centre[low_lab, 1])
+    order = np.lexsort((low[:, 1], low[:, 0], dist, low_lab))
+    first = order[np.r_[True, low_lab[order][1:] != low_lab[order][:-1]]]
+    for x, y, z in low[first]:  # one per cavity
+        col = shell[x, y, :z]
+        gaps = np.flatnonzero(~col)
+        start = int(gaps.max()) + 1 if gaps.size else 0
+        shell[x, y, start:z] = False
+    return shell
+
+
+def thin_wall_warning(grid: npt.NDArray[np.bool_], pitch: float) -> str | None:
+    """A warning when some part is one voxel thick and one voxel is under :data:`MIN_WALL`."""
+    if pitch >= MIN_WALL:
+        return None
+    p = np.pad(grid, 1)
+    core = p[1:-1, 1:-1, 1:-1]
+    thin = np.zeros_like(core)
+    for a in range(3):
+        lo = [slice(1, -1)] * 3
+        hi = [slice(1, -1)] * 3
+        lo[a] = slice(0, -2)
+        hi[a] = slice(2, None)
+        thin |= core & ~p[tuple(lo)] & ~p[tuple(hi)]
+    if not thin.any():
+        return None
+    return (
+        f"{int(thin.sum())} voxels are in one-voxel walls, which at {pitch:g} mm per voxel are thinner "
+        f"than the {MIN_WALL:g} mm a 0.4 mm nozzle prints reliably; use --pitch {MIN_WALL:g} or more"
+    )
+
+
+def largest_rectangle(mask: npt.NDArray[np.bool_]) -> tuple[int, int, int, int]:
+    """Largest axis-aligned rectangle of True cells, as ``(x0, y0, x1, y1)`` (exclusive ends)."""
+    nx, ny = mask.shape
+    heights = np.zeros(ny + 1, dtype=np.int64)
+    best = (0, 0, 0, 0, 0)
+    for x in range(nx):  # one row of the footprint at a time (a 2D histogram sweep)
+        heights[:ny] = np.where(mask[x], heights[:ny] + 1, 0)
+        stack: list[int] = []
+        for y in range(ny + 1):
+            while stack and heights[stack[-1]] >= heights[y]:
+                h = int(heights[stack.pop()])
+                y0 = stack[-1] + 1 if stack else 0
+                area = h * (y - y0)
+                if area > best[0]:
+                    best = (area, x - h + 1, y0, x + 1, y)
+            stack.append(y)
+    return best[1], best[2], best[3], best[4]
+
+
+def _bottom_regions(
+    rect: tuple[float, float, float, float], *, magnet: tuple[float, float] | None, label: str | None
+) -> tuple[tuple[float, float, float, float] | None, tuple[float, float, float, float] | None]:
+    """Split the bottom rectangle (mm) between the magnet pocket and the label."""
+    x0, y0, x1, y1 = rect
+    if magnet is None:
+        return None, rect if label else None
+    if not label:
+        return rect, None
+    w, h = x1 - x0, y1 - y0
+    # The pocket takes a square at one end with a rim of 2 mm; the label the rest.
+    side = min(min(w, h), magnet[0] + 4.0)
+    if w >= h:
+        return (x0, y0, x0 + side, y1), (x0 + side, y0, x1, y1)
+    return (x0, y0, x1, y0 + side), (x0, y0 + side, x1, y1)
+
+
+def build_mesh(
+    shape: VoxelShape | npt.ArrayLike,
+    *,
+    pitch: float | None = None,
+    size: float | None = None,
+    contacts: str | ContactMode = ContactMode.BRIDGE,
+    bridge_width: float | None = None,
+    fill: bool = True,
+    hollow: int = 0,
+    label: str | None = None,
+    engrave_depth: float = ENGRAVE_DEPTH,
+    base: float = 0.0,
+    magnet: tuple[float, float] | str | None = None,
+    merge: bool = True,
+    name: str = "shape",
+) -> MeshResult:
+    """Turn a voxel shape into a checked, print-ready mesh.
+
+    Parameters
+    ----------
+    shape : VoxelShape or (X, Y, Z) bool array_like
+        The voxels, ``[x, y, z]`` with z up.  It is cropped to its bounding box.
+    pitch : float, optional
+        Millimetres per voxel (default: the shape's pitch, or 1.0 for arrays).
+    size : float, optional
+        Target length of the longest side in mm, instead of ``pitch``.
+    contacts : {"bridge", "split", "error"}
+        Voxels touching only along an edge or at a corner: join them with a small
+        square bridge, keep them as separate shells, or refuse.
+    bridge_width : float, optional
+        Bridge width in mm (default 1.0, at most 0.6 × pitch; at most 0.9 × pitch).
+    fill : bool
+        Fill enclosed cavities (solid print).
+    hollow : int
+        When > 0, hollow the shape with walls this many voxels thick and a drain
+        hole per cavity.
+    label : str, optional
+        Text engraved, mirrored, on the bottom.
+    engrave_depth : float
+        Depth of the label in mm.
+    base : float
+        Thickness in mm of a flat plate under the shape's footprint (0: none).
+    magnet : (float, float) or str, optional
+        Diameter and depth in mm (or ``"DxH"``) of a round pocket in the bottom.
+    merge : bool
+        Merge coplanar faces.
+    name : str
+        Name used in messages.
+
+    Returns
+    -------
+    MeshResult
+
+    Raises
+    ------
+    InvalidShapeError
+        On an empty grid or bad parameters.
+    FabricationError
+        When the mesh would be too large, contacts are refused, or a check fails.
+    """
+    default_pitch = shape.pitch if isinstance(shape, VoxelShape) else 1.0
+    g0 = as_grid(shape.grid if isinstance(shape, VoxelShape) else shape, name=name)
+    mode = check_choice(contacts, ContactMode, name="contacts")
+    g = crop(g0)
+    pitch_mm = resolve_pitch(g, pitch=pitch, size=size, default=default_pitch)
+    hollow = int(hollow)
+    if hollow < 0:
+        raise InvalidShapeError(f"hollow: expected a wall thickness in voxels >= 0, got {hollow}")
+    base = float(base)
+    if base < 0 or not np.isfinite(base):
+        raise InvalidShapeError(f"base: expected a thickness in mm >= 0, got {base}")
+    magnet_dh = parse_magnet(magnet) if isinstance(magnet, str) else magnet
+    if magnet_dh is not None:
+        magnet_dh = (check_positive(magnet_dh[0], name="magnet diameter"), check_positive(magnet_dh[1], name="magnet depth"))
+    if label is not None and not label.strip():
+        raise InvalidShapeError("label: expected some text, got an empty string")
+    depth = check_positive(engrave_depth, name="engrave_depth")
+
+    faces = exposed_faces(g)
+    if faces > MAX_FACES:
+        raise FabricationError(
+            f"{name}: {faces} exposed voxel faces, over the limit of {MAX_FACES} for a mesh "
+            f"(a noisy grid?); smooth or crop the shape first"
+        )
+    warnings: list[str] = []
+    if hollow:
+        g = hollow_out(g, hollow)
+    elif fill:
+        g = fill_cavities(g)
+    w = thin_wall_warning(g, pitch_mm)
+    if w:
+        warnings.append(w)
+
+    found = find_contacts(g)
+    if mode is ContactMode.ERROR and found.count:
+        raise FabricationError(f"{name}: refused with --contacts error: {found.describe()}")
+
+    from scipy import ndimage
+
+    do_bridge = mode is ContactMode.BRIDGE and found.count > 0
+    bounds = np.stack([np.zeros(3), np.array(g.shape) * pitch_mm])
+    boxes = np.zeros((0, 2, 3))
+    mesh = None
+    bridged_in_grid = False
+    if do_bridge:
+        width = _bridge_width(bridge_width, pitch_mm, warnings)
+        boxes = bridge_boxes(found, pitch=pitch_mm, width=width)
+        refined = bridged_grid(g, boxes, pitch=pitch_mm)
+        if refined is not None:
+            # Bridges as cells of a rectilinear grid: meshed and checked exactly, no CAD kernel.
+            cells, coords = refined
+            labels_r = ndimage.label(cells, structure=ndimage.generate_binary_structure(3, 1))[0]
+            mesh = voxel_mesh(cells, pitch=pitch_mm, merge=merge, part_labels=labels_r, coords=coords)
+            sizes = [np.diff(c) for c in coords]
+            exact_volume = float(np.einsum("ijk,i,j,k->", cells, *sizes)) * pitch_mm**3
+            report = check_mesh(
+                mesh, what=name, expected_volume=exact_volume, expected_bounds=bounds,
+                expected_bodies=ndimage.label(g, structure=np.ones((3, 3, 3), bool))[1],
+            )
+            bridged_in_grid = True
+    elif bridge_width is not None:
+        check_positive(bridge_width, name="bridge_width")
+    if mesh is None:
+        labels6 = ndimage.label(g, structure=ndimage.generate_binary_structure(3, 1))[0]
+        mesh = voxel_mesh(g, pitch=pitch_mm, merge=merge, part_labels=labels6)
+        exact_volume = float(g.sum()) * pitch_mm**3
+        report = check_mesh(mesh, what=name, expected_volume=exact_volume, expected_bounds=bounds)
+    n_boxes = len(boxes)
+
+    if not ((do_bridge and not bridged_in_grid) or base or label or magnet_dh):
+        return MeshResult(mesh, report, pitch_mm, found.count, n_boxes, tuple(warnings))
+
+    from . import _cad
+
+    solid = _cad.to_manifold(mesh)
+    added: list[Any] = []
+    added_volume = 0.0
+    if do_bridge and not bridged_in_grid:
+        added += _cad.box_solids(boxes)
+        added_volume += float(np.prod(boxes[:, 1] - boxes[:, 0], axis=1).sum())
+    z_bottom = 0.0
+    if base:
+        plate = np.array([[0.0, 0.0, -base], [g.shape[0] * pitch_mm, g.shape[1] * pitch_mm, 0.0]])
+        added += _cad.box_solids(plate[None])
+        added_volume += float(np.prod(plate[1] - plate[0]))
+        z_bottom = -base
+    if added:
+        solid = _cad.union([solid, *added])
+    cutters: list[Any] = []
+    removed_volume = 0.0
+    if label or magnet_dh:
+        if base:
+            rect_mm = (0.0, 0.0, g.shape[0] * pitch_mm, g.shape[1] * pitch_mm)
+        else:
+            x0, y0, x1, y1 = largest_rectangle(g[:, :, 0])
+            rect_mm = (x0 * pitch_mm, y0 * pitch_mm, x1 * pitch_mm, y1 * pitch_mm)
+        floor = base if base else _floor_thickness(g) * pitch_mm
+        magnet_rect, label_rect = _bottom_regions(rect_mm, magnet=magnet_dh, label=label)
+        if magnet_dh is not None and magnet_rect is not None:
+            d, h = magnet_dh
+            mx0, my0, mx1, my1 = magnet_rect
+            side = min(mx1 - mx0, my1 - my0)
+            if d > side:
+                raise FabricationError(
+                    f"{name}: a magnet pocket of {d:g} mm does not fit the flat bottom "
+                    f"({side:g} mm across); add --base or use a smaller magnet"
+                )
+            if d + 2 * MIN_WALL > side:
+                warnings.append(f"the magnet pocket leaves side walls under {MIN_WALL:g} mm")
+            total_height = g.shape[2] * pitch_mm + base
+            if h >= total_height:
+                raise FabricationError(f"{name}: a magnet pocket {h:g} mm deep is as tall as the print ({total_height:g} mm)")
+            cutters.append(_cad.cylinder(((mx0 + mx1) / 2, (my0 + my1) / 2), z_bottom - 1.0, z_bottom + h, d))
+            removed_volume += np.pi * d * d / 4 * (h + 1.0)
+        if label and label_rect is not None:
+            lx0, ly0, lx1, ly1 = label_rect
+            margin = max(1.0, 0.1 * min(lx1 - lx0, ly1 - ly0))
+            box = (lx1 - lx0 - 2 * margin, ly1 - ly0 - 2 * margin)
+            if min(box) <= 0:
+                raise FabricationError(f"{name}: no room for the label on the bottom; add --base")
+            cutter, letter = _cad.label_cutter(
+                label, centre=((lx0 + lx1) / 2, (ly0 + ly1) / 2), box=box, z_bottom=z_bottom, depth=depth
+            )
+            cutters.append(cutter)
+            removed_volume += box[0] * box[1] * (depth + 1.0)
+            if letter < MIN_LETTER:
+                warnings.append(f"the label is {letter:.1f} mm tall, under {MIN_LETTER:g} mm it may not be legible")
+            if depth >= floor:
+                warnings.append(f"the label ({depth:g} mm deep) cuts through the {floor:g} mm thick bottom")
+        solid = _cad.subtract(solid, cutters)
+    out = _cad.from_manifold(solid)
+    shift = -out.vertices.min(axis=0)
+    out = MeshData(vertices=out.vertices + shift, triangles=out.triangles, part=out.part)
+    expected_bodies = None
+    if mode is ContactMode.BRIDGE:
+        gb = np.concatenate([np.ones(g.shape[:2] + (1,), bool), g], axis=2) if base else g
+        expected_bodies = ndimage.label(gb, structure=np.ones((3, 3, 3), bool))[1]
+    ext = np.array(g.shape, dtype=np.float64) * pitch_mm + np.array([0.0, 0.0, base])
+    checked = check_mesh(
+        out,
+        what=name,
+        expected_volume=(exact_volume - removed_volume, exact_volume + added_volume),
+        expected_bodies=expected_bodies,
+    )
+    if np.abs(np.array(checked.bounds[1]) - ext).max() > 1e-6 * ext.max():
+        raise FabricationError(f"{name}: mesh check failed: bounding box {checked.bounds[1]} mm, expected {ext.tolist()}")
+    if abs(checked.volume - solid.volume()) > 1e-6 * max(checked.volume, 1.0):
+        raise FabricationError(
+            f"{name}: mesh check failed: volume {checked.volume:.6g} mm³ differs from the CAD kernel's {solid.volume():.6g}"
+        )
+    return MeshResult(out, checked, pitch_mm, found.count, n_boxes, tuple(warnings))
+
+
+def _bridge_width(width: float | None, pitch: float, warnings: list[str]) -> float:
+    if width is None:
+        return min(BRIDGE_WIDTH, BRIDGE_DEFAULT_FRACTION * pitch)
+    w = check_positive(width, name="bridge_width")
+    if w > BRIDGE_MAX_FRACTION * pitch:
+        warnings.append(
+            f"bridge width {w:g} mm clamped to {BRIDGE_MAX_FRACTION * pitch:g} mm ({BRIDGE_MAX_FRACTION:g} × pitch)"
+        )
+        w = BRIDGE_MAX_FRACTION * pitch
+    return w
+
+
+def _floor_thickness(g: npt.NDArray[np.bool_]) -> int:
+    """Voxels of solid above the bottom layer's cells, at the thinnest column."""
+    bottom = g[:, :, 0]
+    runs = np.cumprod(g, axis=2).sum(axis=2)
+    return int(runs[bottom].min()) if bottom.any() else 0

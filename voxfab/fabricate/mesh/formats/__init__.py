@@ -1,0 +1,57 @@
+"""Mesh file formats, found by file extension.
+
+Each format module has ``EXTENSION``, ``DESCRIPTION``, ``to_bytes(mesh, *, name)``
+and ``read(path) -> MeshData`` (STL, which has no vertex identity, reads back
+one vertex per triangle corner).
+"""
+
+from __future__ import annotations
+
+import importlib
+from pathlib import Path
+from types import ModuleType
+
+from voxfab._shared.atomic import write_bytes
+from voxfab._shared.typing import PathLike
+from voxfab.errors import UnknownFormatError
+
+from .._data import MeshData
+
+#: Extension → module implementing the format.
+FORMATS: dict[str, str] = {
+    ".3mf": "voxfab.fabricate.mesh.formats.threemf",
+    ".stl": "voxfab.fabricate.mesh.formats.stl",
+    ".obj": "voxfab.fabricate.mesh.formats.obj",
+    ".glb": "voxfab.fabricate.mesh.formats.glb",
+}
+
+__all__ = ["FORMATS", "format_for", "write_mesh", "read_mesh", "mesh_extensions"]
+
+
+def mesh_extensions() -> list[str]:
+    """The known extensions, e.g. ``['.3mf', '.glb', '.obj', '.stl']``."""
+    return sorted(FORMATS)
+
+
+def format_for(path: PathLike) -> ModuleType:
+    """The format module for ``path``'s extension."""
+    ext = Path(path).suffix.lower()
+    if ext not in FORMATS:
+        raise UnknownFormatError(
+            f"{path}: unknown mesh format {ext or '(no extension)'!r}; expected one of {', '.join(mesh_extensions())}"
+        )
+    return importlib.import_module(FORMATS[ext])
+
+
+def write_mesh(path: PathLike, mesh: MeshData, *, name: str) -> None:
+    """Check ``mesh`` edge by edge, then write it to ``path`` atomically in the format of its extension."""
+    from .._check import check_mesh
+
+    module = format_for(path)
+    check_mesh(mesh, what=str(path))
+    write_bytes(path, module.to_bytes(mesh, name=name))
+
+
+def read_mesh(path: PathLike) -> MeshData:
+    """Read a mesh written by :func:`write_mesh`."""
+    return format_for(path).read(path)
