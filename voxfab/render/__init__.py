@@ -16,6 +16,7 @@ from pathlib import Path
 from voxfab.errors import RecipeError, VoxfabError
 from voxfab.fabricate import OutputFile
 from voxfab.shape import VoxelShape
+from voxfab.unfold import Net
 
 from ._animate import animation_frames, save_animation, save_turntable, turntable_frames
 from ._contact_sheet import contact_sheet, repository_contact_sheet, sheet_layout
@@ -144,7 +145,12 @@ def recipe_output(
                                                                color=color)))
         files.append(OutputFile("slices.png", "the layers bottom up, each numbered"))
     if triptych:
-        image = _triptych(shape, name=name, rng=seed, panel=size, background=background, color=color)
+        # The build runs the `net` output before this one: draw that very net
+        # instead of searching again (a search may take a while on large shapes).
+        net_file = out / "net.json"
+        net = Net.from_json(net_file.read_text()) if net_file.exists() else None
+        image = _triptych(shape, name=name, rng=seed, net=net, panel=size, background=background,
+                          color=color)
         write_bytes(out / "triptych.png", png_bytes(image))
         write_bytes(out / "triptych.pdf", pdf_bytes(image, title=name))
         files.append(OutputFile("triptych.png", "net | slices | 3D, titled with the shape's name"))
