@@ -1,0 +1,453 @@
+"""Net drawings: geometry, tabs, numbers and sheets, checked against the net and with shapely."""
+
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+import pytest
+import shapely
+
+from voxfab.errors import FormatError, InvalidShapeError
+from voxfab.fabricate.netdraw import DrawingOptions, draw_net, parse_colors, parse_sheet
+from voxfab.fabricate.netdraw._geometry import Polylines, merge_unit_segments
+from voxfab.fabricate.netdraw._tabs import place_tabs
+from voxfab.shape import examples, surface_graph
+from voxfab.unfold import Net
+
+
+def lay_out(grid: np.ndarray, tree: list[tuple[int, int]] | None = None) -> Net:
+    """A net laid out face by face with the surface graph's forced placement.
+
+    With ``tree`` (fold pairs, parents first) the given spanning tree is laid out;
+    without it faces are placed breadth first from face 0 wherever their cell is
+    free.  The result is checked: every face placed once, no shared cell.
+    """
+    sg = surface_graph(grid)
+    nf = sg.face_count
+    c2 = np.zeros((nf, 4, 2), dtype=np.int64)
+    c2[0] = [(0, 0), (1, 0), (1, 1), (0, 1)]
+    placed = np.zeros(nf, dtype=bool)
+    placed[0] = True
+    cells = {(0, 0)}
+    folds: list[tuple[int, int]] = []
+
+    def attach(f: int, g: int) -> bool:
+        k = int(np.flatnonzero(sg.neighbor[f] == g)[0])
+        kk = int(sg.neighbor_edge[f, k])
+        p0, p1 = c2[f, k], c2[f, (k + 1) % 4]
+        d = p1 - p0
+        n = np.array([d[1], -d[0]])
+        gc = np.zeros((4, 2), dtype=np.int64)
+        gc[kk], gc[(kk + 1) % 4], gc[(kk + 2) % 4], gc[(kk + 3) % 4] = p1, p0, p0 + n, p1 + n
+        cell = tuple(gc.min(axis=0).tolist())
+        if cell in cells:
+            return False
+        cells.add(cell)
+        c2[g] = gc
+        placed[g] = True
+        folds.append((f, g))
+        return True
+
+    if tree is not None:
+        for f, g in tree:
+            assert placed[f] and not placed[g] and attach(f, g)
+    else:
+        queue = [0]
+        while queue:
+            f = queue.pop(0)
+            for g in sg.neighbor[f].tolist():
+                if not placed[g] and attach(f, g):
+                    queue.append(g)
+    assert placed.all() and len(cells) == nf
+    fl = np.array(folds)
+    kinds = np.array([sg.fold[f, int(np.flatnonzero(sg.neighbor[f] == g)[0])] for f, g in folds])
+    return Net(voxel=sg.voxel, normal=sg.normal, corners3d=sg.corners, corners2d=c2, folds=fl, seed=7,
+               strategy="layout", mountain=int((kinds == 1).sum()), valley=int((kinds == -1).sum()),
+               flat=int((kinds == 0).sum()))
+
+
+def cross_net() -> tuple[np.ndarray, Net]:
+    """The classic cross net of the unit cube: bottom in the middle, four sides, top on one side."""
+    g = np.ones((1, 1, 1), dtype=bool)
+    sg = surface_graph(g)
+    bottom = int(np.flatnonzero(sg.direction == 5)[0])
+    top = int(np.flatnonzero(sg.direction == 4)[0])
+    sides = [int(x) for x in sg.neighbor[bottom]]
+    tree = [(bottom, s) for s in sides] + [(sides[0], top)]
+    return g, lay_out_rooted(g, tree, bottom)
+
+
+def lay_out_rooted(grid: np.ndarray, tree: list[tuple[int, int]], root: int) -> Net:
+    """Like :func:`lay_out` with a given tree, starting from ``root``."""
+    sg = surface_graph(grid)
+    nf = sg.face_count
+    c2 = np.zeros((nf, 4, 2), dtype=np.int64)
+    c2[root] = [(0, 0), (1, 0), (1, 1), (0, 1)]
+    cells = {(0, 0)}
+    for f, g in tree:
+        k = int(np.flatnonzero(sg.neighbor[f] == g)[0])
+        kk = int(sg.neighbor_edge[f, k])
+        p0, p1 = c2[f, k], c2[f, (k + 1) % 4]
+        d = p1 - p0
+        n = np.array([d[1], -d[0]])
+        c2[g, kk], c2[g, (kk + 1) % 4], c2[g, (kk + 2) % 4], c2[g, (kk + 3) % 4] = p1, p0, p0 + n, p1 + n
+        cell = tuple(c2[g].min(axis=0).tolist())
+        assert cell not in cells
+        cells.add(cell)
+    assert len(cells) == nf
+    return Net(voxel=sg.voxel, normal=sg.normal, corners3d=sg.corners, corners2d=c2, folds=np.array(tree),
+               seed=3, strategy="layout", mountain=len(tree))
+
+
+L_SHAPE = np.array([[[1, 1], [1, 0]]], dtype=bool)
+SHAPES = {
+    "cube": np.ones((1, 1, 1), dtype=bool),
+    "box112": np.ones((1, 1, 2), dtype=bool),
+    "L": L_SHAPE,
+    "ball1": examples.ball(1),
+    "box333": np.ones((3, 3, 3), dtype=bool),
+    "engine-ball2": examples.ball(2),
+    "engine-ball4": examples.ball(4),
+    "engine-tunnel5": examples.tunnel_cube(5),
+    "engine-random": examples.random_shape(4, side=8),
+}
+
+
+@functools.cache
+def net_of(name: str) -> Net:
+    """Breadth-first layouts for the small shapes, the net engine's tab-aware nets for the others."""
+    g = SHAPES[name]
+    if name.startswith("engine-"):
+        from voxfab.unfold import unfold
+
+        return unfold(g, rng=11, timeout=60.0)
+    return lay_out(g)
+
+
+def expected_fold_lengths(grid: np.ndarray, net: Net, drawing) -> dict[str, float]:
+    """Mountain and valley lengths from the net and the surface graph alone."""
+    sg = surface_graph(grid)
+    c = net.corners2d
+    kinds = {1: 0, -1: 0}
+    for f, g in net.folds.tolist():
+        k = int(np.flatnonzero(sg.neighbor[f] == g)[0])
+        if sg.fold[f, k] != 0:
+            kinds[int(sg.fold[f, k])] += 1
+    # Seams whose two sides already meet in the plane are left uncut: they fold too.
+    fold_pairs = {tuple(sorted(p)) for p in net.folds.tolist()}
+    for f in range(sg.face_count):
+        for k in range(4):
+            g, kk = int(sg.neighbor[f, k]), int(sg.neighbor_edge[f, k])
+            if f < g and (f, g) not in fold_pairs:
+                if (c[g, kk] == c[f, (k + 1) % 4]).all() and (c[g, (kk + 1) % 4] == c[f, k]).all():
+                    if sg.fold[f, k] != 0:
+                        kinds[int(sg.fold[f, k])] += 1
+    p = drawing.pitch
+    tab_m = drawing.tab_fold_length[drawing.seam_type >= 0].sum()
+    tab_v = drawing.tab_fold_length[drawing.seam_type < 0].sum()
+    return {"MOUNTAIN": kinds[1] * p + tab_m, "VALLEY": kinds[-1] * p + tab_v}
+
+
+def all_layer(drawing, name: str) -> float:
+    return sum(s.layers[name].length() for s in drawing.sheets)
+
+
+def test_cross_net_of_the_cube() -> None:
+    g, net = cross_net()
+    d = draw_net(g, net, options=DrawingOptions(pitch=40.0), name="cube")
+    (sheet,) = d.sheets
+    assert sheet.pieces == 1
+    cut = sheet.layers["CUT"]
+    # One closed outline; the cross has no slit.
+    assert len(cut) == 1 and cut.closed.all()
+    assert d.seams == 7 and d.tab_seams.all()
+    assert d.fold_counts == {"mountain": 5, "valley": 0, "flat": 0}
+    assert all_layer(d, "MOUNTAIN") == pytest.approx(5 * 40.0 + 7 * d.tab_fold_length[0])
+    assert d.title == "cube  PITCH 40 MM  SEED 3"
+
+
+@pytest.mark.parametrize("name", sorted(SHAPES))
+def test_fold_lengths_match_the_net(name: str) -> None:
+    g = SHAPES[name]
+    net = net_of(name)
+    d = draw_net(g, net, options=DrawingOptions(pitch=15.0, sheet="2000x2000"), name=name)
+    exp = expected_fold_lengths(g, net, d)
+    assert all_layer(d, "MOUNTAIN") == pytest.approx(exp["MOUNTAIN"])
+    assert all_layer(d, "VALLEY") == pytest.approx(exp["VALLEY"])
+    assert all_layer(d, "GRID") == 0.0
+
+
+@pytest.mark.parametrize("name", sorted(SHAPES))
+def test_tabs_never_overlap(name: str) -> None:
+    g = SHAPES[name]
+    net = net_of(name)
+    d = draw_net(g, net, options=DrawingOptions(pitch=12.0, tab_width=6.0, sheet="2000x2000"), name=name)
+    for sheet in d.sheets:
+        faces = shapely.polygons(sheet.faces)
+        tabs = shapely.polygons(sheet.tabs)
+        # Faces tile without overlap; each tab meets its own face along its fold only.
+        assert shapely.union_all(faces).area == pytest.approx(len(faces) * d.pitch**2)
+        for i, t in enumerate(tabs):
+            touching = shapely.intersects(faces, t)
+            assert touching.sum() == 1
+            assert shapely.intersection(faces[touching][0], t).area == pytest.approx(0, abs=1e-9)
+            others = np.delete(tabs, i)
+            assert not shapely.intersects(others, t).any()
+        assert shapely.union_all(tabs).area == pytest.approx(shapely.area(tabs).sum())
+        x0, y0 = 10.0, 10.0
+        assert sheet.tabs[..., 0].min() >= x0 and sheet.tabs[..., 1].min() >= y0
+        assert sheet.tabs[..., 0].max() <= sheet.width - x0 and sheet.tabs[..., 1].max() <= sheet.height - y0
+    # Exactly one tab per glued seam that has room, none for the others.
+    assert sum(len(s.tabs) for s in d.sheets) == int(d.tab_seams.sum())
+    if name.startswith("engine-"):
+        # The tab-aware engine leaves room on every seam, so every seam gets a tab.
+        assert net.seams_without_tab_room == 0 and d.marked_seams == []
+
+
+@pytest.mark.parametrize("name", sorted(SHAPES))
+def test_cut_outline_is_closed_and_never_doubled(name: str) -> None:
+    g = SHAPES[name]
+    net = net_of(name)
+    d = draw_net(g, net, options=DrawingOptions(pitch=15.0, sheet="2000x2000"), name=name)
+    (sheet,) = d.sheets
+    cut = sheet.layers["CUT"]
+    a, b = cut.segments()
+    lines = shapely.linestrings(np.stack([a, b], axis=1))
+    # A line drawn twice would make the union shorter than the sum.
+    assert shapely.union_all(lines).length == pytest.approx(cut.length())
+    exteriors = int(cut.closed.sum())
+    assert sheet.pieces == 1 and exteriors >= 1
+    # The cut lines separate the paper from the sheet: the largest closed ring
+    # encloses every face and tab.
+    rings = [shapely.Polygon(x) for x, c in zip(cut.lines(), cut.closed) if c]
+    outer = max(rings, key=lambda r: r.area)
+    paper = shapely.union_all(np.concatenate([shapely.polygons(sheet.faces), shapely.polygons(sheet.tabs)]))
+    assert outer.buffer(1e-6).contains(paper)
+
+
+def test_every_seam_numbered_on_both_edges_inside_its_faces() -> None:
+    g = examples.ball(1)
+    net = lay_out(g)
+    d = draw_net(g, net, options=DrawingOptions(pitch=20.0), name="")
+    (sheet,) = d.sheets
+    labels = sheet.layers["LABEL"]
+    faces = shapely.polygons(sheet.faces)
+    title_band = 10.0 + 3.0 + 2.0
+    numbers = labels.points[labels.points[:, 1] > title_band]
+    inside = shapely.STRtree(faces).query(shapely.points(numbers), predicate="within")
+    # Every stroke point of the numbers lies strictly inside a face.
+    assert np.unique(inside[0]).size == numbers.shape[0]
+    title_strokes = int((labels.points[labels.offsets[:-1], 1] < title_band).sum())
+    assert title_strokes > 10
+    from voxfab.fabricate.netdraw._text import _local
+
+    strokes = sum(2 * len(_local(str(i + 1), "6" in str(i + 1) or "9" in str(i + 1))[1]) for i in range(d.seams))
+    marks = 2 * int((~d.tab_seams).sum())
+    assert len(labels) == strokes + marks + title_strokes
+
+
+def test_label_height_shrinks_to_fit_small_faces() -> None:
+    g = examples.ball(1)
+    d = draw_net(g, lay_out(g), options=DrawingOptions(pitch=8.0))
+    assert d.label_height == pytest.approx(min(5.0, 0.15 * 8.0))
+    d = draw_net(g, lay_out(g), options=DrawingOptions(pitch=60.0))
+    assert d.label_height == 5.0
+
+
+def test_seams_meeting_in_the_plane_are_left_uncut() -> None:
+    g = np.ones((1, 1, 2), dtype=bool)
+    net = lay_out(g)
+    d = draw_net(g, net, options=DrawingOptions(pitch=20.0))
+    assert d.closed_in_plane == 2
+    # 9 folds + 2 closed seams = 11 joins for 10 faces: 21 edges - 11 = 10... each face edge counted once.
+    assert d.fold_counts["mountain"] + d.fold_counts["flat"] == len(net.folds) + 2
+    assert d.seams == 20 - len(net.folds) - 2
+
+
+def test_tab_placement_other_side_shrink_and_mark() -> None:
+    # Faces A, B, C in a row and D above A; cells (0,0) (1,0) (2,0) (0,1), pitch 10.
+    sq = np.array([(0, 0), (1, 0), (1, 1), (0, 1)], dtype=float)
+    pos = np.stack([sq + (0, 0), sq + (1, 0), sq + (2, 0), sq + (0, 1), sq + (4, 0)]) * 10.0 + 50.0
+    sheet = np.zeros(5, dtype=np.int64)
+    # Edges: 0 bottom, 1 right, 2 top, 3 left (counter-clockwise corners).
+    sides = np.array([
+        [[0, 1], [2, 3]],  # A right / C left: both face B -> no room, a mark
+        [[0, 2], [2, 2]],  # A top is covered by D -> the tab goes on C top
+        [[4, 3], [3, 2]],  # E left and D top: free cells, first side wins
+        [[4, 1], [1, 0]],
+    ])
+    kw = dict(pitch=10.0, area=(0.0, 0.0, 200.0, 200.0), sheet_width=200.0, tab_width=4.0, tab_angle=45.0)
+    plan = place_tabs(pos, sheet, sides, **kw)
+    assert plan.side.tolist() == [-1, 1, 0, 0]
+    assert plan.height[1] == pytest.approx(4.0)
+    # Two steep tabs facing each other across E's free left cell (x 30..40): one shrinks.
+    steep = dict(kw, tab_width=6.0, tab_angle=60.0)
+    sides2 = np.array([[[2, 1], [0, 1]], [[4, 3], [2, 3]]])
+    plan2 = place_tabs(pos, sheet, sides2, **steep)
+    assert plan2.side.tolist() == [0, 0]
+    assert sorted(plan2.height.tolist()) == pytest.approx([3.0, 6.0])
+    # Near the sheet edge a tab must stay inside the area.
+    plan3 = place_tabs(pos, sheet, sides[2:3], **dict(kw, area=(0.0, 61.0, 200.0, 200.0)))
+    assert plan3.side.tolist() == [1]
+
+
+def test_auto_pitch_fits_one_sheet_and_turns_the_net() -> None:
+    g = np.ones((1, 1, 6), dtype=bool)
+    net = lay_out(g)
+    d = draw_net(g, net, options=DrawingOptions(sheet="300x150", margin=5.0))
+    (sheet,) = d.sheets
+    ext = np.ptp(net.corners2d.reshape(-1, 2), axis=0)
+    assert d.pitch >= 5.0 and round(d.pitch * 10) == d.pitch * 10
+    assert sheet.width == 300.0 and sheet.height == 150.0
+    allx = np.concatenate([sheet.faces.reshape(-1, 2), sheet.tabs.reshape(-1, 2)])
+    assert allx.min() >= 5.0 and allx[:, 0].max() <= 295.0 and allx[:, 1].max() <= 145.0
+    # The tall net goes across the landscape sheet.
+    assert d.rotated == (ext[1] > ext[0])
+
+
+def test_split_over_sheets_with_matching_numbers() -> None:
+    g = np.ones((3, 3, 3), dtype=bool)
+    net = lay_out(g)
+    one = draw_net(g, net, options=DrawingOptions(pitch=12.0), name="box")
+    d = draw_net(g, net, options=DrawingOptions(pitch=40.0), name="box")
+    assert len(one.sheets) == 1 and len(d.sheets) > 1
+    counts = np.concatenate([s.face_index for s in d.sheets])
+    assert np.array_equal(np.sort(counts), np.arange(net.face_count))
+    assert d.split_seams > 0
+    assert d.seams == one.seams + d.split_seams
+    for s in d.sheets:
+        allp = np.concatenate([s.faces.reshape(-1, 2), s.tabs.reshape(-1, 2)])
+        assert allp.min() >= 10.0 and allp[:, 0].max() <= s.width - 10 and allp[:, 1].max() <= s.height - 10
+    exp = expected_fold_lengths(g, net, d)
+    split_lengths = all_layer(d, "MOUNTAIN")
+    assert split_lengths < exp["MOUNTAIN"] + 1e-6
+
+
+def test_pitch_too_large_for_the_sheet() -> None:
+    g = np.ones((1, 1, 1), dtype=bool)
+    with pytest.raises(InvalidShapeError, match="do not fit on sheet"):
+        draw_net(g, lay_out(g), options=DrawingOptions(pitch=500.0))
+
+
+def test_grid_lines_and_perforation() -> None:
+    g = np.ones((3, 3, 3), dtype=bool)
+    net = lay_out(g)
+    d = draw_net(g, net, options=DrawingOptions(pitch=12.0, grid_lines=True))
+    assert all_layer(d, "GRID") == pytest.approx(d.fold_counts["flat"] * 12.0)
+    plain = draw_net(g, net, options=DrawingOptions(pitch=12.0))
+    perf = draw_net(g, net, options=DrawingOptions(pitch=12.0, perforate="mountain", perf_cut=1.5, perf_bridge=1.0))
+    (ps,), (qs,) = perf.sheets, plain.sheets
+    assert ps.layers["MOUNTAIN"].length() == 0.0
+    extra = ps.layers["CUT"].length() - qs.layers["CUT"].length()
+    mountain = qs.layers["MOUNTAIN"].length()
+    assert 0.4 * mountain < extra < 0.7 * mountain
+    a, b = ps.layers["CUT"].segments()
+    dashes = np.linalg.norm(b - a, axis=1)
+    assert (dashes[-10:] <= 1.5 + 1e-9).all()
+
+
+def test_net_of_another_shape_is_rejected() -> None:
+    net = lay_out(np.ones((1, 1, 2), dtype=bool))
+    with pytest.raises(FormatError, match="do not match"):
+        draw_net(np.ones((1, 1, 1), dtype=bool), net)
+
+
+def test_broken_fold_is_rejected() -> None:
+    g = np.ones((1, 1, 2), dtype=bool)
+    net = lay_out(g)
+    c2 = net.corners2d.copy()
+    c2[5] += 10
+    bad = Net(voxel=net.voxel, normal=net.normal, corners3d=net.corners3d, corners2d=c2, folds=net.folds,
+              seed=0, strategy="x")
+    with pytest.raises(FormatError, match="not a shared edge"):
+        draw_net(g, bad)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(sheet="B5"), "sheet"),
+    (dict(sheet="100x"), "sheet"),
+    (dict(tab_angle=89.0), "tab-angle"),
+    (dict(perforate="both"), "perforate"),
+    (dict(dxf_version="R14"), "dxf-version"),
+    (dict(colors="cut=#ff00"), "colors"),
+    (dict(colors="paint=red"), "colors"),
+    (dict(pitch=-1.0), "pitch"),
+    (dict(sheet="30x30", margin=12.0), "sheet"),
+])
+def test_bad_options(kwargs: dict, match: str) -> None:
+    with pytest.raises(InvalidShapeError, match=match):
+        DrawingOptions(**kwargs)
+
+
+def test_colors_and_sheets_parse() -> None:
+    styles = parse_colors("cut=#00FF00, mountain=red:dotted")
+    assert styles["CUT"].color == "#00ff00" and styles["CUT"].style.value == "solid"
+    assert styles["MOUNTAIN"].rgb == (255, 0, 0) and styles["MOUNTAIN"].style.value == "dotted"
+    assert styles["VALLEY"].color == "#00ff00" and styles["VALLEY"].style.value == "dashdot"
+    assert parse_sheet("a3") == (297.0, 420.0) and parse_sheet("600 x 400") == (600.0, 400.0)
+
+
+def test_merge_unit_segments_and_polylines() -> None:
+    a = np.array([[0, 0], [1, 0], [2, 0], [4, 0], [1, 0], [3, 3]])
+    b = np.array([[1, 0], [2, 0], [3, 0], [5, 0], [2, 0], [3, 4]])
+    st, en = merge_unit_segments(a, b)
+    assert sorted(zip(map(tuple, st.tolist()), map(tuple, en.tolist()))) == [
+        ((0, 0), (3, 0)), ((3, 3), (3, 4)), ((4, 0), (5, 0))]
+    sq = Polylines.from_list([np.array([[0.0, 0], [2, 0], [2, 2], [0, 2]])], [True])
+    assert sq.length() == 8.0
+    both = Polylines.concat([sq, Polylines.from_segments([[0, 0]], [[3, 4]])])
+    assert len(both) == 2 and both.length() == 13.0
+
+
+def split_pieces(grid: np.ndarray, net: Net, cut: int) -> list[Net]:
+    """Two pieces of ``net``: drop fold ``cut``; each piece lists its faces in reverse order."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    folds = np.delete(net.folds, cut, axis=0)
+    n = net.face_count
+    adj = coo_matrix((np.ones(len(folds)), (folds[:, 0], folds[:, 1])), shape=(n, n))
+    _, label = connected_components(adj, directed=False)
+    pieces = []
+    for lab in range(2):
+        faces = np.flatnonzero(label == lab)[::-1]
+        local = np.full(n, -1)
+        local[faces] = np.arange(faces.size)
+        keep = (label[folds[:, 0]] == lab)
+        pieces.append(Net(voxel=net.voxel[faces], normal=net.normal[faces], corners3d=net.corners3d[faces],
+                          corners2d=net.corners2d[faces], folds=local[folds[keep]], seed=net.seed,
+                          strategy="piece"))
+    return pieces
+
+
+def test_pieces_drawn_apart_agree_on_numbers_and_tabs() -> None:
+    g = examples.ball(1)
+    net = lay_out(g)
+    whole = draw_net(g, net, options=DrawingOptions(pitch=15.0))
+    pieces = split_pieces(g, net, cut=len(net.folds) // 2)
+    drawings = [draw_net(g, p, options=DrawingOptions(pitch=15.0)) for p in pieces]
+    seams = [dict(zip(d.seam_numbers.tolist(), zip(d.tab_seams.tolist(), d.tab_elsewhere.tolist())))
+             for d in drawings]
+    shared = set(seams[0]) & set(seams[1])
+    # The cut fold became one seam numbered alike in both pieces, plus the seams between them.
+    assert len(shared) >= 1
+    assert sum(len(s) for s in seams) - len(shared) == whole.seams + 1
+    for number in shared:
+        (tab0, else0), (tab1, else1) = seams[0][number], seams[1][number]
+        # Exactly one of the two pieces draws the tab (or, without room, a mark on it).
+        assert else0 != else1
+        assert not (tab0 and tab1)
+    for d in drawings:
+        assert d.sheets[0].pieces == 1
+        own = ~d.tab_elsewhere
+        assert len(d.sheets[0].tabs) == int(d.tab_seams[own].sum())
+
+
+def test_face_of_another_shape_in_a_piece_is_rejected() -> None:
+    g = examples.ball(1)
+    piece = split_pieces(g, lay_out(g), cut=0)[0]
+    moved = Net(voxel=piece.voxel + 5, normal=piece.normal, corners3d=piece.corners3d + 5,
+                corners2d=piece.corners2d, folds=piece.folds, seed=0, strategy="x")
+    with pytest.raises(FormatError, match="do not match"):
+        draw_net(g, moved)

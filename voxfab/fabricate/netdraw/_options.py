@@ -1,0 +1,202 @@
+"""Drawing options: sheet sizes, tab shape, line styles and the colour map."""
+
+from __future__ import annotations
+
+import dataclasses
+import re
+from enum import Enum
+
+from voxfab._shared.validate import check_choice, check_positive
+from voxfab.errors import InvalidShapeError
+
+#: Paper sizes in mm (portrait).
+SHEETS: dict[str, tuple[float, float]] = {
+    "A4": (210.0, 297.0),
+    "A3": (297.0, 420.0),
+    "Letter": (215.9, 279.4),
+}
+
+#: Drawing layers, in drawing order (scores and labels before the cut).
+LAYERS: tuple[str, ...] = ("LABEL", "GRID", "VALLEY", "MOUNTAIN", "CUT")
+
+
+class Perforate(Enum):
+    """Which fold type becomes short through-cuts on the CUT layer."""
+
+    NONE = "none"
+    MOUNTAIN = "mountain"
+    VALLEY = "valley"
+
+
+class DxfVersion(Enum):
+    """DXF versions written."""
+
+    R12 = "R12"
+    R2000 = "R2000"
+
+
+class LineStyle(Enum):
+    """Dash styles; the patterns are in mm."""
+
+    SOLID = "solid"
+    DASHED = "dashed"
+    DASHDOT = "dashdot"
+    DOTTED = "dotted"
+
+
+#: Dash pattern (on, off, ...) in mm of each style.
+DASH_PATTERNS: dict[LineStyle, tuple[float, ...]] = {
+    LineStyle.SOLID: (),
+    LineStyle.DASHED: (2.0, 1.0),
+    LineStyle.DASHDOT: (3.0, 1.0, 0.5, 1.0),
+    LineStyle.DOTTED: (0.5, 1.0),
+}
+
+
+@dataclasses.dataclass(frozen=True)
+class LayerStyle:
+    """Colour (``#rrggbb``) and dash style of one layer."""
+
+    color: str
+    style: LineStyle
+
+    @property
+    def rgb(self) -> tuple[int, int, int]:
+        """The colour as 0..255 integers."""
+        c = self.color
+        return int(c[1:3], 16), int(c[3:5], 16), int(c[5:7], 16)
+
+
+#: Pure RGB colours so laser drivers map them exactly.
+DEFAULT_STYLES: dict[str, LayerStyle] = {
+    "CUT": LayerStyle("#ff0000", LineStyle.SOLID),
+    "MOUNTAIN": LayerStyle("#0000ff", LineStyle.DASHED),
+    "VALLEY": LayerStyle("#00ff00", LineStyle.DASHDOT),
+    "GRID": LayerStyle("#b0b0b0", LineStyle.DOTTED),
+    "LABEL": LayerStyle("#000000", LineStyle.SOLID),
+}
+
+_NAMED_COLORS = {
+    "red": "#ff0000", "green": "#00ff00", "blue": "#0000ff", "black": "#000000",
+    "cyan": "#00ffff", "magenta": "#ff00ff", "yellow": "#ffff00", "grey": "#808080",
+    "gray": "#808080", "white": "#ffffff",
+}
+
+
+def parse_colors(spec: str) -> dict[str, LayerStyle]:
+    """Layer styles from ``"cut=#ff0000,mountain=blue:dashed,..."`` over the defaults.
+
+    Each item is ``layer=colour[:style]`` with a layer among CUT, MOUNTAIN,
+    VALLEY, GRID, LABEL (any case), a colour ``#rrggbb`` or a basic name, and a
+    style among solid, dashed, dashdot, dotted.
+    """
+    styles = dict(DEFAULT_STYLES)
+    for item in (s.strip() for s in spec.split(",")):
+        if not item:
+            continue
+        if "=" not in item:
+            raise InvalidShapeError(f"colors: expected layer=colour[:style], got {item!r}")
+        layer, value = (s.strip() for s in item.split("=", 1))
+        layer = layer.upper()
+        if layer not in styles:
+            raise InvalidShapeError(
+                f"colors: unknown layer {layer!r}; expected one of {', '.join(DEFAULT_STYLES)}"
+            )
+        color, _, style = value.partition(":")
+        color = _NAMED_COLORS.get(color.lower(), color.lower())
+        if not re.fullmatch(r"#[0-9a-f]{6}", color):
+            raise InvalidShapeError(f"colors: {layer}: expected #rrggbb or a colour name, got {value!r}")
+        ls = check_choice(style.lower(), LineStyle, name=f"colors: {layer} style") if style else styles[layer].style
+        styles[layer] = LayerStyle(color, ls)
+    return styles
+
+
+def parse_sheet(spec: str) -> tuple[float, float]:
+    """Sheet size in mm from ``A4``, ``A3``, ``Letter`` or ``WxH`` (mm)."""
+    for name, size in SHEETS.items():
+        if spec.lower() == name.lower():
+            return size
+    m = re.fullmatch(r"\s*([0-9]*\.?[0-9]+)\s*[xX×]\s*([0-9]*\.?[0-9]+)\s*(mm)?\s*", spec)
+    if not m:
+        raise InvalidShapeError(f"sheet: expected A4, A3, Letter or WxH in mm, got {spec!r}")
+    w, h = float(m.group(1)), float(m.group(2))
+    if w <= 0 or h <= 0:
+        raise InvalidShapeError(f"sheet: sides must be positive, got {spec!r}")
+    return w, h
+
+
+@dataclasses.dataclass(frozen=True)
+class DrawingOptions:
+    """How a net is drawn.
+
+    Parameters
+    ----------
+    pitch : float or None
+        Face edge length in mm; ``None`` picks the largest pitch (rounded down to
+        0.1 mm, at least ``min_auto_pitch``) that puts the net on one sheet.
+    sheet : str
+        ``A4``, ``A3``, ``Letter`` or ``WxH`` in mm.
+    margin : float
+        Empty border of the sheet, mm.
+    tab_width : float
+        Glue tab height (distance from its fold to its free edge), mm.
+    tab_angle : float
+        Angle of the tab's slanted sides to its fold, degrees in [15, 75].
+    label_height : float
+        Largest cap height of edge numbers, mm (they shrink to fit the faces).
+    title_height : float
+        Cap height of the title, mm.
+    grid_lines : bool
+        Draw coplanar folds as a faint score on the GRID layer.
+    perforate : str
+        ``none``, ``mountain`` or ``valley``: that fold type is drawn as short cuts.
+    perf_cut, perf_bridge : float
+        Perforation cut and bridge lengths, mm.
+    dxf_version : str
+        ``R12`` or ``R2000``.
+    colors : str
+        Overrides of the colour map, see :func:`parse_colors`.
+    min_auto_pitch : float
+        Smallest pitch picked automatically; larger nets are split over sheets.
+    """
+
+    pitch: float | None = None
+    sheet: str = "A4"
+    margin: float = 10.0
+    tab_width: float = 5.0
+    tab_angle: float = 45.0
+    label_height: float = 5.0
+    title_height: float = 3.0
+    grid_lines: bool = False
+    perforate: str = "none"
+    perf_cut: float = 1.5
+    perf_bridge: float = 1.0
+    dxf_version: str = "R12"
+    colors: str = ""
+    min_auto_pitch: float = 5.0
+
+    def __post_init__(self) -> None:
+        if self.pitch is not None:
+            check_positive(self.pitch, name="pitch")
+        for name in ("tab_width", "label_height", "title_height", "perf_cut", "perf_bridge", "min_auto_pitch"):
+            check_positive(getattr(self, name), name=name.replace("_", "-"))
+        if not 0 <= float(self.margin) < 1e4:
+            raise InvalidShapeError(f"margin: expected a number >= 0 mm, got {self.margin!r}")
+        if not 15.0 <= float(self.tab_angle) <= 75.0:
+            raise InvalidShapeError(f"tab-angle: expected 15 to 75 degrees, got {self.tab_angle!r}")
+        check_choice(self.perforate, Perforate, name="perforate")
+        check_choice(self.dxf_version, DxfVersion, name="dxf-version")
+        w, h = self.sheet_size
+        if min(w, h) <= 2 * self.margin + self.title_height + 4:
+            raise InvalidShapeError(f"sheet: {self.sheet} leaves no room inside a {self.margin} mm margin")
+        parse_colors(self.colors)
+
+    @property
+    def sheet_size(self) -> tuple[float, float]:
+        """Sheet width and height, mm."""
+        return parse_sheet(self.sheet)
+
+    @property
+    def styles(self) -> dict[str, LayerStyle]:
+        """Layer styles after applying ``colors``."""
+        return parse_colors(self.colors)
