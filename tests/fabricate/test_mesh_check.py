@@ -2,6 +2,8 @@
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from voxfab.errors import FabricationError
 from voxfab.fabricate.mesh import MeshData, check_mesh, voxel_mesh
@@ -106,3 +108,44 @@ def test_a_cavity_shell_stays_in_its_part():
     half[np.flatnonzero(~inner)[:4]] = 1
     with pytest.raises(FabricationError, match="no positive volume|split between parts"):
         check_mesh(_with(m, part=half))
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(0, 3))
+def test_compiled_pass_agrees_with_the_numpy_pass(seed, how):
+    # Damage a good mesh at random: the compiled edge/fan/shell pass must refuse
+    # exactly the meshes the numpy pass refuses, and count the same shells.
+    from voxfab.fabricate.mesh._check import _edge_and_fan_problems
+    from voxfab.fabricate.mesh._data import shell_labels
+    from voxfab.fabricate.mesh._kernels import edge_fan_shells
+
+    rng = np.random.default_rng(seed)
+    g = rng.random((3, 3, 3)) < 0.5
+    g[1, 1, 1] = True
+    m = voxel_mesh(g)
+    v, t = m.vertices, m.triangles.copy()
+    if how == 1:  # flip one triangle
+        i = rng.integers(len(t))
+        t[i] = t[i, ::-1]
+    elif how == 2:  # drop one triangle, keep the vertices in use
+        t = np.delete(t, rng.integers(len(t)), axis=0)
+        v = v[: t.max() + 1]
+    elif how == 3:  # glue two vertices into one (may pinch or duplicate edges)
+        a, b = rng.choice(len(v), 2, replace=False)
+        t[t == b] = a
+        keep = (t[:, 0] != t[:, 1]) & (t[:, 1] != t[:, 2]) & (t[:, 0] != t[:, 2])
+        t = t[keep]
+        used = np.zeros(len(v), bool)
+        used[t.ravel()] = True
+        remap = np.cumsum(used) - 1
+        v, t = v[used], remap[t]
+    status, labels, n_shells = edge_fan_shells(np.ascontiguousarray(t, dtype=np.int64), len(v))
+    try:
+        _edge_and_fan_problems("m", v, t)
+        numpy_ok = True
+    except FabricationError:
+        numpy_ok = False
+    assert (status == 0) == numpy_ok
+    if numpy_ok:
+        ref, n_ref = shell_labels(t, len(v))
+        assert n_shells == n_ref and np.array_equal(labels, ref)

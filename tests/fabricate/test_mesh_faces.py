@@ -101,3 +101,28 @@ def test_parts_follow_face_connected_components():
     assert m.part_count == 3
     r = check_mesh(m, expected_volume=3.0)
     assert r.bodies == 3
+
+
+@settings(max_examples=40, deadline=None)
+@given(grids)
+def test_fast_corner_ids_equal_the_surface_graph_ids(g):
+    from voxfab.fabricate.mesh._faces import corner_vertices
+    from voxfab.shape import surface_graph
+
+    if not g.any():
+        return
+    sg = surface_graph(g)
+    vertex, position = corner_vertices(sg)
+    assert np.array_equal(vertex, sg.vertex)
+    assert np.array_equal(position, sg.vertex_position)
+
+
+def test_fast_corner_ids_on_worst_cases():
+    from voxfab.fabricate.mesh._faces import corner_vertices
+    from voxfab.shape import surface_graph
+
+    checker = np.indices((9, 9, 9)).sum(axis=0) % 2 == 0
+    for g in (checker, examples.random_shape(0), examples.torus(6, 2)):
+        sg = surface_graph(g)
+        vertex, _ = corner_vertices(sg)
+        assert np.array_equal(vertex, sg.vertex)

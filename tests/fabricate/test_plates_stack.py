@@ -12,6 +12,7 @@ from hypothesis import strategies as st
 
 from voxfab.errors import InvalidShapeError
 from voxfab.fabricate.plates import make_plates, text_strokes
+from voxfab.fabricate.plates._labels import text_size
 from voxfab.fabricate.plates._outline import layer_stack
 from voxfab.shape import examples
 
@@ -110,8 +111,10 @@ def test_stroke_font_draws_every_label_character() -> None:
     strokes = text_strokes("0123456789-.", 6.0)
     pts = np.concatenate(strokes)
     assert pts[:, 1].min() == 0.0 and pts[:, 1].max() == 6.0
-    with pytest.raises(InvalidShapeError, match="glyph"):
-        text_strokes("A", 2.0)
+    # Each glyph stays inside its cell of the shared font.
+    width, height = text_size("0123456789-.", 6.0)
+    assert pts[:, 0].min() >= 0.0 and pts[:, 0].max() <= width + 1e-9
+    assert height == 6.0
 
 
 def test_score_is_the_next_layer_outline_inside_the_plate() -> None:

@@ -16,7 +16,7 @@ import numpy.typing as npt
 
 from voxfab.errors import FabricationError
 
-from ._data import MeshData, shell_labels
+from ._data import MeshData
 
 
 @dataclasses.dataclass(frozen=True)
@@ -119,6 +119,53 @@ def check_mesh(
     if flat.any():
         raise _fail(what, f"{int(flat.sum())} triangles have zero area", v[t[flat, 0]])
 
+    from ._kernels import edge_fan_shells
+
+    status, labels, n_shells = edge_fan_shells(np.ascontiguousarray(t, dtype=np.int64), nv)
+    if status:
+        _edge_and_fan_problems(what, v, t)
+        raise _fail(what, f"edge or fan test {status} failed")  # the detailed pass always raises first
+    svol = np.bincount(labels, weights=tri_vol, minlength=n_shells)
+    bodies = int(np.count_nonzero(svol > 0))
+    part = np.asarray(mesh.part)
+    n_parts = int(part.max()) + 1
+    pvol = np.bincount(part, weights=tri_vol, minlength=n_parts)
+    if (pvol <= 0).any():
+        raise _fail(what, f"{int((pvol <= 0).sum())} parts enclose no positive volume (inside out?)")
+    # A shell belongs to one part only.
+    shell_part = np.full(n_shells, -1, dtype=np.int64)
+    shell_part[labels] = part
+    if not np.array_equal(shell_part[labels], part):
+        raise _fail(what, "a connected shell is split between parts")
+    total = float(svol.sum())
+    if expected_volume is not None:
+        if isinstance(expected_volume, tuple):
+            lo, hi = expected_volume
+            if not (lo * (1 - tolerance) <= total <= hi * (1 + tolerance)):
+                raise _fail(what, f"volume {total:.6g} mm³ outside the expected range [{lo:.6g}, {hi:.6g}]")
+        elif abs(total - expected_volume) > tolerance * max(abs(expected_volume), 1e-9):
+            raise _fail(what, f"volume {total:.9g} mm³, expected {expected_volume:.9g}")
+    bmin, bmax = v.min(axis=0), v.max(axis=0)
+    if expected_bounds is not None:
+        eb = np.asarray(expected_bounds, dtype=np.float64)
+        if np.abs(np.stack([bmin, bmax]) - eb).max() > tolerance * scale:
+            raise _fail(what, f"bounding box {bmin.tolist()}..{bmax.tolist()} mm, expected {eb.tolist()}")
+    if expected_bodies is not None and bodies != expected_bodies:
+        raise _fail(what, f"{bodies} separate bodies, expected {expected_bodies}")
+    return MeshReport(
+        vertices=nv,
+        triangles=nt,
+        shells=n_shells,
+        bodies=bodies,
+        parts=n_parts,
+        volume=total,
+        bounds=(tuple(map(float, bmin)), tuple(map(float, bmax))),  # type: ignore[arg-type]
+    )
+
+
+def _edge_and_fan_problems(what: str, v: npt.NDArray[np.float64], t: npt.NDArray[np.int64]) -> None:
+    """The edge and fan tests with numpy, raising with the places of the first problem found."""
+    nv, nt = v.shape[0], t.shape[0]
     # Every undirected edge must be in exactly two triangles, once in each direction.
     a = t.ravel()
     b = np.roll(t, -1, axis=1).ravel()
@@ -164,41 +211,3 @@ def check_mesh(
         fan_vertex = a[lab == np.arange(3 * nt)]
         multi = np.bincount(fan_vertex, minlength=nv) > 1
         raise _fail(what, f"{int(multi.sum())} vertices joined by more than one fan (pinched)", v[multi])
-
-    labels, n_shells = shell_labels(t, nv)
-    svol = np.bincount(labels, weights=tri_vol, minlength=n_shells)
-    bodies = int(np.count_nonzero(svol > 0))
-    part = np.asarray(mesh.part)
-    n_parts = int(part.max()) + 1
-    pvol = np.bincount(part, weights=tri_vol, minlength=n_parts)
-    if (pvol <= 0).any():
-        raise _fail(what, f"{int((pvol <= 0).sum())} parts enclose no positive volume (inside out?)")
-    # A shell belongs to one part only.
-    shell_part = np.full(n_shells, -1, dtype=np.int64)
-    shell_part[labels] = part
-    if not np.array_equal(shell_part[labels], part):
-        raise _fail(what, "a connected shell is split between parts")
-    total = float(svol.sum())
-    if expected_volume is not None:
-        if isinstance(expected_volume, tuple):
-            lo, hi = expected_volume
-            if not (lo * (1 - tolerance) <= total <= hi * (1 + tolerance)):
-                raise _fail(what, f"volume {total:.6g} mm³ outside the expected range [{lo:.6g}, {hi:.6g}]")
-        elif abs(total - expected_volume) > tolerance * max(abs(expected_volume), 1e-9):
-            raise _fail(what, f"volume {total:.9g} mm³, expected {expected_volume:.9g}")
-    bmin, bmax = v.min(axis=0), v.max(axis=0)
-    if expected_bounds is not None:
-        eb = np.asarray(expected_bounds, dtype=np.float64)
-        if np.abs(np.stack([bmin, bmax]) - eb).max() > tolerance * scale:
-            raise _fail(what, f"bounding box {bmin.tolist()}..{bmax.tolist()} mm, expected {eb.tolist()}")
-    if expected_bodies is not None and bodies != expected_bodies:
-        raise _fail(what, f"{bodies} separate bodies, expected {expected_bodies}")
-    return MeshReport(
-        vertices=nv,
-        triangles=nt,
-        shells=n_shells,
-        bodies=bodies,
-        parts=n_parts,
-        volume=total,
-        bounds=(tuple(map(float, bmin)), tuple(map(float, bmax))),  # type: ignore[arg-type]
-    )

@@ -31,7 +31,7 @@ import numpy.typing as npt
 
 from voxfab._shared.validate import as_grid
 from voxfab.shape import surface_graph
-from voxfab.shape._surface import CORNER_OFFSETS, DIRECTIONS, EDGE_OUT, FOLD_MOUNTAIN
+from voxfab.shape._surface import CORNER_OFFSETS, DIRECTIONS, EDGE_OUT, FOLD_MOUNTAIN, SurfaceGraph
 
 from ._data import MeshData
 
@@ -78,6 +78,34 @@ def _first_of_side(
     return before[ent_rect, side]
 
 
+def corner_vertices(sg: SurfaceGraph) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64]]:
+    """The vertex ids and positions of :attr:`SurfaceGraph.vertex`, computed faster.
+
+    Across edge ``k`` our corner ``k`` is the neighbour's corner ``kk + 1``, and
+    every corner is reached that way from exactly one other corner, so the
+    surface graph's corner links form a permutation whose cycles are the vertex
+    fans.  Walking the cycles in order of their smallest corner numbers them in
+    order of first appearance, which gives exactly the ids of ``sg.vertex``
+    without a sparse connected-components pass.
+
+    Returns
+    -------
+    vertex : (F, 4) int64 ndarray
+        Equal to ``sg.vertex``.
+    position : (V, 3) int64 ndarray
+        Equal to ``sg.vertex_position``.
+    """
+    from ._kernels import permutation_cycles
+
+    nf = sg.face_count
+    nxt = (sg.neighbor * 4 + (sg.neighbor_edge + 1) % 4).ravel()
+    ids, n_ids = permutation_cycles(nxt)
+    vertex = ids.reshape(nf, 4)
+    position = np.zeros((n_ids, 3), dtype=np.int64)
+    position[vertex.ravel()] = sg.corners.reshape(-1, 3)
+    return vertex, position
+
+
 def voxel_mesh(
     grid: npt.ArrayLike,
     *,
@@ -110,10 +138,10 @@ def voxel_mesh(
         Manifold by index, counter-clockwise from outside, in mm.
     """
     sg = surface_graph(grid)
-    vid = sg.vertex
+    vid, ipos = corner_vertices(sg)
     nf = sg.face_count
     n_base = int(vid.max()) + 1
-    pos = sg.vertex_position.astype(np.float64)
+    pos = ipos.astype(np.float64)
     d_all = sg.direction
 
     # --- contact segments: a vertex pair used by four face edges -----------------
@@ -131,9 +159,10 @@ def voxel_mesh(
     if cand.size:
         cf, ck = cand // 4, cand % 4
         a_ids, b_ids = vid[cf, ck], vid[cf, (ck + 1) % 4]
-        ekey = np.minimum(a_ids, b_ids) * n_base + np.maximum(a_ids, b_ids)
-        _, inv, counts = np.unique(ekey, return_inverse=True, return_counts=True)
-        fe = cand[counts[inv] == 4]
+        from ._kernels import pair_counts
+
+        counts = pair_counts(np.minimum(a_ids, b_ids), np.maximum(a_ids, b_ids), n_base)
+        fe = cand[counts == 4]
         if fe.size:
             partner = sg.neighbor.ravel()[fe] * 4 + sg.neighbor_edge.ravel()[fe]
             pair = np.minimum(fe, partner)
@@ -196,117 +225,32 @@ def voxel_mesh(
     q_first[rect] = rows
     q_d, q_plane = d_all[q_first], plane[q_first]
 
-    # --- border segments of every rectangle, counter-clockwise from outside ---------
-    w = q_u1 - q_u0
-    h = q_v1 - q_v0
-    seg_len = np.where(_ALONG_U[q_d], w[:, None], h[:, None])  # (R, 4)
-    counts_rk = seg_len.ravel()
-    rk = np.repeat(np.arange(n_rect * 4), counts_rk)
-    starts = np.cumsum(counts_rk) - counts_rk
-    step = np.arange(rk.size) - starts[rk]
-    r = rk // 4
-    k = rk % 4
-    dd = q_d[r]
-    along_u = _ALONG_U[dd, k]
-    asc = _ASCENDING[dd, k]
-    at_max = _AT_MAX[dd, k]
-    run_lo = np.where(along_u, q_u0[r], q_v0[r])
-    run_hi = np.where(along_u, q_u1[r], q_v1[r]) - 1
-    moving = np.where(asc, run_lo + step, run_hi - step)
-    fixed = np.where(along_u, np.where(at_max, q_v1[r] - 1, q_v0[r]), np.where(at_max, q_u1[r] - 1, q_u0[r]))
-    cu = np.where(along_u, moving, fixed)
-    cv = np.where(along_u, fixed, moving)
-    skey = ((dd * side + q_plane[r]) * side + cv) * side + cu
-    face = order[np.searchsorted(fkey_sorted, skey)]
-    corner_id = vid[face, k]
-    mid_id = mid_of[face * 4 + k]
-
+    # --- border vertices and triangles of every rectangle (compiled loops) -----------
     # Rectangle corners are kept everywhere they appear, and so are split vertices
     # (several ids at one point): dropping them could give two border chains the
     # same end points and so the same edge twice.
+    from ._kernels import mark_corners, triangulate
+
+    # Faces of each rectangle stored row by row, so the kernels find a border face
+    # by arithmetic instead of a search.
+    area = (q_u1 - q_u0) * (q_v1 - q_v0)
+    rstart = np.cumsum(area) - area
+    fidx = np.empty(nf, dtype=np.int64)
+    fidx[rstart[rect] + (v - q_v0[rect]) * (q_u1 - q_u0)[rect] + (u - q_u0[rect])] = rows
     keep_vertex = np.zeros(n_base, dtype=bool)
-    keep_vertex[corner_id[step == 0]] = True
-    ipos = sg.vertex_position
+    mark_corners(q_d, q_u0, q_v0, q_u1, q_v1, rstart, fidx, vid, keep_vertex,
+                  _ALONG_U, _ASCENDING, _AT_MAX)
     pkey = (ipos[:, 0] * side + ipos[:, 1]) * side + ipos[:, 2]
-    _, pinv, pcount = np.unique(pkey, return_inverse=True, return_counts=True)
-    keep_vertex |= pcount[pinv] > 1
-
-    entries = np.stack([corner_id, mid_id], axis=1)
-    keep = np.stack([keep_vertex[corner_id], mid_id >= 0], axis=1)
-    ent = entries[keep]
-    ent_rect = np.broadcast_to(r[:, None], keep.shape)[keep]
-    ent_side = np.broadcast_to(k[:, None], keep.shape)[keep]
-    n_per = np.bincount(ent_rect, minlength=n_rect)
-    off = np.cumsum(n_per) - n_per
-    side_n = np.bincount(ent_rect * 4 + ent_side, minlength=4 * n_rect).reshape(n_rect, 4)
+    porder = np.argsort(pkey)
+    same = pkey[porder[1:]] == pkey[porder[:-1]]
+    keep_vertex[porder[1:][same]] = True
+    keep_vertex[porder[:-1][same]] = True
     base_pos = np.concatenate([pos, mid_pos])
-
-    # --- triangulate ---------------------------------------------------------------
-    # A zipper between two opposite sides when the other two sides hold only their
-    # corner: every triangle has two points on one side and one on the opposite
-    # side, so none is degenerate, and no vertex is added (n - 2 triangles).
-    # Otherwise a star around a new centre vertex (n triangles).
-    zip0 = (side_n[:, 1] == 1) & (side_n[:, 3] == 1)
-    zip1 = ~zip0 & (side_n[:, 0] == 1) & (side_n[:, 2] == 1)
-    k1 = np.where(zip0, 0, 1)
-    zipped = zip0 | zip1
-    e_all = np.arange(ent.size)
-    e_k1 = k1[ent_rect]
-    rel = (ent_side - e_k1) % 4
-    in_zip = zipped[ent_rect]
-    e_local = e_all - off[ent_rect]
-    first_k1 = off[ent_rect] + _first_of_side(ent_rect, side_n, e_k1)
-    # Chain 1: side k1 after its first corner, then the corner of side k1+1.
-    chain1 = in_zip & (((rel == 0) & (e_all != first_k1)) | (rel == 1))
-    # Chain 2: side k1+2, walked backwards from the corner of side k1+3.
-    chain2 = in_zip & (rel == 2)
-    # Coordinate along the chain axis, measured from the first corner of side k1.
-    dd_e = q_d[ent_rect]
-    chain_axis_u = _ALONG_U[dd_e, e_k1]
-    ax_e = dd_e // 2
-    coord_axis = np.where(chain_axis_u, (ax_e + 1) % 3, (ax_e + 2) % 3)
-    t_e = base_pos[ent, coord_axis]
-    s_e = np.abs(t_e - base_pos[ent[first_k1], coord_axis])
-    ev = np.flatnonzero(chain1 | chain2)
-    ev = ev[np.lexsort((chain2[ev], s_e[ev], ent_rect[ev]))]
-    is2 = chain2[ev]
-    ev_rect = ent_rect[ev]
-    n_ev = ev.size
-    pos_ev = np.arange(n_ev)
-    # Latest event of each chain up to here (within the same rectangle).
-    last2 = np.maximum.accumulate(np.where(is2, pos_ev, -1)) if n_ev else pos_ev
-    last1 = np.maximum.accumulate(np.where(~is2, pos_ev, -1)) if n_ev else pos_ev
-    rect_start = np.searchsorted(ev_rect, ev_rect, side="left")
-    # The corner where both chains start: side k1's first (chain 1) and side k1+3's (chain 2).
-    ca = ent[first_k1]
-    cd_idx = off[ent_rect] + _first_of_side(ent_rect, side_n, (e_k1 + 3) % 4)
-    cd = ent[cd_idx]
-    prev_poly = off[ent_rect] + (e_local - 1) % n_per[ent_rect]
-    next_poly = off[ent_rect] + (e_local + 1) % n_per[ent_rect]
-    q_cur = np.where(last2 >= rect_start, ent[ev[np.maximum(last2, 0)]], cd[ev])
-    # For chain-2 events, the current chain-1 point is the latest chain-1 event before it.
-    prev1 = np.where(pos_ev > 0, last1[np.maximum(pos_ev - 1, 0)], -1)
-    p_cur = np.where(prev1 >= rect_start, ent[ev[np.maximum(prev1, 0)]], ca[ev])
-    tri_zip = np.where(
-        is2[:, None],
-        np.stack([ent[ev], ent[next_poly[ev]], p_cur], axis=1),
-        np.stack([ent[prev_poly[ev]], ent[ev], q_cur], axis=1),
-    )
-    # q_cur for a chain-1 event must be the chain-2 point current *before* it.
-    prev2 = np.where(pos_ev > 0, last2[np.maximum(pos_ev - 1, 0)], -1)
-    q_before = np.where(prev2 >= rect_start, ent[ev[np.maximum(prev2, 0)]], cd[ev])
-    tri_zip[~is2, 2] = q_before[~is2]
-
-    star = np.flatnonzero(~zipped)
     n_mid = mid_pos.shape[0]
-    centre_id = n_base + n_mid + np.arange(star.size)
-    e_idx = np.flatnonzero(~in_zip)
-    e_rect = ent_rect[e_idx]
-    centre_of_rect = np.full(n_rect, -1, dtype=np.int64)
-    centre_of_rect[star] = centre_id
-    tri_star = np.stack([centre_of_rect[e_rect], ent[e_idx], ent[next_poly[e_idx]]], axis=1)
-    triangles = np.concatenate([tri_zip, tri_star])
-    tri_rect = np.concatenate([ev_rect, e_rect])
+    triangles, tri_rect, star = triangulate(
+        q_d, q_u0, q_v0, q_u1, q_v1, rstart, fidx, vid, mid_of, keep_vertex,
+        base_pos, n_base + n_mid, _ALONG_U, _ASCENDING, _AT_MAX,
+    )
 
     # Centre positions in voxel-corner coordinates.
     sd = q_d[star]

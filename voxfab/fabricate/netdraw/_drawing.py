@@ -10,11 +10,12 @@ import numpy.typing as npt
 from voxfab.shape import surface_graph
 from voxfab.unfold import Net
 
-from ._geometry import NetEdges, Polylines, check_net, classify_edges, merge_unit_segments, trace_outlines
+from .._font import text_polylines, text_width
+from .._polylines import Polylines
+from ._geometry import NetEdges, check_net, classify_edges, merge_unit_segments, trace_outlines
 from ._options import LAYERS, DrawingOptions, Perforate
 from ._sheets import SheetPlan, plan_sheets
 from ._tabs import TabPlan, place_tabs, tab_heights
-from ._text import text_polylines, text_width
 
 _NEXT = np.array([1, 2, 3, 0])
 

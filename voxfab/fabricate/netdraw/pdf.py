@@ -15,11 +15,11 @@ import numpy as np
 
 from voxfab._shared.atomic import write_bytes
 
+from .._font import text_polylines
+from .._polylines import Polylines
 from ._drawing import Drawing, Sheet
 from ._format import numbers, polyline_text
-from ._geometry import Polylines
 from ._options import DASH_PATTERNS, LAYERS, LayerStyle
-from ._text import text_polylines
 
 MM = 72.0 / 25.4
 #: Printed line widths, mm.

@@ -13,26 +13,7 @@ import dataclasses
 import numpy as np
 import numpy.typing as npt
 
-from voxfab.errors import InvalidShapeError
-
-#: Glyph box: 4 units wide, 6 units tall; strokes as polylines in those units.
-_GLYPH_HEIGHT = 6.0
-_GLYPHS: dict[str, tuple[tuple[tuple[float, float], ...], ...]] = {
-    "0": (((0, 0), (4, 0), (4, 6), (0, 6), (0, 0)), ((0, 0), (4, 6))),
-    "1": (((1, 5), (2, 6), (2, 0)), ((1, 0), (3, 0))),
-    "2": (((0, 6), (4, 6), (4, 3), (0, 3), (0, 0), (4, 0)),),
-    "3": (((0, 6), (4, 6), (4, 0), (0, 0)), ((1, 3), (4, 3))),
-    "4": (((0, 6), (0, 3), (4, 3)), ((3, 6), (3, 0))),
-    "5": (((4, 6), (0, 6), (0, 3), (4, 3), (4, 0), (0, 0)),),
-    "6": (((4, 6), (0, 6), (0, 0), (4, 0), (4, 3), (0, 3)),),
-    "7": (((0, 6), (4, 6), (1.5, 0)),),
-    "8": (((0, 0), (4, 0), (4, 6), (0, 6), (0, 0)), ((0, 3), (4, 3))),
-    "9": (((4, 3), (0, 3), (0, 6), (4, 6), (4, 0), (0, 0)),),
-    "-": (((0.5, 3), (3.5, 3)),),
-    ".": (((1.5, 0), (2.5, 0), (2.5, 1), (1.5, 1), (1.5, 0)),),
-}
-_WIDTH = {".": 4.0}
-_GAP = 1.5
+from .._font import text_polylines, text_width
 
 #: Label heights tried, as fractions of the pitch, largest first.
 _HEIGHTS = (0.6, 0.45, 0.32, 0.22)
@@ -42,35 +23,30 @@ MIN_HEIGHT = 0.8
 
 def text_size(text: str, height: float) -> tuple[float, float]:
     """Width and height in mm of ``text`` drawn ``height`` mm tall."""
-    units = sum(_WIDTH.get(ch, 4.0) for ch in text) + _GAP * (len(text) - 1)
-    return units * height / _GLYPH_HEIGHT, height
+    return text_width(text, height), height
 
 
 def text_strokes(text: str, height: float) -> tuple[npt.NDArray[np.float64], ...]:
     """Polylines of ``text`` in mm, ``height`` tall, lower-left corner at the origin.
 
+    The glyphs are voxfab's single-stroke font, shared with the net drawings.
+
     Parameters
     ----------
     text : str
-        Digits, ``'-'`` and ``'.'`` only.
+        Digits, ``'-'`` and ``'.'`` (plate numbers).
     height : float
         Glyph height in mm.
 
     Returns
     -------
     strokes : tuple of (n, 2) float ndarray
-        Open polylines (closed glyphs repeat their first point).
+        Open polylines.
     """
-    scale = height / _GLYPH_HEIGHT
-    out = []
-    x = 0.0
-    for ch in text:
-        if ch not in _GLYPHS:
-            raise InvalidShapeError(f"label: no stroke glyph for {ch!r} in {text!r}")
-        for stroke in _GLYPHS[ch]:
-            out.append((np.asarray(stroke, dtype=np.float64) + (x, 0.0)) * scale)
-        x += _WIDTH.get(ch, 4.0) + _GAP
-    return tuple(out)
+    lines = text_polylines([text], [(0.0, 0.0)], [(1.0, 0.0)], height)
+    return tuple(
+        lines.points[a:b].copy() for a, b in zip(lines.offsets[:-1], lines.offsets[1:])
+    )
 
 
 @dataclasses.dataclass(frozen=True, eq=False)

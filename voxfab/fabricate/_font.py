@@ -12,7 +12,7 @@ from functools import cache
 import numpy as np
 import numpy.typing as npt
 
-from ._geometry import Polylines
+from ._polylines import Polylines
 
 #: Glyph box: width and cap height in font units; the advance adds a gap of 2.
 GLYPH_WIDTH = 4.0
