@@ -103,26 +103,46 @@ def test_parts_follow_face_connected_components():
     assert r.bodies == 3
 
 
-@settings(max_examples=40, deadline=None)
+def _same_partition(a: np.ndarray, b: np.ndarray) -> bool:
+    pairs = set(zip(a.ravel().tolist(), b.ravel().tolist()))
+    return len(pairs) == len(set(a.ravel().tolist())) == len(set(b.ravel().tolist()))
+
+
+@settings(max_examples=80, deadline=None)
 @given(grids)
-def test_fast_corner_ids_equal_the_surface_graph_ids(g):
-    from voxfab.fabricate.mesh._faces import corner_vertices
+def test_table_vertex_ids_split_like_the_surface_graph(g):
+    from voxfab.fabricate.mesh._faces import lattice_faces
     from voxfab.shape import surface_graph
 
     if not g.any():
         return
     sg = surface_graph(g)
-    vertex, position = corner_vertices(sg)
-    assert np.array_equal(vertex, sg.vertex)
-    assert np.array_equal(position, sg.vertex_position)
+    voxel, direction, vertex, position = lattice_faces(g)
+    assert np.array_equal(voxel, sg.voxel) and np.array_equal(direction, sg.direction)
+    assert _same_partition(vertex, sg.vertex)
+    assert np.array_equal(position[vertex], sg.corners)
 
 
-def test_fast_corner_ids_on_worst_cases():
-    from voxfab.fabricate.mesh._faces import corner_vertices
+def test_contact_free_mesh_of_a_bridged_grid_is_checked():
+    from voxfab.fabricate.mesh import bridge_boxes, find_contacts
+    from voxfab.fabricate.mesh._contacts import bridged_grid
+
+    g = examples.random_shape(5, side=6, fill=0.3)
+    cells, coords = bridged_grid(g, bridge_boxes(find_contacts(g), pitch=1.0, width=0.6), pitch=1.0)
+    fast = voxel_mesh(cells, coords=coords, contact_free=True)
+    slow = voxel_mesh(cells, coords=coords)
+    sizes = [np.diff(c) for c in coords]
+    exact = float(np.einsum("ijk,i,j,k->", cells, *sizes))
+    for m in (fast, slow):
+        assert check_mesh(m, expected_volume=exact).bodies == check_mesh(slow).bodies
+    assert _t_junctions(fast) == 0
+
+
+def test_table_vertex_ids_on_worst_cases():
+    from voxfab.fabricate.mesh._faces import lattice_faces
     from voxfab.shape import surface_graph
 
     checker = np.indices((9, 9, 9)).sum(axis=0) % 2 == 0
-    for g in (checker, examples.random_shape(0), examples.torus(6, 2)):
-        sg = surface_graph(g)
-        vertex, _ = corner_vertices(sg)
-        assert np.array_equal(vertex, sg.vertex)
+    for g in (checker, ~checker, examples.random_shape(0), examples.torus(6, 2)):
+        _, _, vertex, _ = lattice_faces(g)
+        assert _same_partition(vertex, surface_graph(g).vertex)

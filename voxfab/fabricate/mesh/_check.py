@@ -109,19 +109,16 @@ def check_mesh(
         raise _fail(what, f"{int(bad.sum())} triangles repeat a vertex", v[t[bad, 0]])
     # One cross product per triangle serves the area test and the volumes:
     # det[a-r, b-r, c-r] = (a-r) . ((b-a) x (c-a)).
-    ref = v.mean(axis=0)
-    p0 = v[t[:, 0]]
-    cross = np.cross(v[t[:, 1]] - p0, v[t[:, 2]] - p0)
-    tri_vol = np.einsum("ij,ij->i", p0 - ref, cross) / 6.0
-    area2 = np.sqrt(np.einsum("ij,ij->i", cross, cross))
+    from ._kernels import edge_fan_shells, triangle_measures
+
+    t = np.ascontiguousarray(t, dtype=np.int64)
+    tri_vol, area2 = triangle_measures(np.ascontiguousarray(v), t, v.mean(axis=0))
     scale = float(np.ptp(v, axis=0).max()) or 1.0
     flat = area2 <= (1e-12 * scale * scale)
     if flat.any():
         raise _fail(what, f"{int(flat.sum())} triangles have zero area", v[t[flat, 0]])
 
-    from ._kernels import edge_fan_shells
-
-    status, labels, n_shells = edge_fan_shells(np.ascontiguousarray(t, dtype=np.int64), nv)
+    status, labels, n_shells = edge_fan_shells(t, nv)
     if status:
         _edge_and_fan_problems(what, v, t)
         raise _fail(what, f"edge or fan test {status} failed")  # the detailed pass always raises first

@@ -76,6 +76,8 @@ def find_contacts(grid: npt.ArrayLike) -> Contacts:
     Contacts
         Sorted by voxel, so the result is deterministic.
     """
+    from ._kernels import contact_scan
+
     g = as_grid(grid, allow_empty=True)
     p = np.pad(g, 1)
     # Both voxels of a contact have an empty face neighbour (the cells beside the
@@ -86,57 +88,24 @@ def find_contacts(grid: npt.ArrayLike) -> Contacts:
     inner &= p[1:-1, 1:-1, 2:]
     inner &= p[1:-1, 1:-1, :-2]
     q = np.argwhere(g & ~inner) + 1  # padded coordinates, sorted
-
-    def at(rows: npt.NDArray[np.int64], off: npt.ArrayLike) -> npt.NDArray[np.bool_]:
-        o = np.asarray(off)
-        return p[rows[:, 0] + o[0], rows[:, 1] + o[1], rows[:, 2] + o[2]]
-
-    edges, edge_vox = [], []
-    for i, j, s in _EDGE_DIAGONALS:
-        ei = np.zeros(3, dtype=np.int64)
-        ei[i] = 1
-        ej = np.zeros(3, dtype=np.int64)
-        ej[j] = s
-        eij = ei + ej
-        c = q[at(q, eij)]
-        c = c[~at(c, ei)]
-        c = c[~at(c, ej)]
-        if not c.size:
-            continue
-        v = c - 1  # voxel coordinates in the unpadded grid
-        k = 3 - i - j
-        start = v.copy()
-        start[:, i] += 1
-        start[:, j] += 1 if s > 0 else 0
-        end = start.copy()
-        end[:, k] += 1
-        edges.append(np.stack([start, end], axis=1))
-        edge_vox.append(np.stack([v, v + eij], axis=1))
-    points, point_vox = [], []
-    # A corner-only contact is a 2×2×2 block holding just two opposite voxels.
-    block = np.array([(dx, dy, dz) for dx in (0, 1) for dy in (0, 1) for dz in (0, 1)])
-    for a, b in _BODY_DIAGONALS:
-        delta = np.array(b) - np.array(a)
-        c = q[at(q, delta)] - np.array(a)  # padded block anchor
-        if not c.size:
-            continue
-        count = sum(at(c, off).astype(np.int8) for off in block)
-        c = c[count == 2]
-        if not c.size:
-            continue
-        points.append(c)  # the block centre: padded anchor + 1 - 1 in corner coordinates
-        point_vox.append(np.stack([c - 1 + np.array(a), c - 1 + np.array(b)], axis=1))
-
-    def cat(items: list[npt.NDArray[np.int64]], shape: tuple[int, ...]) -> npt.NDArray[np.int64]:
-        return np.concatenate(items).astype(np.int64) if items else np.zeros(shape, dtype=np.int64)
-
-    e = cat(edges, (0, 2, 3))
-    ev = cat(edge_vox, (0, 2, 3))
-    pt = cat(points, (0, 3))
-    pv = cat(point_vox, (0, 2, 3))
-    eo = np.lexsort(ev.reshape(-1, 6).T[::-1]) if len(ev) else np.zeros(0, dtype=np.int64)
-    po = np.lexsort(pv.reshape(-1, 6).T[::-1]) if len(pv) else np.zeros(0, dtype=np.int64)
+    e, ev, pt, pv = contact_scan(
+        p, q.astype(np.int64), np.array(_EDGE_DIAGONALS, dtype=np.int64), np.array(_BODY_DIAGONALS, dtype=np.int64)
+    )
+    eo = np.argsort(_pair_keys(ev), kind="stable")
+    po = np.argsort(_pair_keys(pv), kind="stable")
     return Contacts(edges=e[eo], edge_voxels=ev[eo], points=pt[po], point_voxels=pv[po])
+
+
+def _pair_keys(pairs: npt.NDArray[np.int64]) -> npt.NDArray[np.int64]:
+    """One int64 per voxel pair ``(P, 2, 3)`` ordered like the six coordinates lexicographically.
+
+    Coordinates are in ``-1..256`` (at most 256 voxels a side), so base 260 keeps
+    the six digits apart and 260**6 < 2**63.
+    """
+    key = np.zeros(pairs.shape[0], dtype=np.int64)
+    for c in pairs.reshape(-1, 6).T:
+        key = key * 260 + (c + 1)
+    return key
 
 
 def bridge_boxes(contacts: Contacts, *, pitch: float, width: float) -> npt.NDArray[np.float64]:

@@ -1,6 +1,7 @@
 """Triangle mesh from the exposed voxel faces, with coplanar faces merged.
 
-The vertex ids come from :func:`voxfab.shape.surface_graph`, so voxels touching
+The vertex ids split exactly like those of :func:`voxfab.shape.surface_graph`
+(a table per lattice point, read off it, see :func:`lattice_faces`), so voxels touching
 only along an edge or at a corner get separate vertices there.  Two more steps
 make the mesh manifold by index and small:
 
@@ -31,7 +32,7 @@ import numpy.typing as npt
 
 from voxfab._shared.validate import as_grid
 from voxfab.shape import surface_graph
-from voxfab.shape._surface import CORNER_OFFSETS, DIRECTIONS, EDGE_OUT, FOLD_MOUNTAIN, SurfaceGraph
+from voxfab.shape._surface import CORNER_OFFSETS, DIRECTIONS, EDGE_OF, EDGE_OUT
 
 from ._data import MeshData
 
@@ -78,32 +79,121 @@ def _first_of_side(
     return before[ent_rect, side]
 
 
-def corner_vertices(sg: SurfaceGraph) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64]]:
-    """The vertex ids and positions of :attr:`SurfaceGraph.vertex`, computed faster.
+def _fan_table() -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64]]:
+    """The vertex split at a lattice point for each filling of its 2×2×2 cells.
 
-    Across edge ``k`` our corner ``k`` is the neighbour's corner ``kk + 1``, and
-    every corner is reached that way from exactly one other corner, so the
-    surface graph's corner links form a permutation whose cycles are the vertex
-    fans.  Walking the cycles in order of their smallest corner numbers them in
-    order of first appearance, which gives exactly the ids of ``sg.vertex``
-    without a sparse connected-components pass.
+    The surface graph joins the corners at a point only through faces around it,
+    and its neighbour rule only looks at the four cells around an edge: so the
+    vertices at a point depend on the 8 cells around it alone.  The table is read
+    off :func:`voxfab.shape.surface_graph` of each of the 256 blocks.
 
     Returns
     -------
-    vertex : (F, 4) int64 ndarray
-        Equal to ``sg.vertex``.
-    position : (V, 3) int64 ndarray
-        Equal to ``sg.vertex_position``.
+    fan : (256, 8, 6) int64 ndarray
+        ``fan[config, cell, d]``: which vertex at the centre point (numbered by
+        first appearance) the face ``d`` of ``cell`` uses; -1 when that face does
+        not touch the point or is not exposed.  ``config`` has bit ``cell``
+        set per filled cell, ``cell = 4 dx + 2 dy + dz``.
+    count : (256,) int64 ndarray
+        Number of vertices at the centre point.
     """
-    from ._kernels import permutation_cycles
+    fan = np.full((256, 8, 6), -1, dtype=np.int64)
+    count = np.zeros(256, dtype=np.int64)
+    for config in range(1, 255):
+        block = np.array([(config >> c) & 1 for c in range(8)], dtype=bool).reshape(2, 2, 2)
+        sg = surface_graph(block)
+        at = (sg.voxel[:, None, :] + CORNER_OFFSETS[sg.direction] == 1).all(axis=2)  # (F, 4)
+        f, k = np.nonzero(at)
+        ids = sg.vertex[f, k]
+        _, first, inverse = np.unique(ids, return_index=True, return_inverse=True)
+        local = np.argsort(np.argsort(first))[inverse]
+        cell = sg.voxel[f] @ np.array([4, 2, 1])
+        fan[config, cell, sg.direction[f]] = local
+        count[config] = first.size
+    return fan, count
 
-    nf = sg.face_count
-    nxt = (sg.neighbor * 4 + (sg.neighbor_edge + 1) % 4).ravel()
-    ids, n_ids = permutation_cycles(nxt)
-    vertex = ids.reshape(nf, 4)
-    position = np.zeros((n_ids, 3), dtype=np.int64)
-    position[vertex.ravel()] = sg.corners.reshape(-1, 3)
-    return vertex, position
+
+_FAN: tuple[npt.NDArray[np.int64], npt.NDArray[np.int64]] | None = None
+
+
+def lattice_faces(
+    grid: npt.NDArray[np.bool_],
+) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64], npt.NDArray[np.int64], npt.NDArray[np.int64]]:
+    """Exposed faces with vertex ids split like the surface graph's, from a table per lattice point.
+
+    Faces are sorted by ``(x, y, z, d)`` as in :func:`voxfab.shape.surface_graph`,
+    and two corners get the same id exactly when ``surface_graph(grid).vertex``
+    gives them the same id (see :func:`_fan_table`); the numbering differs.
+
+    Returns
+    -------
+    voxel : (F, 3) int64 ndarray
+    direction : (F,) int64 ndarray
+    vertex : (F, 4) int64 ndarray
+    position : (V, 3) int64 ndarray
+    """
+    from ._kernels import exposed_keys, lattice_vertices
+
+    global _FAN
+    if _FAN is None:
+        _FAN = _fan_table()
+    fan, fan_count = _FAN
+    p = np.pad(grid, 1)
+    dims = np.array(p.shape, dtype=np.int64)
+    # Filled cells of the padded grid never touch its border, so every neighbour index is valid.
+    keys = exposed_keys(
+        p, DIRECTIONS @ np.array([dims[1] * dims[2], dims[2], 1], dtype=np.int64), int(np.count_nonzero(grid))
+    )
+    cell = keys // 6
+    direction = keys % 6
+    voxel = np.stack([cell // (dims[1] * dims[2]), (cell // dims[2]) % dims[1], cell % dims[2]], axis=1) - 1
+    direction = direction.astype(np.int64)
+    vertex, position = lattice_vertices(voxel, direction, p, CORNER_OFFSETS, fan, fan_count)
+    return voxel, direction, vertex, position
+
+
+def _contact_midpoints(
+    voxel: npt.NDArray[np.int64],
+    direction: npt.NDArray[np.int64],
+    padded: npt.NDArray[np.bool_],
+    vid: npt.NDArray[np.int64],
+    ipos: npt.NDArray[np.int64],
+) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.float64]]:
+    """Midpoint vertex of each face edge on a contact segment (-1 elsewhere), and their positions.
+
+    Four faces meet on a segment only where two filled voxels sit diagonally
+    across it: a convex fold whose cell beyond the corner is filled.  Only those
+    face edges need the vertex-pair count.  Faces must be sorted by ``(x, y, z, d)``.
+    """
+    from ._kernels import diagonal_folds, pair_counts
+
+    nf = direction.size
+    n_base = int(vid.max()) + 1
+    cand = diagonal_folds(voxel, direction, padded, EDGE_OUT, DIRECTIONS)
+    mid_of = np.full(nf * 4, -1, dtype=np.int64)
+    mid_pos = np.zeros((0, 3))
+    if not cand.size:
+        return mid_of, mid_pos
+    cf, ck = cand // 4, cand % 4
+    a_ids, b_ids = vid[cf, ck], vid[cf, (ck + 1) % 4]
+    counts = pair_counts(np.minimum(a_ids, b_ids), np.maximum(a_ids, b_ids), n_base)
+    fe = cand[counts == 4]
+    if not fe.size:
+        return mid_of, mid_pos
+    # The face glued to a convex edge k of (v, d) is (v, u), u = EDGE_OUT[d, k], at its edge facing d.
+    dims = np.array(padded.shape, dtype=np.int64)
+    strides = np.array([dims[1] * dims[2], dims[2], 1], dtype=np.int64)
+    keys = ((voxel + 1) @ strides) * 6 + direction
+    ff, fk = fe // 4, fe % 4
+    u = EDGE_OUT[direction[ff], fk]
+    partner = np.searchsorted(keys, ((voxel[ff] + 1) @ strides) * 6 + u) * 4 + EDGE_OF[u, direction[ff]]
+    pair = np.minimum(fe, partner)
+    upair, pinv = np.unique(pair, return_inverse=True)
+    mid_of[fe] = n_base + pinv
+    f0, k0 = upair // 4, upair % 4
+    pos = ipos.astype(np.float64)
+    mid_pos = (pos[vid[f0, k0]] + pos[vid[f0, (k0 + 1) % 4]]) / 2.0
+    return mid_of, mid_pos
 
 
 def voxel_mesh(
@@ -113,6 +203,7 @@ def voxel_mesh(
     merge: bool = True,
     part_labels: npt.NDArray[np.int64] | None = None,
     coords: tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64]] | None = None,
+    contact_free: bool = False,
 ) -> MeshData:
     """Mesh of the exposed faces of a voxel grid.
 
@@ -131,55 +222,37 @@ def voxel_mesh(
         For a rectilinear grid: ``coords[a][i]`` is the position, in voxels, of
         lattice plane ``i`` along axis ``a`` (strictly increasing, one more than
         the grid's side).  Default: the unit lattice.
+    contact_free : bool
+        The caller knows that no voxels touch only along an edge (e.g. a bridged
+        grid), so no face edge needs a contact midpoint and the search for them is
+        skipped.  A wrong promise gives edges in four triangles, which
+        :func:`check_mesh` refuses.
 
     Returns
     -------
     MeshData
         Manifold by index, counter-clockwise from outside, in mm.
     """
-    sg = surface_graph(grid)
-    vid, ipos = corner_vertices(sg)
-    nf = sg.face_count
+    g = as_grid(grid)
+    voxel, d_all, vid, ipos = lattice_faces(g)
+    if contact_free:
+        mid_of = np.full(d_all.size * 4, -1, dtype=np.int64)
+        mid_pos = np.zeros((0, 3))
+    else:
+        mid_of, mid_pos = _contact_midpoints(voxel, d_all, np.pad(g, 1), vid, ipos)
+    nf = d_all.size
     n_base = int(vid.max()) + 1
     pos = ipos.astype(np.float64)
-    d_all = sg.direction
-
-    # --- contact segments: a vertex pair used by four face edges -----------------
-    # Four faces meet on a segment only where two filled voxels sit diagonally
-    # across it: a convex fold whose cell beyond the corner is filled.  Only those
-    # few face edges need the (costly) vertex-pair count.
-    padded = np.pad(as_grid(grid), 1)
-    mountain = np.flatnonzero(sg.fold.ravel() == FOLD_MOUNTAIN)
-    mf, mk = mountain // 4, mountain % 4
-    md = d_all[mf]
-    over = sg.voxel[mf] + 1 + DIRECTIONS[EDGE_OUT[md, mk]] + DIRECTIONS[md]
-    cand = mountain[padded[over[:, 0], over[:, 1], over[:, 2]]]
-    mid_of = np.full(nf * 4, -1, dtype=np.int64)
-    mid_pos = np.zeros((0, 3))
-    if cand.size:
-        cf, ck = cand // 4, cand % 4
-        a_ids, b_ids = vid[cf, ck], vid[cf, (ck + 1) % 4]
-        from ._kernels import pair_counts
-
-        counts = pair_counts(np.minimum(a_ids, b_ids), np.maximum(a_ids, b_ids), n_base)
-        fe = cand[counts == 4]
-        if fe.size:
-            partner = sg.neighbor.ravel()[fe] * 4 + sg.neighbor_edge.ravel()[fe]
-            pair = np.minimum(fe, partner)
-            upair, pinv = np.unique(pair, return_inverse=True)
-            mid_of[fe] = n_base + pinv
-            f0, k0 = upair // 4, upair % 4
-            mid_pos = (pos[vid[f0, k0]] + pos[vid[f0, (k0 + 1) % 4]]) / 2.0
 
     # --- rectangles per plane and direction ----------------------------------------
     axis = d_all // 2
     ub = (axis + 1) % 3
     vb = (axis + 2) % 3
     rows = np.arange(nf)
-    plane = sg.voxel[rows, axis]
-    u = sg.voxel[rows, ub]
-    v = sg.voxel[rows, vb]
-    side = int(sg.voxel.max()) + 2
+    plane = voxel[rows, axis]
+    u = voxel[rows, ub]
+    v = voxel[rows, vb]
+    side = int(voxel.max()) + 2
     # Faces sorted by (d, plane, v, u): rows of each plane, u increasing.
     fkey = ((d_all * side + plane) * side + v) * side + u
     order = np.argsort(fkey)
@@ -229,7 +302,7 @@ def voxel_mesh(
     # Rectangle corners are kept everywhere they appear, and so are split vertices
     # (several ids at one point): dropping them could give two border chains the
     # same end points and so the same edge twice.
-    from ._kernels import mark_corners, triangulate
+    from ._kernels import first_appearance, mark_corners, triangulate
 
     # Faces of each rectangle stored row by row, so the kernels find a border face
     # by arithmetic instead of a search.
@@ -274,16 +347,12 @@ def voxel_mesh(
     vertices = all_pos[used]
     triangles = remap[triangles]
 
-    # Deterministic order: by rectangle, which follows the sorted faces.
-    tord = np.argsort(tri_rect, kind="stable")
-    triangles = triangles[tord]
-    tri_face = q_first[tri_rect[tord]]
+    # Deterministic order: by rectangle (the kernel emits them so), which follows the sorted faces.
     if part_labels is None:
         from voxfab.shape import label_components
 
         part_labels, _ = label_components(grid)
-    vox = sg.voxel[tri_face]
-    lab = np.asarray(part_labels)[vox[:, 0], vox[:, 1], vox[:, 2]].astype(np.int64)
-    _, first_t, inv_t = np.unique(lab, return_index=True, return_inverse=True)
-    part = np.argsort(np.argsort(first_t))[inv_t]
+    vox = voxel[q_first]
+    rect_lab = np.asarray(part_labels)[vox[:, 0], vox[:, 1], vox[:, 2]].astype(np.int64)
+    part = first_appearance(rect_lab[tri_rect])
     return MeshData(vertices=vertices, triangles=triangles.astype(np.int64), part=part.astype(np.int64))

@@ -164,9 +164,10 @@ def edge_fan_shells(t, nv):  # pragma: no cover - compiled
     nt = t.shape[0]
     nh = 3 * nt
     labels = np.full(nt, -1, dtype=np.int64)
+    tf = t.ravel()  # half-edge h runs tf[h] -> tf[after(h)]
     start = np.zeros(nv + 1, dtype=np.int64)
     for h in range(nh):
-        start[t[h // 3, h % 3] + 1] += 1
+        start[tf[h] + 1] += 1
     for i in range(nv):
         start[i + 1] += start[i]
     fill = start[:-1].copy()
@@ -175,9 +176,9 @@ def edge_fan_shells(t, nv):  # pragma: no cover - compiled
     out = np.empty(nh, dtype=np.int64)
     out_end = np.empty(nh, dtype=np.int64)
     for h in range(nh):
-        a = t[h // 3, h % 3]
+        a = tf[h]
         out[fill[a]] = h
-        out_end[fill[a]] = t[h // 3, (h % 3 + 1) % 3]
+        out_end[fill[a]] = tf[h + 1 if h % 3 != 2 else h - 2]
         fill[a] += 1
     twin = np.empty(nh, dtype=np.int64)
     for a in range(nv):
@@ -198,20 +199,23 @@ def edge_fan_shells(t, nv):  # pragma: no cover - compiled
             if back != 1:
                 return 2, labels, 0
             twin[out[i]] = tw
-    # The corner after h around its start vertex begins the half-edge after h's twin.
-    seen = np.zeros(nh, dtype=np.bool_)
-    fans = 0
-    for h in range(nh):
-        if seen[h]:
-            continue
-        fans += 1
-        g = h
-        while not seen[g]:
-            seen[g] = True
+    # The corner after h around its start vertex begins the half-edge after h's
+    # twin; walk each vertex's corners from its first one: one cycle through all
+    # of them means one fan.
+    for a in range(nv):
+        if start[a + 1] == start[a]:
+            return 3, labels, 0  # a vertex without corners has no fan
+        first = out[start[a]]
+        g = first
+        steps = 0
+        while True:
             tw = twin[g]
-            g = (tw // 3) * 3 + (tw % 3 + 1) % 3
-    if fans != nv:
-        return 3, labels, 0
+            g = tw + 1 if tw % 3 != 2 else tw - 2
+            steps += 1
+            if g == first or steps > start[a + 1] - start[a]:
+                break
+        if steps != start[a + 1] - start[a]:
+            return 3, labels, 0
     # With one fan per vertex, triangles sharing a vertex are joined through edges.
     n_shells = 0
     stack = np.empty(nt, dtype=np.int64)
@@ -236,27 +240,6 @@ def edge_fan_shells(t, nv):  # pragma: no cover - compiled
 
 
 @njit(cache=True)
-def permutation_cycles(nxt):  # pragma: no cover - compiled
-    """Label the cycles of a permutation by order of their smallest element.
-
-    Returns ``(labels, n)``: ``labels[i]`` is the number of cycles whose smallest
-    element is below that of the cycle of ``i``.
-    """
-    n = nxt.size
-    labels = np.full(n, -1, dtype=np.int64)
-    count = 0
-    for i in range(n):
-        if labels[i] >= 0:
-            continue
-        j = i
-        while labels[j] < 0:
-            labels[j] = count
-            j = nxt[j]
-        count += 1
-    return labels, count
-
-
-@njit(cache=True)
 def pair_counts(a, b, n):  # pragma: no cover - compiled
     """How many times each pair ``(a[i], b[i])`` occurs, for ids in ``0..n-1`` (few per id)."""
     m = a.size
@@ -278,3 +261,190 @@ def pair_counts(a, b, n):  # pragma: no cover - compiled
                 c += 1
         out[i] = c
     return out
+
+
+@njit(cache=True)
+def diagonal_folds(voxel, direction, padded, edge_out, dirs):  # pragma: no cover - compiled
+    """Flat indices ``4 f + k`` of convex face edges whose cell beyond the corner is filled.
+
+    ``padded`` is the grid with one empty cell around it; ``edge_out[d, k]`` the
+    in-plane direction out of edge ``k`` of a face facing ``d``; ``dirs`` the six
+    unit directions.  The edge is convex when the cell beside it is empty.
+    """
+    nf = voxel.shape[0]
+    out = np.empty(4 * nf, dtype=np.int64)
+    n = 0
+    for f in range(nf):
+        d = direction[f]
+        for k in range(4):
+            u = edge_out[d, k]
+            x = voxel[f, 0] + 1 + dirs[u, 0]
+            y = voxel[f, 1] + 1 + dirs[u, 1]
+            z = voxel[f, 2] + 1 + dirs[u, 2]
+            if padded[x, y, z]:
+                continue
+            if padded[x + dirs[d, 0], y + dirs[d, 1], z + dirs[d, 2]]:
+                out[n] = 4 * f + k
+                n += 1
+    return out[:n]
+
+
+@njit(cache=True)
+def triangle_measures(v, t, ref):  # pragma: no cover - compiled
+    """Signed volume of each triangle's cone from ``ref`` and twice its area.
+
+    ``det[a - r, b - r, c - r] = (a - r) . ((b - a) x (c - a))``, one cross product per triangle.
+    """
+    nt = t.shape[0]
+    vol = np.empty(nt)
+    area2 = np.empty(nt)
+    for i in range(nt):
+        a, b, c = t[i, 0], t[i, 1], t[i, 2]
+        ax, ay, az = v[a, 0], v[a, 1], v[a, 2]
+        ux, uy, uz = v[b, 0] - ax, v[b, 1] - ay, v[b, 2] - az
+        wx, wy, wz = v[c, 0] - ax, v[c, 1] - ay, v[c, 2] - az
+        cx = uy * wz - uz * wy
+        cy = uz * wx - ux * wz
+        cz = ux * wy - uy * wx
+        vol[i] = ((ax - ref[0]) * cx + (ay - ref[1]) * cy + (az - ref[2]) * cz) / 6.0
+        area2[i] = np.sqrt(cx * cx + cy * cy + cz * cz)
+    return vol, area2
+
+
+@njit(cache=True)
+def first_appearance(labels):  # pragma: no cover - compiled
+    """Renumber non-negative labels 0, 1, ... in order of first appearance."""
+    top = 0
+    for x in labels:
+        top = max(top, x)
+    new = np.full(top + 1, -1, dtype=np.int64)
+    out = np.empty(labels.size, dtype=np.int64)
+    n = 0
+    for i in range(labels.size):
+        x = labels[i]
+        if new[x] < 0:
+            new[x] = n
+            n += 1
+        out[i] = new[x]
+    return out
+
+
+@njit(cache=True)
+def lattice_vertices(voxel, direction, padded, corner_offsets, fan, fan_count):  # pragma: no cover - compiled
+    """Vertex ids of face corners from the per-point split table (see ``_faces.lattice_faces``).
+
+    Ids are given in order of first use, ``fan_count`` of them per lattice point.
+    Returns ``(vertex (F, 4), position (V, 3))``.
+    """
+    nf = voxel.shape[0]
+    sx, sy, sz = padded.shape[0] - 1, padded.shape[1] - 1, padded.shape[2] - 1  # lattice points per axis
+    slot = np.full(sx * sy * sz, -1, dtype=np.int32)
+    cfg = np.zeros(sx * sy * sz, dtype=np.uint8)
+    vertex = np.empty((nf, 4), dtype=np.int64)
+    position = np.empty((4 * nf, 3), dtype=np.int64)
+    n = 0
+    for f in range(nf):
+        d = direction[f]
+        for k in range(4):
+            x = voxel[f, 0] + corner_offsets[d, k, 0]
+            y = voxel[f, 1] + corner_offsets[d, k, 1]
+            z = voxel[f, 2] + corner_offsets[d, k, 2]
+            q = (x * sy + y) * sz + z
+            if slot[q] < 0:
+                # Padded cell (x + dx, ...) is grid cell (x - 1 + dx, ...): the 8 cells around the point.
+                c = 0
+                for b in range(8):
+                    if padded[x + (b >> 2), y + ((b >> 1) & 1), z + (b & 1)]:
+                        c |= 1 << b
+                slot[q] = n
+                cfg[q] = c
+                for j in range(fan_count[c]):
+                    position[n + j, 0] = x
+                    position[n + j, 1] = y
+                    position[n + j, 2] = z
+                n += fan_count[c]
+            cell = (voxel[f, 0] - x + 1) * 4 + (voxel[f, 1] - y + 1) * 2 + (voxel[f, 2] - z + 1)
+            vertex[f, k] = slot[q] + fan[cfg[q], cell, d]
+    return vertex, position[:n]
+
+
+@njit(cache=True)
+def contact_scan(p, q, edge_diagonals, body_diagonals):  # pragma: no cover - compiled
+    """Edge-only and corner-only contacts starting at the padded surface voxels ``q`` (N, 3).
+
+    ``edge_diagonals`` rows are ``(i, j, s)``: voxel v touches v + e_i + s·e_j;
+    ``body_diagonals`` rows are a 2×2×2 block's start and opposite corner.
+    Returns ``(edges, edge_voxels, points, point_voxels)`` in unpadded corner and
+    voxel coordinates, unsorted.
+    """
+    n = q.shape[0]
+    edges = np.empty((6 * n, 2, 3), dtype=np.int64)
+    edge_vox = np.empty((6 * n, 2, 3), dtype=np.int64)
+    points = np.empty((4 * n, 3), dtype=np.int64)
+    point_vox = np.empty((4 * n, 2, 3), dtype=np.int64)
+    ne = 0
+    nk = 0
+    ei = np.zeros(3, dtype=np.int64)
+    ej = np.zeros(3, dtype=np.int64)
+    for r in range(n):
+        x, y, z = q[r, 0], q[r, 1], q[r, 2]
+        for e in range(edge_diagonals.shape[0]):
+            i, j, s = edge_diagonals[e, 0], edge_diagonals[e, 1], edge_diagonals[e, 2]
+            ei[:] = 0
+            ej[:] = 0
+            ei[i] = 1
+            ej[j] = s
+            if not p[x + ei[0] + ej[0], y + ei[1] + ej[1], z + ei[2] + ej[2]]:
+                continue
+            if p[x + ei[0], y + ei[1], z + ei[2]] or p[x + ej[0], y + ej[1], z + ej[2]]:
+                continue
+            k = 3 - i - j
+            for a in range(3):
+                v = q[r, a] - 1
+                st = v + ei[a] + (1 if (a == j and s > 0) else 0)
+                edges[ne, 0, a] = st
+                edges[ne, 1, a] = st + (1 if a == k else 0)
+                edge_vox[ne, 0, a] = v
+                edge_vox[ne, 1, a] = v + ei[a] + ej[a]
+            ne += 1
+        for b in range(body_diagonals.shape[0]):
+            # Padded block anchor: this voxel sits at the block's start corner.
+            ax = x - body_diagonals[b, 0, 0]
+            ay = y - body_diagonals[b, 0, 1]
+            az = z - body_diagonals[b, 0, 2]
+            if not p[ax + body_diagonals[b, 1, 0], ay + body_diagonals[b, 1, 1], az + body_diagonals[b, 1, 2]]:
+                continue
+            count = 0
+            for dx in range(2):
+                for dy in range(2):
+                    for dz in range(2):
+                        if p[ax + dx, ay + dy, az + dz]:
+                            count += 1
+            if count != 2:
+                continue
+            points[nk, 0] = ax
+            points[nk, 1] = ay
+            points[nk, 2] = az
+            for a in range(3):
+                point_vox[nk, 0, a] = q[r, a] - 1
+                point_vox[nk, 1, a] = (ax, ay, az)[a] - 1 + body_diagonals[b, 1, a]
+            nk += 1
+    return edges[:ne], edge_vox[:ne], points[:nk], point_vox[:nk]
+
+
+@njit(cache=True)
+def exposed_keys(padded, steps, filled):  # pragma: no cover - compiled
+    """Sorted keys ``6 · (flat padded index) + d`` of the exposed faces.
+
+    ``steps[d]`` is the flat offset of direction ``d``; ``filled`` the number of filled cells.
+    """
+    flat = padded.ravel()
+    keys = np.empty(6 * filled, dtype=np.int64)
+    n = 0
+    for c in range(flat.size):
+        if flat[c]:
+            for d in range(6):
+                if not flat[c + steps[d]]:
+                    keys[n] = 6 * c + d
+                    n += 1
+    return keys[:n]
