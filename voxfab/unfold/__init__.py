@@ -1,5 +1,24 @@
-"""Nets: single-piece edge unfoldings of voxel surfaces, and their validator."""
+"""Nets: single-piece edge unfoldings of voxel surfaces, and their validator.
 
+``unfold`` searches a net, ``unfold_many`` several distinct ones, ``validate``
+refolds a net and checks it against the shape, ``seam_pairs`` and ``tab_room``
+describe its cut edges for glue tabs.
+"""
+
+from ._layout import seam_pairs, tab_room
 from ._net import NET_FORMAT, Net
+from ._search import Pieces, Strategy, unfold, unfold_many
+from ._validate import ValidationReport, validate
 
-__all__ = ["NET_FORMAT", "Net"]
+__all__ = [
+    "NET_FORMAT",
+    "Net",
+    "Pieces",
+    "Strategy",
+    "ValidationReport",
+    "seam_pairs",
+    "tab_room",
+    "unfold",
+    "unfold_many",
+    "validate",
+]

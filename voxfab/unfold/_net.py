@@ -39,7 +39,9 @@ class Net:
     corners2d : (F, 4, 2) int ndarray
         The same corners' positions in the net, in the same order.
     folds : (M, 2) int ndarray
-        Face index pairs joined by a fold (the other shared edges are cut).
+        Face index pairs joined by a fold (the other shared edges are cut): a
+        spanning tree of the faces, plus every edge whose two sides meet in the
+        plane anyway (cutting it would leave a slit that closes up).
     seed : int
     strategy : str
     mountain, valley, flat : int

@@ -173,6 +173,7 @@ def recipe_output(
     perforate: Literal["none", "mountain", "valley"] = "none",
     dxf_version: Literal["R12", "R2000"] = "R12",
     colors: str = "",
+    fill: bool = False,
     timeout: float = 60.0,
 ) -> list[OutputFile]:
     """The recipe output ``net``: a paper net as JSON and as drawings.
@@ -195,6 +196,9 @@ def recipe_output(
         Ask the net engine for a net that fits the sheet at ``pitch`` (needs ``pitch``).
     margin, tab_width, tab_angle, label_height, grid_lines, perforate, dxf_version, colors
         See :class:`DrawingOptions`.
+    fill : bool
+        Unfold the outer surface only, as if enclosed cavities were filled: a paper
+        model is hollow anyway, and a cavity's own surface cannot join the net.
     timeout : float
         Time budget of the net search, seconds.
 
@@ -206,6 +210,7 @@ def recipe_output(
     from voxfab import unfold
     from voxfab._shared.atomic import write_text
     from voxfab.errors import RecipeError
+    from voxfab.shape import fill_cavities
 
     from ._drawing import draw_net as _draw
     from ._sheets import drawable_area
@@ -227,13 +232,14 @@ def recipe_output(
         x0, y0, x1, y1 = drawable_area(options)
         pad = 2 * options.tab_width
         search["fit"] = (int((x1 - x0 - pad) // pitch), int((y1 - y0 - pad) // pitch))
-    net = unfold.unfold(shape.grid, **search)
-    unfold.validate(shape.grid, net)
+    grid = fill_cavities(shape.grid) if fill else shape.grid
+    net = unfold.unfold(grid, **search)
+    unfold.validate(grid, net)
     outdir = Path(outdir)
     write_text(outdir / "net.json", net.to_json())
     files = [OutputFile("net.json", "the net as voxfab-net/1 JSON: each face's voxel, normal, 3D and 2D "
                                     "corners, and the folds")]
-    drawing = _draw(shape.grid, net, options=options, name=name)
+    drawing = _draw(grid, net, options=options, name=name)
     for f in chosen:
         for p in write(drawing, outdir / f"net.{f}", options):
             files.append(OutputFile(Path(p).relative_to(outdir).as_posix(), _PURPOSES[f]))

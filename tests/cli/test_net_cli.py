@@ -1,0 +1,82 @@
+"""voxfab net through the real entry point."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+
+from voxfab.shape import examples
+from voxfab.unfold import Net, validate
+
+
+def _run(*args, cwd):
+    return subprocess.run([sys.executable, "-m", "voxfab", "net", *map(str, args)],
+                          capture_output=True, text=True, cwd=cwd, timeout=300)
+
+
+def test_net_json_is_valid_and_reproducible(tmp_path):
+    grid = examples.ball(3)
+    np.save(tmp_path / "ball.npy", grid)
+    r = _run("ball.npy", "-o", "a.json", "--seed", "4", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    r2 = _run("ball.npy", "-o", "b.json", "--seed", "4", cwd=tmp_path)
+    assert r2.returncode == 0, r2.stderr
+    text = (tmp_path / "a.json").read_text()
+    assert text == (tmp_path / "b.json").read_text()
+    data = json.loads(text)
+    assert data["format"] == "voxfab-net/1" and data["seed"] == 4
+    assert set(data["faces"][0]) == {"voxel", "normal", "corners3d", "corners2d"}
+    assert {"mountain", "valley", "flat", "seams_without_tab_room", "folds"} <= set(data)
+    assert validate(grid, Net.from_json(text)).ok
+    summary = json.loads(r.stdout)
+    assert summary["written"] == ["a.json"]
+
+
+def test_net_count_writes_distinct_numbered_files(tmp_path):
+    grid = examples.ball(2)
+    np.save(tmp_path / "b.npy", grid)
+    r = _run("b.npy", "-o", "net.json", "--count", "3", "--seed", "1", "--timeout", "20",
+             cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    texts = [(tmp_path / f"net-{i}.json").read_text() for i in (1, 2, 3)]
+    nets = [Net.from_json(t) for t in texts]
+    assert len({n.corners2d.tobytes() + n.folds.tobytes() for n in nets}) == 3
+    for n in nets:
+        assert validate(grid, n).ok
+
+
+def test_net_fit_in_mm_and_paper_strategy(tmp_path):
+    grid = examples.ball(2)
+    np.save(tmp_path / "b.npy", grid)
+    r = _run("b.npy", "-o", "n.json", "--fit", "60x40", "--pitch", "2", "--strategy", "paper",
+             cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    net = Net.from_json((tmp_path / "n.json").read_text())
+    x0, y0, x1, y1 = net.bounds()
+    assert x1 - x0 <= 30 and y1 - y0 <= 20 and net.strategy == "paper"
+
+
+def test_net_cavity_error_and_fill(tmp_path):
+    grid = examples.box(3, 3, 3)
+    grid[1, 1, 1] = False
+    np.save(tmp_path / "hollow.npy", grid)
+    r = _run("hollow.npy", "-o", "n.json", cwd=tmp_path)
+    assert r.returncode == 6
+    assert r.stderr.startswith("voxfab: error:") and "--fill" in r.stderr
+    assert not (tmp_path / "n.json").exists()
+    r = _run("hollow.npy", "-o", "n.json", "--fill", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert validate(examples.box(3, 3, 3), Net.from_json((tmp_path / "n.json").read_text())).ok
+    r = _run("hollow.npy", "-o", "p.json", "--pieces", "auto", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    pieces = [Net.from_json((tmp_path / f"p-piece{i}.json").read_text()) for i in (1, 2)]
+    assert validate(grid, pieces).ok
+
+
+def test_net_bad_fit_is_an_error(tmp_path):
+    np.save(tmp_path / "b.npy", examples.ball(2))
+    r = _run("b.npy", "-o", "n.json", "--fit", "big", cwd=tmp_path)
+    assert r.returncode != 0 and "--fit" in r.stderr

@@ -1,0 +1,124 @@
+"""voxfab net: unfold a shape's surface into a one-piece net (JSON or drawings)."""
+
+from __future__ import annotations
+
+import argparse
+import math
+import re
+import sys
+from pathlib import Path
+
+from voxfab.errors import InvalidShapeError, UnknownFormatError
+
+from ._common import add_shape_argument, load_shape, print_json, print_notes
+
+HELP = "unfold the surface into a one-piece paper net (JSON, or drawings .svg .dxf .pdf)"
+
+_FIT = re.compile(r"^\s*(\d+(?:\.\d*)?)\s*[xX×]\s*(\d+(?:\.\d*)?)\s*$")
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """Add the ``net`` options."""
+    add_shape_argument(parser)
+    parser.add_argument("-o", "--output", action="append", required=True, metavar="PATH",
+                        help="NET.json, or a drawing (.svg .dxf .pdf); repeat for several files "
+                             "of the same net")
+    parser.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    parser.add_argument("--count", type=int, default=1, metavar="N",
+                        help="write N distinct nets as NAME-1.ext ... NAME-N.ext")
+    parser.add_argument("--strategy", choices=["default", "paper"], default="default",
+                        help="search strategy (default: ruin-and-recreate with tab room)")
+    parser.add_argument("--timeout", type=float, default=60.0, metavar="S",
+                        help="search budget in seconds per net (default 60)")
+    parser.add_argument("--fit", metavar="WxH",
+                        help="keep the net inside W×H (voxels, or mm when --pitch is given)")
+    parser.add_argument("--pitch", type=float, metavar="MM",
+                        help="face size in mm; drawings pick the largest that fits the sheet when omitted")
+    parser.add_argument("--pieces", choices=["one", "auto"], default="one",
+                        help="auto: accept the fewest pieces found (one file per piece)")
+    parser.add_argument("--fill", action="store_true", help="fill enclosed cavities first")
+    parser.add_argument("--compact", action="store_true",
+                        help="prefer a small bounding box (slower)")
+    try:
+        from voxfab.fabricate import netdraw
+    except ImportError:
+        return
+    netdraw.add_drawing_arguments(parser)
+
+
+def _fit(text: str | None, pitch: float | None) -> tuple[int, int] | None:
+    if text is None:
+        return None
+    m = _FIT.match(text)
+    if not m:
+        raise InvalidShapeError(f"--fit: expected WxH such as 40x30, got {text!r}")
+    w, h = float(m.group(1)), float(m.group(2))
+    if pitch is not None:
+        return math.floor(w / pitch + 1e-9), math.floor(h / pitch + 1e-9)
+    if w != int(w) or h != int(h):
+        raise InvalidShapeError(f"--fit: whole voxels expected without --pitch, got {text!r}")
+    return int(w), int(h)
+
+
+def _named(path: Path, *tags: str) -> Path:
+    tags = tuple(t for t in tags if t)
+    if not tags:
+        return path
+    return path.with_name(f"{path.stem}-{'-'.join(tags)}{path.suffix}")
+
+
+def run(args: argparse.Namespace) -> int:
+    """Search, validate and write the nets."""
+    from voxfab._shared.atomic import write_text
+    from voxfab.unfold import unfold, unfold_many, validate
+
+    if args.pitch is not None and not (math.isfinite(args.pitch) and args.pitch > 0):
+        raise InvalidShapeError(f"--pitch: expected a positive number of mm, got {args.pitch}")
+    if args.count < 1:
+        raise InvalidShapeError(f"--count: expected an integer >= 1, got {args.count}")
+    outputs = [Path(p) for p in args.output]
+    drawings = [p for p in outputs if p.suffix.lower() != ".json"]
+    netdraw = None
+    if drawings:
+        try:
+            from voxfab.fabricate import netdraw
+        except ImportError:
+            raise UnknownFormatError(
+                f"{drawings[0]}: drawings need voxfab.fabricate.netdraw, which is not "
+                "installed; write a .json net"
+            ) from None
+    shape, name, notes = load_shape(args.shape, args.repo)
+    print_notes(notes)
+    fit = _fit(args.fit, args.pitch)
+    options = dict(strategy=args.strategy, timeout=args.timeout, fit=fit, fill=args.fill,
+                   compact=args.compact)
+    if args.count > 1:
+        if args.pieces != "one":
+            raise InvalidShapeError("--count: several nets need --pieces one")
+        results = [[n] for n in unfold_many(shape.grid, count=args.count, rng=args.seed, **options)]
+    else:
+        found = unfold(shape.grid, rng=args.seed, pieces=args.pieces, **options)
+        results = [found if isinstance(found, list) else [found]]
+    from voxfab.shape import VoxelShape, fill_cavities
+
+    grid = fill_cavities(shape.grid) if args.fill else shape.grid
+    drawn = VoxelShape(grid, args.pitch if args.pitch is not None else shape.pitch)
+    title = name or Path(args.shape).stem
+    written = []
+    summary = []
+    for t, pieces in enumerate(results):
+        validate(grid, pieces if len(pieces) > 1 else pieces[0])
+        for q, net in enumerate(pieces):
+            tags = (str(t + 1) if len(results) > 1 else "", f"piece{q + 1}" if len(pieces) > 1 else "")
+            for path in outputs:
+                target = _named(path, *tags)
+                if path in drawings:
+                    for line in netdraw.write_drawing(drawn, net, target, args, title=title):
+                        print(f"voxfab: {target.name}: {line}", file=sys.stderr)
+                else:
+                    write_text(target, net.to_json())
+                written.append(str(target))
+            summary.append({"seed": net.seed, "faces": net.face_count,
+                            "seams_without_tab_room": net.seams_without_tab_room})
+    print_json({"written": written, "nets": summary})
+    return 0
