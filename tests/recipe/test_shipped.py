@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from voxfab.recipe import build, load_recipe
-from voxfab.shape import well_formed_reasons
+from voxfab.shape import fill_cavities, well_formed_reasons
 
 RECIPES = sorted((Path(__file__).parents[2] / "recipes").rglob("*.toml"))
 
@@ -59,6 +59,9 @@ def test_recipe_nets_refold_onto_the_shape(built, path):
         pytest.skip("this recipe asks for no net")
     assert nets, "the net output wrote no voxfab-net/1 JSON"
     grid = np.load(built(path) / "shape.npy")
+    options = dict(next(s for s in load_recipe(path).outputs if s.name == "net").options)
+    if options.get("fill"):
+        grid = fill_cavities(grid)
     for p in nets:
         validate(grid, Net.from_json(p.read_text()))
 
