@@ -27,6 +27,8 @@ if TYPE_CHECKING:
 
     from voxfab.unfold import Net
 
+from voxfab.fabricate.netdraw._options import DEFAULT_STYLES as _SHEET_STYLES
+
 __all__ = ["LineStyle", "NetLayout", "Seam", "net_layout", "net_seams", "net_picture", "DEFAULT_STYLES"]
 
 
@@ -43,11 +45,13 @@ class LineStyle(StrEnum):
 #: Default fold styles (Blender's paper-model convention: convex dashed, concave dash-dot).
 DEFAULT_STYLES: dict[str, str] = {"mountain": "dashed", "valley": "dashdot", "flat": "dotted"}
 #: Line colours per kind.
+#: The same colours as the cut files (``voxfab.fabricate.netdraw``), so the picture
+#: reads like the sheet that comes out of the laser or printer.
 LINE_COLORS: dict[str, tuple[int, int, int]] = {
-    "cut": (20, 20, 20),
-    "mountain": (200, 40, 30),
-    "valley": (30, 70, 200),
-    "flat": (150, 150, 150),
+    "cut": _SHEET_STYLES["CUT"].rgb,
+    "mountain": _SHEET_STYLES["MOUNTAIN"].rgb,
+    "valley": (0, 160, 0),  # the sheets' pure green is unreadable on screen; darker, same hue
+    "flat": _SHEET_STYLES["GRID"].rgb,
 }
 TAB_COLOR = (215, 215, 215)
 #: Dash patterns as (on, off, on, off, ...) fractions of a face side.
