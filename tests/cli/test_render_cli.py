@@ -1,24 +1,16 @@
-import importlib.util
 import json
 import subprocess
 import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
+from _handnets import tree_net
 from PIL import Image
 
 from voxfab.cli import main
 from voxfab.render import png_bytes, render
 from voxfab.repo import Repository
 from voxfab.shape import examples
-
-_spec = importlib.util.spec_from_file_location(
-    "_tree_net", Path(__file__).parents[1] / "render" / "_tree_net.py"
-)
-_mod = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(_mod)
-tree_net = _mod.tree_net
 
 
 def voxfab(*args):

@@ -7,6 +7,7 @@ import functools
 import numpy as np
 import pytest
 import shapely
+from _handnets import tree_net
 
 from voxfab.errors import FormatError, InvalidShapeError
 from voxfab.fabricate._polylines import Polylines
@@ -15,57 +16,6 @@ from voxfab.fabricate.netdraw._geometry import merge_unit_segments
 from voxfab.fabricate.netdraw._tabs import place_tabs
 from voxfab.shape import examples, surface_graph
 from voxfab.unfold import Net
-
-
-def lay_out(grid: np.ndarray, tree: list[tuple[int, int]] | None = None) -> Net:
-    """A net laid out face by face with the surface graph's forced placement.
-
-    With ``tree`` (fold pairs, parents first) the given spanning tree is laid out;
-    without it faces are placed breadth first from face 0 wherever their cell is
-    free.  The result is checked: every face placed once, no shared cell.
-    """
-    sg = surface_graph(grid)
-    nf = sg.face_count
-    c2 = np.zeros((nf, 4, 2), dtype=np.int64)
-    c2[0] = [(0, 0), (1, 0), (1, 1), (0, 1)]
-    placed = np.zeros(nf, dtype=bool)
-    placed[0] = True
-    cells = {(0, 0)}
-    folds: list[tuple[int, int]] = []
-
-    def attach(f: int, g: int) -> bool:
-        k = int(np.flatnonzero(sg.neighbor[f] == g)[0])
-        kk = int(sg.neighbor_edge[f, k])
-        p0, p1 = c2[f, k], c2[f, (k + 1) % 4]
-        d = p1 - p0
-        n = np.array([d[1], -d[0]])
-        gc = np.zeros((4, 2), dtype=np.int64)
-        gc[kk], gc[(kk + 1) % 4], gc[(kk + 2) % 4], gc[(kk + 3) % 4] = p1, p0, p0 + n, p1 + n
-        cell = tuple(gc.min(axis=0).tolist())
-        if cell in cells:
-            return False
-        cells.add(cell)
-        c2[g] = gc
-        placed[g] = True
-        folds.append((f, g))
-        return True
-
-    if tree is not None:
-        for f, g in tree:
-            assert placed[f] and not placed[g] and attach(f, g)
-    else:
-        queue = [0]
-        while queue:
-            f = queue.pop(0)
-            for g in sg.neighbor[f].tolist():
-                if not placed[g] and attach(f, g):
-                    queue.append(g)
-    assert placed.all() and len(cells) == nf
-    fl = np.array(folds)
-    kinds = np.array([sg.fold[f, int(np.flatnonzero(sg.neighbor[f] == g)[0])] for f, g in folds])
-    return Net(voxel=sg.voxel, normal=sg.normal, corners3d=sg.corners, corners2d=c2, folds=fl, seed=7,
-               strategy="layout", mountain=int((kinds == 1).sum()), valley=int((kinds == -1).sum()),
-               flat=int((kinds == 0).sum()))
 
 
 def cross_net() -> tuple[np.ndarray, Net]:
@@ -123,7 +73,7 @@ def net_of(name: str) -> Net:
         from voxfab.unfold import unfold
 
         return unfold(g, rng=11, timeout=60.0)
-    return lay_out(g)
+    return tree_net(g)
 
 
 def expected_fold_lengths(grid: np.ndarray, net: Net, drawing) -> dict[str, float]:
@@ -229,7 +179,7 @@ def test_cut_outline_is_closed_and_never_doubled(name: str) -> None:
 
 def test_every_seam_numbered_on_both_edges_inside_its_faces() -> None:
     g = examples.ball(1)
-    net = lay_out(g)
+    net = tree_net(g)
     d = draw_net(g, net, options=DrawingOptions(pitch=20.0), name="")
     (sheet,) = d.sheets
     labels = sheet.layers["LABEL"]
@@ -250,15 +200,15 @@ def test_every_seam_numbered_on_both_edges_inside_its_faces() -> None:
 
 def test_label_height_shrinks_to_fit_small_faces() -> None:
     g = examples.ball(1)
-    d = draw_net(g, lay_out(g), options=DrawingOptions(pitch=8.0))
+    d = draw_net(g, tree_net(g), options=DrawingOptions(pitch=8.0))
     assert d.label_height == pytest.approx(min(5.0, 0.15 * 8.0))
-    d = draw_net(g, lay_out(g), options=DrawingOptions(pitch=60.0))
+    d = draw_net(g, tree_net(g), options=DrawingOptions(pitch=60.0))
     assert d.label_height == 5.0
 
 
 def test_seams_meeting_in_the_plane_are_left_uncut() -> None:
     g = np.ones((1, 1, 2), dtype=bool)
-    net = lay_out(g)
+    net = tree_net(g)
     d = draw_net(g, net, options=DrawingOptions(pitch=20.0))
     assert d.closed_in_plane == 2
     # 9 folds + 2 closed seams = 11 joins for 10 faces: 21 edges - 11 = 10... each face edge counted once.
@@ -295,7 +245,7 @@ def test_tab_placement_other_side_shrink_and_mark() -> None:
 
 def test_auto_pitch_fits_one_sheet_and_turns_the_net() -> None:
     g = np.ones((1, 1, 6), dtype=bool)
-    net = lay_out(g)
+    net = tree_net(g)
     d = draw_net(g, net, options=DrawingOptions(sheet="300x150", margin=5.0))
     (sheet,) = d.sheets
     ext = np.ptp(net.corners2d.reshape(-1, 2), axis=0)
@@ -309,7 +259,7 @@ def test_auto_pitch_fits_one_sheet_and_turns_the_net() -> None:
 
 def test_split_over_sheets_with_matching_numbers() -> None:
     g = np.ones((3, 3, 3), dtype=bool)
-    net = lay_out(g)
+    net = tree_net(g)
     one = draw_net(g, net, options=DrawingOptions(pitch=12.0), name="box")
     d = draw_net(g, net, options=DrawingOptions(pitch=40.0), name="box")
     assert len(one.sheets) == 1 and len(d.sheets) > 1
@@ -328,12 +278,12 @@ def test_split_over_sheets_with_matching_numbers() -> None:
 def test_pitch_too_large_for_the_sheet() -> None:
     g = np.ones((1, 1, 1), dtype=bool)
     with pytest.raises(InvalidShapeError, match="do not fit on sheet"):
-        draw_net(g, lay_out(g), options=DrawingOptions(pitch=500.0))
+        draw_net(g, tree_net(g), options=DrawingOptions(pitch=500.0))
 
 
 def test_grid_lines_and_perforation() -> None:
     g = np.ones((3, 3, 3), dtype=bool)
-    net = lay_out(g)
+    net = tree_net(g)
     d = draw_net(g, net, options=DrawingOptions(pitch=12.0, grid_lines=True))
     assert all_layer(d, "GRID") == pytest.approx(d.fold_counts["flat"] * 12.0)
     plain = draw_net(g, net, options=DrawingOptions(pitch=12.0))
@@ -349,14 +299,14 @@ def test_grid_lines_and_perforation() -> None:
 
 
 def test_net_of_another_shape_is_rejected() -> None:
-    net = lay_out(np.ones((1, 1, 2), dtype=bool))
+    net = tree_net(np.ones((1, 1, 2), dtype=bool))
     with pytest.raises(FormatError, match="do not match"):
         draw_net(np.ones((1, 1, 1), dtype=bool), net)
 
 
 def test_broken_fold_is_rejected() -> None:
     g = np.ones((1, 1, 2), dtype=bool)
-    net = lay_out(g)
+    net = tree_net(g)
     c2 = net.corners2d.copy()
     c2[5] += 10
     bad = Net(voxel=net.voxel, normal=net.normal, corners3d=net.corners3d, corners2d=c2, folds=net.folds,
@@ -424,7 +374,7 @@ def split_pieces(grid: np.ndarray, net: Net, cut: int) -> list[Net]:
 
 def test_pieces_drawn_apart_agree_on_numbers_and_tabs() -> None:
     g = examples.ball(1)
-    net = lay_out(g)
+    net = tree_net(g)
     whole = draw_net(g, net, options=DrawingOptions(pitch=15.0))
     pieces = split_pieces(g, net, cut=len(net.folds) // 2)
     drawings = [draw_net(g, p, options=DrawingOptions(pitch=15.0)) for p in pieces]
@@ -447,7 +397,7 @@ def test_pieces_drawn_apart_agree_on_numbers_and_tabs() -> None:
 
 def test_face_of_another_shape_in_a_piece_is_rejected() -> None:
     g = examples.ball(1)
-    piece = split_pieces(g, lay_out(g), cut=0)[0]
+    piece = split_pieces(g, tree_net(g), cut=0)[0]
     moved = Net(voxel=piece.voxel + 5, normal=piece.normal, corners3d=piece.corners3d + 5,
                 corners2d=piece.corners2d, folds=piece.folds, seed=0, strategy="x")
     with pytest.raises(FormatError, match="do not match"):

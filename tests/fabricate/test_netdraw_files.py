@@ -10,45 +10,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from _handnets import tree_net
 
 from voxfab.errors import UnknownFormatError
 from voxfab.fabricate.netdraw import DrawingOptions, add_drawing_arguments, draw_net, write_drawing
 from voxfab.shape import VoxelShape, examples, surface_graph
 from voxfab.unfold import Net
-
-
-def bfs_net(grid: np.ndarray, seed: int = 0) -> Net:
-    """A net laid out breadth first from face 0 with the surface graph's forced placement."""
-    sg = surface_graph(grid)
-    nf = sg.face_count
-    c2 = np.zeros((nf, 4, 2), dtype=np.int64)
-    c2[0] = [(0, 0), (1, 0), (1, 1), (0, 1)]
-    placed = np.zeros(nf, dtype=bool)
-    placed[0] = True
-    cells = {(0, 0)}
-    folds = []
-    queue = [0]
-    while queue:
-        f = queue.pop(0)
-        for k in range(4):
-            g, kk = int(sg.neighbor[f, k]), int(sg.neighbor_edge[f, k])
-            if placed[g]:
-                continue
-            p0, p1 = c2[f, k], c2[f, (k + 1) % 4]
-            d = p1 - p0
-            n = np.array([d[1], -d[0]])
-            gc = np.zeros((4, 2), dtype=np.int64)
-            gc[kk], gc[(kk + 1) % 4], gc[(kk + 2) % 4], gc[(kk + 3) % 4] = p1, p0, p0 + n, p1 + n
-            cell = tuple(gc.min(axis=0).tolist())
-            if cell not in cells:
-                cells.add(cell)
-                c2[g] = gc
-                placed[g] = True
-                folds.append((f, g))
-                queue.append(g)
-    assert placed.all()
-    return Net(voxel=sg.voxel, normal=sg.normal, corners3d=sg.corners, corners2d=c2, folds=np.array(folds),
-               seed=seed, strategy="layout")
 
 
 def drawing_args(*argv: str, pitch: float | None = None) -> argparse.Namespace:
@@ -176,7 +143,7 @@ def test_pdf_renders_non_blank(tmp_path: Path, ball_net: Net) -> None:
 
 def test_split_sheets_write_numbered_files(tmp_path: Path) -> None:
     g = np.ones((3, 3, 3), dtype=bool)
-    net = bfs_net(g)
+    net = tree_net(g)
     args = drawing_args(pitch=40.0)
     d = draw_net(g, net, options=DrawingOptions(pitch=40.0))
     n = len(d.sheets)

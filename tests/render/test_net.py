@@ -1,20 +1,14 @@
-import importlib.util
 import itertools
-from pathlib import Path
 
 import numpy as np
 import pytest
+from _handnets import tree_net
 
 from voxfab.errors import InvalidShapeError
 from voxfab.render import net_layout, net_picture, net_seams, png_bytes
 from voxfab.render._net import LINE_COLORS, TAB_COLOR
 from voxfab.shape import FOLD_VALLEY, surface_graph
 from voxfab.unfold import Net
-
-_spec = importlib.util.spec_from_file_location("_tree_net", Path(__file__).with_name("_tree_net.py"))
-_mod = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(_mod)
-tree_net = _mod.tree_net
 
 CUBE = np.ones((1, 1, 1), dtype=bool)
 

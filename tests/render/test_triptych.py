@@ -1,19 +1,13 @@
-import importlib.util
 import re
 import zlib
-from pathlib import Path
 
 import numpy as np
 import pytest
+from _handnets import tree_net
 
 from voxfab.errors import UnfoldError
 from voxfab.render import net_picture, pdf_bytes, png_bytes, render, slice_sheet, triptych, triptych_layout
 from voxfab.render._triptych import make_net
-
-_spec = importlib.util.spec_from_file_location("_tree_net", Path(__file__).with_name("_tree_net.py"))
-_mod = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(_mod)
-tree_net = _mod.tree_net
 
 BOX = np.ones((2, 1, 1), dtype=bool)
 
