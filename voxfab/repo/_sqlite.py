@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import contextlib
 import sqlite3
+import time
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -128,6 +129,24 @@ def _migrate(conn: sqlite3.Connection, path: Path, *, create: bool) -> None:
         conn.execute(f"PRAGMA user_version = {SCHEMA_VERSION}")
 
 
+def _use_wal(conn: sqlite3.Connection) -> None:
+    """Put the file in WAL mode (kept in the file, so usually already done).
+
+    Switching needs an exclusive lock, and SQLite reports "locked" at once,
+    without its busy handler, while another process opens the new file: retry.
+    """
+    deadline = time.monotonic() + BUSY_TIMEOUT_S
+    while True:
+        try:
+            if str(conn.execute("PRAGMA journal_mode").fetchone()[0]).lower() != "wal":
+                conn.execute("PRAGMA journal_mode = WAL")
+            return
+        except sqlite3.OperationalError as exc:
+            if "locked" not in str(exc) or time.monotonic() > deadline:
+                raise
+            time.sleep(0.01)
+
+
 def connect(path: Path, *, create: bool) -> sqlite3.Connection:
     """Open (and with ``create`` make or upgrade) the repository file at ``path``.
 
@@ -159,7 +178,7 @@ def connect(path: Path, *, create: bool) -> sqlite3.Connection:
                 if "not a database" in str(exc):
                     raise RepositoryError(f"{path}: not a voxfab repository (not an SQLite file)") from exc
                 raise
-            conn.execute("PRAGMA journal_mode = WAL")
+            _use_wal(conn)
             conn.execute("PRAGMA synchronous = NORMAL")
     except BaseException:
         conn.close()
