@@ -271,7 +271,7 @@ def build_mesh(
     if hollow:
         g = hollow_out(g, hollow)
     elif fill:
-        g = fill_cavities(g)
+        g = _fill_cavities(g)
     w = thin_wall_warning(g, pitch_mm)
     if w:
         warnings.append(w)
@@ -290,16 +290,18 @@ def build_mesh(
     if do_bridge:
         width = _bridge_width(bridge_width, pitch_mm, warnings)
         boxes = bridge_boxes(found, pitch=pitch_mm, width=width)
-        refined = bridged_grid(g, boxes, pitch=pitch_mm)
+        # The bridges join every edge and corner contact, so each 26-connected
+        # component of the voxels is one piece of the bridged grid: its part.  (The
+        # checker counts the bodies and refuses a shell split between parts.)
+        labels26, n_bodies = ndimage.label(g, structure=np.ones((3, 3, 3), bool))
+        refined = bridged_grid(g, boxes, pitch=pitch_mm, labels=labels26)
         if refined is not None:
             # Bridges as cells of a rectilinear grid: meshed and checked exactly, no CAD kernel.
-            cells, coords = refined
-            labels_r = ndimage.label(cells, structure=ndimage.generate_binary_structure(3, 1))[0]
+            cells, coords, labels_r = refined
             sizes = [np.diff(c) for c in coords]
             exact_volume = float(sizes[0] @ (cells.astype(np.float64) @ sizes[2]) @ sizes[1]) * pitch_mm**3
             expect = dict(
-                what=name, expected_volume=exact_volume, expected_bounds=bounds,
-                expected_bodies=ndimage.label(g, structure=np.ones((3, 3, 3), bool))[1],
+                what=name, expected_volume=exact_volume, expected_bounds=bounds, expected_bodies=n_bodies,
             )
             try:
                 # Bridges close every edge contact: no contact midpoints to look for.
@@ -402,6 +404,18 @@ def build_mesh(
             f"{name}: mesh check failed: volume {checked.volume:.6g} mm³ differs from the CAD kernel's {solid.volume():.6g}"
         )
     return MeshResult(out, checked, pitch_mm, found.count, n_boxes, tuple(warnings))
+
+
+def _fill_cavities(g: npt.NDArray[np.bool_]) -> npt.NDArray[np.bool_]:
+    """:func:`voxfab.shape.fill_cavities` with scipy's labelling (scipy is loaded here anyway).
+
+    Every empty voxel not 6-connected to the outside of the grid is filled.
+    """
+    from scipy import ndimage
+
+    padded = np.pad(~g, 1, constant_values=True)
+    labels, _ = ndimage.label(padded, structure=ndimage.generate_binary_structure(3, 1))
+    return (labels != labels[0, 0, 0])[1:-1, 1:-1, 1:-1]
 
 
 def _bridge_width(width: float | None, pitch: float, warnings: list[str]) -> float:

@@ -124,6 +124,7 @@ def lattice_faces(
     Faces are sorted by ``(x, y, z, d)`` as in :func:`voxfab.shape.surface_graph`,
     and two corners get the same id exactly when ``surface_graph(grid).vertex``
     gives them the same id (see :func:`_fan_table`); the numbering differs.
+    The ids at one lattice point are consecutive.
 
     Returns
     -------
@@ -132,7 +133,7 @@ def lattice_faces(
     vertex : (F, 4) int64 ndarray
     position : (V, 3) int64 ndarray
     """
-    from ._kernels import exposed_keys, lattice_vertices
+    from ._kernels import exposed_cells, lattice_vertices
 
     global _FAN
     if _FAN is None:
@@ -141,13 +142,9 @@ def lattice_faces(
     p = np.pad(grid, 1)
     dims = np.array(p.shape, dtype=np.int64)
     # Filled cells of the padded grid never touch its border, so every neighbour index is valid.
-    keys = exposed_keys(
+    voxel, direction = exposed_cells(
         p, DIRECTIONS @ np.array([dims[1] * dims[2], dims[2], 1], dtype=np.int64), int(np.count_nonzero(grid))
     )
-    cell = keys // 6
-    direction = keys % 6
-    voxel = np.stack([cell // (dims[1] * dims[2]), (cell // dims[2]) % dims[1], cell % dims[2]], axis=1) - 1
-    direction = direction.astype(np.int64)
     vertex, position = lattice_vertices(voxel, direction, p, CORNER_OFFSETS, fan, fan_count)
     return voxel, direction, vertex, position
 
@@ -283,17 +280,16 @@ def voxel_mesh(
         rect_of_run[r_order] = rect_sorted
         n_rect = int(rect_sorted[-1]) + 1
         rect = rect_of_run[run]
+        # A rectangle's runs are consecutive in r_order, by increasing v, and share u0 and u1.
+        rbrk = np.flatnonzero(np.r_[True, rect_sorted[1:] != rect_sorted[:-1]])
+        q_u0 = r_u0[r_order[rbrk]]
+        q_u1 = r_u1[r_order[rbrk]]
+        q_v0 = rv[rbrk]
+        q_v1 = rv[np.r_[rbrk[1:] - 1, n_runs - 1]] + 1
     else:
         n_rect = nf
         rect = rows
-    q_u0 = np.full(n_rect, np.iinfo(np.int64).max)
-    q_v0 = np.full(n_rect, np.iinfo(np.int64).max)
-    q_u1 = np.zeros(n_rect, dtype=np.int64)
-    q_v1 = np.zeros(n_rect, dtype=np.int64)
-    np.minimum.at(q_u0, rect, u)
-    np.minimum.at(q_v0, rect, v)
-    np.maximum.at(q_u1, rect, u + 1)
-    np.maximum.at(q_v1, rect, v + 1)
+        q_u0, q_v0, q_u1, q_v1 = u, v, u + 1, v + 1
     q_first = np.zeros(n_rect, dtype=np.int64)
     q_first[rect] = rows
     q_d, q_plane = d_all[q_first], plane[q_first]
@@ -313,11 +309,10 @@ def voxel_mesh(
     keep_vertex = np.zeros(n_base, dtype=bool)
     mark_corners(q_d, q_u0, q_v0, q_u1, q_v1, rstart, fidx, vid, keep_vertex,
                   _ALONG_U, _ASCENDING, _AT_MAX)
-    pkey = (ipos[:, 0] * side + ipos[:, 1]) * side + ipos[:, 2]
-    porder = np.argsort(pkey)
-    same = pkey[porder[1:]] == pkey[porder[:-1]]
-    keep_vertex[porder[1:][same]] = True
-    keep_vertex[porder[:-1][same]] = True
+    # The ids of one lattice point are consecutive (see lattice_faces): no sort needed.
+    same = (ipos[1:, 0] == ipos[:-1, 0]) & (ipos[1:, 1] == ipos[:-1, 1]) & (ipos[1:, 2] == ipos[:-1, 2])
+    keep_vertex[1:][same] = True
+    keep_vertex[:-1][same] = True
     base_pos = np.concatenate([pos, mid_pos])
     n_mid = mid_pos.shape[0]
     triangles, tri_rect, star = triangulate(
@@ -335,17 +330,17 @@ def voxel_mesh(
     cpos[rows_s, (ax + 2) % 3] = (q_v0[star] + q_v1[star]) / 2.0
 
     all_pos = np.concatenate([pos, mid_pos, cpos])
-    if coords is not None:
-        # Piecewise-linear and strictly increasing: midpoints and centres stay
-        # strictly inside their segments and rectangles.
-        for a in range(3):
-            all_pos[:, a] = np.interp(all_pos[:, a], np.arange(len(coords[a])), coords[a])
-    all_pos *= float(pitch)
     used = np.zeros(all_pos.shape[0], dtype=bool)
     used[triangles.ravel()] = True
     remap = np.cumsum(used) - 1
     vertices = all_pos[used]
     triangles = remap[triangles]
+    if coords is not None:
+        # Piecewise-linear and strictly increasing: midpoints and centres stay
+        # strictly inside their segments and rectangles.
+        for a in range(3):
+            vertices[:, a] = np.interp(vertices[:, a], np.arange(len(coords[a])), coords[a])
+    vertices *= float(pitch)
 
     # Deterministic order: by rectangle (the kernel emits them so), which follows the sorted faces.
     if part_labels is None:

@@ -144,6 +144,12 @@ def triangulate(q_d, q_u0, q_v0, q_u1, q_v1, rstart, fidx, vid, mid_of, keep,
 
 
 @njit(cache=True)
+def out_end_of(tf, h):  # pragma: no cover - compiled
+    """End vertex of half-edge ``h`` of the flat triangle list ``tf``."""
+    return tf[h + 1 if h % 3 != 2 else h - 2]
+
+
+@njit(cache=True)
 def edge_fan_shells(t, nv):  # pragma: no cover - compiled
     """The checker's edge, fan and shell pass over a triangle list, in one sweep.
 
@@ -180,25 +186,36 @@ def edge_fan_shells(t, nv):  # pragma: no cover - compiled
         out[fill[a]] = h
         out_end[fill[a]] = tf[h + 1 if h % 3 != 2 else h - 2]
         fill[a] += 1
+    # Half-edges grouped by their end vertex too, to find each one's reverse.
+    in_start = np.zeros(nv + 1, dtype=np.int64)
+    for h in range(nh):
+        in_start[out_end_of(tf, h) + 1] += 1
+    for i in range(nv):
+        in_start[i + 1] += in_start[i]
+    in_fill = in_start[:-1].copy()
+    inc = np.empty(nh, dtype=np.int64)
+    for h in range(nh):
+        b = out_end_of(tf, h)
+        inc[in_fill[b]] = h
+        in_fill[b] += 1
+    # stamp[b] == a + 1 while vertex a is scanned: a -> b seen, as half-edge slot[b].
+    stamp = np.zeros(nv, dtype=np.int64)
+    slot = np.empty(nv, dtype=np.int64)
     twin = np.empty(nh, dtype=np.int64)
     for a in range(nv):
         for i in range(start[a], start[a + 1]):
             b = out_end[i]
-            same = 0
-            for j in range(start[a], start[a + 1]):
-                if out_end[j] == b:
-                    same += 1
-            if same != 1:
-                return 1, labels, 0
-            back = 0
-            tw = -1
-            for j in range(start[b], start[b + 1]):
-                if out_end[j] == a:
-                    back += 1
-                    tw = out[j]
-            if back != 1:
+            if stamp[b] == a + 1:
+                return 1, labels, 0  # a -> b twice
+            stamp[b] = a + 1
+            slot[b] = out[i]
+        # Every half-edge c -> a needs the reverse a -> c (unique: checked just above).
+        for i in range(in_start[a], in_start[a + 1]):
+            h = inc[i]
+            c = tf[h]
+            if stamp[c] != a + 1:
                 return 2, labels, 0
-            twin[out[i]] = tw
+            twin[h] = slot[c]
     # The corner after h around its start vertex begins the half-edge after h's
     # twin; walk each vertex's corners from its first one: one cycle through all
     # of them means one fan.
@@ -433,18 +450,51 @@ def contact_scan(p, q, edge_diagonals, body_diagonals):  # pragma: no cover - co
 
 
 @njit(cache=True)
-def exposed_keys(padded, steps, filled):  # pragma: no cover - compiled
-    """Sorted keys ``6 · (flat padded index) + d`` of the exposed faces.
+def exposed_cells(padded, steps, filled):  # pragma: no cover - compiled
+    """Exposed faces as ``(voxel (F, 3), direction (F,))``, sorted by ``(x, y, z, d)``.
 
-    ``steps[d]`` is the flat offset of direction ``d``; ``filled`` the number of filled cells.
+    ``steps[d]`` is the flat offset of direction ``d`` in ``padded`` (the grid with
+    one empty cell around it); ``filled`` the number of filled cells.  Voxels are
+    in unpadded coordinates.
     """
     flat = padded.ravel()
-    keys = np.empty(6 * filled, dtype=np.int64)
+    nx, ny, nz = padded.shape
+    voxel = np.empty((6 * filled, 3), dtype=np.int64)
+    direction = np.empty(6 * filled, dtype=np.int64)
     n = 0
-    for c in range(flat.size):
-        if flat[c]:
-            for d in range(6):
-                if not flat[c + steps[d]]:
-                    keys[n] = 6 * c + d
-                    n += 1
-    return keys[:n]
+    for x in range(nx):
+        for y in range(ny):
+            row = (x * ny + y) * nz
+            for z in range(nz):
+                c = row + z
+                if flat[c]:
+                    for d in range(6):
+                        if not flat[c + steps[d]]:
+                            voxel[n, 0] = x - 1
+                            voxel[n, 1] = y - 1
+                            voxel[n, 2] = z - 1
+                            direction[n] = d
+                            n += 1
+    return voxel[:n], direction[:n]
+
+
+@njit(cache=True)
+def fill_boxes(cells, lab, lo, hi):  # pragma: no cover - compiled
+    """Fill the cells of each box ``lo[b] .. hi[b]`` (exclusive) and give them one part label.
+
+    ``lab`` holds the part of the voxel under each cell (0 when empty); each box
+    takes the largest label it overlaps (a box is one connected block, so all of
+    it belongs to one part).
+    """
+    for b in range(lo.shape[0]):
+        m = 0
+        for x in range(lo[b, 0], hi[b, 0]):
+            for y in range(lo[b, 1], hi[b, 1]):
+                for z in range(lo[b, 2], hi[b, 2]):
+                    if lab[x, y, z] > m:
+                        m = lab[x, y, z]
+        for x in range(lo[b, 0], hi[b, 0]):
+            for y in range(lo[b, 1], hi[b, 1]):
+                for z in range(lo[b, 2], hi[b, 2]):
+                    cells[x, y, z] = True
+                    lab[x, y, z] = m
