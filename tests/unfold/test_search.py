@@ -184,3 +184,19 @@ def test_bad_options_are_refused():
         unfold(grid, rng=0, fit=(0, 3))
     with pytest.raises(InvalidShapeError, match="count"):
         unfold_many(grid, count=0, rng=0)
+
+
+def test_a_net_of_the_filled_surface_says_so_and_keeps_it_in_json():
+    import numpy as np
+
+    from voxfab.shape import fill_cavities
+    from voxfab.unfold import Net, unfold, validate
+
+    g = np.ones((5, 5, 5), bool)
+    g[2, 2, 2] = False  # one enclosed cavity
+    net = unfold(g, rng=3, fill=True)
+    assert net.filled
+    validate(fill_cavities(g), net)
+    again = Net.from_json(net.to_json())
+    assert again.filled and again.to_json() == net.to_json()
+    assert not unfold(fill_cavities(g), rng=3).filled

@@ -63,6 +63,8 @@ def read_npz(path: PathLike) -> ReadResult:
             arr = np.asarray(data[name])
     except VoxfabError:
         raise
+    # zipfile raises NotImplementedError for a member whose compression method
+    # field is garbage, which a corrupt archive can have.
     except (ValueError, OSError, EOFError, NotImplementedError, zipfile.BadZipFile, zlib.error) as exc:
         raise FormatError(f"{path}: not a valid .npz file ({exc})") from None
     return ReadResult(arr)

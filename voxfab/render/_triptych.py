@@ -102,7 +102,7 @@ def triptych(
     rng : numpy Generator or int
         Seed of the net when ``net`` is not given (``voxfab.unfold.unfold(grid, rng=rng)``).
     net : Net or None
-        A net of the shape (or of its outer surface, cavities filled) to draw
+        A net of the shape (of its outer surface when ``net.filled``) to draw
         instead of a new one.
     panel : int
         Side of each square panel in pixels.
@@ -117,18 +117,14 @@ def triptych(
     """
     from PIL import Image, ImageDraw
 
-    from voxfab.shape import exposed_faces, fill_cavities
+    from voxfab.shape import fill_cavities
 
     side = check_size(panel, name="panel", minimum=64)
     grid = shape_grid(shape)
     bg = parse_color(background, name="background")
     fg = parse_color(color, name="color")
     lay = triptych_layout(side)
-    net_grid = grid
-    if net is not None and net.face_count != exposed_faces(grid):
-        # A net of the outer surface only, as `voxfab net --fill` and the recipe
-        # option `fill` make for shapes with enclosed cavities.
-        net_grid = fill_cavities(grid)
+    net_grid = fill_cavities(grid) if net is not None and net.filled else grid
     try:
         the_net = net if net is not None else make_net(grid, rng=rng)
         net_img = net_picture(the_net, net_grid, size=side, background=bg, color=fg)

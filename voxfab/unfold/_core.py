@@ -274,6 +274,32 @@ def _blocked_options(nb, ne, pos, rot, par, board, off, cl, cnt, opt, root):
 
 
 @njit(cache=True)
+def blocker(h, pos, rot, board, off):
+    """The face on the cell that option ``h`` (face ``h >> 2``, edge ``h & 3``) would take."""
+    i = h >> 2
+    return board[pos[i] + off[((h & 3) + rot[i]) & 3]]
+
+
+@njit(cache=True)
+def _smallest_blocking(opt, n, tries, sampled, st, nb, pos, rot, par, board, off, stack, f):
+    """The option among ``tries`` (random ones when ``sampled``, else the first)
+    whose blocking subtree is smallest and not above the option's own face; -1 if none."""
+    chosen = -1
+    best_size = f + 1
+    for t in range(tries):
+        h = opt[randint(st, n)] if sampled else opt[t]
+        i = h >> 2
+        m = blocker(h, pos, rot, board, off)
+        if in_subtree(i, m, par):
+            continue
+        size = subtree_size(m, nb, pos, par, stack, best_size)
+        if size < best_size:
+            best_size = size
+            chosen = h
+    return chosen
+
+
+@njit(cache=True)
 def grow(nb, ne, pos, rot, par, board, off, cl, cp, cnt, st, stack, opt,
          root_cells, width, mode, tour, max_steps, restart_after, samples, p_lift, sparse):
     """Grow until every face is placed or ``max_steps`` steps are spent.
@@ -307,24 +333,15 @@ def grow(nb, ne, pos, rot, par, board, off, cl, cp, cnt, st, stack, opt,
             n = 0
         chosen = -1
         if mode == MODE_RUIN:
-            best_size = f + 1
-            for _ in range(min(n, samples) if n > 0 else 0):
-                h = opt[randint(st, n)]
-                i = h >> 2
-                m = board[pos[i] + off[((h & 3) + rot[i]) & 3]]
-                if in_subtree(i, m, par):
-                    continue
-                size = subtree_size(m, nb, pos, par, stack, best_size)
-                if size < best_size:
-                    best_size = size
-                    chosen = h
+            chosen = _smallest_blocking(opt, n, min(n, samples), True, st, nb, pos, rot, par, board, off,
+                                        stack, f)
             if chosen < 0 and n > 0:
                 # Every sample hung under its own blocker: take the first usable one.
                 t0 = randint(st, n)
                 for t in range(n):
                     h = opt[(t0 + t) % n]
                     i = h >> 2
-                    m = board[pos[i] + off[((h & 3) + rot[i]) & 3]]
+                    m = blocker(h, pos, rot, board, off)
                     if not in_subtree(i, m, par):
                         chosen = h
                         break
@@ -334,31 +351,21 @@ def grow(nb, ne, pos, rot, par, board, off, cl, cp, cnt, st, stack, opt,
             for t in range(n):
                 h = opt[t]
                 i = h >> 2
-                m = board[pos[i] + off[((h & 3) + rot[i]) & 3]]
+                m = blocker(h, pos, rot, board, off)
                 if m != i and subtree_size(m, nb, pos, par, stack, 1) == 1:
                     opt[leaves], opt[t] = opt[t], opt[leaves]
                     leaves += 1
             if leaves > 0:
                 chosen = opt[randint(st, leaves)]
             else:
-                best_size = f + 1
-                for t in range(n):
-                    h = opt[t]
-                    i = h >> 2
-                    m = board[pos[i] + off[((h & 3) + rot[i]) & 3]]
-                    if in_subtree(i, m, par):
-                        continue
-                    size = subtree_size(m, nb, pos, par, stack, best_size)
-                    if size < best_size:
-                        best_size = size
-                        chosen = h
+                chosen = _smallest_blocking(opt, n, n, False, st, nb, pos, rot, par, board, off, stack, f)
         if chosen < 0:
             cnt[C_RESTARTS] += 1
             since_best = 0
             start(nb, ne, pos, rot, par, board, off, cl, cp, cnt, st, root_cells, width)
             continue
         i = chosen >> 2
-        m = board[pos[i] + off[((chosen & 3) + rot[i]) & 3]]
+        m = blocker(chosen, pos, rot, board, off)
         if mode == MODE_RUIN and random(st) < p_lift:
             # Now and then ruin further up the tree, so small swaps cannot cycle.
             lift = 1 + randint(st, 3)

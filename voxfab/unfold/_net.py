@@ -48,6 +48,10 @@ class Net:
         Counts of folds by type.
     seams_without_tab_room : int
         Cut edge pairs where neither side has a free cell for a glue tab.
+    filled : bool
+        The net unfolds the outer surface of the shape with its enclosed
+        cavities filled (``unfold(..., fill=True)``), so its faces are those of
+        ``surface_graph(fill_cavities(shape))``.
     """
 
     voxel: np.ndarray
@@ -61,6 +65,7 @@ class Net:
     valley: int = 0
     flat: int = 0
     seams_without_tab_room: int = 0
+    filled: bool = False
 
     def __post_init__(self) -> None:
         for name, dtype, tail in (
@@ -93,6 +98,7 @@ class Net:
             "valley": int(self.valley),
             "flat": int(self.flat),
             "seams_without_tab_room": int(self.seams_without_tab_room),
+            "filled": bool(self.filled),
             "faces": [
                 {
                     "voxel": v.tolist(),
@@ -133,6 +139,7 @@ class Net:
                 valley=int(data.get("valley", 0)),
                 flat=int(data.get("flat", 0)),
                 seams_without_tab_room=int(data.get("seams_without_tab_room", 0)),
+                filled=bool(data.get("filled", False)),
             )
         except (KeyError, TypeError, ValueError) as exc:
             raise FormatError(f"malformed {NET_FORMAT} data: {exc}") from None

@@ -327,13 +327,14 @@ def unfold(
     if mode is Pieces.ONE:
         if len(parts) > 1:
             _refuse_parts(g, len(parts))
-        return _one_piece(g, sg, parts[0], seed, strat, fit, tab_aware, deadline, timeout, compact)
+        net = _one_piece(g, sg, parts[0], seed, strat, fit, tab_aware, deadline, timeout, compact)
+        return dataclasses.replace(net, filled=fill)
     nets: list[Net] = []
     for t, part in enumerate(parts):
         remaining = max(deadline - time.monotonic(), 0.0)
         part_deadline = time.monotonic() + remaining / (len(parts) - t)
         nets.extend(_pieces(g, sg, part, seed + t, strat, fit, tab_aware, part_deadline))
-    return nets
+    return [dataclasses.replace(n, filled=fill) for n in nets]
 
 
 def _one_piece(g: npt.NDArray[np.bool_], sg: SurfaceGraph, faces: npt.NDArray[np.int64],

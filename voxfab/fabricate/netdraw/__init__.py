@@ -232,8 +232,8 @@ def recipe_output(
         x0, y0, x1, y1 = drawable_area(options)
         pad = 2 * options.tab_width
         search["fit"] = (int((x1 - x0 - pad) // pitch), int((y1 - y0 - pad) // pitch))
-    grid = fill_cavities(shape.grid) if fill else shape.grid
-    net = unfold.unfold(grid, **search)
+    net = unfold.unfold(shape.grid, fill=fill, **search)
+    grid = fill_cavities(shape.grid) if net.filled else shape.grid
     unfold.validate(grid, net)
     outdir = Path(outdir)
     write_text(outdir / "net.json", net.to_json())
