@@ -108,28 +108,53 @@ def _same_partition(a: np.ndarray, b: np.ndarray) -> bool:
     return len(pairs) == len(set(a.ravel().tolist())) == len(set(b.ravel().tolist()))
 
 
+def _corner_vertices(m: MeshData, g: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Mesh vertex used at each corner of each surface-graph face, read off an unmerged mesh.
+
+    Each triangle lies in one voxel face: its normal gives the direction, its
+    centroid the face.  Returns the surface graph's ids ``(F, 4)`` and the mesh's.
+    """
+    from voxfab.shape import surface_graph
+    from voxfab.shape._surface import DIRECTIONS
+
+    sg = surface_graph(g)
+    v = m.vertices[m.triangles]
+    normal = np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0])
+    d = np.argmax(np.rint(normal / np.linalg.norm(normal, axis=1)[:, None]) @ DIRECTIONS.T, axis=1)
+    centroid = v.mean(axis=1)
+    voxel = np.floor(centroid).astype(np.int64)
+    a = d // 2
+    rows = np.arange(len(d))
+    # The face plane is the voxel's side: step back inside for faces facing +axis.
+    voxel[rows, a] = np.rint(centroid[rows, a]).astype(np.int64) - (d % 2 == 0)
+    face_key = {(tuple(vx), int(dd)): i for i, (vx, dd) in enumerate(zip(sg.voxel.tolist(), sg.direction.tolist()))}
+    mesh_ids = np.full(sg.vertex.shape, -1)
+    for t, vx, dd in zip(m.triangles, voxel.tolist(), d.tolist()):
+        f = face_key[(tuple(vx), dd)]
+        for vid in t:
+            hit = np.flatnonzero((sg.corners[f] == m.vertices[vid]).all(axis=1))
+            if hit.size:
+                mesh_ids[f, hit[0]] = vid
+    assert (mesh_ids >= 0).all()
+    return sg.vertex, mesh_ids
+
+
 @settings(max_examples=80, deadline=None)
 @given(grids)
-def test_table_vertex_ids_split_like_the_surface_graph(g):
-    from voxfab.fabricate.mesh._faces import lattice_faces
-    from voxfab.shape import surface_graph
-
+def test_vertex_ids_split_like_the_surface_graph(g):
     if not g.any():
         return
-    sg = surface_graph(g)
-    voxel, direction, vertex, position = lattice_faces(g)
-    assert np.array_equal(voxel, sg.voxel) and np.array_equal(direction, sg.direction)
-    assert _same_partition(vertex, sg.vertex)
-    assert np.array_equal(position[vertex], sg.corners)
+    graph_ids, mesh_ids = _corner_vertices(voxel_mesh(g, merge=False), g)
+    assert _same_partition(graph_ids, mesh_ids)
 
 
 def test_contact_free_mesh_of_a_bridged_grid_is_checked():
     from voxfab.fabricate.mesh import bridge_boxes, find_contacts
-    from voxfab.fabricate.mesh._contacts import bridged_grid
+    from voxfab.fabricate.mesh._contacts import NO_CONTACTS, bridged_grid
 
     g = examples.random_shape(5, side=6, fill=0.3)
     cells, coords = bridged_grid(g, bridge_boxes(find_contacts(g), pitch=1.0, width=0.6), pitch=1.0)
-    fast = voxel_mesh(cells, coords=coords, contact_free=True)
+    fast = voxel_mesh(cells, coords=coords, contacts=NO_CONTACTS)
     slow = voxel_mesh(cells, coords=coords)
     sizes = [np.diff(c) for c in coords]
     exact = float(np.einsum("ijk,i,j,k->", cells, *sizes))
@@ -138,11 +163,8 @@ def test_contact_free_mesh_of_a_bridged_grid_is_checked():
     assert _t_junctions(fast) == 0
 
 
-def test_table_vertex_ids_on_worst_cases():
-    from voxfab.fabricate.mesh._faces import lattice_faces
-    from voxfab.shape import surface_graph
-
-    checker = np.indices((9, 9, 9)).sum(axis=0) % 2 == 0
-    for g in (checker, ~checker, examples.random_shape(0), examples.torus(6, 2)):
-        _, _, vertex, _ = lattice_faces(g)
-        assert _same_partition(vertex, surface_graph(g).vertex)
+def test_vertex_ids_on_worst_cases():
+    checker = np.indices((7, 7, 7)).sum(axis=0) % 2 == 0
+    for g in (checker, ~checker, examples.random_shape(0, side=10), examples.torus(6, 2)):
+        graph_ids, mesh_ids = _corner_vertices(voxel_mesh(g, merge=False), g)
+        assert _same_partition(graph_ids, mesh_ids)

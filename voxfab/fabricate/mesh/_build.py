@@ -14,7 +14,7 @@ from voxfab.errors import FabricationError, InvalidShapeError
 from voxfab.shape import VoxelShape, crop, exposed_faces, fill_cavities
 
 from ._check import MeshReport, check_mesh
-from ._contacts import bridge_boxes, bridged_grid, find_contacts
+from ._contacts import NO_CONTACTS, bridge_boxes, bridged_grid, find_contacts
 from ._data import MeshData
 from ._faces import voxel_mesh
 
@@ -306,7 +306,7 @@ def build_mesh(
             try:
                 # Bridges close every edge contact: no contact midpoints to look for.
                 mesh = voxel_mesh(cells, pitch=pitch_mm, merge=merge, part_labels=labels_r, coords=coords,
-                                  contact_free=True)
+                                  contacts=NO_CONTACTS)
                 report = check_mesh(mesh, **expect)
             except FabricationError:
                 # An edge contact left between bridges: mesh again with its midpoints.
@@ -317,7 +317,7 @@ def build_mesh(
         check_positive(bridge_width, name="bridge_width")
     if mesh is None:
         labels6 = ndimage.label(g, structure=ndimage.generate_binary_structure(3, 1))[0]
-        mesh = voxel_mesh(g, pitch=pitch_mm, merge=merge, part_labels=labels6)
+        mesh = voxel_mesh(g, pitch=pitch_mm, merge=merge, part_labels=labels6, contacts=found)
         exact_volume = float(g.sum()) * pitch_mm**3
         report = check_mesh(mesh, what=name, expected_volume=exact_volume, expected_bounds=bounds)
     n_boxes = len(boxes)

@@ -109,11 +109,14 @@ def check_mesh(
         raise _fail(what, f"{int(bad.sum())} triangles repeat a vertex", v[t[bad, 0]])
     # One cross product per triangle serves the area test and the volumes:
     # det[a-r, b-r, c-r] = (a-r) . ((b-a) x (c-a)).
-    from ._kernels import edge_fan_shells, triangle_measures
+    from ._kernels import edge_fan_shells, triangle_measures, vertex_bounds
 
     t = np.ascontiguousarray(t, dtype=np.int64)
-    tri_vol, area2 = triangle_measures(np.ascontiguousarray(v), t, v.mean(axis=0))
-    scale = float(np.ptp(v, axis=0).max()) or 1.0
+    v = np.ascontiguousarray(v)
+    bmin, bmax = vertex_bounds(v)
+    # Cones from the box centre keep the volume sums well conditioned.
+    tri_vol, area2 = triangle_measures(v, t, (bmin + bmax) / 2.0)
+    scale = float((bmax - bmin).max()) or 1.0
     flat = area2 <= (1e-12 * scale * scale)
     if flat.any():
         raise _fail(what, f"{int(flat.sum())} triangles have zero area", v[t[flat, 0]])
@@ -142,7 +145,6 @@ def check_mesh(
                 raise _fail(what, f"volume {total:.6g} mm³ outside the expected range [{lo:.6g}, {hi:.6g}]")
         elif abs(total - expected_volume) > tolerance * max(abs(expected_volume), 1e-9):
             raise _fail(what, f"volume {total:.9g} mm³, expected {expected_volume:.9g}")
-    bmin, bmax = v.min(axis=0), v.max(axis=0)
     if expected_bounds is not None:
         eb = np.asarray(expected_bounds, dtype=np.float64)
         if np.abs(np.stack([bmin, bmax]) - eb).max() > tolerance * scale:

@@ -63,6 +63,15 @@ class Contacts:
         )
 
 
+#: No contacts at all: what a bridged grid promises.
+NO_CONTACTS = Contacts(
+    edges=np.zeros((0, 2, 3), dtype=np.int64),
+    edge_voxels=np.zeros((0, 2, 3), dtype=np.int64),
+    points=np.zeros((0, 3), dtype=np.int64),
+    point_voxels=np.zeros((0, 2, 3), dtype=np.int64),
+)
+
+
 def find_contacts(grid: npt.ArrayLike) -> Contacts:
     """Find voxel pairs that touch only along an edge or only at a corner.
 

@@ -9,13 +9,7 @@ import numpy as np
 from numba import njit
 
 
-@njit(cache=True)
-def _face_at(r, cu, cv, q_u0, q_v0, q_u1, rstart, fidx):  # pragma: no cover - compiled
-    """The face at plane coordinates (cu, cv) of rectangle ``r`` (its faces are stored row by row)."""
-    return fidx[rstart[r] + (cv - q_v0[r]) * (q_u1[r] - q_u0[r]) + (cu - q_u0[r])]
-
-
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _border_corner(d, k, u0, v0, u1, v1, step, along_u_t, asc_t, at_max_t):  # pragma: no cover - compiled
     """Plane coordinates (u, v) of the face on side ``k`` at ``step`` of a rectangle."""
     along_u = along_u_t[d, k]
@@ -31,56 +25,216 @@ def _border_corner(d, k, u0, v0, u1, v1, step, along_u_t, asc_t, at_max_t):  # p
     return fixed, moving
 
 
-@njit(cache=True)
-def mark_corners(q_d, q_u0, q_v0, q_u1, q_v1, rstart, fidx, vid, keep,
-                  along_u_t, asc_t, at_max_t):  # pragma: no cover - compiled
-    """Mark the vertex at the start of each side of every rectangle as kept."""
-    for r in range(q_d.size):
-        d = q_d[r]
-        for k in range(4):
-            cu, cv = _border_corner(d, k, q_u0[r], q_v0[r], q_u1[r], q_v1[r], 0, along_u_t, asc_t, at_max_t)
-            f = _face_at(r, cu, cv, q_u0, q_v0, q_u1, rstart, fidx)
-            keep[vid[f, k]] = True
+@njit(cache=True, inline="always")
+def _config(p, x, y, z):  # pragma: no cover - compiled
+    """Filling of the 8 padded cells around lattice point (x, y, z): bit ``4 dx + 2 dy + dz``."""
+    c = 0
+    for b in range(8):
+        if p[x + (b >> 2), y + ((b >> 1) & 1), z + (b & 1)]:
+            c |= 1 << b
+    return c
 
 
 @njit(cache=True)
-def triangulate(q_d, q_u0, q_v0, q_u1, q_v1, rstart, fidx, vid, mid_of, keep,
-                 base_pos, first_centre, along_u_t, asc_t, at_max_t):  # pragma: no cover - compiled
-    """Triangles of every rectangle with its kept border vertices (see the module notes).
+def stack_runs(faces, nu, nv, d, merge):  # pragma: no cover - compiled
+    """Rectangles of the exposed faces of one direction ``d``.
 
-    Returns the triangles, the rectangle of each, and the rectangles that got a centre vertex.
+    ``faces`` are sorted flat indices into a ``(planes, nv, nu)`` array (u
+    fastest).  Each row is cut into runs along u, and a run with the same ends as
+    a rectangle's last row, just below it, extends that rectangle.  Returns
+    ``(R, 6)`` rows ``(d, plane, u0, v0, u1, v1)``, exclusive ends, ordered by
+    ``(plane, v0, u0)``; without ``merge`` every face is a rectangle.
     """
-    n_rect = q_d.size
-    bound = 0
-    for r in range(n_rect):
-        bound += 4 * ((q_u1[r] - q_u0[r]) + (q_v1[r] - q_v0[r]))
+    nf = faces.size
+    out = np.empty((nf, 6), dtype=np.int64)
+    last = np.empty(nu, dtype=np.int64)  # rectangle whose last run starts at u
+    plane_now = -1
+    n = 0
+    i = 0
+    while i < nf:
+        f = faces[i]
+        u0 = f % nu
+        v = (f // nu) % nv
+        plane = f // (nu * nv)
+        j = i + 1
+        if merge:
+            while j < nf and faces[j] == faces[j - 1] + 1 and faces[j] % nu != 0:
+                j += 1
+        u1 = u0 + (j - i)
+        i = j
+        if plane != plane_now:
+            last[:] = -1
+            plane_now = plane
+        r = last[u0]
+        if merge and r >= 0 and out[r, 5] == v and out[r, 4] == u1:
+            out[r, 5] = v + 1
+            continue
+        out[n, 0] = d
+        out[n, 1] = plane
+        out[n, 2] = u0
+        out[n, 3] = v
+        out[n, 4] = u1
+        out[n, 5] = v + 1
+        last[u0] = n
+        n += 1
+    return out[:n]
+
+
+@njit(cache=True)
+def rectangle_mesh(p, rects, contact_keys, fan, fan_count, corner_offsets, edge_out, dirs,
+                   along_u_t, asc_t, at_max_t):  # pragma: no cover - compiled
+    """Triangles of merged rectangles, with vertices split like the surface graph.
+
+    ``p`` is the grid with one empty cell around it and ``rects`` the rows of
+    :func:`stack_runs`.  A lattice point gets ``fan_count[config]`` vertex ids at
+    its first use, ``config`` being the filling of its 8 cells; a face corner takes
+    the one ``fan`` names.  ``contact_keys`` are the sorted keys
+    ``3 * point + axis`` of the lattice edges where two voxels touch along an edge
+    (two diagonal cells filled, two empty), keyed by their lower end point.
+
+    Buffers are sized up front: growing an array inside the loops makes numba
+    reload it at every step (measured three times slower).
+
+    Returns
+    -------
+    triangles : (T, 3) int64 ndarray
+    rectangle : (T,) int64 ndarray
+        Rectangle of each triangle.
+    position : (V, 3) float64 ndarray
+        Vertex positions in voxel-corner coordinates.
+    """
+    nr = rects.shape[0]
+    sx, sy, sz = p.shape[0] - 1, p.shape[1] - 1, p.shape[2] - 1
+    # slot: first id of a point; -1 not seen yet, -2 seen and not kept (one vertex, no corner).
+    slot = np.empty(sx * sy * sz, dtype=np.int32)  # half the memory of int64: fewer cache misses
+    slot[:] = -1
+    cfg = np.zeros(sx * sy * sz, dtype=np.uint8)
+    steps = 0
+    longest = 1
+    for r in range(nr):
+        half = (rects[r, 4] - rects[r, 2]) + (rects[r, 5] - rects[r, 3])
+        steps += 2 * half
+        longest = max(longest, half)
+    n_keys = contact_keys.size
+    cap = 4 * min(sx * sy * sz, steps) + 2 * n_keys + nr
+    pos = np.empty((cap, 3))
+    keep = np.zeros(cap, dtype=np.bool_)
+    mid = np.empty(2 * n_keys, dtype=np.int64)
+    mid[:] = -1
+    n = 0
+    # Pass 1: every rectangle corner is kept, and so is every vertex of a split point.
+    for r in range(nr):
+        d, plane, u0, v0, u1, v1 = rects[r, 0], rects[r, 1], rects[r, 2], rects[r, 3], rects[r, 4], rects[r, 5]
+        a = d // 2
+        for k in range(4):
+            cu, cv = _border_corner(d, k, u0, v0, u1, v1, 0, along_u_t, asc_t, at_max_t)
+            vx = plane if a == 0 else (cu if a == 2 else cv)
+            vy = plane if a == 1 else (cu if a == 0 else cv)
+            vz = plane if a == 2 else (cu if a == 1 else cv)
+            x = vx + corner_offsets[d, k, 0]
+            y = vy + corner_offsets[d, k, 1]
+            z = vz + corner_offsets[d, k, 2]
+            q = (x * sy + y) * sz + z
+            if slot[q] < 0:
+                c = _config(p, x, y, z)
+                m = fan_count[c]
+                slot[q] = n
+                cfg[q] = c
+                for j in range(m):
+                    pos[n + j, 0] = x
+                    pos[n + j, 1] = y
+                    pos[n + j, 2] = z
+                    keep[n + j] = m > 1
+                n += m
+            keep[slot[q] + fan[cfg[q], (vx - x + 1) * 4 + (vy - y + 1) * 2 + (vz - z + 1), d]] = True
+    # Pass 2: walk each border collecting kept vertices, then zip or fan the polygon.
+    bound = 2 * steps
     tris = np.empty((bound, 3), dtype=np.int64)
     tri_rect = np.empty(bound, dtype=np.int64)
-    star = np.empty(n_rect, dtype=np.int64)
-    n_star = 0
-    nt = 0
-    cap = 4 * int(max(np.max(q_u1 - q_u0), np.max(q_v1 - q_v0))) + 8
-    ent = np.empty(4 * cap, dtype=np.int64)
+    ent = np.empty(4 * longest + 8, dtype=np.int64)
     side_n = np.zeros(4, dtype=np.int64)
-    for r in range(n_rect):
-        d = q_d[r]
-        n = 0
-        side_n[:] = 0
+    nt = 0
+    for r in range(nr):
+        d, plane, u0, v0, u1, v1 = rects[r, 0], rects[r, 1], rects[r, 2], rects[r, 3], rects[r, 4], rects[r, 5]
+        a = d // 2
+        e = 0
         for k in range(4):
-            length = (q_u1[r] - q_u0[r]) if along_u_t[d, k] else (q_v1[r] - q_v0[r])
-            for step in range(length):
-                cu, cv = _border_corner(d, k, q_u0[r], q_v0[r], q_u1[r], q_v1[r], step, along_u_t, asc_t, at_max_t)
-                f = _face_at(r, cu, cv, q_u0, q_v0, q_u1, rstart, fidx)
-                c = vid[f, k]
-                if step == 0 or keep[c]:
-                    ent[n] = c
+            side_n[k] = 0
+            length = (u1 - u0) if along_u_t[d, k] else (v1 - v0)
+            for s in range(length):
+                cu, cv = _border_corner(d, k, u0, v0, u1, v1, s, along_u_t, asc_t, at_max_t)
+                vx = plane if a == 0 else (cu if a == 2 else cv)
+                vy = plane if a == 1 else (cu if a == 0 else cv)
+                vz = plane if a == 2 else (cu if a == 1 else cv)
+                x = vx + corner_offsets[d, k, 0]
+                y = vy + corner_offsets[d, k, 1]
+                z = vz + corner_offsets[d, k, 2]
+                q = (x * sy + y) * sz + z
+                if slot[q] == -1:
+                    c = _config(p, x, y, z)
+                    m = fan_count[c]
+                    if m > 1:  # a split point is kept wherever it appears
+                        slot[q] = n
+                        cfg[q] = c
+                        for j in range(m):
+                            pos[n + j, 0] = x
+                            pos[n + j, 1] = y
+                            pos[n + j, 2] = z
+                            keep[n + j] = True
+                        n += m
+                    else:
+                        slot[q] = -2
+                if slot[q] >= 0:
+                    vid = slot[q] + fan[cfg[q], (vx - x + 1) * 4 + (vy - y + 1) * 2 + (vz - z + 1), d]
+                    if keep[vid]:
+                        ent[e] = vid
+                        e += 1
+                        side_n[k] += 1
+                if n_keys == 0:
+                    continue
+                # Edge k is a contact segment when the cell beside it is empty and the
+                # cell beyond the corner (voxel b) is filled.  Where both its ends are
+                # shared by the two voxels' faces, each voxel's pair of faces on it
+                # gets a midpoint of its own, so no edge is in four triangles.
+                u = edge_out[d, k]
+                if p[vx + dirs[u, 0] + 1, vy + dirs[u, 1] + 1, vz + dirs[u, 2] + 1]:
+                    continue
+                bx = vx + dirs[u, 0] + dirs[d, 0]
+                by = vy + dirs[u, 1] + dirs[d, 1]
+                bz = vz + dirs[u, 2] + dirs[d, 2]
+                if not p[bx + 1, by + 1, bz + 1]:
+                    continue
+                k1 = (k + 1) % 4
+                x1 = vx + corner_offsets[d, k1, 0]
+                y1 = vy + corner_offsets[d, k1, 1]
+                z1 = vz + corner_offsets[d, k1, 2]
+                c0 = _config(p, x, y, z)
+                c1 = _config(p, x1, y1, z1)
+                od = d ^ 1  # the opposite direction: b's face on the segment
+                if fan[c0, (vx - x + 1) * 4 + (vy - y + 1) * 2 + (vz - z + 1), d] != \
+                        fan[c0, (bx - x + 1) * 4 + (by - y + 1) * 2 + (bz - z + 1), od]:
+                    continue
+                if fan[c1, (vx - x1 + 1) * 4 + (vy - y1 + 1) * 2 + (vz - z1 + 1), d] != \
+                        fan[c1, (bx - x1 + 1) * 4 + (by - y1 + 1) * 2 + (bz - z1 + 1), od]:
+                    continue
+                q1 = (x1 * sy + y1) * sz + z1
+                axis = 0 if x1 != x else (1 if y1 != y else 2)
+                key = min(q, q1) * 3 + axis
+                i = np.searchsorted(contact_keys, key)
+                if i >= n_keys or contact_keys[i] != key:
+                    continue  # not a contact of the given list: the checker will say so
+                # The lexicographically smaller voxel of the pair takes the first midpoint.
+                first = bx > vx or (bx == vx and (by > vy or (by == vy and bz > vz)))
+                ms = 2 * i + (0 if first else 1)
+                if mid[ms] < 0:
+                    pos[n, 0] = (x + x1) / 2.0
+                    pos[n, 1] = (y + y1) / 2.0
+                    pos[n, 2] = (z + z1) / 2.0
+                    mid[ms] = n
                     n += 1
-                    side_n[k] += 1
-                m = mid_of[f * 4 + k]
-                if m >= 0:
-                    ent[n] = m
-                    n += 1
-                    side_n[k] += 1
+                ent[e] = mid[ms]
+                e += 1
+                side_n[k] += 1
         k1 = -1
         if side_n[1] == 1 and side_n[3] == 1:
             k1 = 0
@@ -88,154 +242,160 @@ def triangulate(q_d, q_u0, q_v0, q_u1, q_v1, rstart, fidx, vid, mid_of, keep,
             k1 = 1
         if k1 < 0:
             # Star around a new centre vertex.
-            centre = first_centre + n_star
-            star[n_star] = r
-            n_star += 1
-            for i in range(n):
+            pos[n, a] = plane + corner_offsets[d, 0, a]
+            pos[n, (a + 1) % 3] = (u0 + u1) / 2.0
+            pos[n, (a + 2) % 3] = (v0 + v1) / 2.0
+            centre = n
+            n += 1
+            for i in range(e):
                 tris[nt, 0] = centre
                 tris[nt, 1] = ent[i]
-                tris[nt, 2] = ent[(i + 1) % n]
+                tris[nt, 2] = ent[(i + 1) % e]
                 tri_rect[nt] = r
                 nt += 1
             continue
         # Zipper between side k1 (forward) and side k1 + 2 (backward), both by
         # distance from the first corner of side k1.
-        start1 = 0
+        ca_i = 0
         for kk in range(k1):
-            start1 += side_n[kk]
-        ca_i = start1
-        cd_i = start1 + side_n[k1] + side_n[(k1 + 1) % 4] + side_n[(k1 + 2) % 4]  # first of side k1+3
-        axis = d // 2
-        ax = (axis + 1) % 3 if along_u_t[d, k1] else (axis + 2) % 3
-        origin = base_pos[ent[ca_i], ax]
-        # Chain 1: the entries after ca up to the corner of side k1+1 (polygon order).
+            ca_i += side_n[kk]
+        cd_i = ca_i + side_n[k1] + side_n[(k1 + 1) % 4] + side_n[(k1 + 2) % 4]  # first of side k1+3
+        ax = (a + 1) % 3 if along_u_t[d, k1] else (a + 2) % 3
+        origin = pos[ent[ca_i], ax]
         i1 = ca_i + 1
         end1 = ca_i + side_n[k1]  # inclusive: the corner of side k1+1
-        # Chain 2: side k1+2's entries walked backwards, from the one before cd.
         i2 = cd_i - 1
         end2 = ca_i + side_n[k1] + 1  # inclusive: side k1+2's first entry
-        p = ent[ca_i]
-        q = ent[cd_i % n]
+        pa = ent[ca_i]
+        pb = ent[cd_i % e]
         while i1 <= end1 or i2 >= end2:
-            take1 = False
-            if i1 <= end1 and i2 >= end2:
-                s1 = abs(base_pos[ent[i1 % n], ax] - origin)
-                s2 = abs(base_pos[ent[i2 % n], ax] - origin)
-                take1 = s1 <= s2
-            else:
-                take1 = i1 <= end1
+            take1 = i1 <= end1
+            if take1 and i2 >= end2:
+                take1 = abs(pos[ent[i1 % e], ax] - origin) <= abs(pos[ent[i2 % e], ax] - origin)
             if take1:
-                e = ent[i1 % n]
-                tris[nt, 0] = p
-                tris[nt, 1] = e
-                tris[nt, 2] = q
-                p = e
+                w = ent[i1 % e]
+                tris[nt, 0] = pa
+                tris[nt, 1] = w
+                tris[nt, 2] = pb
+                pa = w
                 i1 += 1
             else:
-                e = ent[i2 % n]
-                tris[nt, 0] = e
-                tris[nt, 1] = q
-                tris[nt, 2] = p
-                q = e
+                w = ent[i2 % e]
+                tris[nt, 0] = w
+                tris[nt, 1] = pb
+                tris[nt, 2] = pa
+                pb = w
                 i2 -= 1
             tri_rect[nt] = r
             nt += 1
-    return tris[:nt], tri_rect[:nt], star[:n_star]
-
-
-@njit(cache=True)
-def out_end_of(tf, h):  # pragma: no cover - compiled
-    """End vertex of half-edge ``h`` of the flat triangle list ``tf``."""
-    return tf[h + 1 if h % 3 != 2 else h - 2]
+    return tris[:nt], tri_rect[:nt], pos[:n]
 
 
 @njit(cache=True)
 def edge_fan_shells(t, nv):  # pragma: no cover - compiled
-    """The checker's edge, fan and shell pass over a triangle list, in one sweep.
+    """The checker's edge, fan and shell pass over a triangle list.
 
-    Looks only at ``t`` (T, 3).  Every directed edge must occur once and its
-    reverse once (so each undirected edge is in exactly two triangles, oppositely
-    oriented), and the corners around every vertex must form one cycle.
+    Looks only at ``t`` (T, 3).  Every undirected edge must be in exactly two
+    triangles, once in each direction, and the corners around every vertex must
+    form one cycle.
 
     Returns
     -------
     status : int
-        0 when the mesh passed, otherwise the first failed test (1: a directed
-        edge used twice or more, 2: an edge without its reverse, 3: a pinched
-        vertex); the caller then reruns the detailed checks for the message.
-    labels : (T,) int64 ndarray
+        0 when the mesh passed, otherwise the first failed test (1: an edge in
+        more than two triangles or twice in one direction, 2: an edge in one
+        triangle only, 3: a pinched vertex); the caller then reruns the detailed
+        checks for the message.
+    labels : (T,) int32 ndarray
         Shell of each triangle, numbered by first appearance (valid when status is 0).
     n_shells : int
     """
     nt = t.shape[0]
     nh = 3 * nt
-    labels = np.full(nt, -1, dtype=np.int64)
-    tf = t.ravel()  # half-edge h runs tf[h] -> tf[after(h)]
-    start = np.zeros(nv + 1, dtype=np.int64)
+    labels = np.empty(nt, dtype=np.int32)
+    labels[:] = -1
+    tf = t.ravel()  # half-edge h runs tf[h] -> tf[h + 1], or tf[h - 2] at a triangle's last corner
+    # Half-edges grouped by the lower of their two end vertices: the two halves of
+    # an edge land in the same small group.
+    start = np.zeros(nv + 1, dtype=np.int32)
     for h in range(nh):
-        start[tf[h] + 1] += 1
+        b = tf[h + 1] if h % 3 != 2 else tf[h - 2]
+        start[min(tf[h], b) + 1] += 1
     for i in range(nv):
         start[i + 1] += start[i]
     fill = start[:-1].copy()
-    # Half-edges grouped by their start vertex, with their end vertex beside them
-    # so that the scans below read contiguous memory.
-    out = np.empty(nh, dtype=np.int64)
-    out_end = np.empty(nh, dtype=np.int64)
+    group = np.empty(nh, dtype=np.int32)  # int32 halves the memory the random accesses touch
+    high = np.empty(nh, dtype=np.int32)  # the other end, beside it for contiguous scans
     for h in range(nh):
         a = tf[h]
-        out[fill[a]] = h
-        out_end[fill[a]] = tf[h + 1 if h % 3 != 2 else h - 2]
-        fill[a] += 1
-    # Half-edges grouped by their end vertex too, to find each one's reverse.
-    in_start = np.zeros(nv + 1, dtype=np.int64)
-    for h in range(nh):
-        in_start[out_end_of(tf, h) + 1] += 1
-    for i in range(nv):
-        in_start[i + 1] += in_start[i]
-    in_fill = in_start[:-1].copy()
-    inc = np.empty(nh, dtype=np.int64)
-    for h in range(nh):
-        b = out_end_of(tf, h)
-        inc[in_fill[b]] = h
-        in_fill[b] += 1
-    # stamp[b] == a + 1 while vertex a is scanned: a -> b seen, as half-edge slot[b].
-    stamp = np.zeros(nv, dtype=np.int64)
-    slot = np.empty(nv, dtype=np.int64)
-    twin = np.empty(nh, dtype=np.int64)
-    for a in range(nv):
-        for i in range(start[a], start[a + 1]):
-            b = out_end[i]
-            if stamp[b] == a + 1:
-                return 1, labels, 0  # a -> b twice
-            stamp[b] = a + 1
-            slot[b] = out[i]
-        # Every half-edge c -> a needs the reverse a -> c (unique: checked just above).
-        for i in range(in_start[a], in_start[a + 1]):
-            h = inc[i]
-            c = tf[h]
-            if stamp[c] != a + 1:
+        b = tf[h + 1] if h % 3 != 2 else tf[h - 2]
+        m = min(a, b)
+        group[fill[m]] = h
+        high[fill[m]] = a + b - m
+        fill[m] += 1
+    twin = np.empty(nh, dtype=np.int32)
+    twin[:] = -1
+    # Small groups pair up by a scan of their own (contiguous) entries; large ones
+    # (a vertex with many neighbours) through owner[b] == m: group m's half-edge to b
+    # sits at slot first[b].
+    owner = np.empty(nv, dtype=np.int32)
+    owner[:] = -1
+    first = np.empty(nv, dtype=np.int32)
+    for m in range(nv):
+        g0, g1 = start[m], start[m + 1]
+        if g1 - g0 <= 24:
+            for i in range(g0, g1):
+                h = group[i]
+                if twin[h] >= 0:
+                    continue
+                o = -1
+                for j in range(i + 1, g1):
+                    if high[j] == high[i]:
+                        if o >= 0:
+                            return 1, labels, 0  # a third triangle on this edge
+                        o = group[j]
+                if o < 0:
+                    return 2, labels, 0  # (a partner before i would have set twin[h])
+                if tf[o] == tf[h]:
+                    return 1, labels, 0  # both halves run the same way
+                twin[h] = o
+                twin[o] = h
+            continue
+        for i in range(g0, g1):
+            b = high[i]
+            if owner[b] != m:
+                owner[b] = m
+                first[b] = i
+                continue
+            h, o = group[i], group[first[b]]
+            if twin[o] >= 0 or tf[o] == tf[h]:
+                return 1, labels, 0
+            twin[h] = o
+            twin[o] = h
+        for i in range(g0, g1):
+            if twin[group[i]] < 0:
                 return 2, labels, 0
-            twin[h] = slot[c]
     # The corner after h around its start vertex begins the half-edge after h's
-    # twin; walk each vertex's corners from its first one: one cycle through all
-    # of them means one fan.
-    for a in range(nv):
-        if start[a + 1] == start[a]:
-            return 3, labels, 0  # a vertex without corners has no fan
-        first = out[start[a]]
-        g = first
-        steps = 0
-        while True:
-            tw = twin[g]
-            g = tw + 1 if tw % 3 != 2 else tw - 2
-            steps += 1
-            if g == first or steps > start[a + 1] - start[a]:
-                break
-        if steps != start[a + 1] - start[a]:
+    # twin: a permutation of the corners whose cycles are the fans.  Every vertex
+    # is used (checked before), so one fan per vertex means exactly nv cycles.
+    seen = np.zeros(nh, dtype=np.bool_)
+    cycles = 0
+    for h0 in range(nh):
+        if seen[h0]:
+            continue
+        cycles += 1
+        if cycles > nv:
             return 3, labels, 0
+        h = h0
+        while not seen[h]:
+            seen[h] = True
+            g = twin[h]
+            h = g + 1 if g % 3 != 2 else g - 2
+    if cycles != nv:
+        return 3, labels, 0
     # With one fan per vertex, triangles sharing a vertex are joined through edges.
     n_shells = 0
-    stack = np.empty(nt, dtype=np.int64)
+    stack = np.empty(nt, dtype=np.int32)
     for s in range(nt):
         if labels[s] >= 0:
             continue
@@ -257,53 +417,18 @@ def edge_fan_shells(t, nv):  # pragma: no cover - compiled
 
 
 @njit(cache=True)
-def pair_counts(a, b, n):  # pragma: no cover - compiled
-    """How many times each pair ``(a[i], b[i])`` occurs, for ids in ``0..n-1`` (few per id)."""
-    m = a.size
-    start = np.zeros(n + 1, dtype=np.int64)
-    for i in range(m):
-        start[a[i] + 1] += 1
-    for i in range(n):
-        start[i + 1] += start[i]
-    fill = start[:-1].copy()
-    grouped = np.empty(m, dtype=np.int64)
-    for i in range(m):
-        grouped[fill[a[i]]] = b[i]
-        fill[a[i]] += 1
-    out = np.empty(m, dtype=np.int64)
-    for i in range(m):
-        c = 0
-        for j in range(start[a[i]], start[a[i] + 1]):
-            if grouped[j] == b[i]:
-                c += 1
-        out[i] = c
-    return out
-
-
-@njit(cache=True)
-def diagonal_folds(voxel, direction, padded, edge_out, dirs):  # pragma: no cover - compiled
-    """Flat indices ``4 f + k`` of convex face edges whose cell beyond the corner is filled.
-
-    ``padded`` is the grid with one empty cell around it; ``edge_out[d, k]`` the
-    in-plane direction out of edge ``k`` of a face facing ``d``; ``dirs`` the six
-    unit directions.  The edge is convex when the cell beside it is empty.
-    """
-    nf = voxel.shape[0]
-    out = np.empty(4 * nf, dtype=np.int64)
-    n = 0
-    for f in range(nf):
-        d = direction[f]
-        for k in range(4):
-            u = edge_out[d, k]
-            x = voxel[f, 0] + 1 + dirs[u, 0]
-            y = voxel[f, 1] + 1 + dirs[u, 1]
-            z = voxel[f, 2] + 1 + dirs[u, 2]
-            if padded[x, y, z]:
-                continue
-            if padded[x + dirs[d, 0], y + dirs[d, 1], z + dirs[d, 2]]:
-                out[n] = 4 * f + k
-                n += 1
-    return out[:n]
+def vertex_bounds(v):  # pragma: no cover - compiled
+    """Minimum and maximum corner of the points ``v`` (N, 3) (numpy's axis-0 min is slow on (N, 3))."""
+    lo = v[0].copy()
+    hi = v[0].copy()
+    for i in range(1, v.shape[0]):
+        for a in range(3):
+            x = v[i, a]
+            if x < lo[a]:
+                lo[a] = x
+            elif x > hi[a]:
+                hi[a] = x
+    return lo, hi
 
 
 @njit(cache=True)
@@ -344,45 +469,6 @@ def first_appearance(labels):  # pragma: no cover - compiled
             n += 1
         out[i] = new[x]
     return out
-
-
-@njit(cache=True)
-def lattice_vertices(voxel, direction, padded, corner_offsets, fan, fan_count):  # pragma: no cover - compiled
-    """Vertex ids of face corners from the per-point split table (see ``_faces.lattice_faces``).
-
-    Ids are given in order of first use, ``fan_count`` of them per lattice point.
-    Returns ``(vertex (F, 4), position (V, 3))``.
-    """
-    nf = voxel.shape[0]
-    sx, sy, sz = padded.shape[0] - 1, padded.shape[1] - 1, padded.shape[2] - 1  # lattice points per axis
-    slot = np.full(sx * sy * sz, -1, dtype=np.int32)
-    cfg = np.zeros(sx * sy * sz, dtype=np.uint8)
-    vertex = np.empty((nf, 4), dtype=np.int64)
-    position = np.empty((4 * nf, 3), dtype=np.int64)
-    n = 0
-    for f in range(nf):
-        d = direction[f]
-        for k in range(4):
-            x = voxel[f, 0] + corner_offsets[d, k, 0]
-            y = voxel[f, 1] + corner_offsets[d, k, 1]
-            z = voxel[f, 2] + corner_offsets[d, k, 2]
-            q = (x * sy + y) * sz + z
-            if slot[q] < 0:
-                # Padded cell (x + dx, ...) is grid cell (x - 1 + dx, ...): the 8 cells around the point.
-                c = 0
-                for b in range(8):
-                    if padded[x + (b >> 2), y + ((b >> 1) & 1), z + (b & 1)]:
-                        c |= 1 << b
-                slot[q] = n
-                cfg[q] = c
-                for j in range(fan_count[c]):
-                    position[n + j, 0] = x
-                    position[n + j, 1] = y
-                    position[n + j, 2] = z
-                n += fan_count[c]
-            cell = (voxel[f, 0] - x + 1) * 4 + (voxel[f, 1] - y + 1) * 2 + (voxel[f, 2] - z + 1)
-            vertex[f, k] = slot[q] + fan[cfg[q], cell, d]
-    return vertex, position[:n]
 
 
 @njit(cache=True)
@@ -447,35 +533,6 @@ def contact_scan(p, q, edge_diagonals, body_diagonals):  # pragma: no cover - co
                 point_vox[nk, 1, a] = (ax, ay, az)[a] - 1 + body_diagonals[b, 1, a]
             nk += 1
     return edges[:ne], edge_vox[:ne], points[:nk], point_vox[:nk]
-
-
-@njit(cache=True)
-def exposed_cells(padded, steps, filled):  # pragma: no cover - compiled
-    """Exposed faces as ``(voxel (F, 3), direction (F,))``, sorted by ``(x, y, z, d)``.
-
-    ``steps[d]`` is the flat offset of direction ``d`` in ``padded`` (the grid with
-    one empty cell around it); ``filled`` the number of filled cells.  Voxels are
-    in unpadded coordinates.
-    """
-    flat = padded.ravel()
-    nx, ny, nz = padded.shape
-    voxel = np.empty((6 * filled, 3), dtype=np.int64)
-    direction = np.empty(6 * filled, dtype=np.int64)
-    n = 0
-    for x in range(nx):
-        for y in range(ny):
-            row = (x * ny + y) * nz
-            for z in range(nz):
-                c = row + z
-                if flat[c]:
-                    for d in range(6):
-                        if not flat[c + steps[d]]:
-                            voxel[n, 0] = x - 1
-                            voxel[n, 1] = y - 1
-                            voxel[n, 2] = z - 1
-                            direction[n] = d
-                            n += 1
-    return voxel[:n], direction[:n]
 
 
 @njit(cache=True)
