@@ -144,6 +144,35 @@ def contact_keys(contacts: Contacts, shape: tuple[int, ...]) -> npt.NDArray[np.i
     return np.sort(point * 3 + axis)
 
 
+def point_configs(padded: npt.NDArray[np.bool_]) -> npt.NDArray[np.uint8]:
+    """Filling of the 8 cells around every lattice point, flat, bit ``4 dx + 2 dy + dz``.
+
+    ``padded`` is the grid with one empty cell around it; point ``(x, y, z)`` of
+    the grid's lattice sits between padded cells ``x`` and ``x + 1`` (etc.).
+    Built one axis at a time: 6 whole-array operations instead of 8 reads per point.
+    """
+    p = padded.view(np.uint8)
+    z2 = p[:, :, :-1] | (p[:, :, 1:] << 1)
+    yz4 = z2[:, :-1, :] | (z2[:, 1:, :] << 2)
+    return np.ascontiguousarray(yz4[:-1] | (yz4[1:] << 4)).ravel()
+
+
+def _half_steps(
+    shape: tuple[int, ...], coords: tuple[npt.NDArray[np.float64], ...] | None, pitch: float
+) -> npt.NDArray[np.float64]:
+    """``(3, L)`` positions in mm of the lattice coordinates 0, 1/2, 1, ... along each axis.
+
+    Midpoints and rectangle centres of a rectilinear grid sit halfway between
+    planes, so they stay strictly inside their segments and rectangles.
+    """
+    out = np.zeros((3, 2 * max(shape) + 1))
+    for a in range(3):
+        c = np.arange(shape[a] + 1, dtype=np.float64) if coords is None else np.asarray(coords[a], dtype=np.float64)
+        out[a, 0 : 2 * len(c) - 1 : 2] = c
+        out[a, 1 : 2 * len(c) - 1 : 2] = (c[:-1] + c[1:]) / 2.0
+    return out * float(pitch)
+
+
 def voxel_mesh(
     grid: npt.ArrayLike,
     *,
@@ -191,16 +220,11 @@ def voxel_mesh(
     if contacts is None:
         contacts = find_contacts(g)
     rects = face_rectangles(g, merge=merge)
+    padded = np.pad(g, 1)
     triangles, tri_rect, vertices = rectangle_mesh(
-        np.pad(g, 1), rects, contact_keys(contacts, g.shape), fan, fan_count, CORNER_OFFSETS, EDGE_OUT,
-        DIRECTIONS, _ALONG_U, _ASCENDING, _AT_MAX,
+        padded, point_configs(padded), rects, contact_keys(contacts, g.shape), _half_steps(g.shape, coords, pitch), fan, fan_count,
+        CORNER_OFFSETS, EDGE_OUT, DIRECTIONS, _ALONG_U, _ASCENDING, _AT_MAX,
     )
-    if coords is not None:
-        # Piecewise-linear and strictly increasing: midpoints and centres stay
-        # strictly inside their segments and rectangles.
-        for a in range(3):
-            vertices[:, a] = np.interp(vertices[:, a], np.arange(len(coords[a])), coords[a])
-    vertices *= float(pitch)
 
     if part_labels is None:
         from voxfab.shape import label_components

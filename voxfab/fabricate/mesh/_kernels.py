@@ -25,16 +25,6 @@ def _border_corner(d, k, u0, v0, u1, v1, step, along_u_t, asc_t, at_max_t):  # p
     return fixed, moving
 
 
-@njit(cache=True, inline="always")
-def _config(p, x, y, z):  # pragma: no cover - compiled
-    """Filling of the 8 padded cells around lattice point (x, y, z): bit ``4 dx + 2 dy + dz``."""
-    c = 0
-    for b in range(8):
-        if p[x + (b >> 2), y + ((b >> 1) & 1), z + (b & 1)]:
-            c |= 1 << b
-    return c
-
-
 @njit(cache=True)
 def stack_runs(faces, nu, nv, d, merge):  # pragma: no cover - compiled
     """Rectangles of the exposed faces of one direction ``d``.
@@ -81,19 +71,23 @@ def stack_runs(faces, nu, nv, d, merge):  # pragma: no cover - compiled
 
 
 @njit(cache=True)
-def rectangle_mesh(p, rects, contact_keys, fan, fan_count, corner_offsets, edge_out, dirs,
+def rectangle_mesh(p, config, rects, contact_keys, half_steps, fan, fan_count, corner_offsets, edge_out, dirs,
                    along_u_t, asc_t, at_max_t):  # pragma: no cover - compiled
     """Triangles of merged rectangles, with vertices split like the surface graph.
 
-    ``p`` is the grid with one empty cell around it and ``rects`` the rows of
-    :func:`stack_runs`.  A lattice point gets ``fan_count[config]`` vertex ids at
-    its first use, ``config`` being the filling of its 8 cells; a face corner takes
-    the one ``fan`` names.  ``contact_keys`` are the sorted keys
-    ``3 * point + axis`` of the lattice edges where two voxels touch along an edge
-    (two diagonal cells filled, two empty), keyed by their lower end point.
+    ``p`` is the grid with one empty cell around it, ``config`` the filling of
+    the 8 cells around each lattice point (flat, see ``_faces.point_configs``) and
+    ``rects`` the rows of :func:`stack_runs`.  ``contact_keys`` are the sorted
+    keys ``3 * point + axis`` of the lattice edges where two voxels touch along an
+    edge (two diagonal cells filled, two empty), keyed by their lower end point.
+    ``half_steps[a, i]`` is the position in mm of lattice coordinate ``i / 2``
+    along axis ``a``: vertices (corners, midpoints, centres) sit on half steps.
 
-    Buffers are sized up front: growing an array inside the loops makes numba
-    reload it at every step (measured three times slower).
+    A point that is a rectangle corner anywhere, or where several vertices meet
+    (a split point), is kept and gets ``fan_count[config]`` ids; a face takes the
+    one ``fan`` names.  Ids follow the lattice points in order, so vertices near
+    in space are near in memory.  Contact midpoints and rectangle centres have
+    ids of their own after them; those no triangle uses are dropped at the end.
 
     Returns
     -------
@@ -101,52 +95,59 @@ def rectangle_mesh(p, rects, contact_keys, fan, fan_count, corner_offsets, edge_
     rectangle : (T,) int64 ndarray
         Rectangle of each triangle.
     position : (V, 3) float64 ndarray
-        Vertex positions in voxel-corner coordinates.
+        Vertex positions in mm.
     """
     nr = rects.shape[0]
     sx, sy, sz = p.shape[0] - 1, p.shape[1] - 1, p.shape[2] - 1
-    # slot: first id of a point; -1 not seen yet, -2 seen and not kept (one vertex, no corner).
-    slot = np.empty(sx * sy * sz, dtype=np.int32)  # half the memory of int64: fewer cache misses
+    n_points = sx * sy * sz
+    # Pass 1: mark the rectangle corners (slot 0), then number the kept points.
+    slot = np.empty(n_points, dtype=np.int32)
     slot[:] = -1
-    cfg = np.zeros(sx * sy * sz, dtype=np.uint8)
     steps = 0
     longest = 1
     for r in range(nr):
-        half = (rects[r, 4] - rects[r, 2]) + (rects[r, 5] - rects[r, 3])
+        d, plane, u0, v0, u1, v1 = rects[r, 0], rects[r, 1], rects[r, 2], rects[r, 3], rects[r, 4], rects[r, 5]
+        half = (u1 - u0) + (v1 - v0)
         steps += 2 * half
         longest = max(longest, half)
-    n_keys = contact_keys.size
-    cap = 4 * min(sx * sy * sz, steps) + 2 * n_keys + nr
-    pos = np.empty((cap, 3))
-    keep = np.zeros(cap, dtype=np.bool_)
-    mid = np.empty(2 * n_keys, dtype=np.int64)
-    mid[:] = -1
-    n = 0
-    # Pass 1: every rectangle corner is kept, and so is every vertex of a split point.
-    for r in range(nr):
-        d, plane, u0, v0, u1, v1 = rects[r, 0], rects[r, 1], rects[r, 2], rects[r, 3], rects[r, 4], rects[r, 5]
         a = d // 2
         for k in range(4):
             cu, cv = _border_corner(d, k, u0, v0, u1, v1, 0, along_u_t, asc_t, at_max_t)
-            vx = plane if a == 0 else (cu if a == 2 else cv)
-            vy = plane if a == 1 else (cu if a == 0 else cv)
-            vz = plane if a == 2 else (cu if a == 1 else cv)
-            x = vx + corner_offsets[d, k, 0]
-            y = vy + corner_offsets[d, k, 1]
-            z = vz + corner_offsets[d, k, 2]
-            q = (x * sy + y) * sz + z
-            if slot[q] < 0:
-                c = _config(p, x, y, z)
-                m = fan_count[c]
-                slot[q] = n
-                cfg[q] = c
-                for j in range(m):
-                    pos[n + j, 0] = x
-                    pos[n + j, 1] = y
-                    pos[n + j, 2] = z
-                    keep[n + j] = m > 1
-                n += m
-            keep[slot[q] + fan[cfg[q], (vx - x + 1) * 4 + (vy - y + 1) * 2 + (vz - z + 1), d]] = True
+            x = (plane if a == 0 else (cu if a == 2 else cv)) + corner_offsets[d, k, 0]
+            y = (plane if a == 1 else (cu if a == 0 else cv)) + corner_offsets[d, k, 1]
+            z = (plane if a == 2 else (cu if a == 1 else cv)) + corner_offsets[d, k, 2]
+            slot[(x * sy + y) * sz + z] = 0
+    n_keys = contact_keys.size
+    cap = 4 * min(n_points, 4 * nr + steps)
+    pos = np.empty((cap + 2 * n_keys + nr, 3))
+    n = 0
+    for x in range(sx):
+        for y in range(sy):
+            q = (x * sy + y) * sz
+            for z in range(sz):
+                m = fan_count[config[q]]
+                if slot[q] == 0 or m > 1:
+                    slot[q] = n
+                    for j in range(m):
+                        pos[n + j, 0] = half_steps[0, 2 * x]
+                        pos[n + j, 1] = half_steps[1, 2 * y]
+                        pos[n + j, 2] = half_steps[2, 2 * z]
+                    n += m
+                else:
+                    slot[q] = -1
+                q += 1
+    n_lattice = n
+    # Contact midpoints: two per contact edge, one for each voxel's pair of faces.
+    for i in range(n_keys):
+        q0, axis = contact_keys[i] // 3, contact_keys[i] % 3
+        x, y, z = q0 // (sy * sz), (q0 // sz) % sy, q0 % sz
+        for _side in range(2):  # the same point for both voxels
+            pos[n, 0] = half_steps[0, 2 * x + (1 if axis == 0 else 0)]
+            pos[n, 1] = half_steps[1, 2 * y + (1 if axis == 1 else 0)]
+            pos[n, 2] = half_steps[2, 2 * z + (1 if axis == 2 else 0)]
+            n += 1
+    # The triangles are compacted to the vertices they use at the end.
+    n_fixed = n_lattice + 2 * n_keys
     # Pass 2: walk each border collecting kept vertices, then zip or fan the polygon.
     bound = 2 * steps
     tris = np.empty((bound, 3), dtype=np.int64)
@@ -170,26 +171,10 @@ def rectangle_mesh(p, rects, contact_keys, fan, fan_count, corner_offsets, edge_
                 y = vy + corner_offsets[d, k, 1]
                 z = vz + corner_offsets[d, k, 2]
                 q = (x * sy + y) * sz + z
-                if slot[q] == -1:
-                    c = _config(p, x, y, z)
-                    m = fan_count[c]
-                    if m > 1:  # a split point is kept wherever it appears
-                        slot[q] = n
-                        cfg[q] = c
-                        for j in range(m):
-                            pos[n + j, 0] = x
-                            pos[n + j, 1] = y
-                            pos[n + j, 2] = z
-                            keep[n + j] = True
-                        n += m
-                    else:
-                        slot[q] = -2
                 if slot[q] >= 0:
-                    vid = slot[q] + fan[cfg[q], (vx - x + 1) * 4 + (vy - y + 1) * 2 + (vz - z + 1), d]
-                    if keep[vid]:
-                        ent[e] = vid
-                        e += 1
-                        side_n[k] += 1
+                    ent[e] = slot[q] + fan[config[q], (vx - x + 1) * 4 + (vy - y + 1) * 2 + (vz - z + 1), d]
+                    e += 1
+                    side_n[k] += 1
                 if n_keys == 0:
                     continue
                 # Edge k is a contact segment when the cell beside it is empty and the
@@ -208,8 +193,9 @@ def rectangle_mesh(p, rects, contact_keys, fan, fan_count, corner_offsets, edge_
                 x1 = vx + corner_offsets[d, k1, 0]
                 y1 = vy + corner_offsets[d, k1, 1]
                 z1 = vz + corner_offsets[d, k1, 2]
-                c0 = _config(p, x, y, z)
-                c1 = _config(p, x1, y1, z1)
+                q1 = (x1 * sy + y1) * sz + z1
+                c0 = config[q]
+                c1 = config[q1]
                 od = d ^ 1  # the opposite direction: b's face on the segment
                 if fan[c0, (vx - x + 1) * 4 + (vy - y + 1) * 2 + (vz - z + 1), d] != \
                         fan[c0, (bx - x + 1) * 4 + (by - y + 1) * 2 + (bz - z + 1), od]:
@@ -217,7 +203,6 @@ def rectangle_mesh(p, rects, contact_keys, fan, fan_count, corner_offsets, edge_
                 if fan[c1, (vx - x1 + 1) * 4 + (vy - y1 + 1) * 2 + (vz - z1 + 1), d] != \
                         fan[c1, (bx - x1 + 1) * 4 + (by - y1 + 1) * 2 + (bz - z1 + 1), od]:
                     continue
-                q1 = (x1 * sy + y1) * sz + z1
                 axis = 0 if x1 != x else (1 if y1 != y else 2)
                 key = min(q, q1) * 3 + axis
                 i = np.searchsorted(contact_keys, key)
@@ -225,14 +210,7 @@ def rectangle_mesh(p, rects, contact_keys, fan, fan_count, corner_offsets, edge_
                     continue  # not a contact of the given list: the checker will say so
                 # The lexicographically smaller voxel of the pair takes the first midpoint.
                 first = bx > vx or (bx == vx and (by > vy or (by == vy and bz > vz)))
-                ms = 2 * i + (0 if first else 1)
-                if mid[ms] < 0:
-                    pos[n, 0] = (x + x1) / 2.0
-                    pos[n, 1] = (y + y1) / 2.0
-                    pos[n, 2] = (z + z1) / 2.0
-                    mid[ms] = n
-                    n += 1
-                ent[e] = mid[ms]
+                ent[e] = n_lattice + 2 * i + (0 if first else 1)
                 e += 1
                 side_n[k] += 1
         k1 = -1
@@ -242,15 +220,14 @@ def rectangle_mesh(p, rects, contact_keys, fan, fan_count, corner_offsets, edge_
             k1 = 1
         if k1 < 0:
             # Star around a new centre vertex.
-            pos[n, a] = plane + corner_offsets[d, 0, a]
-            pos[n, (a + 1) % 3] = (u0 + u1) / 2.0
-            pos[n, (a + 2) % 3] = (v0 + v1) / 2.0
-            centre = n
-            n += 1
+            centre = n_fixed + r
+            pos[centre, a] = half_steps[a, 2 * (plane + corner_offsets[d, 0, a])]
+            pos[centre, (a + 1) % 3] = half_steps[(a + 1) % 3, u0 + u1]
+            pos[centre, (a + 2) % 3] = half_steps[(a + 2) % 3, v0 + v1]
             for i in range(e):
                 tris[nt, 0] = centre
                 tris[nt, 1] = ent[i]
-                tris[nt, 2] = ent[(i + 1) % e]
+                tris[nt, 2] = ent[i + 1 if i + 1 < e else 0]
                 tri_rect[nt] = r
                 nt += 1
             continue
@@ -267,20 +244,20 @@ def rectangle_mesh(p, rects, contact_keys, fan, fan_count, corner_offsets, edge_
         i2 = cd_i - 1
         end2 = ca_i + side_n[k1] + 1  # inclusive: side k1+2's first entry
         pa = ent[ca_i]
-        pb = ent[cd_i % e]
+        pb = ent[cd_i if cd_i < e else 0]  # side k1+3 may be the wrap to entry 0; the rest never wraps
         while i1 <= end1 or i2 >= end2:
             take1 = i1 <= end1
             if take1 and i2 >= end2:
-                take1 = abs(pos[ent[i1 % e], ax] - origin) <= abs(pos[ent[i2 % e], ax] - origin)
+                take1 = abs(pos[ent[i1], ax] - origin) <= abs(pos[ent[i2], ax] - origin)
             if take1:
-                w = ent[i1 % e]
+                w = ent[i1]
                 tris[nt, 0] = pa
                 tris[nt, 1] = w
                 tris[nt, 2] = pb
                 pa = w
                 i1 += 1
             else:
-                w = ent[i2 % e]
+                w = ent[i2]
                 tris[nt, 0] = w
                 tris[nt, 1] = pb
                 tris[nt, 2] = pa
@@ -288,6 +265,22 @@ def rectangle_mesh(p, rects, contact_keys, fan, fan_count, corner_offsets, edge_
                 i2 -= 1
             tri_rect[nt] = r
             nt += 1
+    # Drop the midpoints and centres no triangle uses (every kept lattice id is used).
+    new_id = np.zeros(n_keys * 2 + nr, dtype=np.int64)
+    for t in range(nt):
+        for j in range(3):
+            if tris[t, j] >= n_lattice:
+                new_id[tris[t, j] - n_lattice] = 1
+    n = n_lattice
+    for i in range(new_id.size):
+        if new_id[i]:
+            pos[n] = pos[n_lattice + i]
+            new_id[i] = n
+            n += 1
+    for t in range(nt):
+        for j in range(3):
+            if tris[t, j] >= n_lattice:
+                tris[t, j] = new_id[tris[t, j] - n_lattice]
     return tris[:nt], tri_rect[:nt], pos[:n]
 
 
@@ -318,26 +311,30 @@ def edge_fan_shells(t, nv):  # pragma: no cover - compiled
     # Half-edges grouped by the lower of their two end vertices: the two halves of
     # an edge land in the same small group.
     start = np.zeros(nv + 1, dtype=np.int32)
-    for h in range(nh):
-        b = tf[h + 1] if h % 3 != 2 else tf[h - 2]
-        start[min(tf[h], b) + 1] += 1
+    for f in range(nt):
+        a, b, c = t[f, 0], t[f, 1], t[f, 2]
+        start[min(a, b) + 1] += 1
+        start[min(b, c) + 1] += 1
+        start[min(c, a) + 1] += 1
     for i in range(nv):
         start[i + 1] += start[i]
     fill = start[:-1].copy()
     group = np.empty(nh, dtype=np.int32)  # int32 halves the memory the random accesses touch
-    high = np.empty(nh, dtype=np.int32)  # the other end, beside it for contiguous scans
+    # The other end, times two, plus 1 when the half-edge starts at the group's
+    # vertex: partners and their directions are read beside the group, not from t.
+    high = np.empty(nh, dtype=np.int32)
     for h in range(nh):
         a = tf[h]
         b = tf[h + 1] if h % 3 != 2 else tf[h - 2]
         m = min(a, b)
         group[fill[m]] = h
-        high[fill[m]] = a + b - m
+        high[fill[m]] = 2 * (a + b - m) + (1 if a == m else 0)
         fill[m] += 1
     twin = np.empty(nh, dtype=np.int32)
-    twin[:] = -1
-    # Small groups pair up by a scan of their own (contiguous) entries; large ones
-    # (a vertex with many neighbours) through owner[b] == m: group m's half-edge to b
-    # sits at slot first[b].
+    paired = np.zeros(nh, dtype=np.bool_)  # by group slot
+    # Small groups pair up by a scan of their own entries; large ones (a vertex
+    # with many neighbours) through owner[b] == m: group m's half-edge to b sits
+    # at slot first[b].
     owner = np.empty(nv, dtype=np.int32)
     owner[:] = -1
     first = np.empty(nv, dtype=np.int32)
@@ -345,35 +342,37 @@ def edge_fan_shells(t, nv):  # pragma: no cover - compiled
         g0, g1 = start[m], start[m + 1]
         if g1 - g0 <= 24:
             for i in range(g0, g1):
-                h = group[i]
-                if twin[h] >= 0:
+                if paired[i]:
                     continue
                 o = -1
                 for j in range(i + 1, g1):
-                    if high[j] == high[i]:
+                    if high[j] >> 1 == high[i] >> 1:
                         if o >= 0:
                             return 1, labels, 0  # a third triangle on this edge
-                        o = group[j]
+                        o = j
                 if o < 0:
-                    return 2, labels, 0  # (a partner before i would have set twin[h])
-                if tf[o] == tf[h]:
+                    return 2, labels, 0  # (a partner before i would have paired it)
+                if high[o] == high[i]:
                     return 1, labels, 0  # both halves run the same way
-                twin[h] = o
-                twin[o] = h
+                paired[o] = True
+                twin[group[i]] = group[o]
+                twin[group[o]] = group[i]
             continue
         for i in range(g0, g1):
-            b = high[i]
+            b = high[i] >> 1
             if owner[b] != m:
                 owner[b] = m
                 first[b] = i
                 continue
-            h, o = group[i], group[first[b]]
-            if twin[o] >= 0 or tf[o] == tf[h]:
+            o = first[b]
+            if paired[o] or high[o] == high[i]:
                 return 1, labels, 0
-            twin[h] = o
-            twin[o] = h
+            paired[o] = True
+            paired[i] = True
+            twin[group[i]] = group[o]
+            twin[group[o]] = group[i]
         for i in range(g0, g1):
-            if twin[group[i]] < 0:
+            if not paired[i]:
                 return 2, labels, 0
     # The corner after h around its start vertex begins the half-edge after h's
     # twin: a permutation of the corners whose cycles are the fans.  Every vertex
