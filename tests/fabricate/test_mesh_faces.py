@@ -148,7 +148,7 @@ def test_vertex_ids_split_like_the_surface_graph(g):
     assert _same_partition(graph_ids, mesh_ids)
 
 
-def test_contact_free_mesh_of_a_bridged_grid_is_checked():
+def test_bridged_grid_meshed_without_a_contact_search_is_checked():
     from voxfab.fabricate.mesh import bridge_boxes, find_contacts
     from voxfab.fabricate.mesh._contacts import NO_CONTACTS, bridged_grid
 
@@ -168,3 +168,40 @@ def test_vertex_ids_on_worst_cases():
     for g in (checker, ~checker, examples.random_shape(0, side=10), examples.torus(6, 2)):
         graph_ids, mesh_ids = _corner_vertices(voxel_mesh(g, merge=False), g)
         assert _same_partition(graph_ids, mesh_ids)
+
+
+@settings(max_examples=60, deadline=None)
+@given(grids, st.booleans())
+def test_rectangles_tile_the_exposed_faces_once(g, merge):
+    from voxfab.fabricate.mesh._faces import face_rectangles
+    from voxfab.shape import surface_graph
+
+    if not g.any():
+        return
+    rects = face_rectangles(g, merge=merge)
+    covered = []
+    for d, plane, u0, v0, u1, v1 in rects.tolist():
+        a = d // 2
+        for u in range(u0, u1):
+            for v in range(v0, v1):
+                voxel = [0, 0, 0]
+                voxel[a], voxel[(a + 1) % 3], voxel[(a + 2) % 3] = plane, u, v
+                covered.append((*voxel, d))
+    sg = surface_graph(g)
+    faces = sorted(zip(*sg.voxel.T.tolist(), sg.direction.tolist()))
+    assert sorted(covered) == faces  # every exposed face in exactly one rectangle
+    if not merge:
+        assert len(rects) == len(faces)
+
+
+@settings(max_examples=40, deadline=None)
+@given(grids)
+def test_point_configs_read_the_eight_cells_around_each_point(g):
+    from voxfab.fabricate.mesh._faces import point_configs
+
+    p = np.pad(g, 1)
+    config = point_configs(p).reshape(tuple(s + 1 for s in g.shape))
+    for x, y, z in np.ndindex(config.shape):
+        expect = sum(int(p[x + dx, y + dy, z + dz]) << (4 * dx + 2 * dy + dz)
+                     for dx in (0, 1) for dy in (0, 1) for dz in (0, 1))
+        assert config[x, y, z] == expect

@@ -96,25 +96,23 @@ def check_mesh(
         raise _fail(what, f"bad array shapes {v.shape} and {t.shape}")
     if not np.isfinite(v).all():
         raise _fail(what, "non-finite vertex coordinates")
-    if t.min() < 0 or t.max() >= nv:
-        raise _fail(what, f"triangle indices outside 0..{nv - 1}")
     if mesh.part.shape != (nt,):
         raise _fail(what, f"part labels have shape {mesh.part.shape}, expected ({nt},)")
-    used = np.zeros(nv, dtype=bool)
-    used[t.ravel()] = True
-    if not used.all():
-        raise _fail(what, f"{nv - int(used.sum())} vertices used by no triangle")
-    bad = (t[:, 0] == t[:, 1]) | (t[:, 1] == t[:, 2]) | (t[:, 0] == t[:, 2])
-    if bad.any():
-        raise _fail(what, f"{int(bad.sum())} triangles repeat a vertex", v[t[bad, 0]])
-    # One cross product per triangle serves the area test and the volumes:
-    # det[a-r, b-r, c-r] = (a-r) . ((b-a) x (c-a)).
-    from ._kernels import edge_fan_shells, triangle_measures, vertex_bounds
+    from ._kernels import edge_fan_shells, index_problems, triangle_measures, vertex_bounds
 
     t = np.ascontiguousarray(t, dtype=np.int64)
+    outside, unused, repeats = index_problems(t, nv)
+    if outside:
+        raise _fail(what, f"triangle indices outside 0..{nv - 1}")
+    if unused:
+        raise _fail(what, f"{unused} vertices used by no triangle")
+    if repeats:
+        bad = (t[:, 0] == t[:, 1]) | (t[:, 1] == t[:, 2]) | (t[:, 0] == t[:, 2])
+        raise _fail(what, f"{repeats} triangles repeat a vertex", v[t[bad, 0]])
     v = np.ascontiguousarray(v)
     bmin, bmax = vertex_bounds(v)
-    # Cones from the box centre keep the volume sums well conditioned.
+    # One cross product per triangle serves the area test and the volumes, as
+    # cones from the box centre r (well conditioned): det[a-r, b-r, c-r] = (a-r) . ((b-a) x (c-a)).
     tri_vol, area2 = triangle_measures(v, t, (bmin + bmax) / 2.0)
     scale = float((bmax - bmin).max()) or 1.0
     flat = area2 <= (1e-12 * scale * scale)

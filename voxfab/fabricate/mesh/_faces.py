@@ -124,8 +124,7 @@ def face_rectangles(grid: npt.NDArray[np.bool_], *, merge: bool = True) -> npt.N
         beside = np.zeros((t.shape[0] + 2, *t.shape[1:]), dtype=bool)
         beside[1:-1] = t
         for d, nb in ((2 * a, beside[2:]), (2 * a + 1, beside[:-2])):
-            faces = np.flatnonzero(t & ~nb)
-            out.append(stack_runs(faces, t.shape[2], t.shape[1], d, merge))
+            out.append(stack_runs(np.flatnonzero(t & ~nb), t.shape[2], t.shape[1], d, merge))
     return np.concatenate(out)
 
 

@@ -39,22 +39,27 @@ def stack_runs(faces, nu, nv, d, merge):  # pragma: no cover - compiled
     out = np.empty((nf, 6), dtype=np.int64)
     last = np.empty(nu, dtype=np.int64)  # rectangle whose last run starts at u
     plane_now = -1
+    row_start = 0
+    row_end = 0
+    plane = v = 0
     n = 0
     i = 0
     while i < nf:
         f = faces[i]
-        u0 = f % nu
-        v = (f // nu) % nv
-        plane = f // (nu * nv)
+        if f >= row_end:  # a new row: the only divisions are here
+            row = f // nu
+            row_start, row_end = row * nu, row * nu + nu
+            plane, v = row // nv, row % nv
+            if plane != plane_now:
+                last[:] = -1
+                plane_now = plane
+        u0 = f - row_start
         j = i + 1
         if merge:
-            while j < nf and faces[j] == faces[j - 1] + 1 and faces[j] % nu != 0:
+            while j < nf and faces[j] == faces[j - 1] + 1 and faces[j] < row_end:
                 j += 1
         u1 = u0 + (j - i)
         i = j
-        if plane != plane_now:
-            last[:] = -1
-            plane_now = plane
         r = last[u0]
         if merge and r >= 0 and out[r, 5] == v and out[r, 4] == u1:
             out[r, 5] = v + 1
@@ -86,8 +91,9 @@ def rectangle_mesh(p, config, rects, contact_keys, half_steps, fan, fan_count, c
     A point that is a rectangle corner anywhere, or where several vertices meet
     (a split point), is kept and gets ``fan_count[config]`` ids; a face takes the
     one ``fan`` names.  Ids follow the lattice points in order, so vertices near
-    in space are near in memory.  Contact midpoints and rectangle centres have
-    ids of their own after them; those no triangle uses are dropped at the end.
+    in space are near in memory.  Contact midpoints (two per contact edge) and
+    then the centres of star-split rectangles follow; midpoints no triangle uses
+    are dropped at the end.
 
     Returns
     -------
@@ -147,70 +153,86 @@ def rectangle_mesh(p, config, rects, contact_keys, half_steps, fan, fan_count, c
             pos[n, 2] = half_steps[2, 2 * z + (1 if axis == 2 else 0)]
             n += 1
     # The triangles are compacted to the vertices they use at the end.
-    n_fixed = n_lattice + 2 * n_keys
+    n = n_lattice + 2 * n_keys  # rectangle centres follow, as stars need them
     # Pass 2: walk each border collecting kept vertices, then zip or fan the polygon.
+    # Along a side the point moves by the face edge's direction, so its flat index
+    # moves by a fixed stride and the face's cell around it stays the same.
     bound = 2 * steps
     tris = np.empty((bound, 3), dtype=np.int64)
     tri_rect = np.empty(bound, dtype=np.int64)
     ent = np.empty(4 * longest + 8, dtype=np.int64)
+    ent_uv = np.empty((4 * longest + 8, 2), dtype=np.int64)  # lattice coordinates (u, v), in half steps
     side_n = np.zeros(4, dtype=np.int64)
     nt = 0
     for r in range(nr):
         d, plane, u0, v0, u1, v1 = rects[r, 0], rects[r, 1], rects[r, 2], rects[r, 3], rects[r, 4], rects[r, 5]
         a = d // 2
+        ub, vb = (a + 1) % 3, (a + 2) % 3
         e = 0
         for k in range(4):
             side_n[k] = 0
             length = (u1 - u0) if along_u_t[d, k] else (v1 - v0)
+            cu, cv = _border_corner(d, k, u0, v0, u1, v1, 0, along_u_t, asc_t, at_max_t)
+            vx = plane if a == 0 else (cu if a == 2 else cv)
+            vy = plane if a == 1 else (cu if a == 0 else cv)
+            vz = plane if a == 2 else (cu if a == 1 else cv)
+            k1 = (k + 1) % 4
+            ex = corner_offsets[d, k1, 0] - corner_offsets[d, k, 0]
+            ey = corner_offsets[d, k1, 1] - corner_offsets[d, k, 1]
+            ez = corner_offsets[d, k1, 2] - corner_offsets[d, k, 2]
+            x = vx + corner_offsets[d, k, 0]
+            y = vy + corner_offsets[d, k, 1]
+            z = vz + corner_offsets[d, k, 2]
+            cell = (1 - corner_offsets[d, k, 0]) * 4 + (1 - corner_offsets[d, k, 1]) * 2 + (1 - corner_offsets[d, k, 2])
+            dq = (ex * sy + ey) * sz + ez
+            q = (x * sy + y) * sz + z
+            pu = x if ub == 0 else (y if ub == 1 else z)
+            pv = x if vb == 0 else (y if vb == 1 else z)
+            du = ex if ub == 0 else (ey if ub == 1 else ez)
+            dv = ex if vb == 0 else (ey if vb == 1 else ez)
             for s in range(length):
-                cu, cv = _border_corner(d, k, u0, v0, u1, v1, s, along_u_t, asc_t, at_max_t)
-                vx = plane if a == 0 else (cu if a == 2 else cv)
-                vy = plane if a == 1 else (cu if a == 0 else cv)
-                vz = plane if a == 2 else (cu if a == 1 else cv)
-                x = vx + corner_offsets[d, k, 0]
-                y = vy + corner_offsets[d, k, 1]
-                z = vz + corner_offsets[d, k, 2]
-                q = (x * sy + y) * sz + z
                 if slot[q] >= 0:
-                    ent[e] = slot[q] + fan[config[q], (vx - x + 1) * 4 + (vy - y + 1) * 2 + (vz - z + 1), d]
+                    ent[e] = slot[q] + fan[config[q], cell, d]
+                    ent_uv[e, 0] = 2 * (pu + s * du)
+                    ent_uv[e, 1] = 2 * (pv + s * dv)
                     e += 1
                     side_n[k] += 1
+                q += dq
                 if n_keys == 0:
                     continue
-                # Edge k is a contact segment when the cell beside it is empty and the
-                # cell beyond the corner (voxel b) is filled.  Where both its ends are
-                # shared by the two voxels' faces, each voxel's pair of faces on it
-                # gets a midpoint of its own, so no edge is in four triangles.
+                # Edge k of the face at step s is a contact segment when the cell beside
+                # it is empty and the cell beyond the corner (voxel b) is filled.  Where
+                # both its ends are shared by the two voxels' faces, each voxel's pair of
+                # faces on it gets a midpoint of its own, so no edge is in four triangles.
+                fx, fy, fz = vx + s * ex, vy + s * ey, vz + s * ez
                 u = edge_out[d, k]
-                if p[vx + dirs[u, 0] + 1, vy + dirs[u, 1] + 1, vz + dirs[u, 2] + 1]:
+                if p[fx + dirs[u, 0] + 1, fy + dirs[u, 1] + 1, fz + dirs[u, 2] + 1]:
                     continue
-                bx = vx + dirs[u, 0] + dirs[d, 0]
-                by = vy + dirs[u, 1] + dirs[d, 1]
-                bz = vz + dirs[u, 2] + dirs[d, 2]
+                bx = fx + dirs[u, 0] + dirs[d, 0]
+                by = fy + dirs[u, 1] + dirs[d, 1]
+                bz = fz + dirs[u, 2] + dirs[d, 2]
                 if not p[bx + 1, by + 1, bz + 1]:
                     continue
-                k1 = (k + 1) % 4
-                x1 = vx + corner_offsets[d, k1, 0]
-                y1 = vy + corner_offsets[d, k1, 1]
-                z1 = vz + corner_offsets[d, k1, 2]
-                q1 = (x1 * sy + y1) * sz + z1
-                c0 = config[q]
-                c1 = config[q1]
+                x0, y0, z0 = x + s * ex, y + s * ey, z + s * ez
+                q0, q1 = q - dq, q
+                c0, c1 = config[q0], config[q1]
                 od = d ^ 1  # the opposite direction: b's face on the segment
-                if fan[c0, (vx - x + 1) * 4 + (vy - y + 1) * 2 + (vz - z + 1), d] != \
-                        fan[c0, (bx - x + 1) * 4 + (by - y + 1) * 2 + (bz - z + 1), od]:
+                if fan[c0, cell, d] != fan[c0, (bx - x0 + 1) * 4 + (by - y0 + 1) * 2 + (bz - z0 + 1), od]:
                     continue
-                if fan[c1, (vx - x1 + 1) * 4 + (vy - y1 + 1) * 2 + (vz - z1 + 1), d] != \
+                x1, y1, z1 = x0 + ex, y0 + ey, z0 + ez
+                if fan[c1, (fx - x1 + 1) * 4 + (fy - y1 + 1) * 2 + (fz - z1 + 1), d] != \
                         fan[c1, (bx - x1 + 1) * 4 + (by - y1 + 1) * 2 + (bz - z1 + 1), od]:
                     continue
-                axis = 0 if x1 != x else (1 if y1 != y else 2)
-                key = min(q, q1) * 3 + axis
+                axis = 0 if ex != 0 else (1 if ey != 0 else 2)
+                key = min(q0, q1) * 3 + axis
                 i = np.searchsorted(contact_keys, key)
                 if i >= n_keys or contact_keys[i] != key:
                     continue  # not a contact of the given list: the checker will say so
                 # The lexicographically smaller voxel of the pair takes the first midpoint.
-                first = bx > vx or (bx == vx and (by > vy or (by == vy and bz > vz)))
+                first = bx > fx or (bx == fx and (by > fy or (by == fy and bz > fz)))
                 ent[e] = n_lattice + 2 * i + (0 if first else 1)
+                ent_uv[e, 0] = 2 * (pu + s * du) + du
+                ent_uv[e, 1] = 2 * (pv + s * dv) + dv
                 e += 1
                 side_n[k] += 1
         k1 = -1
@@ -220,10 +242,11 @@ def rectangle_mesh(p, config, rects, contact_keys, half_steps, fan, fan_count, c
             k1 = 1
         if k1 < 0:
             # Star around a new centre vertex.
-            centre = n_fixed + r
+            centre = n
+            n += 1
             pos[centre, a] = half_steps[a, 2 * (plane + corner_offsets[d, 0, a])]
-            pos[centre, (a + 1) % 3] = half_steps[(a + 1) % 3, u0 + u1]
-            pos[centre, (a + 2) % 3] = half_steps[(a + 2) % 3, v0 + v1]
+            pos[centre, ub] = half_steps[ub, u0 + u1]
+            pos[centre, vb] = half_steps[vb, v0 + v1]
             for i in range(e):
                 tris[nt, 0] = centre
                 tris[nt, 1] = ent[i]
@@ -237,8 +260,8 @@ def rectangle_mesh(p, config, rects, contact_keys, half_steps, fan, fan_count, c
         for kk in range(k1):
             ca_i += side_n[kk]
         cd_i = ca_i + side_n[k1] + side_n[(k1 + 1) % 4] + side_n[(k1 + 2) % 4]  # first of side k1+3
-        ax = (a + 1) % 3 if along_u_t[d, k1] else (a + 2) % 3
-        origin = pos[ent[ca_i], ax]
+        w_ax = 0 if along_u_t[d, k1] else 1
+        origin = ent_uv[ca_i, w_ax]
         i1 = ca_i + 1
         end1 = ca_i + side_n[k1]  # inclusive: the corner of side k1+1
         i2 = cd_i - 1
@@ -248,7 +271,7 @@ def rectangle_mesh(p, config, rects, contact_keys, half_steps, fan, fan_count, c
         while i1 <= end1 or i2 >= end2:
             take1 = i1 <= end1
             if take1 and i2 >= end2:
-                take1 = abs(pos[ent[i1], ax] - origin) <= abs(pos[ent[i2], ax] - origin)
+                take1 = abs(ent_uv[i1, w_ax] - origin) <= abs(ent_uv[i2, w_ax] - origin)
             if take1:
                 w = ent[i1]
                 tris[nt, 0] = pa
@@ -265,12 +288,15 @@ def rectangle_mesh(p, config, rects, contact_keys, half_steps, fan, fan_count, c
                 i2 -= 1
             tri_rect[nt] = r
             nt += 1
-    # Drop the midpoints and centres no triangle uses (every kept lattice id is used).
-    new_id = np.zeros(n_keys * 2 + nr, dtype=np.int64)
+    if n_keys == 0:
+        return tris[:nt], tri_rect[:nt], pos[:n]
+    # Drop the midpoints no triangle uses (every kept lattice id and centre is used).
+    new_id = np.zeros(n - n_lattice, dtype=np.int64)
     for t in range(nt):
         for j in range(3):
             if tris[t, j] >= n_lattice:
                 new_id[tris[t, j] - n_lattice] = 1
+    new_id[2 * n_keys:] = 1
     n = n_lattice
     for i in range(new_id.size):
         if new_id[i]:
@@ -311,11 +337,19 @@ def edge_fan_shells(t, nv):  # pragma: no cover - compiled
     # Half-edges grouped by the lower of their two end vertices: the two halves of
     # an edge land in the same small group.
     start = np.zeros(nv + 1, dtype=np.int32)
+    corners = np.zeros(nv, dtype=np.int32)  # corners at each vertex
+    a_corner = np.empty(nv, dtype=np.int32)  # one of them (a half-edge starting there)
     for f in range(nt):
         a, b, c = t[f, 0], t[f, 1], t[f, 2]
         start[min(a, b) + 1] += 1
         start[min(b, c) + 1] += 1
         start[min(c, a) + 1] += 1
+        corners[a] += 1
+        corners[b] += 1
+        corners[c] += 1
+        a_corner[a] = 3 * f
+        a_corner[b] = 3 * f + 1
+        a_corner[c] = 3 * f + 2
     for i in range(nv):
         start[i + 1] += start[i]
     fill = start[:-1].copy()
@@ -375,23 +409,22 @@ def edge_fan_shells(t, nv):  # pragma: no cover - compiled
             if not paired[i]:
                 return 2, labels, 0
     # The corner after h around its start vertex begins the half-edge after h's
-    # twin: a permutation of the corners whose cycles are the fans.  Every vertex
-    # is used (checked before), so one fan per vertex means exactly nv cycles.
-    seen = np.zeros(nh, dtype=np.bool_)
-    cycles = 0
-    for h0 in range(nh):
-        if seen[h0]:
-            continue
-        cycles += 1
-        if cycles > nv:
-            return 3, labels, 0
+    # twin: a permutation of the corners whose cycles are the fans.  Walking from
+    # one corner of a vertex must meet all of its corners: one fan per vertex.
+    for v in range(nv):
+        if corners[v] == 0:
+            return 3, labels, 0  # a vertex without corners has no fan
+        h0 = a_corner[v]
         h = h0
-        while not seen[h]:
-            seen[h] = True
+        steps = 0
+        while True:
             g = twin[h]
             h = g + 1 if g % 3 != 2 else g - 2
-    if cycles != nv:
-        return 3, labels, 0
+            steps += 1
+            if h == h0 or steps > corners[v]:
+                break
+        if steps != corners[v]:
+            return 3, labels, 0
     # With one fan per vertex, triangles sharing a vertex are joined through edges.
     n_shells = 0
     stack = np.empty(nt, dtype=np.int32)
@@ -413,6 +446,29 @@ def edge_fan_shells(t, nv):  # pragma: no cover - compiled
                     top += 1
         n_shells += 1
     return 0, labels, n_shells
+
+
+@njit(cache=True)
+def index_problems(t, nv):  # pragma: no cover - compiled
+    """Counts of indices outside ``0..nv-1``, of vertices no triangle uses, and of
+    triangles that repeat a vertex, in one pass over ``t`` (T, 3)."""
+    used = np.zeros(nv, dtype=np.bool_)
+    outside = 0
+    repeats = 0
+    for f in range(t.shape[0]):
+        a, b, c = t[f, 0], t[f, 1], t[f, 2]
+        if a == b or b == c or a == c:
+            repeats += 1
+        for x in (a, b, c):
+            if x < 0 or x >= nv:
+                outside += 1
+            else:
+                used[x] = True
+    unused = 0
+    for i in range(nv):
+        if not used[i]:
+            unused += 1
+    return outside, unused, repeats
 
 
 @njit(cache=True)
