@@ -19,9 +19,10 @@ from ._data import MeshData
 from ._faces import voxel_mesh
 
 #: Most exposed voxel faces a mesh may have.  Meshing and checking a 256³
-#: one-voxel sphere shell (0.54 M faces) peaks at about 0.7 GB (measured), about
-#: 1.2 kB per face, so this keeps a mesh under 2 GB.  Random noise at 256³ has
-#: about 25 M faces and is refused after a count that costs a fraction of a second.
+#: one-voxel sphere shell (0.54 M faces) peaks at about 0.5 GB (measured, 0.2 GB
+#: of it the interpreter and libraries), under 1 kB per face, so this keeps a mesh
+#: well under 2 GB.  Random noise at 256³ has about 25 M faces and is refused
+#: after a count that costs a fraction of a second.
 MAX_FACES = 1_500_000
 #: Thinnest wall a 0.4 mm nozzle prints reliably (two perimeters), mm.
 MIN_WALL = 0.8
