@@ -9,6 +9,7 @@ import pytest
 import trimesh
 
 from voxfab import io
+from voxfab._shared.progress import Meter
 from voxfab.errors import FormatError, InvalidShapeError
 from voxfab.io.mesh import _crossings, mesh_grid, voxelize
 from voxfab.shape import component_count
@@ -89,8 +90,10 @@ def test_three_ray_directions_agree_on_watertight_meshes(name):
     mesh = SOLIDS[name][0]()
     grid, pitch, origin = voxelize(mesh.vertices, mesh.faces, resolution=30)
     tri = (mesh.vertices[mesh.faces] - origin) / pitch - 0.5
-    votes = [_crossings(tri, axis, grid.shape) for axis in range(3)]
+    bar = Meter(None, "")
+    votes = [_crossings(tri, axis, grid.shape, bar) for axis in range(3)]
     assert np.array_equal(votes[0], votes[1]) and np.array_equal(votes[1], votes[2])
+    assert bar.done == 3 * len(tri)  # every batch of every ray direction counted
 
 
 def test_box_aligned_with_the_grid_is_exact(tmp_path):

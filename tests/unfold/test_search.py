@@ -200,3 +200,30 @@ def test_a_net_of_the_filled_surface_says_so_and_keeps_it_in_json():
     again = Net.from_json(net.to_json())
     assert again.filled and again.to_json() == net.to_json()
     assert not unfold(fill_cavities(g), rng=3).filled
+
+
+def test_search_counts_its_progress(monkeypatch):
+    import contextlib
+
+    from voxfab._shared.progress import Meter
+    from voxfab.unfold import _search
+
+    meters: list[Meter] = []
+
+    @contextlib.contextmanager
+    def recording(total=None, *, desc=""):
+        m = Meter(total, desc)
+        meters.append(m)
+        yield m
+
+    monkeypatch.setattr(_search, "meter", recording)
+    g = examples.ball(4)
+    nets = unfold_many(g, count=2, rng=3)
+    by_desc = {}
+    for m in meters:
+        by_desc.setdefault(m.desc, []).append(m)
+    faces = surface_graph(g).face_count
+    assert [m.done for m in by_desc["nets"]] == [2]
+    assert all(m.done == m.total == faces for m in by_desc["net: faces placed"])
+    # One net search per seed tried, each growing and then annealing for tab room.
+    assert len(by_desc["net: tab room, moves"]) == len(by_desc["net: faces placed"]) >= len(nets)

@@ -1,41 +1,68 @@
-"""A progress bar that appears only when work takes longer than a second."""
+"""Progress bars that appear only when work takes longer than a second."""
 
 from __future__ import annotations
 
+import contextlib
 import sys
 import time
 from collections.abc import Iterable, Iterator
-from typing import TypeVar
+from typing import Any, TypeVar
 
 T = TypeVar("T")
 
 #: Set by the CLI; library code stays silent unless it is on.
 ENABLED = False
+#: Seconds of work before a bar is drawn: short jobs never show one.
+DELAY = 1.0
+
+
+class Meter:
+    """Counts work done; draws a bar on stderr once :data:`DELAY` has passed.
+
+    Drawing needs :data:`ENABLED` (set by the CLI) and a terminal on stderr, so
+    library calls and tests stay quiet.  Use :func:`meter` or :func:`progress`.
+    """
+
+    def __init__(self, total: int | None, desc: str) -> None:
+        self.total = total
+        self.desc = desc
+        self.done = 0
+        self._live = ENABLED and sys.stderr.isatty()
+        self._start = time.monotonic()
+        self._bar: Any = None
+
+    def update(self, n: int = 1) -> None:
+        """Add ``n`` units of work done."""
+        self.done += n
+        if not self._live:
+            return
+        if self._bar is not None:
+            self._bar.update(n)
+        elif time.monotonic() - self._start > DELAY:
+            from tqdm import tqdm  # lazy: only the CLI on a terminal pays for it
+
+            self._bar = tqdm(total=self.total, desc=self.desc, initial=self.done, file=sys.stderr, leave=False)
+
+    def close(self) -> None:
+        if self._bar is not None:
+            self._bar.close()
+            self._bar = None
+
+
+@contextlib.contextmanager
+def meter(total: int | None = None, *, desc: str = "") -> Iterator[Meter]:
+    """A :class:`Meter` for work counted by hand, closed on exit."""
+    m = Meter(total, desc)
+    try:
+        yield m
+    finally:
+        m.close()
 
 
 def progress(items: Iterable[T], *, total: int | None = None, desc: str = "") -> Iterator[T]:
-    """Yield ``items``, drawing a bar on stderr once a second has passed.
-
-    The bar is drawn only when :data:`ENABLED` is set (by the CLI) and stderr is
-    a terminal, so library calls and tests stay quiet.
-    """
-    if not ENABLED or not sys.stderr.isatty():
-        yield from items
-        return
-    from tqdm import tqdm  # lazy: only the CLI on a terminal pays for it
-
-    start = time.monotonic()
-    bar = None
+    """Yield ``items``, counting each one on a :class:`Meter`."""
     n = total if total is not None else (len(items) if hasattr(items, "__len__") else None)  # type: ignore[arg-type]
-    done = 0
-    try:
+    with meter(n, desc=desc) as m:
         for item in items:
             yield item
-            done += 1
-            if bar is None and time.monotonic() - start > 1.0:
-                bar = tqdm(total=n, desc=desc, initial=done, file=sys.stderr, leave=False)
-            elif bar is not None:
-                bar.update(1)
-    finally:
-        if bar is not None:
-            bar.close()
+            m.update()

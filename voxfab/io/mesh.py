@@ -23,6 +23,7 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
+from voxfab._shared.progress import Meter, meter
 from voxfab._shared.typing import BoolGrid, PathLike
 from voxfab._shared.validate import MAX_SIDE
 from voxfab.errors import FormatError, InvalidShapeError, VoxfabError
@@ -51,12 +52,14 @@ def _check_resolution(resolution: int) -> int:
     return int(resolution)
 
 
-def _crossings(tri: npt.NDArray[np.float64], axis: int, shape: tuple[int, int, int]) -> npt.NDArray[np.uint8]:
+def _crossings(
+    tri: npt.NDArray[np.float64], axis: int, shape: tuple[int, int, int], bar: Meter
+) -> npt.NDArray[np.uint8]:
     """Ray parity along ``axis``: 1 where a query point has an odd number of crossings below it.
 
     ``tri`` (F, 3, 3) holds the triangles in grid units (voxel centre ``i`` at ``i``);
-    the query points are the voxel centres plus ``_JITTER``.  Returns an
-    (X, Y, Z) uint8 array.
+    the query points are the voxel centres plus ``_JITTER``.  ``bar`` counts the
+    triangles done.  Returns an (X, Y, Z) uint8 array.
     """
     u, v = (a for a in range(3) if a != axis)
     nu, nv, nw = shape[u], shape[v], shape[axis]
@@ -97,6 +100,7 @@ def _crossings(tri: npt.NDArray[np.float64], axis: int, shape: tuple[int, int, i
         # The crossing is below query points k > w - jw, i.e. from k = floor(w - jw) + 1.
         k = np.clip(np.floor(w - jw) + 1, 0, nw).astype(np.int64)
         crossings.append((ii[hit] * nv + jj[hit]) * (nw + 1) + k)
+        bar.update(last - first)
         first = last
     # Only the parity of the count in each slot matters: mark slots crossed an odd
     # number of times, then a running sum mod 2 (uint8 wraps at 256, an even number)
@@ -151,9 +155,10 @@ def voxelize(
     shape = tuple(int(max(1, min(n, math.ceil(s / pitch - 1e-9)))) for s in size)
     origin = lo + (size - np.array(shape) * pitch) / 2
     grid_tri = (tri - origin) / pitch - 0.5
-    votes = _crossings(grid_tri, 0, shape)
-    votes += _crossings(grid_tri, 1, shape)
-    votes += _crossings(grid_tri, 2, shape)
+    with meter(3 * len(tri), desc="voxelizing: triangles x 3 rays") as bar:
+        votes = _crossings(grid_tri, 0, shape, bar)
+        votes += _crossings(grid_tri, 1, shape, bar)
+        votes += _crossings(grid_tri, 2, shape, bar)
     return votes >= 2, pitch, origin
 
 

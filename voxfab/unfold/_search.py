@@ -9,6 +9,7 @@ import time
 import numpy as np
 import numpy.typing as npt
 
+from voxfab._shared.progress import Meter, meter
 from voxfab._shared.rng import as_rng
 from voxfab._shared.validate import as_grid, check_choice
 from voxfab.errors import InvalidShapeError, UnfoldError
@@ -129,7 +130,11 @@ class _Board:
     def best(self) -> int:
         return int(self.cnt[self.core.C_BEST])
 
-    def grow(self, p: _Params, deadline: float, max_steps: int | None = None) -> bool:
+    def grow(self, p: _Params, deadline: float, max_steps: int | None = None, bar: Meter | None = None) -> bool:
+        """Grow until every face is placed; False when the clock or ``max_steps`` runs out.
+
+        ``bar`` counts the faces of the largest partial net so far.
+        """
         spent = 0
         while self.unplaced > 0:
             if time.monotonic() > deadline or (max_steps is not None and spent >= max_steps):
@@ -138,6 +143,8 @@ class _Board:
             self.core.grow(*self._args(), self.root_cells, self.width, p.mode, p.tour,
                            chunk, p.restart_after, p.samples, p.p_lift, False)
             spent += chunk
+            if bar is not None:
+                bar.update(max(self.best, int(self.faces.size) - self.unplaced) - bar.done)
         return True
 
     def extent(self) -> tuple[int, int]:
@@ -146,13 +153,14 @@ class _Board:
         x, y = placed % self.width, placed // self.width
         return int(x.max() - x.min() + 1), int(y.max() - y.min() + 1)
 
-    def anneal(self, p: _Params, deadline: float) -> int:
+    def anneal(self, p: _Params, deadline: float, bar: Meter | None = None) -> int:
         """Drive seams without tab room to zero; return the count reached.
 
         Rounds of annealing, each from a freshly grown net (a stuck net is rarely
         worth more moves than a new one), within a budget of moves proportional to
         the face count, so the outcome depends on the seed alone unless the clock
-        runs out first.  The state ends at the best net seen.
+        runs out first.  The state ends at the best net seen.  ``bar`` counts the
+        moves tried.
         """
         core = self.core
         n = int(self.faces.size)
@@ -172,6 +180,8 @@ class _Board:
                 if score == 0:
                     break
                 done += chunk
+                if bar is not None:
+                    bar.update(chunk)
             if score >= 0 and (best is None or score < best[0]):
                 best = (score, self.pos.copy(), self.rot.copy(), self.par.copy(),
                         int(self.cnt[core.C_ROOT]))
@@ -342,7 +352,9 @@ def _one_piece(g: npt.NDArray[np.bool_], sg: SurfaceGraph, faces: npt.NDArray[np
                deadline: float, timeout: float, compact: bool) -> Net:
     p = _params(strat, faces.size)
     b = _Board(sg, faces, seed, fit)
-    if not b.grow(p, deadline):
+    with meter(int(faces.size), desc="net: faces placed") as bar:
+        grown = b.grow(p, deadline, bar=bar)
+    if not grown:
         raise UnfoldError(
             f"no one-piece net of the {faces.size}-face surface in {timeout:g} s with strategy "
             f"{strat.value!r}{'' if fit is None else f' inside {fit[0]}x{fit[1]}'}: "
@@ -354,7 +366,8 @@ def _one_piece(g: npt.NDArray[np.bool_], sg: SurfaceGraph, faces: npt.NDArray[np
     if compact:
         b = _compact(sg, faces, seed, p, b, deadline)
     if tab_aware and strat is Strategy.DEFAULT:
-        b.anneal(p, deadline)
+        with meter(desc="net: tab room, moves") as bar:
+            b.anneal(p, deadline, bar=bar)
     net = b.net(sg, faces=faces, seed=seed, strategy=strat.value)
     return _with_tab_count(g, net)
 
@@ -446,18 +459,20 @@ def unfold_many(
     nets: list[Net] = []
     seen: set[bytes] = set()
     tries = 0
-    while len(nets) < n:
-        tries += 1
-        if tries > 4 * n + 8:
-            raise UnfoldError(
-                f"only {len(nets)} distinct nets of {n} after {tries - 1} seeds: the surface "
-                "has few nets"
-            )
-        seed = int(gen.integers(0, 2**31 - 1))
-        net = unfold(grid, rng=seed, **options)  # type: ignore[arg-type]
-        key = net.corners2d.tobytes() + net.folds.tobytes()
-        if key in seen:
-            continue
-        seen.add(key)
-        nets.append(net)
+    with meter(n, desc="nets") as bar:
+        while len(nets) < n:
+            tries += 1
+            if tries > 4 * n + 8:
+                raise UnfoldError(
+                    f"only {len(nets)} distinct nets of {n} after {tries - 1} seeds: the surface "
+                    "has few nets"
+                )
+            seed = int(gen.integers(0, 2**31 - 1))
+            net = unfold(grid, rng=seed, **options)  # type: ignore[arg-type]
+            key = net.corners2d.tobytes() + net.folds.tobytes()
+            if key in seen:
+                continue
+            seen.add(key)
+            nets.append(net)
+            bar.update()
     return nets
