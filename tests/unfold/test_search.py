@@ -226,4 +226,4 @@ def test_search_counts_its_progress(monkeypatch):
     assert [m.done for m in by_desc["nets"]] == [2]
     assert all(m.done == m.total == faces for m in by_desc["net: faces placed"])
     # One net search per seed tried, each growing and then annealing for tab room.
-    assert len(by_desc["net: tab room, moves"]) == len(by_desc["net: faces placed"]) >= len(nets)
+    assert len(by_desc["net: tab room, moves (at most)"]) == len(by_desc["net: faces placed"]) >= len(nets)

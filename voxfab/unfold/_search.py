@@ -153,6 +153,13 @@ class _Board:
         x, y = placed % self.width, placed // self.width
         return int(x.max() - x.min() + 1), int(y.max() - y.min() + 1)
 
+    def anneal_budget(self) -> tuple[int, int]:
+        """Rounds of annealing and moves per round, for this many faces."""
+        n = int(self.faces.size)
+        if n > _LARGE:
+            return _LARGE_ROUNDS, _LARGE_MOVES_PER_ROUND * n
+        return _ROUNDS, _MOVES_PER_ROUND * n
+
     def anneal(self, p: _Params, deadline: float, bar: Meter | None = None) -> int:
         """Drive seams without tab room to zero; return the count reached.
 
@@ -164,9 +171,7 @@ class _Board:
         """
         core = self.core
         n = int(self.faces.size)
-        large = n > _LARGE
-        rounds = _LARGE_ROUNDS if large else _ROUNDS
-        per_round = (_LARGE_MOVES_PER_ROUND if large else _MOVES_PER_ROUND) * n
+        rounds, per_round = self.anneal_budget()
         chunk = max(200, 20000 // max(1, n // 100))
         best = None
         for _ in range(rounds):
@@ -179,9 +184,9 @@ class _Board:
                     p.samples, p.p_lift, _RUIN_CAP)
                 if score == 0:
                     break
-                done += chunk
                 if bar is not None:
-                    bar.update(chunk)
+                    bar.update(min(chunk, per_round - done))
+                done += chunk
             if score >= 0 and (best is None or score < best[0]):
                 best = (score, self.pos.copy(), self.rot.copy(), self.par.copy(),
                         int(self.cnt[core.C_ROOT]))
@@ -366,7 +371,8 @@ def _one_piece(g: npt.NDArray[np.bool_], sg: SurfaceGraph, faces: npt.NDArray[np
     if compact:
         b = _compact(sg, faces, seed, p, b, deadline)
     if tab_aware and strat is Strategy.DEFAULT:
-        with meter(desc="net: tab room, moves") as bar:
+        rounds, per_round = b.anneal_budget()
+        with meter(rounds * per_round, desc="net: tab room, moves (at most)") as bar:
             b.anneal(p, deadline, bar=bar)
     net = b.net(sg, faces=faces, seed=seed, strategy=strat.value)
     return _with_tab_count(g, net)
