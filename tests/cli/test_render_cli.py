@@ -30,6 +30,14 @@ def test_render_png_view_through_the_real_entry_point(tmp_path):
         assert im.size == (150, 150)
 
 
+def test_negative_view_written_with_a_space(tmp_path):
+    g = examples.random_shape(7)
+    np.save(tmp_path / "s.npy", g)
+    assert main(["render", str(tmp_path / "s.npy"), "-o", str(tmp_path / "a.png"), "--view", "-y",
+                 "--size", "90"]) == 0
+    assert (tmp_path / "a.png").read_bytes() == png_bytes(render(g, view="-y", size=90))
+
+
 def test_render_gif_turntable(tmp_path):
     np.save(tmp_path / "s.npy", examples.random_shape(8))
     assert main(["render", str(tmp_path / "s.npy"), "-o", str(tmp_path / "t.gif"), "--size", "64",

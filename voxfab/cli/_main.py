@@ -59,12 +59,26 @@ def _exit_code(exc: VoxfabError) -> int:
     return 1
 
 
+def _joined_negative_views(argv: list[str]) -> list[str]:
+    """``--view -x`` as ``--view=-x``: argparse takes a value starting with ``-`` for an option."""
+    out: list[str] = []
+    i = 0
+    while i < len(argv):
+        if argv[i] == "--view" and i + 1 < len(argv) and argv[i + 1] in ("-x", "-y", "-z"):
+            out.append(f"--view={argv[i + 1]}")
+            i += 2
+            continue
+        out.append(argv[i])
+        i += 1
+    return out
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the CLI; return the exit status."""
     from voxfab._shared import progress
 
     parser = build_parser()
-    args = parser.parse_args(argv)
+    args = parser.parse_args(_joined_negative_views(sys.argv[1:] if argv is None else list(argv)))
     if not getattr(args, "command", None):
         parser.print_help()
         return 2

@@ -27,7 +27,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                       help="every shape of the repository (--repo) by volume, with names")
     parser.add_argument("--net", type=Path, metavar="NET.json",
                         help="a voxfab-net/1 file: draw it (or use it in --triptych) instead of unfolding")
-    parser.add_argument("--view", choices=_VIEWS, default="iso", help="3D view (default iso); write negative sides as --view=-x")
+    parser.add_argument("--view", choices=_VIEWS, default="iso", help="3D view (default iso)")
     parser.add_argument("--size", type=int, default=None, metavar="PX",
                         help="picture side in pixels (default 800; 400 for GIF; 200 per contact-sheet tile)")
     parser.add_argument("--seed", type=int, default=0, metavar="N", help="seed of the triptych's net (default 0)")
