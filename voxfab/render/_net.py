@@ -8,13 +8,11 @@ net is face ``i`` of that graph.
 from __future__ import annotations
 
 import dataclasses
-from enum import StrEnum
 from typing import TYPE_CHECKING
 
 import numpy as np
 import numpy.typing as npt
 
-from voxfab._shared.validate import check_choice
 from voxfab.errors import InvalidShapeError
 from voxfab.shape import FOLD_FLAT, FOLD_MOUNTAIN, FOLD_VALLEY, VoxelShape, surface_graph
 
@@ -28,19 +26,12 @@ if TYPE_CHECKING:
     from voxfab.unfold import Net
 
 from voxfab.fabricate.netdraw._options import DEFAULT_STYLES as _SHEET_STYLES
+from voxfab.fabricate.netdraw._options import LineStyle
 
 __all__ = ["LineStyle", "NetLayout", "Seam", "net_layout", "net_seams", "net_picture", "DEFAULT_STYLES"]
 
-
-class LineStyle(StrEnum):
-    """How a fold line is drawn."""
-
-    SOLID = "solid"
-    DASHED = "dashed"
-    DASHDOT = "dashdot"
-    DOTTED = "dotted"
-    NONE = "none"
-
+#: A fold style that leaves the line out of the picture (beside the dash styles of :class:`LineStyle`).
+HIDDEN = "none"
 
 #: Default fold styles (Blender's paper-model convention: convex dashed, concave dash-dot).
 DEFAULT_STYLES: dict[str, str] = {"mountain": "dashed", "valley": "dashdot", "flat": "dotted"}
@@ -239,7 +230,11 @@ def net_picture(
     for kind, value in (styles or {}).items():
         if kind not in DEFAULT_STYLES:
             raise InvalidShapeError(f"styles: unknown fold kind {kind!r}; expected mountain, valley or flat")
-        style[kind] = check_choice(value, LineStyle, name=f"styles.{kind}").value
+        name = value.value if isinstance(value, LineStyle) else str(value)
+        allowed = [s.value for s in LineStyle] + [HIDDEN]
+        if name not in allowed:
+            raise InvalidShapeError(f"styles.{kind}: expected one of {', '.join(allowed)}, got {value!r}")
+        style[kind] = name
     graph = _check_net(net, shape_grid(shape))
     seams = _seams(net, graph)
 
@@ -284,12 +279,11 @@ def net_picture(
     ka, _ = _edge_index(graph, folds)
     fold_kind = graph.fold[folds[:, 0], ka]
     for value, kind in ((FOLD_FLAT, "flat"), (FOLD_MOUNTAIN, "mountain"), (FOLD_VALLEY, "valley")):
-        ls = LineStyle(style[kind])
         sel = fold_kind == value
-        if ls is LineStyle.NONE or not sel.any():
+        if style[kind] == HIDDEN or not sel.any():
             continue
         p, q = edge_points(folds[sel, 0], ka[sel])
-        _draw_lines(draw, lay.to_pixel(p), lay.to_pixel(q), _PATTERNS[ls], LINE_COLORS[kind], lw, u)
+        _draw_lines(draw, lay.to_pixel(p), lay.to_pixel(q), _PATTERNS[LineStyle(style[kind])], LINE_COLORS[kind], lw, u)
 
     # Cut edges: solid, on both sides of each seam.
     if len(sa):
@@ -349,7 +343,7 @@ def _draw_legend(draw, style: dict[str, str], width: int, h_total: int, legend_h
     seg = legend_h * 1.6
     lw = max(1, legend_h // 12)
     for kind, ls in _legend_entries(style):
-        if ls != "none":
+        if ls != HIDDEN:
             p, q = np.array([x, y]), np.array([x + seg, y])
             pattern = _PATTERNS[LineStyle(ls)]
             fractions = [(0.0, 1.0)] if len(pattern) == 1 else _dash_fractions(tuple(v / 1.6 for v in pattern))
