@@ -109,32 +109,35 @@ class Guard:
         if length is not None and (not length.isdigit() or int(length) > self.max_body):
             await _error(413, f"request larger than {self.max_body // (1024 * 1024)} MB")(scope, receive, send)
             return
-        seen = 0
-
-        async def limited() -> dict:
-            nonlocal seen
+        # The body is read here, whole, so an oversized one never reaches the application.
+        chunks, seen, more = [], 0, True
+        while more:
             message = await receive()
-            if message["type"] == "http.request":
-                seen += len(message.get("body", b""))
-                if seen > self.max_body:
-                    raise _TooLarge()
-            return message
+            if message["type"] != "http.request":
+                return  # the client went away
+            chunks.append(message.get("body", b""))
+            seen += len(chunks[-1])
+            more = message.get("more_body", False)
+            if seen > self.max_body:
+                await _error(413, f"request larger than {self.max_body // (1024 * 1024)} MB")(scope, receive, send)
+                return
+        body = b"".join(chunks)
+        replayed = False
+
+        async def replay() -> dict:
+            nonlocal replayed
+            if not replayed:
+                replayed = True
+                return {"type": "http.request", "body": body, "more_body": False}
+            return await receive()
 
         async def secured(message: dict) -> None:
             if message["type"] == "http.response.start":
-                message.setdefault("headers", [])
-                message["headers"] = list(message["headers"]) + [
+                message["headers"] = list(message.get("headers", [])) + [
                     (k.lower().encode(), v.encode()) for k, v in _HEADERS.items()]
             await send(message)
 
-        try:
-            await self.app(scope, limited, secured)
-        except _TooLarge:
-            await _error(413, f"request larger than {self.max_body // (1024 * 1024)} MB")(scope, receive, send)
-
-
-class _TooLarge(Exception):
-    pass
+        await self.app(scope, replay, secured)
 
 
 def _plain(status: int, text: str) -> Response:

@@ -204,7 +204,7 @@ def source_keys(spec: Any) -> tuple[dict[str, Any], dict[str, bytes]]:
                           ("frame", str), ("cap", str)):
             value = _get(spec, key, kind, where="shape")
             if value is not None:
-                keys[key] = float(value) if kind != str else value
+                keys[key] = value if isinstance(value, str) else float(value)
     elif maker == "focal":
         keys["foci"] = _points(spec.get("foci"), 3, where="shape.foci")
         if not keys["foci"]:

@@ -12,6 +12,7 @@ from __future__ import annotations
 import argparse
 import inspect
 import math
+import shutil
 import time
 import zipfile
 from pathlib import Path
@@ -247,7 +248,10 @@ def make_files(job: Job, grid: np.ndarray, *, artefact: str, title: str, pitch: 
             raise InvalidShapeError("animation: only a drawn tube has a turning profile; choose Tube in Draw")
         params, folder = tube
         target = out / f"{stem}-animation.gif"
-        save_tube_animation(target, params, steps=int(options.get("steps", 24)), size=400, base_dir=folder)
+        try:
+            save_tube_animation(target, params, steps=int(options.get("steps", 24)), size=400, base_dir=folder)
+        finally:
+            shutil.rmtree(folder, ignore_errors=True)
         _one(job, target.name, [target])
     else:
         raise InvalidShapeError(f"artefact: expected one of {', '.join(ARTEFACTS)}, got {artefact!r:.40}")
