@@ -4,10 +4,13 @@ from __future__ import annotations
 
 import io
 import time
+from pathlib import Path
 
 import numpy as np
 from PIL import Image, ImageDraw
 
+#: Screenshots of the browser tests, for a person to look at (output/ is not committed).
+SHOTS = Path(__file__).resolve().parents[2] / "output" / "studio"
 
 def png(draw) -> bytes:
     """A 100 × 100 white PNG with ``draw(ImageDraw)`` in black."""

@@ -14,7 +14,6 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-#: Screenshots of the browser tests, for a person to look at (output/ is not committed).
 SHOTS = ROOT / "output" / "studio"
 
 
