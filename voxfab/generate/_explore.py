@@ -141,7 +141,10 @@ def explore(
     added: list[tuple[str, int]] = []
     index = duplicates = rejected = 0
     while len(added) < count and index < limit:
-        grids, keys, metas, pending = [], [], [], dict[int, int]()
+        grids: list[np.ndarray] = []
+        keys: list[str] = []
+        metas: list[dict[str, object]] = []
+        pending: dict[int, int] = {}
         while len(added) + len(grids) < count and len(grids) < _CHUNK and index < limit:
             i, index = index, index + 1
             c = candidate(generator, seed, i, volume=volume)
