@@ -27,7 +27,6 @@ COMMANDS: dict[str, str] = {
     "slices": "voxfab.cli.slices",
     "render": "voxfab.cli.render",
     "explore": "voxfab.cli.explore",
-    "batch": "voxfab.cli.batch",
 }
 
 
