@@ -27,6 +27,7 @@ COMMANDS: dict[str, str] = {
     "slices": "voxfab.cli.slices",
     "render": "voxfab.cli.render",
     "studio": "voxfab.cli.studio",
+    "explore": "voxfab.cli.explore",
 }
 
 
