@@ -278,7 +278,7 @@ def test_animate_tube(client):
 # --- the repository ---------------------------------------------------------------------------
 
 def test_repository_save_list_open_thumb(client, tmp_path):
-    assert client.get("/api/repo").json() == {"shapes": []}
+    assert client.get("/api/repo").json() == {"shapes": [], "more": False}
     big = small_shape()
     small = np.zeros((25, 25, 25), dtype=bool)
     small[12, 12, :] = True
@@ -287,8 +287,14 @@ def test_repository_save_list_open_thumb(client, tmp_path):
     assert a == {"name": f"{big.sum():05d}.001", "created": True, "draft": False, "reasons": []}
     assert b["name"] == "00025.001"
     assert client.post("/api/repo", json={"grid": pack(small)}).json()["created"] is False
-    # by volume, smallest first
+    # by volume, smallest first, a page at a time
     assert [s["name"] for s in client.get("/api/repo").json()["shapes"]] == ["00025.001", a["name"]]
+    page = client.get("/api/repo?limit=1").json()
+    assert [s["name"] for s in page["shapes"]] == ["00025.001"] and page["more"]
+    page = client.get("/api/repo?limit=1&after=00025.001").json()
+    assert [s["name"] for s in page["shapes"]] == [a["name"]] and not page["more"]
+    for bad in ("limit=0", "limit=x", "limit=501", "after=../x"):
+        assert client.get(f"/api/repo?{bad}").status_code == 400, bad
     with Repository(tmp_path / "repo.sqlite", create=False) as repo:
         assert np.array_equal(centred(repo.get(a["name"])), big)
     opened = client.get(f"/api/repo/shape?name={a['name']}").json()

@@ -297,23 +297,31 @@ def create_app(settings: Settings) -> Starlette:
     # --- the repository -----------------------------------------------------------------------
 
     async def repo_list(request: Request) -> dict[str, Any]:
+        after = request.query_params.get("after") or None
+        if after is not None:
+            after = _name(request, "after")
+        limit = _work.check_number(int(request.query_params.get("limit", "120"))
+                                   if request.query_params.get("limit", "120").isdigit() else -1,
+                                   name="limit", lo=1, hi=500, integer=True)
+
         def run() -> dict[str, Any]:
             if not settings.repo.exists():
-                return {"shapes": []}
+                return {"shapes": [], "more": False}
             with repository() as repo:
-                entries = repo.list()
+                # one page more than asked tells whether another page follows
+                entries = repo.list(after=after, limit=int(limit) + 1)
             # named shapes by volume, as the repository orders them; drafts after them
             return {"shapes": [{"name": e.name, "volume": e.volume, "extents": list(e.extents), "draft": e.draft}
-                               for e in entries]}
+                               for e in entries[: int(limit)]], "more": len(entries) > limit}
 
         return await run_in_threadpool(run)
 
-    def _name(request: Request) -> str:
+    def _name(request: Request, key: str = "name") -> str:
         from voxfab.repo import DRAFT_PATTERN, NAME_PATTERN
 
-        name = request.query_params.get("name", "")
+        name = request.query_params.get(key, "")
         if not (NAME_PATTERN.match(name) or DRAFT_PATTERN.match(name)):
-            raise InvalidShapeError(f"name: expected a repository name such as 00797.001, got {name[:40]!r}")
+            raise InvalidShapeError(f"{key}: expected a repository name such as 00797.001, got {name[:40]!r}")
         return name
 
     async def repo_shape(request: Request) -> dict[str, Any]:

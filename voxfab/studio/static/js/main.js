@@ -253,10 +253,10 @@ $('#save-recipe').addEventListener('click', async () => {
   } catch (e) { say(e.message); }
 });
 
-async function refreshRepo() {
+async function refreshRepo(after = null) {
   try {
-    const r = await get('/api/repo');
-    $('#repo-grid').replaceChildren(...r.shapes.map((s) => {
+    const r = await get(after ? `/api/repo?after=${encodeURIComponent(after)}` : '/api/repo');
+    const figures = r.shapes.map((s) => {
       const fig = document.createElement('figure');
       fig.dataset.name = s.name;
       const img = Object.assign(document.createElement('img'), {src: `/api/repo/thumb?name=${encodeURIComponent(s.name)}`,
@@ -265,10 +265,15 @@ async function refreshRepo() {
       fig.append(img, cap);
       fig.addEventListener('click', () => openShape(s.name));
       return fig;
-    }));
+    });
+    // a page at a time: a repository may hold many thousands of shapes
+    if (after) $('#repo-grid').append(...figures); else $('#repo-grid').replaceChildren(...figures);
+    $('#repo-more').classList.toggle('hidden', !r.more);
+    $('#repo-more').dataset.after = r.shapes.length ? r.shapes[r.shapes.length - 1].name : '';
   } catch (e) { say(e.message); }
 }
-$('#repo-refresh').addEventListener('click', refreshRepo);
+$('#repo-refresh').addEventListener('click', () => refreshRepo());
+$('#repo-more').addEventListener('click', () => refreshRepo($('#repo-more').dataset.after));
 
 async function openShape(name) {
   try {
