@@ -24,6 +24,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                        help="a running Dask scheduler, e.g. tcp://host:8786 (its workers must see DIR)")
     where.add_argument("--workers", type=int, default=2, metavar="N",
                        help="worker processes of the local cluster (default 2)")
+    parser.add_argument("--connect-timeout", type=float, default=30.0, metavar="S",
+                        help="seconds to wait for the scheduler and its first worker (default 30)")
     parser.add_argument("--dashboard", default=":0", metavar="[HOST]:PORT",
                         help="local cluster dashboard address (default :0, a free port; needs bokeh)")
     parser.add_argument("--no-dashboard", action="store_true", help="run the local cluster without a dashboard")
@@ -62,7 +64,8 @@ def run(args: argparse.Namespace) -> int:
     try:
         report = run_batch(args.repo, args.outputs, args.output, names=args.names, limit=args.limit,
                            scheduler=args.scheduler, workers=args.workers, dashboard=dashboard,
-                           thumbnails=not args.no_index, on_start=start, on_outcome=outcome)
+                           thumbnails=not args.no_index, timeout=args.connect_timeout, on_start=start,
+                           on_outcome=outcome)
     finally:
         if "cm" in state:
             state["cm"].__exit__(None, None, None)  # type: ignore[attr-defined]
