@@ -28,6 +28,7 @@ COMMANDS: dict[str, str] = {
     "render": "voxfab.cli.render",
     "studio": "voxfab.cli.studio",
     "explore": "voxfab.cli.explore",
+    "batch": "voxfab.cli.batch",
 }
 
 
