@@ -36,7 +36,13 @@ C_REGROW_FAILED = 8  # annealing moves undone because regrowth ran out of steps
 C_ACCEPTED = 9  # annealing moves accepted
 C_WIDTH = 10  # board row length in cells
 C_CONSTRAINED = 11  # 1 when some edge is cut or kept by constraints
-N_COUNTERS = 12
+C_TRACK = 12  # 1 while the seams without tab room are kept up to date
+C_NBAD = 13  # seams without tab room (while tracked)
+C_LOGGING = 14  # 1 while faces touched are logged for an undo
+C_MOVE = 15  # id of the current logged move
+C_NLOG = 16  # faces logged in this move
+C_BESTBAD = 17  # fewest seams without tab room seen (annealing)
+N_COUNTERS = 18
 
 
 class Surface(NamedTuple):
@@ -75,8 +81,13 @@ class Board(NamedTuple):
     only those.
     ``cnt`` : counters, see the ``C_*`` constants.
     ``st`` : (1,) uint64 xorshift state.
-    ``stack, opt, bad, blk`` : scratch for subtree walks, repair options, seams
-    and the faces in the way of a repair.
+    ``stack, opt, blk`` : scratch for subtree walks, repair options and the
+    faces in the way of a repair.
+    ``sl, sp`` : while ``C_TRACK`` is on, the seams without tab room (each by
+    its smaller half-edge) as a list and positions, kept exact incrementally.
+    ``log, lpos, lrot, lpar, stamp`` : while ``C_LOGGING`` is on, the faces a
+    move touched, with their state before it, so that :func:`undo` costs only
+    what the move changed.
     ``root_cells`` : cells where a root may go.
     """
 
@@ -91,8 +102,14 @@ class Board(NamedTuple):
     st: npt.NDArray[np.uint64]
     stack: npt.NDArray[np.int64]
     opt: npt.NDArray[np.int64]
-    bad: npt.NDArray[np.int64]
     blk: npt.NDArray[np.int64]
+    sl: npt.NDArray[np.int64]
+    sp: npt.NDArray[np.int64]
+    log: npt.NDArray[np.int64]
+    lpos: npt.NDArray[np.int64]
+    lrot: npt.NDArray[np.int64]
+    lpar: npt.NDArray[np.int64]
+    stamp: npt.NDArray[np.int64]
     root_cells: npt.NDArray[np.int64]
 
 
@@ -186,6 +203,67 @@ def update(sf, b, h):
 
 
 @njit(cache=True)
+def seam_update(sf, b, h):
+    """Put the seam across half-edge h in the list of seams without tab room, or take it out.
+
+    A seam is a cut edge between two placed faces whose sides do not meet in
+    the plane (those are left uncut); it has no tab room when the cells beyond
+    its edge on both sides hold faces.
+    """
+    a = h >> 2
+    k = h & 3
+    c = sf.nb[a, k]
+    kc = sf.ne[a, k]
+    hc = 4 * c + kc
+    e = h if h < hc else hc
+    bad = False
+    if b.pos[a] >= 0 and b.pos[c] >= 0 and b.par[c] != a and b.par[a] != c:
+        s = (k + b.rot[a]) & 3
+        ca = b.pos[a] + b.off[s]
+        if ca != b.pos[c] or b.rot[c] != ((s + 2 - kc) & 3):
+            cc = b.pos[c] + b.off[(kc + b.rot[c]) & 3]
+            bad = b.board[ca] != -1 and b.board[cc] != -1
+    p = b.sp[e]
+    if bad:
+        if p < 0:
+            n = b.cnt[C_NBAD]
+            b.sl[n] = e
+            b.sp[e] = n
+            b.cnt[C_NBAD] = n + 1
+    elif p >= 0:
+        n = b.cnt[C_NBAD] - 1
+        last = b.sl[n]
+        b.sl[p] = last
+        b.sp[last] = p
+        b.sp[e] = -1
+        b.cnt[C_NBAD] = n
+
+
+@njit(cache=True)
+def _touch_seams(sf, b, j, c):
+    # A seam's status depends on its two faces and the two cells beyond it.
+    for k in range(4):
+        seam_update(sf, b, 4 * j + k)
+    for s in range(4):
+        q = b.board[c + b.off[s]]
+        if q >= 0:
+            seam_update(sf, b, 4 * q + (((s + 2) - b.rot[q]) & 3))
+
+
+@njit(cache=True)
+def _log(b, j):
+    # Remember face j's state before the current move first touched it.
+    if b.cnt[C_LOGGING] and b.stamp[j] != b.cnt[C_MOVE]:
+        b.stamp[j] = b.cnt[C_MOVE]
+        n = b.cnt[C_NLOG]
+        b.log[n] = j
+        b.lpos[j] = b.pos[j]
+        b.lrot[j] = b.rot[j]
+        b.lpar[j] = b.par[j]
+        b.cnt[C_NLOG] = n + 1
+
+
+@njit(cache=True)
 def _touch(sf, b, j, c):
     # Every half-edge whose validity depends on face j or on cell c.  Kept groups
     # reach further; the growth re-checks those at a pick and rescans at a dead end.
@@ -202,11 +280,14 @@ def _touch(sf, b, j, c):
                 p = sf.nb[j, e]
                 for e2 in range(4):
                     update(sf, b, 4 * sf.nb[p, e2] + sf.ne[p, e2])
+    if b.cnt[C_TRACK]:
+        _touch_seams(sf, b, j, c)
 
 
 @njit(cache=True)
 def place(sf, b, j, c, r, p):
     """Put face j on cell c with rotation r, child of p (-1: root)."""
+    _log(b, j)
     b.pos[j] = c
     b.rot[j] = r
     b.par[j] = p
@@ -254,6 +335,7 @@ def place_via(sf, b, h):
 @njit(cache=True)
 def unplace(sf, b, j):
     """Take face j off the board (its children are left dangling: use remove_subtree)."""
+    _log(b, j)
     c = b.pos[j]
     b.board[c] = -1
     b.pos[j] = -1
@@ -364,3 +446,63 @@ def restore(sf, b, src_pos, src_rot, src_par):
     b.cnt[C_NCAND] = 0
     b.cnt[C_UNPLACED] = 0
     b.cnt[C_NFREE] = 0
+
+
+@njit(cache=True)
+def undo(sf, b):
+    """Put every face the current move touched back where it was before the move."""
+    b.cnt[C_LOGGING] = 0
+    n = b.cnt[C_NLOG]
+    move = b.cnt[C_MOVE]
+    for t in range(n):
+        j = b.log[t]
+        if b.pos[j] >= 0:
+            unplace(sf, b, j)
+    # Every face outside the log kept its place, and so did its ancestors; put
+    # the logged ones back parents first.
+    for t in range(n):
+        j = b.log[t]
+        if b.lpos[j] < 0 or b.pos[j] >= 0:
+            continue
+        top = 0
+        a = j
+        while a >= 0 and b.pos[a] < 0 and b.stamp[a] == move and b.lpos[a] >= 0:
+            b.stack[top] = a
+            top += 1
+            a = b.lpar[a]
+        for u in range(top - 1, -1, -1):
+            f = b.stack[u]
+            place(sf, b, f, b.lpos[f], b.lrot[f], b.lpar[f])
+    b.cnt[C_NLOG] = 0
+
+
+@njit(cache=True)
+def exclude_unplaced(sf, b):
+    """Leave the unplaced faces out for good: the placed ones become a whole piece."""
+    f4 = 4 * b.pos.shape[0]
+    for t in range(b.cnt[C_NFREE]):
+        j = b.cl[f4 + t]
+        b.pos[j] = -3
+        b.cp[f4 + j] = -1
+    b.cnt[C_NFREE] = 0
+    b.cnt[C_UNPLACED] = 0
+    t = 0
+    while t < b.cnt[C_NCAND]:
+        h = b.cl[t]
+        update(sf, b, h)
+        if b.cp[h] == t:
+            t += 1
+
+
+@njit(cache=True)
+def track_seams(sf, b):
+    """Start keeping the list of seams without tab room; returns their count."""
+    for t in range(b.cnt[C_NBAD]):
+        b.sp[b.sl[t]] = -1
+    b.cnt[C_NBAD] = 0
+    b.cnt[C_TRACK] = 1
+    for a in range(b.pos.shape[0]):
+        if b.pos[a] >= 0:
+            for k in range(4):
+                seam_update(sf, b, 4 * a + k)
+    return b.cnt[C_NBAD]

@@ -43,18 +43,22 @@ MODE_RUIN = 0  # ruin-and-recreate, never restart
 MODE_PAPER = 1  # published method: leaf swap, smallest subtree, restart
 #: Random roots tried before a start gives up (a kept group may not fit a small box).
 _ROOT_TRIES = 64
+#: Largest blocking subtree a repair weighs; past it any usable option will do.
+_CAP = 128
 
 
 class Growth(NamedTuple):
     """How to grow: ``mode``, candidates per ``tour``nament, blocked options
     ``samples``d per dead end, chance ``p_lift`` of ruining further up the tree,
-    and repairs without progress before a paper-mode restart."""
+    repairs without progress before a paper-mode restart, and whether a dead
+    end with no usable repair may ``restart`` from scratch (else growth stops)."""
 
     mode: int
     tour: int
     samples: int
     p_lift: float
     restart_after: int
+    restart: bool = True
 
 
 @njit(cache=True)
@@ -159,17 +163,38 @@ def blocker(b, h):
 
 
 @njit(cache=True)
+def _free_subtree(sf, b, m, i, cap):
+    # Size of m's subtree, or cap + 1 when it is larger or holds face i (which
+    # must stay: the blocked face hangs from it).  Bounded by cap, unlike a walk
+    # up from i, which costs the depth of the tree.
+    stack = b.stack
+    stack[0] = m
+    top = 1
+    n = 0
+    while top > 0:
+        top -= 1
+        f = stack[top]
+        n += 1
+        if f == i or n > cap:
+            return cap + 1
+        for k in range(4):
+            g = sf.nb[f, k]
+            if b.pos[g] >= 0 and b.par[g] == f:
+                stack[top] = g
+                top += 1
+    return n
+
+
+@njit(cache=True)
 def _smallest_blocking(sf, b, n, tries, sampled):
     # The option among ``tries`` (random ones when ``sampled``, else the first)
-    # whose blocking subtree is smallest and not above the option's own face.
+    # whose blocking subtree is smallest, at most _CAP faces and not above the
+    # option's own face; -1 if none.
     chosen = -1
-    best_size = b.pos.shape[0] + 1
+    best_size = _CAP + 1
     for t in range(tries):
         h = b.opt[randint(b.st, n)] if sampled else b.opt[t]
-        m = blocker(b, h)
-        if in_subtree(h >> 2, m, b.par):
-            continue
-        size = subtree_size(sf, b, m, best_size)
+        size = _free_subtree(sf, b, blocker(b, h), h >> 2, best_size - 1)
         if size < best_size:
             best_size = size
             chosen = h
@@ -177,10 +202,11 @@ def _smallest_blocking(sf, b, n, tries, sampled):
 
 
 @njit(cache=True)
-def _ruin_choice(sf, b, n, samples):
+def _ruin_choice(sf, b, n, samples, fallback):
     chosen = _smallest_blocking(sf, b, n, min(n, samples), True)
-    if chosen < 0:
-        # Every sample hung under its own blocker: take the first usable one.
+    if chosen < 0 and fallback:
+        # Every sample was too large or hung under its own blocker: take the
+        # first usable option.
         t0 = randint(b.st, n)
         for t in range(n):
             h = b.opt[(t0 + t) % n]
@@ -333,13 +359,18 @@ def _repair(sf, b, gw, give_up):
         return False
     if b.cnt[C_CONSTRAINED]:
         return _repair_constrained(sf, b, n, max(gw.samples, 3), b.blk)
-    chosen = _ruin_choice(sf, b, n, gw.samples) if gw.mode == MODE_RUIN else _paper_choice(sf, b, n)
+    # Without restarts (a tab-room move), a repair that would ruin a large
+    # subtree gives up instead: the move is undone more cheaply.
+    if gw.mode == MODE_RUIN:
+        chosen = _ruin_choice(sf, b, n, gw.samples, gw.restart)
+    else:
+        chosen = _paper_choice(sf, b, n)
     if chosen < 0:
         return False
     i = chosen >> 2
     m = blocker(b, chosen)
     root = b.cnt[C_ROOT]
-    if gw.mode == MODE_RUIN and random(b.st) < gw.p_lift:
+    if gw.mode == MODE_RUIN and gw.restart and random(b.st) < gw.p_lift:
         # Now and then ruin further up the tree, so small swaps cannot cycle.
         lift = 1 + randint(b.st, 3)
         while lift > 0 and b.par[m] >= 0 and b.par[m] != root and not in_subtree(i, b.par[m], b.par):
@@ -385,6 +416,8 @@ def grow(sf, b, gw, max_steps, sparse):
         since_best += 1
         give_up = gw.mode == MODE_PAPER and since_best > gw.restart_after
         if not _repair(sf, b, gw, give_up):
+            if not gw.restart:
+                return False
             b.cnt[C_RESTARTS] += 1
             since_best = 0
             if start(sf, b) < 0:
