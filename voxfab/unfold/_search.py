@@ -27,11 +27,16 @@ __all__ = ["NoFitError", "Strategy", "Pieces", "unfold", "unfold_many"]
 MAX_BOARD = 1021
 #: Growth steps per compiled call between two clock checks.
 _CHUNK = 4000
-#: Tab-room moves per face, and moves per compiled call between two clock checks.
-_MOVES_PER_FACE = 200
+#: Tab-room rounds (each from a fresh net), moves per face in each, and moves
+#: per compiled call between two clock checks.
+_ROUNDS = 8
+_SPARSE = False
+_MOVES_PER_FACE = 15
 _ANNEAL_CHUNK = 20000
 #: Largest subtree one annealing move may remove.
-_RUIN_CAP = 60
+_RUIN_CAP = 20  # most moves
+_BIG_CAP = 200
+_P_BIG = 0.1
 #: Growth steps an annealing move may spend regrowing before it is undone.
 _REGROW_STEPS = 2000
 #: Annealing temperatures (in seams without tab room) at the start and the end.
@@ -69,17 +74,15 @@ def _growth(strategy: Strategy, faces: int):
 
 
 def _surface(sg: SurfaceGraph, resolved: Resolved | None):
-    from ._board import Surface
+    from ._board import make_surface
 
-    nb = np.ascontiguousarray(sg.neighbor, dtype=np.int64)
-    ne = np.ascontiguousarray(sg.neighbor_edge, dtype=np.int64)
+    f = sg.face_count
     if resolved is None:
-        f = sg.face_count
         none = np.zeros(0, dtype=np.int64)
         resolved = Resolved(np.zeros((f, 4), dtype=np.int8), np.full(f, -1, dtype=np.int64),
                             none, none, none, none, np.zeros(1, dtype=np.int64))
-        return Surface(nb, ne, *resolved)
-    return Surface(nb, ne, *resolved)
+    return make_surface(sg.neighbor, sg.neighbor_edge, resolved.edge, resolved.group, resolved.gx,
+                        resolved.gy, resolved.grot, resolved.members, resolved.start)
 
 
 class _Board:
@@ -92,41 +95,38 @@ class _Board:
         self.k = _board
         self.growth = _growth
         self.tabroom = _tabroom
-        f = sg.face_count
         if fit is None:
             side = min(2 * faces.size + 1, MAX_BOARD)
             w, h = side, side
         else:
             w, h = fit
         self.width = w + 2
-        board = np.full((h + 2, w + 2), -2, dtype=np.int32)
+        board = np.full((h + 2, w + 2), -2, dtype=np.int64)
         board[1:-1, 1:-1] = -1
         if fit is None:
             cells = np.array([(h // 2 + 1) * self.width + w // 2 + 1], dtype=np.int64)
         else:
             ys, xs = np.nonzero(board == -1)
             cells = (ys * self.width + xs).astype(np.int64)
-        pos = np.full(f, -3, dtype=np.int64)
-        pos[faces] = -1
-        cnt = np.zeros(_board.N_COUNTERS, dtype=np.int64)
-        cnt[_board.C_WIDTH] = self.width
-        cnt[_board.C_CONSTRAINED] = int(resolved is not None)
-        state = np.random.SeedSequence(seed).generate_state(1, dtype=np.uint64)
+        state = np.random.SeedSequence(seed).generate_state(1, dtype=np.uint64)[0]
         self.sf = _surface(sg, resolved)
-        self.b = _board.Board(
-            pos=pos, rot=np.zeros(f, dtype=np.int64), par=np.full(f, -2, dtype=np.int64),
-            board=board.ravel(), off=np.array([-self.width, 1, self.width, -1], dtype=np.int64),
-            cl=np.zeros(5 * f, dtype=np.int64), cp=np.full(5 * f, -1, dtype=np.int64), cnt=cnt,
-            st=np.array([state[0] | np.uint64(1)], dtype=np.uint64),
-            stack=np.zeros(f + 1, dtype=np.int64), opt=np.zeros(4 * f, dtype=np.int64),
-            blk=np.zeros(5 * f + 4, dtype=np.int64), sl=np.zeros(4 * f, dtype=np.int64),
-            sp=np.full(4 * f, -1, dtype=np.int64), log=np.zeros(f, dtype=np.int64),
-            lpos=np.zeros(f, dtype=np.int64), lrot=np.zeros(f, dtype=np.int64),
-            lpar=np.zeros(f, dtype=np.int64), stamp=np.full(f, -1, dtype=np.int64),
-            root_cells=cells)
-        self.pos, self.rot, self.par, self.cnt = self.b.pos, self.b.rot, self.b.par, cnt
+        self.b = _board.make_board(faces, sg.face_count, board.ravel(), self.width, cells,
+                                   int(state), resolved is not None)
+        self.cnt = self.b.cnt
         self.faces = faces
-        self.started = self.growth.start(self.sf, self.b) >= 0
+        self.started = self.growth.start(*self.sf, *self.b) >= 0
+
+    @property
+    def pos(self) -> npt.NDArray[np.int64]:
+        return self.b.face[:, self.k.POS]
+
+    @property
+    def rot(self) -> npt.NDArray[np.int64]:
+        return self.b.face[:, self.k.ROT]
+
+    @property
+    def par(self) -> npt.NDArray[np.int64]:
+        return self.b.face[:, self.k.PAR]
 
     @property
     def unplaced(self) -> int:
@@ -148,7 +148,8 @@ class _Board:
             if time.monotonic() > deadline or (max_steps is not None and spent >= max_steps):
                 return False
             chunk = _CHUNK if max_steps is None else min(_CHUNK, max_steps - spent)
-            if not self.growth.grow(self.sf, self.b, gw, chunk, False) and self.unplaced == self.faces.size:
+            done = self.growth.grow(*self.sf, *self.b, gw, chunk, _SPARSE)
+            if not done and self.unplaced == self.faces.size:
                 return False  # a restart found no room for a root
             spent += chunk
             if bar is not None:
@@ -162,36 +163,55 @@ class _Board:
         return int(x.max() - x.min() + 1), int(y.max() - y.min() + 1)
 
     def anneal_budget(self) -> int:
-        """Moves of tab-room repair allowed for this many faces."""
-        return _MOVES_PER_FACE * int(self.faces.size)
+        """Moves of tab-room repair allowed for this many faces (over all rounds)."""
+        return _ROUNDS * _MOVES_PER_FACE * int(self.faces.size)
 
     def exclude_unplaced(self) -> None:
         """Make the placed faces a whole piece: the others are left out for good."""
-        self.k.exclude_unplaced(self.sf, self.b)
+        self.k.exclude_unplaced(*self.sf, *self.b[:4])
         self.faces = np.flatnonzero(self.pos >= 0)
 
     def anneal(self, gw, deadline: float, bar: Meter | None = None) -> int:
         """Drive seams without tab room to zero; return the count reached.
 
-        One annealing run of at most :meth:`anneal_budget` moves, so the outcome
+        Rounds of annealing, each from a freshly grown net when the one before
+        got stuck (the last few seams are often cheaper to fix in a new net than
+        in an old one), each within a fixed number of moves, so the outcome
         depends on the seed alone unless the clock runs out first.  The state
         ends at the best net seen.  ``bar`` counts the moves tried.
         """
+        face, half, board, cnt, _ = self.b
+        best = np.zeros((face.shape[0], 3), dtype=np.int64)
+        kept: tuple[int, np.ndarray, int] | None = None
+        for _ in range(_ROUNDS):
+            left = self._anneal_round(gw, deadline, best, bar)
+            if kept is None or left < kept[0]:
+                kept = (left, best.copy(), int(cnt[self.k.C_ROOT]))
+            if left == 0 or time.monotonic() > deadline:
+                break
+            self.growth.start(*self.sf, *self.b)
+            if not self.grow(gw, deadline, _FIT_STEPS_PER_FACE * int(self.faces.size)):
+                break
+        self.k.restore(face, half, board, cnt, kept[1])
+        cnt[self.k.C_ROOT] = kept[2]
+        return kept[0]
+
+    def _anneal_round(self, gw, deadline: float, best: np.ndarray, bar: Meter | None) -> int:
         tr = self.tabroom
-        total = self.anneal_budget()
-        sched = tr.Annealing(total, _T0, _T1, _REGROW_STEPS, _RUIN_CAP)
-        gw = gw._replace(restart=False)  # a move that cannot regrow is undone instead
-        best = (self.pos.copy(), self.rot.copy(), self.par.copy())
-        left = tr.begin(self.sf, self.b, *best)
+        face, half, board, cnt, _ = self.b
+        total = _MOVES_PER_FACE * int(self.faces.size)
+        sched = tr.Annealing(total, _T0, _T1, _REGROW_STEPS, _RUIN_CAP, _BIG_CAP, _P_BIG)
+        gw = gw._replace(restart=False)  # a move that cannot regrow cheaply is undone instead
+        left = tr.begin(self.sf.link, face, half, board, cnt, best)
         done = 0
         while left > 0 and done < total and time.monotonic() < deadline:
             step = min(_ANNEAL_CHUNK, total - done)
-            used = tr.anneal(self.sf, self.b, gw, sched, step, done, *best)
+            used = tr.anneal(*self.sf, *self.b, gw, sched, step, done, best)
             if bar is not None:
                 bar.update(used)
             done += step
-            left = int(self.cnt[self.k.C_NBAD])
-        return int(tr.finish(self.sf, self.b, *best))
+            left = int(cnt[self.k.C_NBAD])
+        return int(tr.finish(face, half, board, cnt, best))
 
     def net(self, sg: SurfaceGraph, *, faces: npt.NDArray[np.int64] | None = None,
             seed: int, strategy: str) -> Net:
