@@ -12,7 +12,7 @@ from voxfab.errors import InvalidShapeError, UnknownFormatError
 
 from ._common import add_shape_argument, load_shape, print_json, print_notes
 
-HELP = "unfold the surface into a one-piece paper net (JSON, or drawings .svg .dxf .pdf)"
+HELP = "unfold the surface into a one-piece paper net (JSON, or drawings .svg .dxf .pdf .png)"
 
 _FIT = re.compile(r"^\s*(\d+(?:\.\d*)?)\s*[xX×]\s*(\d+(?:\.\d*)?)\s*$")
 
@@ -21,7 +21,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the ``net`` options."""
     add_shape_argument(parser)
     parser.add_argument("-o", "--output", action="append", required=True, metavar="PATH",
-                        help="NET.json, or a drawing (.svg .dxf .pdf); repeat for several files "
+                        help="NET.json, or a drawing (.svg .dxf .pdf .png); repeat for several files "
                              "of the same net")
     parser.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     parser.add_argument("--count", type=int, default=1, metavar="N",
@@ -31,11 +31,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--timeout", type=float, default=60.0, metavar="S",
                         help="search budget in seconds per net (default 60)")
     parser.add_argument("--fit", metavar="WxH",
-                        help="keep the net inside W×H (voxels, or mm when --pitch is given)")
-    parser.add_argument("--pitch", type=float, metavar="MM",
-                        help="face size in mm; drawings pick the largest that fits the sheet when omitted")
+                        help="JSON nets: keep the net inside W×H (voxels, or mm with a face size); "
+                             "drawings always fit their sheet")
+    parser.add_argument("--face-size", type=float, metavar="MM",
+                        help="edge of one paper face in mm; drawings pick the largest at which the net "
+                             "fits the sheet when omitted")
+    parser.add_argument("--pitch", type=float, metavar="MM", help="the face size, when --face-size is not given")
     parser.add_argument("--pieces", choices=["one", "auto"], default="one",
-                        help="auto: accept the fewest pieces found (one file per piece)")
+                        help="auto: when no one-piece net fits the sheet, the fewest pieces, packed on as "
+                             "few sheets as possible")
     parser.add_argument("--fill", action="store_true", help="fill enclosed cavities first")
     parser.add_argument("--compact", action="store_true",
                         help="prefer a small bounding box (slower)")
@@ -46,17 +50,17 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     netdraw.add_drawing_arguments(parser)
 
 
-def _fit(text: str | None, pitch: float | None) -> tuple[int, int] | None:
+def _fit(text: str | None, face_size: float | None) -> tuple[int, int] | None:
     if text is None:
         return None
     m = _FIT.match(text)
     if not m:
         raise InvalidShapeError(f"--fit: expected WxH such as 40x30, got {text!r}")
     w, h = float(m.group(1)), float(m.group(2))
-    if pitch is not None:
-        return math.floor(w / pitch + 1e-9), math.floor(h / pitch + 1e-9)
+    if face_size is not None:
+        return math.floor(w / face_size + 1e-9), math.floor(h / face_size + 1e-9)
     if w != int(w) or h != int(h):
-        raise InvalidShapeError(f"--fit: whole voxels expected without --pitch, got {text!r}")
+        raise InvalidShapeError(f"--fit: whole voxels expected without a face size, got {text!r}")
     return int(w), int(h)
 
 
@@ -67,15 +71,43 @@ def _named(path: Path, *tags: str) -> Path:
     return path.with_name(f"{path.stem}-{'-'.join(tags)}{path.suffix}")
 
 
+def _face_size(args: argparse.Namespace) -> float | None:
+    face = args.face_size if args.face_size is not None else args.pitch
+    if face is not None and not (math.isfinite(face) and face > 0):
+        raise InvalidShapeError(f"--face-size: expected a positive number of mm, got {face}")
+    return face
+
+
+def _search(args: argparse.Namespace, shape, drawings: list[Path], face: float | None, netdraw):  # noqa: ANN001, ANN202
+    """Nets as lists of pieces, the drawing options (None without drawings) and notes."""
+    from voxfab.unfold import unfold, unfold_many
+
+    search = dict(strategy=args.strategy, timeout=args.timeout, fill=args.fill, compact=args.compact)
+    if drawings:
+        if args.fit is not None:
+            raise InvalidShapeError("--fit: drawings fit their sheet (--sheet); --fit is for JSON nets only")
+        args.pitch = face
+        found = netdraw.find_sheet_nets(shape.grid, netdraw.options_from_args(args), rng=args.seed,
+                                        pieces=args.pieces, count=args.count, **search)
+        return found.nets, found.options, found.notes
+    fit = _fit(args.fit, face)
+    if args.count > 1:
+        return [[n] for n in unfold_many(shape.grid, count=args.count, rng=args.seed, fit=fit, **search)], None, []
+    found = unfold(shape.grid, rng=args.seed, pieces=args.pieces, fit=fit, **search)
+    return [found if isinstance(found, list) else [found]], None, []
+
+
 def run(args: argparse.Namespace) -> int:
     """Search, validate and write the nets."""
     from voxfab._shared.atomic import write_text
-    from voxfab.unfold import unfold, unfold_many, validate
+    from voxfab.shape import fill_cavities
+    from voxfab.unfold import validate
 
-    if args.pitch is not None and not (math.isfinite(args.pitch) and args.pitch > 0):
-        raise InvalidShapeError(f"--pitch: expected a positive number of mm, got {args.pitch}")
+    face = _face_size(args)
     if args.count < 1:
         raise InvalidShapeError(f"--count: expected an integer >= 1, got {args.count}")
+    if args.count > 1 and args.pieces != "one":
+        raise InvalidShapeError("--count: several nets need --pieces one")
     outputs = [Path(p) for p in args.output]
     drawings = [p for p in outputs if p.suffix.lower() != ".json"]
     netdraw = None
@@ -87,38 +119,39 @@ def run(args: argparse.Namespace) -> int:
                 f"{drawings[0]}: drawings need voxfab.fabricate.netdraw, which is not "
                 "installed; write a .json net"
             ) from None
+        bad = [p for p in drawings if p.suffix.lower() not in netdraw.drawing_formats()]
+        if bad:
+            raise UnknownFormatError(f"{bad[0]}: unknown drawing format; expected .json or one of "
+                                     f"{', '.join(netdraw.drawing_formats())}")
+        netdraw.options_from_args(args)  # bad drawing options fail before the search
     shape, name, notes = load_shape(args.shape, args.repo)
     print_notes(notes)
-    fit = _fit(args.fit, args.pitch)
-    options = dict(strategy=args.strategy, timeout=args.timeout, fit=fit, fill=args.fill,
-                   compact=args.compact)
-    if args.count > 1:
-        if args.pieces != "one":
-            raise InvalidShapeError("--count: several nets need --pieces one")
-        results = [[n] for n in unfold_many(shape.grid, count=args.count, rng=args.seed, **options)]
-    else:
-        found = unfold(shape.grid, rng=args.seed, pieces=args.pieces, **options)
-        results = [found if isinstance(found, list) else [found]]
-    from voxfab.shape import VoxelShape, fill_cavities
-
+    results, options, found_notes = _search(args, shape, drawings, face, netdraw)
+    print_notes(found_notes)
     grid = fill_cavities(shape.grid) if args.fill else shape.grid
-    drawn = VoxelShape(grid, args.pitch if args.pitch is not None else shape.pitch)
     title = name or Path(args.shape).stem
-    written = []
-    summary = []
+    written, summary, warnings = [], [], []
     for t, pieces in enumerate(results):
         validate(grid, pieces if len(pieces) > 1 else pieces[0])
-        for q, net in enumerate(pieces):
-            tags = (str(t + 1) if len(results) > 1 else "", f"piece{q + 1}" if len(pieces) > 1 else "")
-            for path in outputs:
-                target = _named(path, *tags)
-                if path in drawings:
-                    for line in netdraw.write_drawing(drawn, net, target, args, title=title):
-                        print(f"voxfab: {target.name}: {line}", file=sys.stderr)
-                else:
-                    write_text(target, net.to_json())
+        tag = str(t + 1) if len(results) > 1 else ""
+        record = {"seed": pieces[0].seed, "faces": sum(n.face_count for n in pieces), "pieces": len(pieces),
+                  "seams_without_tab_room": sum(n.seams_without_tab_room for n in pieces)}
+        for path in outputs:
+            if path in drawings:
+                result = netdraw.write_net_drawing(grid, pieces, _named(path, tag), options, title=title)
+                for line in result.report:
+                    print(f"voxfab: {_named(path, tag).name}: {line}", file=sys.stderr)
+                written += result.files
+                record["face_size"] = result.face_size
+                record["fill"] = [round(f, 4) for f in result.fill]
+                warnings += [w for w in result.warnings if w not in warnings]
+                continue
+            for q, net in enumerate(pieces):
+                target = _named(path, tag, f"piece{q + 1}" if len(pieces) > 1 else "")
+                write_text(target, net.to_json())
                 written.append(str(target))
-            summary.append({"seed": net.seed, "faces": net.face_count,
-                            "seams_without_tab_room": net.seams_without_tab_room})
-    print_json({"written": written, "nets": summary})
+        summary.append(record)
+    for w in warnings:
+        print(f"voxfab: warning: {w}", file=sys.stderr)
+    print_json({"written": written, "nets": summary, "warnings": warnings})
     return 0

@@ -7,15 +7,21 @@ import re
 from enum import Enum
 
 from voxfab._shared.validate import check_choice, check_positive
-from voxfab.drawing import LayerStyle, parse_colors
+from voxfab.drawing import LayerStyle, Lines, parse_colors
 from voxfab.drawing.dxf import DxfVersion
 from voxfab.errors import InvalidShapeError
 
-#: Paper sizes in mm (portrait).
+#: Paper sizes in mm (portrait), smallest first: a net that does not fit is told the smallest that does.
 SHEETS: dict[str, tuple[float, float]] = {
+    "A5": (148.0, 210.0),
     "A4": (210.0, 297.0),
-    "A3": (297.0, 420.0),
     "Letter": (215.9, 279.4),
+    "Legal": (215.9, 355.6),
+    "A3": (297.0, 420.0),
+    "Tabloid": (279.4, 431.8),
+    "A2": (420.0, 594.0),
+    "A1": (594.0, 841.0),
+    "A0": (841.0, 1189.0),
 }
 
 
@@ -28,13 +34,13 @@ class Perforate(Enum):
 
 
 def parse_sheet(spec: str) -> tuple[float, float]:
-    """Sheet size in mm from ``A4``, ``A3``, ``Letter`` or ``WxH`` (mm)."""
+    """Sheet size in mm from a name of :data:`SHEETS` (``A4``, ``A3``, ``Letter``, ...) or ``WxH`` (mm)."""
     for name, size in SHEETS.items():
         if spec.lower() == name.lower():
             return size
     m = re.fullmatch(r"\s*([0-9]*\.?[0-9]+)\s*[xX×]\s*([0-9]*\.?[0-9]+)\s*(mm)?\s*", spec)
     if not m:
-        raise InvalidShapeError(f"sheet: expected A4, A3, Letter or WxH in mm, got {spec!r}")
+        raise InvalidShapeError(f"sheet: expected {', '.join(SHEETS)} or WxH in mm, got {spec!r}")
     w, h = float(m.group(1)), float(m.group(2))
     if w <= 0 or h <= 0:
         raise InvalidShapeError(f"sheet: sides must be positive, got {spec!r}")
@@ -48,8 +54,8 @@ class DrawingOptions:
     Parameters
     ----------
     pitch : float or None
-        Face edge length in mm; ``None`` picks the largest pitch (rounded down to
-        0.1 mm, at least ``min_auto_pitch``) that puts the net on one sheet.
+        Face edge length in mm (the paper face size); ``None`` picks the largest
+        (rounded down to 0.1 mm) that puts the net on one sheet.
     sheet : str
         ``A4``, ``A3``, ``Letter`` or ``WxH`` in mm.
     margin : float
@@ -60,6 +66,11 @@ class DrawingOptions:
         Angle of the tab's slanted sides to its fold, degrees in [15, 75].
     label_height : float
         Largest cap height of edge numbers, mm (they shrink to fit the faces).
+    min_label_height : float
+        Smallest cap height of edge numbers, mm: faces too small to carry them
+        are refused, with the smallest face size that works.
+    min_tab_depth : float
+        Smallest glue tab height, mm; faces too small for it are refused likewise.
     title_height : float
         Cap height of the title, mm.
     grid_lines : bool
@@ -68,12 +79,13 @@ class DrawingOptions:
         ``none``, ``mountain`` or ``valley``: that fold type is drawn as short cuts.
     perf_cut, perf_bridge : float
         Perforation cut and bridge lengths, mm.
+    svg_lines : str
+        ``laser``: hairline SVG strokes for laser software; ``preview``: visible
+        lines and shaded tabs, to look at in a browser.
     dxf_version : str
         ``R12`` or ``R2000``.
     colors : str
         Overrides of the colour map, see :func:`parse_colors`.
-    min_auto_pitch : float
-        Smallest pitch picked automatically; larger nets are split over sheets.
     numbers : bool
         Print the edge numbers (``False``: an explicit opt-out for faces too small
         to carry them).
@@ -89,14 +101,16 @@ class DrawingOptions:
     tab_width: float = 5.0
     tab_angle: float = 45.0
     label_height: float = 5.0
+    min_label_height: float = 2.0
+    min_tab_depth: float = 3.0
     title_height: float = 3.0
     grid_lines: bool = False
     perforate: str = "none"
     perf_cut: float = 1.5
     perf_bridge: float = 1.0
+    svg_lines: str = "laser"
     dxf_version: str = "R12"
     colors: str = ""
-    min_auto_pitch: float = 5.0
     numbers: bool = True
     tabs: bool = True
     heading: bool = True
@@ -104,14 +118,26 @@ class DrawingOptions:
     def __post_init__(self) -> None:
         if self.pitch is not None:
             check_positive(self.pitch, name="pitch")
-        for name in ("tab_width", "label_height", "title_height", "perf_cut", "perf_bridge", "min_auto_pitch"):
+        for name in ("tab_width", "label_height", "title_height", "perf_cut", "perf_bridge", "min_label_height",
+                     "min_tab_depth"):
             check_positive(getattr(self, name), name=name.replace("_", "-"))
         if not 0 <= float(self.margin) < 1e4:
             raise InvalidShapeError(f"margin: expected a number >= 0 mm, got {self.margin!r}")
         if not 15.0 <= float(self.tab_angle) <= 75.0:
             raise InvalidShapeError(f"tab-angle: expected 15 to 75 degrees, got {self.tab_angle!r}")
+        if self.tabs and self.tab_width < self.min_tab_depth:
+            raise InvalidShapeError(
+                f"tab-width: {self.tab_width:g} mm is under the {self.min_tab_depth:g} mm smallest tab "
+                "(--min-tab-depth)"
+            )
+        if self.numbers and self.label_height < self.min_label_height:
+            raise InvalidShapeError(
+                f"label-height: {self.label_height:g} mm is under the {self.min_label_height:g} mm smallest "
+                "number (--min-label-height)"
+            )
         check_choice(self.perforate, Perforate, name="perforate")
         check_choice(self.dxf_version, DxfVersion, name="dxf-version")
+        check_choice(self.svg_lines, Lines, name="svg-lines")
         w, h = self.sheet_size
         if min(w, h) <= 2 * self.margin + self.title_height + 4:
             raise InvalidShapeError(f"sheet: {self.sheet} leaves no room inside a {self.margin} mm margin")
