@@ -27,6 +27,7 @@ COMMANDS: dict[str, str] = {
     "slices": "voxfab.cli.slices",
     "render": "voxfab.cli.render",
     "explore": "voxfab.cli.explore",
+    "batch": "voxfab.cli.batch",
 }
 
 
