@@ -49,13 +49,13 @@ def test_values_are_checked_and_normalised():
 @pytest.mark.parametrize(
     ("changes", "message"),
     [
-        ({"width": -3}, "width: expected a number of mm > 0 and <= 100, got -3"),
-        ({"width": 0}, "width: expected a number of mm > 0 and <= 100, got 0"),
-        ({"width": math.nan}, "width: expected a number of mm > 0 and <= 100, got nan"),
-        ({"width": math.inf}, "width: expected a number of mm > 0 and <= 100, got inf"),
-        ({"width": 10**400}, "width: expected a number of mm > 0 and <= 100, got 1000"),
-        ({"width": "5"}, "width: expected a number of mm > 0 and <= 100, got str '5'"),
-        ({"width": True}, "width: expected a number of mm"),
+        ({"width": -3}, "width: expected a positive number of mm up to 100, got -3"),
+        ({"width": 0}, "width: expected a positive number of mm up to 100, got 0"),
+        ({"width": math.nan}, "width: expected a positive number of mm up to 100, got nan"),
+        ({"width": math.inf}, "width: expected a positive number of mm up to 100, got inf"),
+        ({"width": 10**400}, "width: expected a positive number of mm up to 100, got 1000"),
+        ({"width": "5"}, "width: expected a positive number of mm up to 100, got str '5'"),
+        ({"width": True}, "width: expected a positive number of mm"),
         ({"count": 1.5}, "count: expected an integer from 1 to 10, got float 1.5"),
         ({"count": 0}, "count: expected an integer from 1 to 10, got 0"),
         ({"mode": "c"}, "mode: unknown choice 'c'; expected one of a, b"),
@@ -97,7 +97,7 @@ def test_cli_arguments_come_from_the_fields():
     args = parser.parse_args(["--width", "7.5", "--count", "3", "--mode", "b", "--no-score", "--keep-cavities"])
     d = options_from_args(Demo, args)
     assert (d.width, d.count, d.mode, d.score, d.solid) == (7.5, 3, "b", False, False)
-    with pytest.raises(OptionError, match=r"^--width: expected a number of mm > 0 and <= 100, got -3"):
+    with pytest.raises(OptionError, match=r"^--width: expected a positive number of mm up to 100, got -3"):
         options_from_args(Demo, parser.parse_args(["--width", "-3"]))
     with pytest.raises(OptionError, match=r"^--width: .*got inf"):
         options_from_args(Demo, parser.parse_args(["--width", "1e400"]))

@@ -22,7 +22,7 @@ one declaration come:
 ...     Demo(width=-3)
 ... except OptionError as exc:
 ...     print(exc)
-width: expected a number of mm > 0, got -3
+width: expected a positive number of mm, got -3
 """
 
 from __future__ import annotations
@@ -245,6 +245,10 @@ def _expected(spec: OptionSpec) -> str:
         base = "a list of strings"
     else:
         base = "a string"
+    if spec.kind in (int, float) and spec.low == 0 and spec.low_open:
+        # "a positive number of mm up to 1000" reads better than "> 0 and <= 1000"
+        base = base.replace("a number", "a positive number").replace("an integer", "a positive integer")
+        return base + (f" up to {spec.high:g}" if spec.high is not None else "")
     rng = spec.describe_range()
     if rng and spec.choices is None:
         base += f" {rng}" if rng[0] in "<>" else f" from {rng}"
