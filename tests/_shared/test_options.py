@@ -120,12 +120,13 @@ def readme_tables() -> dict[str, str]:
     from voxfab.fabricate.mesh import MeshOptions
     from voxfab.fabricate.netdraw import NetOptions
     from voxfab.fabricate.plates import PlateOptions
-    from voxfab.render import PictureOptions
+    from voxfab.render import AnimationOptions, PictureOptions
     from voxfab.shape import ShapeOptions
 
     return {"shape": markdown_table(ShapeOptions), "mesh": markdown_table(MeshOptions),
             "net": markdown_table(NetOptions), "slices": markdown_table(PlateOptions),
-            "pictures": markdown_table(PictureOptions)}
+            "pictures": markdown_table(PictureOptions),
+            "animation": markdown_table(AnimationOptions)}
 
 
 def rewrite_readme(text: str) -> str:

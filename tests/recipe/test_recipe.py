@@ -108,7 +108,7 @@ def test_output_options_are_checked_against_the_options_dataclass(tmp_path, monk
     from voxfab.fabricate import Artefact, OutputFile
     from voxfab.recipe import _outputs
 
-    def run(shape, o, outdir, *, name, seed):
+    def run(shape, o, outdir, *, name, seed, recipe):
         (outdir / "x.txt").write_text(f"{name} {seed} {o.size} {o.mode} {list(o.views)}")
         return Artefact((OutputFile("x.txt", "a test file"),), ("demo warning",))
 
@@ -129,7 +129,7 @@ def test_output_options_are_checked_against_the_options_dataclass(tmp_path, monk
 def test_failed_build_leaves_no_partial_folder(tmp_path, monkeypatch):
     from voxfab.recipe import _outputs
 
-    def failing(shape, o, outdir, *, name, seed):
+    def failing(shape, o, outdir, *, name, seed, recipe):
         (outdir / "half.bin").write_bytes(b"x")
         raise RecipeError("boom")
 

@@ -67,6 +67,8 @@ def make_shape(recipe: Recipe) -> VoxelShape:
     return VoxelShape(grid, recipe.pitch)
 
 
+
+
 def _sha256(path: Path) -> str:
     return hashlib.sha256(path.read_bytes()).hexdigest()
 
@@ -99,7 +101,8 @@ def build(recipe: Recipe, outdir: PathLike) -> Path:
         kinds = output_kinds()
         for spec in progress(recipe.outputs, desc="outputs"):
             settings = spec.settings if spec.settings is not None else kinds[spec.name].parse(dict(spec.options))
-            made = kinds[spec.name].run(shape, settings, tmp, name=recipe.name, seed=recipe.seed)
+            made = kinds[spec.name].run(shape, settings, tmp, name=recipe.name, seed=recipe.seed,
+                                      recipe=recipe)
             files += made.files
             warnings += [f"{spec.name}: {w}" for w in made.warnings]
         manifest = {

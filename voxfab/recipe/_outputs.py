@@ -31,7 +31,8 @@ class OutputKind:
         ``parse(table) -> settings``: checked options; raises ``OptionError`` or
         another ``VoxfabError`` for a bad value.
     run : callable
-        ``run(shape, settings, outdir, name=..., seed=...) -> Artefact``.
+        ``run(shape, settings, outdir, name=..., seed=..., recipe=...) -> Artefact``; ``recipe``
+        is the :class:`Recipe` being built (an animation re-runs its maker).
     """
 
     name: str
@@ -50,20 +51,20 @@ def _parse_with(cls: type) -> Callable[[Mapping[str, Any]], Any]:
 
 # ---- mesh ---------------------------------------------------------------------------------------
 
-def _run_mesh(shape: VoxelShape, options: Any, outdir: Path, *, name: str, seed: int) -> Artefact:
+def _run_mesh(shape: VoxelShape, options: Any, outdir: Path, *, name: str, seed: int, recipe: Any) -> Artefact:
     from voxfab.fabricate.mesh import fabricate_mesh
 
-    del seed  # a mesh is deterministic
+    del seed, recipe  # a mesh is deterministic
     return fabricate_mesh(shape, options, outdir / f"mesh.{options.format}", name=name,
                           report_path=outdir / "mesh.json")
 
 
 # ---- slices -------------------------------------------------------------------------------------
 
-def _run_slices(shape: VoxelShape, options: Any, outdir: Path, *, name: str, seed: int) -> Artefact:
+def _run_slices(shape: VoxelShape, options: Any, outdir: Path, *, name: str, seed: int, recipe: Any) -> Artefact:
     from voxfab.fabricate.plates import fabricate_plates
 
-    del seed  # plates are deterministic
+    del seed, recipe  # plates are deterministic
     art = fabricate_plates(shape, options, outdir / "slices", name=name)
     files = tuple(OutputFile(f"slices/{f.path}", f.purpose) for f in art.files)
     return dataclasses.replace(art, files=files)
@@ -71,9 +72,11 @@ def _run_slices(shape: VoxelShape, options: Any, outdir: Path, *, name: str, see
 
 # ---- pictures -----------------------------------------------------------------------------------
 
-def _run_pictures(shape: VoxelShape, options: Any, outdir: Path, *, name: str, seed: int) -> Artefact:
+def _run_pictures(shape: VoxelShape, options: Any, outdir: Path, *, name: str, seed: int, recipe: Any) -> Artefact:
     from voxfab.render import render_pictures
     from voxfab.unfold import Net
+
+    del recipe
 
     # The build runs the `net` output before this one: the triptych draws that very
     # net instead of searching again (a search may take a while on large shapes).
@@ -109,9 +112,11 @@ def _parse_net(table: Mapping[str, Any]) -> NetSettings:
     return NetSettings(net, DrawingOptions(pitch=net.face_size, **drawing_values))
 
 
-def _run_net(shape: VoxelShape, settings: NetSettings, outdir: Path, *, name: str, seed: int) -> Artefact:
+def _run_net(shape: VoxelShape, settings: NetSettings, outdir: Path, *, name: str, seed: int,
+             recipe: Any) -> Artefact:
     from voxfab.fabricate.netdraw import recipe_output
 
+    del recipe
     n, d = settings.net, settings.drawing
     files = recipe_output(
         shape, outdir, name=name, seed=seed, formats=list(n.formats), sheet=d.sheet, pitch=d.pitch, fit=n.fit,
@@ -119,6 +124,18 @@ def _run_net(shape: VoxelShape, settings: NetSettings, outdir: Path, *, name: st
         grid_lines=d.grid_lines, perforate=d.perforate, dxf_version=d.dxf_version, colors=d.colors,
         fill=n.fill, timeout=n.timeout,
     )
+    return Artefact(tuple(files))
+
+
+# ---- animation ----------------------------------------------------------------------------------
+
+def _run_animation(shape: VoxelShape, options: Any, outdir: Path, *, name: str, seed: int,
+                   recipe: Any) -> Artefact:
+    from voxfab.render._animate import recipe_output
+
+    o = options
+    files = recipe_output(shape, outdir, name=name, seed=seed, source=recipe.source, base_dir=recipe.base_dir,
+                          steps=o.steps, turn=o.turn, view=o.view, size=o.size, duration_ms=o.duration_ms)
     return Artefact(tuple(files))
 
 
@@ -131,9 +148,11 @@ def _net_keys() -> tuple[str, ...]:
 def _outputs() -> dict[str, OutputKind]:
     from voxfab.fabricate.mesh import MeshOptions
     from voxfab.fabricate.plates import PlateOptions
-    from voxfab.render import PictureOptions
+    from voxfab.render import AnimationOptions, PictureOptions
 
     return {
+        "animation": OutputKind("animation", _recipe_keys(AnimationOptions), _parse_with(AnimationOptions),
+                                _run_animation),
         "mesh": OutputKind("mesh", _recipe_keys(MeshOptions), _parse_with(MeshOptions), _run_mesh),
         "net": OutputKind("net", _net_keys(), _parse_net, _run_net),
         "pictures": OutputKind("pictures", _recipe_keys(PictureOptions), _parse_with(PictureOptions),

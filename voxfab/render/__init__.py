@@ -21,7 +21,7 @@ from ._animate import animation_frames, save_animation, save_turntable, turntabl
 from ._contact_sheet import contact_sheet, repository_contact_sheet, sheet_layout
 from ._image import gif_bytes, pdf_bytes, png_bytes, save_picture
 from ._net import DEFAULT_STYLES, LineStyle, net_picture
-from ._options import PictureOptions
+from ._options import AnimationOptions, PictureOptions
 from ._raster import DEFAULT_COLOR, Raster, fit_frame, rasterize
 from ._render import render, render_raster, save_render, supersampling
 from ._slices import SliceAxis, layers, slice_layout, slice_sheet
@@ -63,6 +63,7 @@ __all__ = [
     "gif_bytes",
     "save_picture",
     "view_filename",
+    "AnimationOptions",
     "PictureOptions",
     "render_pictures",
 ]
