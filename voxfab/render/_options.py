@@ -45,9 +45,9 @@ class PictureOptions(Options):
 class AnimationOptions(Options):
     """The recipe output ``animation``: a tube's profile turning along its spine (see :func:`save_tube_animation`)."""
 
-    steps: int = option(24, help="frames of the animation", low=1, high=720)
+    steps: int = option(24, help="frames of the animation", low=1, high=720, cli=False)
     turn: float = option(360.0, help="rotation of the profile over the whole animation", unit="degrees",
-                         low=-36000.0, high=36000.0)
-    view: str = option("iso", help="3D view", choices=VIEWS)
-    size: int = option(400, help="picture side", unit="px", low=16, high=8192)
-    duration_ms: int = option(80, help="time per frame", unit="ms", low=10, high=10000)
+                         low=-36000.0, high=36000.0, cli=False)
+    view: str = option("iso", help="3D view", choices=VIEWS, cli=False)
+    size: int = option(400, help="picture side", unit="px", low=16, high=8192, cli=False)
+    duration_ms: int = option(80, help="time per frame", unit="ms", low=10, high=10000, cli=False)
