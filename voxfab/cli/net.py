@@ -10,7 +10,16 @@ from pathlib import Path
 
 from voxfab.errors import InvalidShapeError, UnknownFormatError
 
-from ._common import add_shape_argument, load_shape, print_json, print_notes
+from ._common import (
+    add_pitch_option,
+    add_shape_argument,
+    add_strict_option,
+    load_scaled_shape,
+    print_json,
+    print_notes,
+    print_warnings,
+)
+from ._options import add_option_arguments, options_from_args
 
 HELP = "unfold the surface into a one-piece paper net (JSON, or drawings .svg .dxf .pdf .png)"
 
@@ -19,49 +28,58 @@ _FIT = re.compile(r"^\s*(\d+(?:\.\d*)?)\s*[xX×]\s*(\d+(?:\.\d*)?)\s*$")
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the ``net`` options."""
+    from voxfab.fabricate.netdraw import DrawingOptions, NetOptions
+
     add_shape_argument(parser)
     parser.add_argument("-o", "--output", action="append", required=True, metavar="PATH",
-                        help="NET.json, or a drawing (.svg .dxf .pdf .png); repeat for several files "
-                             "of the same net")
+                        help="NET.json, or a drawing (.svg .dxf laser files, .pdf .png to look at and print); "
+                             "repeat for several files of the same net")
     parser.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
-    parser.add_argument("--count", type=int, default=1, metavar="N",
-                        help="write N distinct nets as NAME-1.ext ... NAME-N.ext")
-    parser.add_argument("--strategy", choices=["default", "paper"], default="default",
-                        help="search strategy (default: ruin-and-recreate with tab room)")
-    parser.add_argument("--timeout", type=float, default=60.0, metavar="S",
-                        help="search budget in seconds per net (default 60)")
     parser.add_argument("--fit", metavar="WxH",
-                        help="JSON nets: keep the net inside W×H (voxels, or mm with a face size); "
+                        help="JSON nets: keep the net inside W×H (voxels, or mm when the face size is known); "
                              "drawings always fit their sheet")
-    parser.add_argument("--face-size", type=float, metavar="MM",
-                        help="edge of one paper face in mm; drawings pick the largest at which the net "
-                             "fits the sheet when omitted")
-    parser.add_argument("--pitch", type=float, metavar="MM", help="the face size, when --face-size is not given")
-    parser.add_argument("--pieces", choices=["one", "auto"], default="one",
-                        help="auto: when no one-piece net fits the sheet, the fewest pieces, packed on as "
-                             "few sheets as possible")
-    parser.add_argument("--fill", action="store_true", help="fill enclosed cavities first")
-    parser.add_argument("--compact", action="store_true",
-                        help="prefer a small bounding box (slower)")
-    try:
-        from voxfab.fabricate import netdraw
-    except ImportError:
-        return
-    netdraw.add_drawing_arguments(parser)
+    add_pitch_option(parser)
+    add_option_arguments(parser, NetOptions)
+    parser.add_argument("--constraints", metavar="FILE.json",
+                        help='edges to cut or keep folded: {"cut": [[[x,y,z,"+z"],[x,y,z,"+x"]], ...], '
+                             '"keep": [...]}')
+    add_strict_option(parser)
+    add_option_arguments(parser, DrawingOptions, title="drawings (-o with .svg, .dxf, .pdf or .png)")
 
 
-def _fit(text: str | None, face_size: float | None) -> tuple[int, int] | None:
+def _fit(text: str | None, pitch: float | None) -> tuple[int, int] | None:
     if text is None:
         return None
     m = _FIT.match(text)
     if not m:
         raise InvalidShapeError(f"--fit: expected WxH such as 40x30, got {text!r}")
     w, h = float(m.group(1)), float(m.group(2))
-    if face_size is not None:
-        return math.floor(w / face_size + 1e-9), math.floor(h / face_size + 1e-9)
+    if pitch is not None:
+        return math.floor(w / pitch + 1e-9), math.floor(h / pitch + 1e-9)
     if w != int(w) or h != int(h):
         raise InvalidShapeError(f"--fit: whole voxels expected without a face size, got {text!r}")
     return int(w), int(h)
+
+
+#: Largest constraints file read (a 25³ surface has under 40 000 edges).
+_MAX_CONSTRAINTS_BYTES = 8 << 20
+
+
+def _constraints(path: str | None):  # noqa: ANN202 - EdgeConstraints or None
+    if path is None:
+        return None
+    from voxfab.errors import FormatError
+    from voxfab.unfold import EdgeConstraints
+
+    p = Path(path)
+    if not p.is_file():
+        raise FormatError(f"--constraints: {path}: not a readable file")
+    if p.stat().st_size > _MAX_CONSTRAINTS_BYTES:
+        raise FormatError(f"--constraints: {path}: larger than {_MAX_CONSTRAINTS_BYTES >> 20} MB")
+    try:
+        return EdgeConstraints.from_json(p.read_bytes())
+    except OSError as exc:
+        raise FormatError(f"--constraints: {path}: {exc.strerror}") from None
 
 
 def _named(path: Path, *tags: str) -> Path:
@@ -71,87 +89,76 @@ def _named(path: Path, *tags: str) -> Path:
     return path.with_name(f"{path.stem}-{'-'.join(tags)}{path.suffix}")
 
 
-def _face_size(args: argparse.Namespace) -> float | None:
-    face = args.face_size if args.face_size is not None else args.pitch
-    if face is not None and not (math.isfinite(face) and face > 0):
-        raise InvalidShapeError(f"--face-size: expected a positive number of mm, got {face}")
-    return face
+def _drawing_formats(drawings: list[Path]) -> None:
+    from voxfab.drawing import FORMATS
 
-
-def _search(args: argparse.Namespace, shape, drawings: list[Path], face: float | None, netdraw):  # noqa: ANN001, ANN202
-    """Nets as lists of pieces, the drawing options (None without drawings) and notes."""
-    from voxfab.unfold import unfold, unfold_many
-
-    search = dict(strategy=args.strategy, timeout=args.timeout, fill=args.fill, compact=args.compact)
-    if drawings:
-        if args.fit is not None:
-            raise InvalidShapeError("--fit: drawings fit their sheet (--sheet); --fit is for JSON nets only")
-        args.pitch = face
-        found = netdraw.find_sheet_nets(shape.grid, netdraw.options_from_args(args), rng=args.seed,
-                                        pieces=args.pieces, count=args.count, **search)
-        return found.nets, found.options, found.notes
-    fit = _fit(args.fit, face)
-    if args.count > 1:
-        return [[n] for n in unfold_many(shape.grid, count=args.count, rng=args.seed, fit=fit, **search)], None, []
-    found = unfold(shape.grid, rng=args.seed, pieces=args.pieces, fit=fit, **search)
-    return [found if isinstance(found, list) else [found]], None, []
+    for p in drawings:
+        if p.suffix.lower() not in FORMATS:
+            raise UnknownFormatError(f"{p}: unknown drawing format {p.suffix or '(none)'!r}; expected .json or "
+                                     f"one of {', '.join(FORMATS)}")
 
 
 def run(args: argparse.Namespace) -> int:
     """Search, validate and write the nets."""
     from voxfab._shared.atomic import write_text
+    from voxfab.fabricate import netdraw
     from voxfab.shape import fill_cavities
-    from voxfab.unfold import validate
+    from voxfab.unfold import unfold, unfold_many, validate
 
-    face = _face_size(args)
-    if args.count < 1:
-        raise InvalidShapeError(f"--count: expected an integer >= 1, got {args.count}")
-    if args.count > 1 and args.pieces != "one":
-        raise InvalidShapeError("--count: several nets need --pieces one")
+    search = options_from_args(netdraw.NetOptions, args)
     outputs = [Path(p) for p in args.output]
     drawings = [p for p in outputs if p.suffix.lower() != ".json"]
-    netdraw = None
-    if drawings:
-        try:
-            from voxfab.fabricate import netdraw
-        except ImportError:
-            raise UnknownFormatError(
-                f"{drawings[0]}: drawings need voxfab.fabricate.netdraw, which is not "
-                "installed; write a .json net"
-            ) from None
-        bad = [p for p in drawings if p.suffix.lower() not in netdraw.drawing_formats()]
-        if bad:
-            raise UnknownFormatError(f"{bad[0]}: unknown drawing format; expected .json or one of "
-                                     f"{', '.join(netdraw.drawing_formats())}")
-        netdraw.options_from_args(args)  # bad drawing options fail before the search
-    shape, name, notes = load_shape(args.shape, args.repo)
+    _drawing_formats(drawings)
+    if search.count > 1 and search.pieces != "one":
+        raise InvalidShapeError("--count: several nets need --pieces one")
+    # The paper scale: --face-size, else the shape's pitch (--pitch or the file's own); a shape
+    # with neither is drawn at the largest face size that puts the net on the sheet (None).
+    shape_pitch = args.pitch
+    face_size = search.face_size if search.face_size is not None else shape_pitch
+    drawing = options_from_args(netdraw.DrawingOptions, args, pitch=face_size)  # checked before the search
+    shape, name, notes, scaled = load_scaled_shape(args.shape, args.repo, pitch=shape_pitch)
     print_notes(notes)
-    results, options, found_notes = _search(args, shape, drawings, face, netdraw)
-    print_notes(found_notes)
-    grid = fill_cavities(shape.grid) if args.fill else shape.grid
+    if face_size is None and scaled:
+        face_size = shape.pitch
+        drawing = drawing.replace(pitch=face_size)
+    constraints = _constraints(args.constraints)
+    options = dict(strategy=search.strategy, timeout=search.timeout, fill=search.fill, compact=search.compact,
+                   constraints=constraints)
+    if drawings:
+        if args.fit is not None:
+            raise InvalidShapeError("--fit: drawings fit their sheet (--sheet); --fit is for JSON nets only")
+        found = netdraw.find_sheet_nets(shape.grid, drawing, rng=args.seed, pieces=search.pieces,
+                                        count=search.count, **options)
+        results, drawing = found.nets, found.options
+        print_notes(found.notes)
+    elif search.count > 1:
+        results = [[n] for n in unfold_many(shape.grid, count=search.count, rng=args.seed,
+                                            fit=_fit(args.fit, face_size), **options)]
+    else:
+        found = unfold(shape.grid, rng=args.seed, pieces=search.pieces, fit=_fit(args.fit, face_size), **options)
+        results = [found if isinstance(found, list) else [found]]
+    grid = fill_cavities(shape.grid) if search.fill else shape.grid
     title = name or Path(args.shape).stem
     written, summary, warnings = [], [], []
     for t, pieces in enumerate(results):
-        validate(grid, pieces if len(pieces) > 1 else pieces[0])
+        validate(grid, pieces if len(pieces) > 1 else pieces[0], constraints=constraints)
         tag = str(t + 1) if len(results) > 1 else ""
         record = {"seed": pieces[0].seed, "faces": sum(n.face_count for n in pieces), "pieces": len(pieces),
                   "seams_without_tab_room": sum(n.seams_without_tab_room for n in pieces)}
         for path in outputs:
+            target = _named(path, tag)
             if path in drawings:
-                result = netdraw.write_net_drawing(grid, pieces, _named(path, tag), options, title=title)
+                result = netdraw.write_net_drawing(grid, pieces, target, drawing, title=title)
                 for line in result.report:
-                    print(f"voxfab: {_named(path, tag).name}: {line}", file=sys.stderr)
+                    print(f"voxfab: {target.name}: {line}", file=sys.stderr)
                 written += result.files
-                record["face_size"] = result.face_size
-                record["fill"] = [round(f, 4) for f in result.fill]
-                warnings += [w for w in result.warnings if w not in warnings]
+                record.update(face_size=result.face_size, fill=[round(f, 4) for f in result.fill])
+                warnings += [f"{target.name}: {w}" for w in result.warnings]
                 continue
             for q, net in enumerate(pieces):
-                target = _named(path, tag, f"piece{q + 1}" if len(pieces) > 1 else "")
-                write_text(target, net.to_json())
-                written.append(str(target))
+                piece = _named(target, f"piece{q + 1}" if len(pieces) > 1 else "")
+                write_text(piece, net.to_json())
+                written.append(str(piece))
         summary.append(record)
-    for w in warnings:
-        print(f"voxfab: warning: {w}", file=sys.stderr)
     print_json({"written": written, "nets": summary, "warnings": warnings})
-    return 0
+    return print_warnings(warnings, strict=args.strict)

@@ -335,6 +335,15 @@ class Repository:
         bits, nx, ny, nz = self._row(name, "bits, nx, ny, nz")
         return decode_bits(bits, (nx, ny, nz))
 
+    def packed(self, name: str) -> tuple[bytes, tuple[int, int, int]]:
+        """Return the stored packed bits of ``name`` and its extents, without unpacking.
+
+        ``voxfab.repo._records.decode_bits(bits, extents)`` gives the grid of :meth:`get`;
+        a batch sends these few bytes to its workers.
+        """
+        bits, nx, ny, nz = self._row(name, "bits, nx, ny, nz")
+        return bytes(bits), (int(nx), int(ny), int(nz))
+
     def find(self, grid: npt.ArrayLike, *, symmetric: bool = False) -> str | None:
         """Return the name of the stored shape equal to ``grid``, or None.
 

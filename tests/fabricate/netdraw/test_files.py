@@ -11,18 +11,18 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from voxfab.cli._options import add_option_arguments, options_from_args
 from voxfab.errors import UnknownFormatError
-from voxfab.fabricate.netdraw import DrawingOptions, add_drawing_arguments, draw_net, write_drawing
+from voxfab.fabricate.netdraw import DrawingOptions, draw_net, write_drawing
 from voxfab.shape import VoxelShape, examples, surface_graph
 from voxfab.unfold import Net
 
 
-def drawing_args(*argv: str, pitch: float | None = None) -> argparse.Namespace:
+def drawing_args(*argv: str, pitch: float | None = None) -> DrawingOptions:
+    """The drawing options of ``voxfab net`` parsed from ``argv``."""
     parser = argparse.ArgumentParser()
-    add_drawing_arguments(parser)
-    args = parser.parse_args(list(argv))
-    args.pitch = pitch
-    return args
+    add_option_arguments(parser, DrawingOptions)
+    return options_from_args(DrawingOptions, parser.parse_args(list(argv)), pitch=pitch)
 
 
 BALL = examples.ball(3)
@@ -38,10 +38,11 @@ def ball_net() -> Net:
 
 def test_drawing_arguments_leave_command_options_alone() -> None:
     parser = argparse.ArgumentParser()
-    add_drawing_arguments(parser)
+    add_option_arguments(parser, DrawingOptions)
     options = {s for a in parser._actions for s in a.option_strings}
     assert {"--sheet", "--margin", "--tab-width", "--tab-angle", "--dxf-version", "--grid-lines",
-            "--perforate", "--colors"} <= options
+            "--perforate", "--colors", "--no-numbers", "--no-tabs", "--min-label-height", "--min-tab-depth",
+            "--svg-lines"} <= options
     assert not options & {"--pitch", "-o", "--seed", "--count", "--strategy", "--timeout", "--fit",
                           "--pieces", "--fill", "--repo", "--debug"}
 
@@ -259,19 +260,17 @@ def test_voxfab_net_writes_all_drawings_of_one_net(tmp_path: Path) -> None:
     assert again.read_bytes() == outs[1].read_bytes()
 
 
-def test_recipe_output_asks_the_engine_for_a_net_that_fits(tmp_path: Path) -> None:
-    from voxfab.errors import RecipeError
-    from voxfab.fabricate.netdraw import recipe_output
+def test_net_pipeline_asks_the_engine_for_a_net_that_fits(tmp_path: Path) -> None:
+    from voxfab.fabricate.netdraw import NetOptions, fabricate_net
 
     shape = VoxelShape(examples.ball(2))
-    files = recipe_output(shape, tmp_path, name="ball", seed=1, formats=["svg", "png"], sheet="300x260",
-                          margin=5.0, pitch=11.0, timeout=30.0)
-    assert [f.path for f in files] == ["net.json", "net.svg", "net.png"]
+    made = fabricate_net(shape, NetOptions(formats=("svg", "png"), timeout=30.0),
+                         DrawingOptions(sheet="300x260", margin=5.0, pitch=11.0), tmp_path, name="ball", seed=1)
+    assert [f.path for f in made.files] == ["net.json", "net.svg", "net.png"]
+    assert made.report["face_size_mm"] == 11.0 and made.report["sheets"] == 1
     net = Net.from_json((tmp_path / "net.json").read_text())
     x0, y0, x1, y1 = net.bounds()
     # 300 x 260 mm less margins, title band and tab room, in 11 mm cells, either way round.
     cells = sorted([(300 - 10 - 10) // 11, (260 - 10 - 5 - 10) // 11])
     extent = sorted([x1 - x0, y1 - y0])
     assert extent[0] <= cells[0] and extent[1] <= cells[1]
-    with pytest.raises(RecipeError, match="formats"):
-        recipe_output(shape, tmp_path, name="ball", seed=1, formats=["eps"])

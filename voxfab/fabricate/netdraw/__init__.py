@@ -12,25 +12,23 @@ few sheets as possible.
 
 Public API: :func:`find_sheet_nets` (shape → nets that fit the sheet),
 :func:`draw_net` and :func:`draw_pieces` (nets → :class:`Drawing`),
-:func:`write_drawing`, :func:`add_drawing_arguments` for the ``voxfab net``
-command, and :func:`recipe_output` for recipes.  Heavy libraries (shapely,
+:func:`write_net_drawing`, and :func:`fabricate_net`, the pipeline of the
+recipe output ``net``.  Heavy libraries (shapely,
 ezdxf, scipy, rectpack) load only when a drawing is made.
 """
 
 from __future__ import annotations
 
-import argparse
 import dataclasses
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Literal
+from typing import TYPE_CHECKING, Any
 
 from voxfab.drawing import LayerStyle, LineStyle, parse_colors
-
-# Light imports only: the recipe loader resolves the hints of recipe_output at runtime.
-from voxfab.fabricate._registry import OutputFile
+from voxfab.fabricate._outputs import Artefact, OutputFile
 from voxfab.shape import VoxelShape
 from voxfab.unfold import Net
 
+from ._net_options import NetOptions
 from ._options import SHEETS, DrawingOptions, parse_sheet
 from ._sheets import SheetFitError
 
@@ -45,17 +43,17 @@ __all__ = [
     "LayerStyle",
     "LineStyle",
     "DrawingResult",
+    "NetOptions",
     "SheetFitError",
     "SheetNets",
-    "add_drawing_arguments",
     "draw_net",
     "draw_pieces",
     "find_sheet_nets",
     "drawing_formats",
+    "fabricate_net",
     "options_from_args",
     "parse_colors",
     "parse_sheet",
-    "recipe_output",
     "write_drawing",
     "write_net_drawing",
 ]
@@ -106,51 +104,8 @@ def drawing_formats() -> list[str]:
     return _formats()
 
 
-def add_drawing_arguments(parser: argparse.ArgumentParser) -> None:
-    """Add the drawing options (sheet, tabs, styles) to a ``voxfab net`` parser.
-
-    The pitch, output paths, seed and search options belong to the command itself.
-    """
-    g = parser.add_argument_group("drawings (-o with .svg, .dxf, .pdf or .png)")
-    g.add_argument("--sheet", default=_DEFAULTS.sheet, metavar="A4|A3|Letter|...|WxH",
-                   help=f"sheet size ({', '.join(SHEETS)}), or W x H in mm for a laser bed (default A4)")
-    g.add_argument("--margin", type=float, default=_DEFAULTS.margin, metavar="MM",
-                   help=f"empty border of the sheet in mm (default {_DEFAULTS.margin:g})")
-    g.add_argument("--tab-width", type=float, default=_DEFAULTS.tab_width, metavar="MM",
-                   help=f"glue tab height in mm (default {_DEFAULTS.tab_width:g})")
-    g.add_argument("--tab-angle", type=float, default=_DEFAULTS.tab_angle, metavar="DEG",
-                   help=f"angle of the tab sides in degrees, 15 to 75 (default {_DEFAULTS.tab_angle:g})")
-    g.add_argument("--label-height", type=float, default=_DEFAULTS.label_height, metavar="MM",
-                   help="largest height of the edge numbers in mm; they shrink to fit small faces "
-                   f"(default {_DEFAULTS.label_height:g})")
-    g.add_argument("--min-label-height", type=float, default=_DEFAULTS.min_label_height, metavar="MM",
-                   help="smallest height of the edge numbers in mm: smaller faces are refused with the face "
-                   f"size that works (default {_DEFAULTS.min_label_height:g})")
-    g.add_argument("--min-tab-depth", type=float, default=_DEFAULTS.min_tab_depth, metavar="MM",
-                   help=f"smallest glue tab in mm, refused likewise (default {_DEFAULTS.min_tab_depth:g})")
-    g.add_argument("--no-numbers", dest="numbers", action="store_false",
-                   help="draw no edge numbers (for faces too small to carry them)")
-    g.add_argument("--no-tabs", dest="tabs", action="store_false",
-                   help="draw no glue tabs: seams are marked for tape")
-    g.add_argument("--svg-lines", choices=["laser", "preview"], default=_DEFAULTS.svg_lines,
-                   help="SVG line widths: laser hairlines (default) or visible lines to look at in a browser")
-    g.add_argument("--dxf-version", choices=["R12", "R2000"], default=_DEFAULTS.dxf_version,
-                   help="DXF version: R12 (default, widest laser support) or R2000 (with $INSUNITS=mm)")
-    g.add_argument("--grid-lines", action="store_true",
-                   help="draw coplanar folds as a faint score (the voxel grid as part of the art)")
-    g.add_argument("--perforate", choices=["none", "mountain", "valley"], default=_DEFAULTS.perforate,
-                   help="cut this fold type as short perforations, since a laser scores one side only")
-    g.add_argument("--perf-cut", type=float, default=_DEFAULTS.perf_cut, metavar="MM",
-                   help=f"perforation cut length in mm (default {_DEFAULTS.perf_cut:g})")
-    g.add_argument("--perf-bridge", type=float, default=_DEFAULTS.perf_bridge, metavar="MM",
-                   help=f"perforation bridge length in mm (default {_DEFAULTS.perf_bridge:g})")
-    g.add_argument("--colors", default="", metavar="LAYER=COLOR[:STYLE],...",
-                   help="change the colour map, e.g. 'cut=#ff0000,mountain=blue:dashed,valley=green:dashdot'; "
-                   "layers CUT SCORE MOUNTAIN VALLEY GRID LABEL, styles solid dashed dashdot dotted")
-
-
-def options_from_args(args: argparse.Namespace) -> DrawingOptions:
-    """DrawingOptions from parsed arguments (missing ones keep their defaults)."""
+def options_from_args(args: Any) -> DrawingOptions:
+    """DrawingOptions from an object's attributes of the same names (missing or None ones keep their defaults)."""
     values = {
         f.name: getattr(args, f.name)
         for f in dataclasses.fields(DrawingOptions)
@@ -213,29 +168,36 @@ def write_net_drawing(grid: Any, nets: Net | list[Net], path: str | Path, option
     from voxfab.drawing import FORMATS
     from voxfab.errors import UnknownFormatError
 
-    from ._drawing import draw_net as _draw_one
-    from ._drawing import draw_pieces as _draw_many
     from ._writers import write
 
     if Path(path).suffix.lower() not in FORMATS:
         raise UnknownFormatError(f"{path}: unknown drawing format {Path(path).suffix or '(none)'!r}; "
                                  f"expected one of {', '.join(FORMATS)}")
+    drawing = _draw_any(grid, nets, options, title)
+    return _result(drawing, write(drawing, Path(path), options))
+
+
+def _draw_any(grid: Any, nets: Net | list[Net], options: DrawingOptions, title: str) -> Drawing:
+    from ._drawing import draw_net as _draw_one
+    from ._drawing import draw_pieces as _draw_many
+
     pieces = [nets] if isinstance(nets, Net) else list(nets)
     if len(pieces) == 1:
-        drawing = _draw_one(grid, pieces[0], options=options, name=title)
-    else:
-        drawing = _draw_many(grid, pieces, options=options, name=title)
-    files = write(drawing, Path(path), options)
+        return _draw_one(grid, pieces[0], options=options, name=title)
+    return _draw_many(grid, pieces, options=options, name=title)
+
+
+def _result(drawing: Drawing, files: list[str]) -> DrawingResult:
     return DrawingResult(files, drawing.report(), drawing.warnings(), drawing.pitch,
                          [sheet.fill for sheet in drawing.sheets])
 
 
 def write_drawing(shape: VoxelShape, net: Net | list[Net], path: str | Path,
-                  options: DrawingOptions | argparse.Namespace, *, title: str = "") -> list[str]:
+                  options: DrawingOptions | Any, *, title: str = "") -> list[str]:
     """Draw ``net`` of ``shape`` and write it to ``path``; the report lines and the files written.
 
-    ``options`` may be parsed arguments of :func:`add_drawing_arguments` (with
-    ``pitch``, the face size).  See :func:`write_net_drawing`.
+    ``options`` may be any object with attributes named like the fields of
+    :class:`DrawingOptions` (``pitch`` is the face size).  See :func:`write_net_drawing`.
     """
     opts = options if isinstance(options, DrawingOptions) else options_from_args(options)
     result = write_net_drawing(shape.grid, net, path, opts, title=title)
@@ -252,91 +214,58 @@ _PURPOSES = {
 }
 
 
-def recipe_output(
-    shape: VoxelShape,
-    outdir: Path,
-    *,
-    name: str,
-    seed: int,
-    formats: list[str] | None = None,
-    sheet: str = "A4",
-    pitch: float | None = None,
-    fit: bool = True,
-    pieces: Literal["one", "auto"] = "one",
-    margin: float = 10.0,
-    tab_width: float = 5.0,
-    tab_angle: float = 45.0,
-    label_height: float = 5.0,
-    numbers: bool = True,
-    grid_lines: bool = False,
-    perforate: Literal["none", "mountain", "valley"] = "none",
-    dxf_version: Literal["R12", "R2000"] = "R12",
-    colors: str = "",
-    fill: bool = False,
-    timeout: float = 60.0,
-) -> list[OutputFile]:
-    """The recipe output ``net``: a paper net as JSON and as drawings.
+def fabricate_net(shape: VoxelShape, net: NetOptions, drawing: DrawingOptions, outdir: str | Path, *, name: str,
+                  seed: int, constraints: Any = None) -> Artefact:
+    """The paper net of ``shape``: ``net.json`` and its drawings, fitted to the sheet.
 
     Parameters
     ----------
     shape : VoxelShape
-        The recipe's shape.
-    outdir : Path
+    net : NetOptions
+        Search options and the drawing formats (``face_size`` is already in
+        ``drawing.pitch``).
+    drawing : DrawingOptions
+        Sheet, face size, tabs, marks and styles.
+    outdir : str or Path
         Folder the files go to.
     name, seed : str, int
-        Recipe name (in the title) and seed of the net.
-    formats : list of str, optional
-        Drawing formats among ``svg``, ``dxf``, ``pdf``, ``png`` (default ``svg``,
-        ``dxf``, ``pdf``).
-    sheet : str
-        A sheet of :data:`SHEETS` or ``WxH`` in mm.
-    pitch : float, optional
-        Face size in mm; by default the largest that puts a compact net on one sheet.
-    fit : bool
-        Kept for old recipes: nets are always searched to fit the sheet.
-    pieces : {"one", "auto"}
-        ``auto``: when no one-piece net fits, the fewest pieces packed on sheets.
-    margin, tab_width, tab_angle, label_height, numbers, grid_lines, perforate, dxf_version, colors
-        See :class:`DrawingOptions`.
-    fill : bool
-        Unfold the outer surface only, as if enclosed cavities were filled: a paper
-        model is hollow anyway, and a cavity's own surface cannot join the net.
-    timeout : float
-        Time budget of the net search, seconds.
+        Shape name (in the title) and seed of the net.
+    constraints : voxfab.unfold.EdgeConstraints, optional
+        Edges to cut or keep folded.
 
     Returns
     -------
-    list of OutputFile
-        ``net.json`` (one per piece) and the drawings.
+    Artefact
+        ``net.json`` (``net.piece-N.json`` per piece) and the drawings, the
+        warnings (net split, numbers shrunk, seams without tabs) and a report
+        with the face size and the fill of every sheet.
     """
     from voxfab import unfold
     from voxfab._shared.atomic import write_text
-    from voxfab.errors import RecipeError
+    from voxfab.fabricate._outputs import Artefact
     from voxfab.shape import fill_cavities
 
-    del fit
-    chosen = ["svg", "dxf", "pdf"] if formats is None else list(formats)
-    for f in chosen:
-        if f not in _PURPOSES:
-            raise RecipeError(f"net.formats: unknown format {f!r}; expected some of {', '.join(_PURPOSES)}")
-    options = DrawingOptions(
-        pitch=pitch, sheet=sheet, margin=margin, tab_width=tab_width, tab_angle=tab_angle,
-        label_height=label_height, numbers=numbers, grid_lines=grid_lines, perforate=perforate,
-        dxf_version=dxf_version, colors=colors,
-    )
-    found = find_sheet_nets(shape.grid, options, rng=seed, pieces=pieces, fill=fill, timeout=timeout)
+    search = dict(strategy=net.strategy, timeout=net.timeout, fill=net.fill, compact=net.compact)
+    if constraints is not None:
+        search["constraints"] = constraints
+    found = find_sheet_nets(shape.grid, drawing, rng=seed, pieces=net.pieces, **search)
     nets = found.nets[0]
     grid = fill_cavities(shape.grid) if nets[0].filled else shape.grid
     unfold.validate(grid, nets if len(nets) > 1 else nets[0])
     outdir = Path(outdir)
     files = []
-    for i, net in enumerate(nets):
+    for i, piece in enumerate(nets):
         json_name = "net.json" if len(nets) == 1 else f"net.piece-{i + 1}.json"
-        write_text(outdir / json_name, net.to_json())
+        write_text(outdir / json_name, piece.to_json())
         files.append(OutputFile(json_name, "the net as voxfab-net/1 JSON: each face's voxel, normal, 3D and 2D "
                                            "corners, and the folds"))
-    for f in chosen:
-        result = write_net_drawing(grid, nets, outdir / f"net.{f}", found.options, title=name)
-        for p in result.files:
-            files.append(OutputFile(Path(p).relative_to(outdir).as_posix(), _PURPOSES[f]))
-    return files
+    from ._writers import write
+
+    drawing = _draw_any(grid, nets, found.options, name)
+    for f in net.formats:
+        written = write(drawing, outdir / f"net.{f}", found.options)
+        files += [OutputFile(Path(p).relative_to(outdir).as_posix(), _PURPOSES[f]) for p in written]
+    result = _result(drawing, [])
+    report = {"face_size_mm": result.face_size, "pieces": len(nets), "sheets": len(result.fill),
+              "sheet_fill": [round(f, 4) for f in result.fill], "notes": list(found.notes)}
+    return Artefact(tuple(files), tuple(result.warnings), report)
