@@ -145,9 +145,9 @@ def test_failed_build_leaves_no_partial_folder(tmp_path, monkeypatch):
 @pytest.mark.parametrize(
     ("table", "message"),
     [
-        ('[outputs.net]\nsheet = "1x1"', r"outputs\.net: sheet: A?1x1 leaves no room"),
-        ('[outputs.net]\nsheet = "1e9x1e9"', r"outputs\.net: sheet: expected"),
-        ('[outputs.net]\ntab_width = -3', r"outputs\.net: tab-width: expected a positive number"),
+        ('[outputs.net]\nsheet = "1x1"', r"outputs\.net\.sheet: 1x1 leaves no room"),
+        ('[outputs.net]\nsheet = "1e9x1e9"', r"outputs\.net\.sheet: expected .*at most 5000 mm"),
+        ('[outputs.net]\ntab_width = -3', r"outputs\.net\.tab_width: expected a positive number"),
         ('[outputs.net]\ntimeout = 0', r"outputs\.net\.timeout: expected a positive number of s"),
         ('[outputs.slices]\nsheet = "1x1"', r"outputs\.slices\.sheet: 1x1 leaves no room"),
         ('[outputs.slices]\nthickness = 0.0001', r"outputs\.slices\.thickness: expected a number of mm from 0\.1"),

@@ -274,3 +274,171 @@ def test_net_pipeline_asks_the_engine_for_a_net_that_fits(tmp_path: Path) -> Non
     cells = sorted([(300 - 10 - 10) // 11, (260 - 10 - 5 - 10) // 11])
     extent = sorted([x1 - x0, y1 - y0])
     assert extent[0] <= cells[0] and extent[1] <= cells[1]
+
+
+def _dxf_segments(path: Path) -> dict[str, np.ndarray]:
+    """Every straight piece per layer of a DXF file as ``(n, 2, 2)`` arrays, read with ezdxf."""
+    import ezdxf
+
+    out: dict[str, list] = {}
+    for e in ezdxf.readfile(path).modelspace():
+        if e.dxftype() == "LINE":
+            pts = np.array([tuple(e.dxf.start)[:2], tuple(e.dxf.end)[:2]])
+            closed = False
+        elif e.dxftype() == "LWPOLYLINE":
+            pts, closed = np.array([p[:2] for p in e.get_points("xy")]), e.closed
+        else:
+            pts, closed = np.array([tuple(v.dxf.location)[:2] for v in e.vertices]), e.is_closed
+        if closed:
+            pts = np.vstack([pts, pts[:1]])
+        out.setdefault(e.dxf.layer, []).append(np.stack([pts[:-1], pts[1:]], axis=1))
+    return {k: np.concatenate(v) for k, v in out.items()}
+
+
+def _paper(cut: np.ndarray):
+    """The paper the CUT segments outline: inside an odd number of their closed rings (holes stay empty)."""
+    import functools
+
+    import shapely
+
+    faces = shapely.polygonize(shapely.linestrings(cut)).geoms
+    return functools.reduce(shapely.symmetric_difference, [shapely.Polygon(f.exterior) for f in faces])
+
+
+@pytest.fixture(scope="module")
+def engine_dxf(tmp_path_factory, ball_net: Net):
+    """The ball's net at the smallest legible face size on A2, as R12 DXF."""
+    folder = tmp_path_factory.mktemp("dxf")
+    options = DrawingOptions(pitch=8.6, sheet="A2", grid_lines=True)
+    from voxfab.fabricate.netdraw import write_net_drawing
+
+    result = write_net_drawing(BALL, ball_net, folder / "ball.dxf", options, title="ball")
+    return Path(result.files[0]), options, result
+
+
+def test_dxf_cut_layer_polygonizes_inside_the_sheet_with_the_paper_area(engine_dxf, ball_net: Net) -> None:
+    import ezdxf
+    import shapely
+
+    path, options, _ = engine_dxf
+    paper = _paper(_dxf_segments(path)["CUT"])
+    w, h = options.sheet_size
+    margin = shapely.box(options.margin, options.margin, w - options.margin, h - options.margin)
+    assert paper.within(margin)
+    # Faces and tabs: the face area plus at least one 3 mm deep tab per seam with a tab.
+    faces_area = ball_net.face_count * options.pitch**2
+    assert faces_area < paper.area < faces_area + ball_net.face_count * options.pitch * 3.0
+    doc = ezdxf.readfile(path)
+    lo, hi = tuple(doc.header["$EXTMIN"])[:2], tuple(doc.header["$EXTMAX"])[:2]
+    x0, y0, x1, y1 = paper.bounds
+    assert lo[0] <= x0 and lo[1] <= y0 and hi[0] >= x1 and hi[1] >= y1
+
+
+def test_tab_depth_and_text_height_measured_in_the_dxf(engine_dxf) -> None:
+    import shapely
+
+    path, options, result = engine_dxf
+    seg = _dxf_segments(path)
+    boundary = _paper(seg["CUT"]).boundary
+    folds = np.concatenate([seg["MOUNTAIN"], seg["VALLEY"]])
+    length = np.linalg.norm(folds[:, 1] - folds[:, 0], axis=1)
+    # Folds between faces run whole face edges; tab folds are inset from the corners, so not a
+    # whole number of face edges long.  A tab's depth is the distance from its fold's middle to
+    # the outline on its short side.
+    units = length / options.pitch
+    tab_folds = folds[np.abs(units - np.round(units)) > 1e-3]
+    assert len(tab_folds)
+    depths = []
+    for a, b in tab_folds:
+        mid, d = (a + b) / 2, (b - a) / np.linalg.norm(b - a)
+        n = np.array([-d[1], d[0]])
+        hits = [shapely.intersection(boundary, shapely.LineString([mid, mid + s * n * 2 * options.pitch]))
+                for s in (1, -1)]
+        depths.append(min(shapely.distance(shapely.Point(mid), x) for x in hits if not x.is_empty))
+    assert min(depths) >= options.min_tab_depth - 1e-3
+    # Digits read along the face edges: a digit's extent across its baseline is the cap height.
+    label = shapely.union_all([x.buffer(0.01) for x in shapely.linestrings(seg["LABEL"])])
+    heights = []
+    for blob in label.geoms:
+        x0, y0, x1, y1 = blob.bounds
+        heights.append(max(x1 - x0, y1 - y0) - 0.02)
+    assert np.median(heights) >= options.min_label_height - 1e-3
+    assert "numbers 2.0 mm high" in result.report[1]
+
+
+def test_the_drawing_refolds_onto_the_shape(engine_dxf, ball_net: Net) -> None:
+    """Faces and folds read back from the DXF alone make a net that refolds onto the ball."""
+    import dataclasses
+
+    from voxfab.unfold import validate
+
+    path, options, _ = engine_dxf
+    seg = _dxf_segments(path)
+    p = options.pitch
+    # Face squares: the cells the full-length folds and cut edges bound; every face edge of the
+    # drawing is a full-length segment of CUT, MOUNTAIN, VALLEY or GRID, split at the lattice.
+    def unit_edges(s: np.ndarray) -> set:
+        out = set()
+        for a, b in s:
+            n = int(round(np.linalg.norm(b - a) / p))
+            if n == 0 or abs(np.linalg.norm(b - a) - n * p) > 1e-3:
+                continue
+            for i in range(n):
+                q0, q1 = a + (b - a) * i / n, a + (b - a) * (i + 1) / n
+                out.add(tuple(sorted([tuple(np.round(q0, 3)), tuple(np.round(q1, 3))])))
+        return out
+
+    folds = unit_edges(np.concatenate([seg["MOUNTAIN"], seg["VALLEY"], seg["GRID"]]))
+    # Map the JSON net's layout onto the drawing: the drawing is the layout moved (and maybe turned).
+    c = ball_net.corners2d.astype(float)
+    fold_pts = np.array([pt for e in folds for pt in e])
+    for turned in (False, True):
+        cc = np.stack([-c[..., 1], c[..., 0]], axis=-1) if turned else c
+        mm = (cc - cc.reshape(-1, 2).min(axis=0)) * p
+        # the shift that puts the layout's shared edges onto the drawing's folds
+        for shift in fold_pts[0] - mm.reshape(-1, 2):
+            pos = np.round(mm + shift, 3)
+            edges = {tuple(sorted([tuple(pos[f, k]), tuple(pos[f, (k + 1) % 4])])): f
+                     for f in range(len(pos)) for k in range(4)}
+            if all(e in edges for e in folds):
+                break
+        else:
+            continue
+        break
+    else:
+        raise AssertionError("the drawing's folds do not match the net's layout")
+    # Folds read from the drawing: pairs of faces whose edges coincide on a drawn fold line.
+    owners: dict = {}
+    for f in range(len(pos)):
+        for k in range(4):
+            owners.setdefault(tuple(sorted([tuple(pos[f, k]), tuple(pos[f, (k + 1) % 4])])), []).append(f)
+    drawn = np.array(sorted(tuple(sorted(owners[e])) for e in folds if len(owners.get(e, [])) == 2))
+    assert len(drawn) == len(folds)
+    rebuilt = dataclasses.replace(ball_net, folds=drawn)
+    assert validate(BALL, rebuilt).ok
+
+
+def test_a_preview_svg_shows_its_lines_in_a_browser_and_a_laser_svg_keeps_hairlines(tmp_path: Path) -> None:
+    """Chromium draws both files: the laser file's 0.01 mm strokes vanish, the preview's do not."""
+    browser = shutil.which("chromium") or shutil.which("chromium-browser")
+    if browser is None:
+        pytest.skip("chromium is not installed")
+    from PIL import Image
+
+    from voxfab.fabricate.netdraw import write_net_drawing
+    from voxfab.unfold import unfold
+
+    g = np.ones((2, 2, 2), dtype=bool)
+    net = unfold(g, rng=0)
+    dark = {}
+    for lines in ("laser", "preview"):
+        svg = tmp_path / f"{lines}.svg"
+        write_net_drawing(g, net, svg, DrawingOptions(pitch=20.0, svg_lines=lines))
+        shot = tmp_path / f"{lines}.png"
+        # A4 at 96 px per inch, as a browser shows a page of the file.
+        subprocess.run([browser, "--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars",
+                        "--window-size=794,1123", f"--screenshot={shot}", svg.as_uri()],
+                       capture_output=True, timeout=120, check=False)
+        img = np.asarray(Image.open(shot).convert("RGB")).astype(int)
+        dark[lines] = int((img.sum(axis=-1) < 600).sum())
+    assert dark["laser"] < 50 < 2000 < dark["preview"]

@@ -266,6 +266,7 @@ def fabricate_net(shape: VoxelShape, net: NetOptions, drawing: DrawingOptions, o
         written = write(drawing, outdir / f"net.{f}", found.options)
         files += [OutputFile(Path(p).relative_to(outdir).as_posix(), _PURPOSES[f]) for p in written]
     result = _result(drawing, [])
-    report = {"face_size_mm": result.face_size, "pieces": len(nets), "sheets": len(result.fill),
+    report = {"face_size_mm": result.face_size, "faces": sum(n.face_count for n in nets), "pieces": len(nets),
+              "sheets": len(result.fill),
               "sheet_fill": [round(f, 4) for f in result.fill], "notes": list(found.notes)}
     return Artefact(tuple(files), tuple(result.warnings), report)
