@@ -95,7 +95,7 @@ def test_net_drawings_name_net_and_sheet_apart_and_report_warnings(tmp_path):
     assert summary["written"] == [f"net.sheet-{i}.svg" for i in range(1, sheets + 1)]
     assert all(0 < f < 1 for f in record["fill"]) and "filled" in r.stderr
     assert any("net split into" in w for w in summary["warnings"])
-    assert "voxfab: warning: net.svg: net split into" in r.stderr
+    assert "voxfab: warning: net split into" in r.stderr
     # --strict turns the warnings into a failure
     r = _run("box.npy", "-o", "net.svg", "--face-size", "40", "--sheet", "A5", "--pieces", "auto",
              "--timeout", "10", "--strict", cwd=tmp_path)

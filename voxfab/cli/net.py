@@ -153,7 +153,9 @@ def run(args: argparse.Namespace) -> int:
                     print(f"voxfab: {target.name}: {line}", file=sys.stderr)
                 written += result.files
                 record.update(face_size=result.face_size, fill=[round(f, 4) for f in result.fill])
-                warnings += [f"{target.name}: {w}" for w in result.warnings]
+                # Every drawing of one net says the same: once per net.
+                warnings += [w for w in (f"net {tag}: {x}" if tag else x for x in result.warnings)
+                             if w not in warnings]
                 continue
             for q, net in enumerate(pieces):
                 piece = _named(target, f"piece{q + 1}" if len(pieces) > 1 else "")
