@@ -384,34 +384,45 @@ class Repository:
         RepositoryError
             For an unknown ``after`` name, an empty volume range or a limit below 1.
         """
-        where: list[str] = []
-        params: list[Any] = []
+        span: tuple[int, int] | None = None
         if volume is not None:
-            lo, hi = int(volume[0]), int(volume[1])
-            if lo > hi or hi < 1:
-                raise RepositoryError(f"volume: the range {lo}:{hi} is empty")
-            where.append("volume BETWEEN ? AND ?")
-            params += [lo, hi]
-        if not drafts:
-            where.append("draft = 0")
+            span = (int(volume[0]), int(volume[1]))
+            if span[0] > span[1] or span[1] < 1:
+                raise RepositoryError(f"volume: the range {span[0]}:{span[1]} is empty")
+        if limit is not None and int(limit) < 1:
+            raise RepositoryError(f"limit: expected at least 1, got {limit}")
+        start: tuple[int, int, int, int | None] | None = None
         if after is not None:
             row_id, d, v, r = self._row(after, "id, draft, volume, rank")
-            # Drafts have no rank (NULL), so the row-value comparison differs per part.
-            if d:
-                where.append("draft = 1 AND (volume, id) > (?, ?)")
-                params += [v, row_id]
-            else:
-                where.append("(draft = 1 OR (draft = 0 AND (volume, rank) > (?, ?)))")
-                params += [v, r]
-        sql = f"SELECT name, volume, nx, ny, nz, draft FROM shapes {'WHERE ' if where else ''}"
-        sql += " AND ".join(f"({w})" for w in where) + f" {_ORDER}"
-        if limit is not None:
-            if int(limit) < 1:
-                raise RepositoryError(f"limit: expected at least 1, got {limit}")
-            sql += " LIMIT ?"
-            params.append(int(limit))
+            start = (int(d), int(v), int(row_id), r)
+        # Named shapes, then drafts: two queries, each a range seek on the
+        # (draft, volume, rank, id) index, so a page deep in the listing costs no
+        # more than the first one.  Drafts have no rank: they page by (volume, id).
+        parts: list[tuple[str, list[Any]]] = []
+        if start is None or start[0] == 0:
+            where, params = ["draft = 0"], []
+            if start is not None:
+                where.append("(volume, rank) > (?, ?)")
+                params += [start[1], start[3]]
+            parts.append((" AND ".join(where), params))
+        if drafts:
+            where, params = ["draft = 1"], []
+            if start is not None and start[0] == 1:
+                where.append("(volume, id) > (?, ?)")
+                params += [start[1], start[2]]
+            parts.append((" AND ".join(where), params))
+        rows: list[tuple[Any, ...]] = []
         with sqlite_errors(self._path):
-            rows = self._db.execute(sql, params).fetchall()
+            for where, params in parts:
+                if span is not None:
+                    where += " AND volume BETWEEN ? AND ?"
+                    params = [*params, *span]
+                sql = f"SELECT name, volume, nx, ny, nz, draft FROM shapes WHERE {where} {_ORDER}"
+                if limit is not None:
+                    if len(rows) >= limit:
+                        break
+                    sql += f" LIMIT {int(limit) - len(rows)}"
+                rows += self._db.execute(sql, params).fetchall()
         return [Entry(name, v, (nx, ny, nz), bool(d)) for name, v, nx, ny, nz, d in rows]
 
     def stats(self, *, volume: tuple[int, int] | None = None) -> dict[str, Any]:
