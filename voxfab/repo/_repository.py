@@ -204,6 +204,7 @@ class Repository:
         draft: bool = False,
         metas: Sequence[Mapping[str, Any] | None] | None = None,
         keys: Sequence[str] | None = None,
+        reasons: Sequence[Sequence[str]] | None = None,
     ) -> list[AddResult]:
         """Add several shapes in one transaction: all are stored, or none is.
 
@@ -220,6 +221,10 @@ class Repository:
         keys : sequence of str, optional
             The grids' :func:`voxfab.shape.canonical_key` (``symmetric`` as given),
             when the caller has computed them already.
+        reasons : sequence of sequences of str, optional
+            The grids' :func:`voxfab.shape.well_formed_reasons`, when the caller has
+            computed them already (``explore`` knows its growth is well formed by
+            construction); checking connectivity is most of the cost of an add.
 
         Returns
         -------
@@ -233,6 +238,8 @@ class Repository:
             raise RepositoryError(f"metas: expected {len(grids)} entries, got {len(metas)}")
         if keys is not None and len(keys) != len(grids):
             raise RepositoryError(f"keys: expected {len(grids)} entries, got {len(keys)}")
+        if reasons is not None and len(reasons) != len(grids):
+            raise RepositoryError(f"reasons: expected {len(grids)} entries, got {len(reasons)}")
         # Everything is computed before the write lock is taken, so the lock is held
         # only for the index lookups and the inserts.  A shape found by a first
         # lock-free lookup needs neither its other key nor its well-formedness
@@ -246,15 +253,16 @@ class Repository:
             key = keys[i] if keys is not None else canonical_key(g, symmetric=symmetric)
             found = self._lookup(key, symmetric=symmetric)
             if found is not None:
-                name, reasons = found
-                if reasons and not draft:
-                    raise _not_well_formed(label, reasons)
-                results.append(AddResult(name, False, reasons))
+                name, stored_reasons = found
+                if stored_reasons and not draft:
+                    raise _not_well_formed(label, stored_reasons)
+                results.append(AddResult(name, False, stored_reasons))
                 continue
+            known = None if reasons is None else tuple(reasons[i])
             if symmetric:
-                record = prepare(g, meta=meta, symmetric_key=key)
+                record = prepare(g, meta=meta, symmetric_key=key, reasons=known)
             else:
-                record = prepare(g, meta=meta, key=key)
+                record = prepare(g, meta=meta, key=key, reasons=known)
             if record.reasons and not draft:
                 raise _not_well_formed(label, record.reasons)
             results.append(None)
