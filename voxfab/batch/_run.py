@@ -176,7 +176,8 @@ def _connect(scheduler: str | None, workers: int, dashboard: str | None, timeout
     if scheduler is not None:
         try:
             client = Client(scheduler, timeout=timeout)
-        except (OSError, TimeoutError) as exc:
+        except (OSError, TimeoutError, ValueError) as exc:
+            # ValueError: an address distributed cannot parse (no port, unknown protocol).
             raise RepositoryError(f"--scheduler: cannot reach {scheduler}: {' '.join(str(exc).split())}") from None
         try:
             client.wait_for_workers(1, timeout=timeout)
