@@ -126,3 +126,8 @@ def test_compiled_symmetric_key_on_grown_and_symmetric_shapes() -> None:
     for g in grids:
         keys = {symmetric_key(crop(h)) for h in symmetries(g, reflections=True)}
         assert keys == {canonical_key(g, symmetric=True)}
+
+
+def test_growth_candidate_outside_the_grid_volumes() -> None:
+    with pytest.raises(InvalidShapeError, match="volume"):
+        candidate("growth", 1, 0, volume=(1, 20))
