@@ -112,19 +112,25 @@ def _mesh_size_from_3mf(path: Path) -> np.ndarray:
 
 
 def _face_size_from_dxf(path: Path) -> float:
-    """The net's face edge in mm: every straight CUT line of a voxel net is a whole number of faces."""
+    """The net's face edge in mm, measured from the fold lines of the DXF (no voxfab code).
+
+    Folds lie on the lines of the face lattice: the x of the vertical ones and the y of
+    the horizontal ones differ by whole numbers of faces, the smallest gap being one face.
+    """
     import ezdxf
 
     msp = ezdxf.readfile(path).modelspace()
-    lengths = []
-    for e in msp.query('LINE[layer=="CUT"]'):
+    xs, ys = set(), set()
+    for e in msp.query('LINE[layer=="MOUNTAIN" | layer=="VALLEY"]'):
         (x0, y0, _), (x1, y1, _) = e.dxf.start, e.dxf.end
-        if abs(x0 - x1) < 1e-6 or abs(y0 - y1) < 1e-6:  # the slanted sides of glue tabs are not face edges
-            lengths.append(float(np.hypot(x1 - x0, y1 - y0)))
-    assert lengths, "no straight cut line in the net drawing"
-    face = min(lengths)
-    multiples = np.array(lengths) / face
-    assert np.allclose(multiples, np.round(multiples), atol=1e-3), sorted(set(np.round(lengths, 3)))
+        if abs(x0 - x1) < 1e-9:
+            xs.add(round(x0, 6))
+        elif abs(y0 - y1) < 1e-9:
+            ys.add(round(y0, 6))
+    gaps = np.concatenate([np.diff(sorted(xs)), np.diff(sorted(ys))])
+    assert len(gaps), "no fold line in the net drawing"
+    face = float(gaps.min())
+    assert np.allclose(gaps / face, np.round(gaps / face), atol=1e-4), sorted(set(np.round(gaps, 4)))
     return face
 
 
