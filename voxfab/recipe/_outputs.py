@@ -117,7 +117,12 @@ def _run_net(shape: VoxelShape, settings: NetSettings, outdir: Path, *, name: st
     from voxfab.fabricate.netdraw import fabricate_net
 
     del recipe
-    return fabricate_net(shape, settings.net, settings.drawing, outdir, name=name, seed=seed)
+    drawing = settings.drawing
+    if settings.net.face_size is None:
+        # One scale for the whole object: the paper faces are the print's voxels unless the
+        # recipe gives another face size.
+        drawing = dataclasses.replace(drawing, pitch=shape.pitch)
+    return fabricate_net(shape, settings.net, drawing, outdir, name=name, seed=seed)
 
 
 # ---- animation ----------------------------------------------------------------------------------
