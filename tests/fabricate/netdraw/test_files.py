@@ -221,7 +221,7 @@ def test_recipe_builds_net_json_and_drawings(tmp_path: Path) -> None:
         pytest.skip("the net engine (voxfab.unfold.unfold) is not available yet")
     from voxfab.recipe import build, load_recipe
 
-    recipe = load_recipe(_recipe(tmp_path, 'formats = ["svg", "dxf", "pdf"]\nsheet = "A3"\nperforate = "valley"'))
+    recipe = load_recipe(_recipe(tmp_path, 'formats = ["svg", "dxf", "pdf"]\nsheet = "A3"\nperforate = "valley"\nface_size = 12.0'))
     folder = build(recipe, tmp_path / "out")
     manifest = (folder / "manifest.json").read_text()
     for name in ("net.json", "net.svg", "net.dxf", "net.pdf"):
