@@ -127,10 +127,10 @@ def browser_latency(url: str, strokes: int) -> None:
         d.quit()
 
 
-def gallery(url: str, count: int, shape: str, spec: dict) -> None:
+def gallery(url: str, count: int, shape: str, spec: dict, timeout: float) -> None:
     r = _post(f"{url}/api/preview", spec)
     t0 = time.perf_counter()
-    job = _post(f"{url}/api/nets", {"grid": r["grid"], "count": count, "seed": 0, "timeout": 30})["job"]
+    job = _post(f"{url}/api/nets", {"grid": r["grid"], "count": count, "seed": 0, "timeout": timeout})["job"]
     while True:
         s = _get(f"{url}/api/jobs/{job}")
         if s["state"] != "running":
@@ -151,6 +151,8 @@ def main() -> None:
     ap.add_argument("--strokes", type=int, default=20, help="preview runs per case (default 20)")
     ap.add_argument("--nets", type=int, default=8, help="nets in the gallery (default 8)")
     ap.add_argument("--no-browser", action="store_true", help="skip the headless Chromium measurement")
+    ap.add_argument("--timeout", type=float, default=5.0, help="seconds per net, as the page's default (5)")
+    ap.add_argument("--only", choices=["preview", "gallery"], help="run one part only")
     args = ap.parse_args()
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
@@ -170,14 +172,18 @@ def main() -> None:
                 if time.monotonic() > end:
                     raise
                 time.sleep(0.1)
-        preview_latency(url, args.strokes)
-        if not args.no_browser:
-            browser_latency(url, args.strokes)
+        if args.only != "gallery":
+            preview_latency(url, args.strokes)
+            if not args.no_browser:
+                browser_latency(url, args.strokes)
+        if args.only == "preview":
+            return
         circle = {"kind": "expr", "text": "x^2 + y^2 = 1"}
         gallery(url, args.nets, "slim column", {"maker": "revolution", "curve": circle,
-                                                "generatrix": {"kind": "expr", "text": "x = 0.12"}})
+                                                "generatrix": {"kind": "expr", "text": "x = 0.12"}}, args.timeout)
         gallery(url, args.nets, "default vase", {"maker": "revolution", "curve": circle,
-                                                 "generatrix": {"kind": "expr", "text": "x = 0.6 + 0.3*sin(3*y)"}})
+                                                 "generatrix": {"kind": "expr", "text": "x = 0.6 + 0.3*sin(3*y)"}},
+                args.timeout)
     finally:
         proc.terminate()
         proc.wait(10)

@@ -447,3 +447,34 @@ def test_jobs_and_files_errors(client):
     m = client.post("/api/make", json={"grid": pack(two), "artefact": "net.json"})
     s = wait_job(client, m.json()["job"])
     assert s["state"] == "error" and s["message"] and "\n" not in s["message"]
+
+
+def _folds(layout) -> set[tuple[int, int]]:
+    return {tuple(sorted(p)) for p in np.array(layout["folds"]).reshape(-1, 2).tolist()}
+
+
+def test_marked_edges_are_honoured(client):
+    g = small_shape()
+    first = wait_job(client, client.post("/api/nets", json={"grid": pack(g), "count": 1, "timeout": 3}).json()["job"])
+    lay = first["result"]["nets"][0]["layout"]
+    folds = _folds(lay)
+    nb = np.array(lay["neighbor"]).reshape(-1, 4)
+    fold = sorted(folds)[len(folds) // 2]
+    cut = next((i, int(j)) for i in range(len(nb)) for j in nb[i] if tuple(sorted((i, int(j)))) not in folds)
+    faces = lay["faces"]
+    constraints = {"cut": [[faces[fold[0]], faces[fold[1]]]], "keep": [[faces[cut[0]], faces[cut[1]]]]}
+    r = client.post("/api/nets", json={"grid": pack(g), "count": 2, "timeout": 3, "constraints": constraints})
+    s = wait_job(client, r.json()["job"])
+    assert s["state"] == "done", s
+    for net in s["result"]["nets"]:
+        got = _folds(net["layout"])
+        assert tuple(sorted(fold)) not in got  # marked cut: never a fold
+        assert tuple(sorted(cut)) in got  # marked keep: always a fold
+    # the same edge cut and kept, or a face that is not on the surface: one clear line
+    both = {"cut": constraints["cut"], "keep": constraints["cut"]}
+    r = client.post("/api/nets", json={"grid": pack(g), "constraints": both})
+    assert r.status_code == 400 and "both cut and kept" in r.json()["error"]
+    away = {"cut": [[[0, 0, 0, "+x"], [0, 0, 0, "+y"]]]}
+    r = client.post("/api/nets", json={"grid": pack(g), "count": 1, "timeout": 3, "constraints": away})
+    s = wait_job(client, r.json()["job"])
+    assert s["state"] == "error" and "\n" not in s["message"] and s["message"]

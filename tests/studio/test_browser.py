@@ -157,7 +157,7 @@ def test_net_gallery_pick_and_download_svg(server, browser):
     count.send_keys("3")
     timeout = browser.find_element("id", "net-timeout")
     timeout.clear()
-    timeout.send_keys("5")
+    timeout.send_keys("1")
     browser.find_element("id", "net-go").click()
     wait(browser, lambda d: len(d.find_elements("css selector", "#net-gallery figure")) == 3, timeout=90,
          what="three nets")
@@ -201,3 +201,57 @@ def test_net_gallery_pick_and_download_svg(server, browser):
     write_drawing(VoxelShape(grid, 2.0), net, again, argparse.Namespace(pitch=None, sheet="A4"), title=name)
     assert again.read_bytes() == svg.read_bytes()
     assert np.count_nonzero(grid) == int(name[:5])
+
+
+def _gallery(browser, count):
+    field = browser.find_element("id", "net-count")
+    field.clear()
+    field.send_keys(str(count))
+    field = browser.find_element("id", "net-timeout")
+    field.clear()
+    field.send_keys("1")
+
+
+def test_mark_an_edge_then_regenerate_honours_it(server, browser):
+    import json
+
+    from selenium.webdriver import ActionChains
+
+    from voxfab.unfold import Net
+
+    open_page(browser, server)
+    set_expression(browser, "src-generatrix", "x = 0.12")
+    wait(browser, lambda d: int(attr(d, "volume", "data-volume")) < 400, what="the slim column")
+    tab(browser, "net")
+    _gallery(browser, 2)
+    browser.find_element("id", "net-go").click()
+    wait(browser, lambda d: len(d.find_elements("css selector", "#net-gallery figure")) == 2, timeout=90,
+         what="two nets")
+    browser.find_elements("css selector", "#net-gallery figure")[0].click()
+    canvas = browser.find_element("id", "net-canvas")
+    for dx, dy in ((0, 0), (7, 3), (-5, 9), (3, -11), (12, 12)):
+        ActionChains(browser).move_to_element_with_offset(canvas, dx, dy).click().perform()
+        if attr(browser, "marks-count", "data-constraints"):
+            break
+    marks = json.loads(attr(browser, "marks-count", "data-constraints"))
+    assert len(marks["cut"]) == 1 and not marks["keep"]
+    assert browser.find_element("id", "marks-count").text == "1 cut, 0 kept"
+    browser.save_screenshot(str(SHOTS / "net-marked.png"))
+    browser.find_element("id", "net-regen").click()
+    wait(browser, lambda d: len(d.find_elements("css selector", "#net-gallery figure")) == 2
+         and not d.find_element("id", "net-regen").get_attribute("disabled")
+         and d.find_element("id", "net-chosen-label").text == "", timeout=90, what="the new gallery")
+    browser.find_elements("css selector", "#net-gallery figure")[1].click()
+    before = set(browser.downloads.glob("*.json"))
+    tab(browser, "make")
+    browser.find_element("css selector", '[data-make="net.json"]').click()
+    js = wait(browser, lambda d: next(iter(set(d.downloads.glob("*.json")) - before), None), timeout=60,
+              what="the net JSON")
+    time.sleep(0.3)
+    net = Net.from_json(js.read_text())
+    names = {"+x": (1, 0, 0), "-x": (-1, 0, 0), "+y": (0, 1, 0), "-y": (0, -1, 0), "+z": (0, 0, 1), "-z": (0, 0, -1)}
+    index = {(tuple(v), tuple(n)): i for i, (v, n) in enumerate(zip(net.voxel.tolist(), net.normal.tolist()))}
+    (a, b), = marks["cut"]
+    ia, ib = index[(tuple(a[:3]), names[a[3]])], index[(tuple(b[:3]), names[b[3]])]
+    folds = {tuple(sorted(p)) for p in net.folds.tolist()}
+    assert tuple(sorted((ia, ib))) not in folds  # the marked edge is cut in the new net

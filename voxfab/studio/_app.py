@@ -375,7 +375,7 @@ def create_app(settings: Settings) -> Starlette:
         grid = _grid.unpack(data.get("grid"))
         count = _work.check_number(data.get("count", 8), name="count", lo=1, hi=_work.MAX_NETS, integer=True)
         seed = _work.check_number(data.get("seed", 0), name="seed", lo=0, hi=2**31 - 1, integer=True)
-        timeout = _work.check_number(data.get("timeout", 20.0), name="timeout", lo=0.5, hi=_work.MAX_NET_SECONDS)
+        timeout = _work.check_number(data.get("timeout", 5.0), name="timeout", lo=0.5, hi=_work.MAX_NET_SECONDS)
         sheet = data.get("sheet", "A4")
         if not isinstance(sheet, str):
             raise InvalidShapeError("sheet: expected A4, A3, Letter or WxH in mm")
