@@ -239,12 +239,13 @@ def make_files(job: Job, grid: np.ndarray, *, artefact: str, title: str, pitch: 
         files = [p for p in sorted((out / "slices").rglob("*")) if p.is_file()]
         job.files.append((f"{stem}-plates.zip", _zip(out, files, out / f"{stem}-plates.zip")))
     elif artefact in ("triptych.png", "triptych.pdf"):
-        from voxfab._shared.atomic import write_bytes
-        from voxfab.render import pdf_bytes, png_bytes, triptych
+        from voxfab.render import PictureOptions, render_pictures
 
-        image = triptych(shape, name=title, rng=0, net=net, panel=int(options.get("panel", 600)))
-        target = out / f"{stem}-triptych.{artefact.split('.')[1]}"
-        write_bytes(target, png_bytes(image) if artefact.endswith("png") else pdf_bytes(image, title=title))
+        # the pictures pipeline of `voxfab build`, asked for the triptych only, with the chosen net
+        render_pictures(shape, PictureOptions(size=600, views=(), triptych=True), out, name=title, seed=0, net=net)
+        ext = artefact.split(".")[1]
+        target = out / f"{stem}-triptych.{ext}"
+        (out / f"triptych.{ext}").rename(target)
         _one(job, target.name, [target])
     elif artefact == "animation.gif":
         from voxfab.render._animate import save_tube_animation
