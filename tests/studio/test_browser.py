@@ -255,3 +255,47 @@ def test_mark_an_edge_then_regenerate_honours_it(server, browser):
     ia, ib = index[(tuple(a[:3]), names[a[3]])], index[(tuple(b[:3]), names[b[3]])]
     folds = {tuple(sorted(p)) for p in net.folds.tolist()}
     assert tuple(sorted((ia, ib))) not in folds  # the marked edge is cut in the new net
+
+
+def test_tube_animation_eggs_by_clicking_and_a_bitmap_upload(server, browser, tmp_path):
+    from PIL import Image, ImageDraw
+    from selenium.webdriver import ActionChains
+    from selenium.webdriver.support.ui import Select
+
+    open_page(browser, server)
+    # a bitmap curve of revolution, uploaded through the file input
+    im = Image.new("L", (80, 80), 255)
+    ImageDraw.Draw(im).rectangle((10, 10, 70, 70), fill=0)
+    im.save(tmp_path / "square.png")
+    before = attr(browser, "volume", "data-volume")
+    browser.find_element("css selector", '#src-curve input[value="bitmap"]').click()
+    browser.find_element("css selector", "#src-curve input.bitmap").send_keys(str(tmp_path / "square.png"))
+    wait(browser, lambda d: attr(d, "volume", "data-volume") != before, what="the square section")
+    assert attr(browser, "wf", "data-well-formed") == "true"
+    # a tube: Frenet frames, then the rotating profile plays
+    Select(browser.find_element("id", "maker")).select_by_value("tube")
+    wait(browser, lambda d: attr(d, "volume", "data-volume") != before, what="the tube")
+    Select(browser.find_element("id", "frame")).select_by_value("frenet")
+    version = int(attr(browser, "viewer", "data-version"))
+    browser.find_element("id", "play").click()
+    wait(browser, lambda d: attr(d, "anim-status", "data-frames") == "24", timeout=60, what="24 frames")
+    wait(browser, lambda d: int(attr(d, "viewer", "data-version")) > version + 5, what="the animation playing")
+    browser.save_screenshot(str(SHOTS / "tube.png"))
+    browser.find_element("id", "stop").click()
+    # an egg: a third focus placed by clicking, and a weight changed
+    Select(browser.find_element("id", "maker")).select_by_value("focal")
+    wait(browser, lambda d: len(d.find_elements("css selector", "#foci-list .row")) == 2, what="the two foci")
+    egg = int(wait(browser, lambda d: attr(d, "volume", "data-volume"), what="the egg"))
+    canvas = browser.find_element("id", "foci-canvas")
+    ActionChains(browser).move_to_element_with_offset(canvas, 40, 0).click().perform()
+    wait(browser, lambda d: len(d.find_elements("css selector", "#foci-list .row")) == 3, what="a third focus")
+    wait(browser, lambda d: int(attr(d, "volume", "data-volume")) != egg, what="the new egg")
+    from selenium.webdriver.common.keys import Keys
+
+    three = int(attr(browser, "volume", "data-volume"))
+    weight = browser.find_elements("css selector", "#foci-list input.weight")[2]
+    weight.send_keys(Keys.CONTROL, "a")
+    weight.send_keys("3", Keys.TAB)  # the change event on leaving the field
+    wait(browser, lambda d: int(attr(d, "volume", "data-volume")) != three, what="the heavier focus")
+    assert browser.find_elements("css selector", "#foci-list input.weight")[2].get_attribute("value") == "3"
+    browser.save_screenshot(str(SHOTS / "egg.png"))
