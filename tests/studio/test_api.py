@@ -72,6 +72,7 @@ def test_allowed_hosts_are_the_servers_own_address():
 
     assert allowed_hosts("127.0.0.1", 8765) == {"127.0.0.1:8765", "localhost:8765", "[::1]:8765"}
     assert allowed_hosts("192.168.1.5", 9000) == {"192.168.1.5:9000"}
+    assert "127.0.0.1:80" in allowed_hosts("0.0.0.0", 80) and "evil.example:80" not in allowed_hosts("0.0.0.0", 80)
 
 
 def test_request_size_is_limited(client):
@@ -478,3 +479,29 @@ def test_marked_edges_are_honoured(client):
     r = client.post("/api/nets", json={"grid": pack(g), "count": 1, "timeout": 3, "constraints": away})
     s = wait_job(client, r.json()["job"])
     assert s["state"] == "error" and "\n" not in s["message"] and s["message"]
+
+
+def test_a_seed_that_runs_out_of_time_is_skipped(client, monkeypatch):
+    import voxfab.unfold as engine
+    from voxfab.errors import UnfoldError
+
+    real = engine.unfold
+    calls = []
+
+    def flaky(grid, *, rng, **options):
+        calls.append(rng)
+        if len(calls) == 2:
+            raise UnfoldError("no one-piece net in 1 s")
+        return real(grid, rng=rng, **options)
+
+    monkeypatch.setattr(engine, "unfold", flaky)
+    g = small_shape()
+    s = wait_job(client, client.post("/api/nets", json={"grid": pack(g), "count": 2, "timeout": 5}).json()["job"])
+    assert s["state"] == "done" and s["result"]["found"] == 2 and s["result"]["tries"] == 3
+
+    def never(grid, *, rng, **options):
+        raise UnfoldError("no one-piece net in 1 s")
+
+    monkeypatch.setattr(engine, "unfold", never)
+    s = wait_job(client, client.post("/api/nets", json={"grid": pack(g), "count": 2, "timeout": 5}).json()["job"])
+    assert s["state"] == "error" and s["message"] == "no one-piece net in 1 s"

@@ -114,6 +114,17 @@ def test_toggle_voxels_and_see_well_formedness_change(server, browser):
     click_cell(0, 0)  # remove it again
     wait(browser, lambda d: attr(d, "wf", "data-well-formed") == "true", what="well formed after removing")
     assert browser.find_element("id", "reasons").text == ""
+    # the 3D view orbits on a drag and zooms on the wheel
+    from selenium.webdriver import ActionChains
+
+    viewer = browser.find_element("id", "viewer")
+    picture = "return arguments[0].toDataURL();"
+    first = browser.execute_script(picture, viewer)
+    ActionChains(browser).move_to_element(viewer).click_and_hold().move_by_offset(60, 20).release().perform()
+    turned = browser.execute_script(picture, viewer)
+    assert turned != first
+    browser.execute_script("arguments[0].dispatchEvent(new WheelEvent('wheel', {deltaY: -400}));", viewer)
+    assert browser.execute_script(picture, viewer) != turned
 
 
 def test_save_to_the_repository_and_browse_it(server, browser):
@@ -157,7 +168,7 @@ def test_net_gallery_pick_and_download_svg(server, browser):
     count.send_keys("3")
     timeout = browser.find_element("id", "net-timeout")
     timeout.clear()
-    timeout.send_keys("1")
+    timeout.send_keys("10")  # a slim column's nets take far less once the kernels are compiled
     browser.find_element("id", "net-go").click()
     wait(browser, lambda d: len(d.find_elements("css selector", "#net-gallery figure")) == 3, timeout=90,
          what="three nets")
@@ -209,7 +220,7 @@ def _gallery(browser, count):
     field.send_keys(str(count))
     field = browser.find_element("id", "net-timeout")
     field.clear()
-    field.send_keys("1")
+    field.send_keys("10")
 
 
 def test_mark_an_edge_then_regenerate_honours_it(server, browser):
