@@ -38,8 +38,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Slice, nest and write; print the report as JSON."""
+    from voxfab._shared.atomic import atomic_dir, check_output
     from voxfab.fabricate.plates import make_slices, write_slices
 
+    check_output(args.output, folder=True, marker="plates.json")
     shape, name, notes = load_shape(args.shape, args.repo)
     print_notes(notes)
     title = name or Path(args.shape).stem
@@ -57,6 +59,7 @@ def run(args: argparse.Namespace) -> int:
         score=args.score,
         min_width=args.min_width,
     )
-    files = write_slices(result, args.output, name=title, step=args.step)
+    with atomic_dir(args.output, marker="plates.json") as tmp:  # the whole folder, or nothing
+        files = write_slices(result, tmp, name=title, step=args.step)
     print_json({**result.report.to_json(), "files": [str(args.output / f.path) for f in files]})
     return 0
