@@ -30,6 +30,7 @@ from __future__ import annotations
 import json
 import os
 import stat
+import threading
 from pathlib import Path
 from typing import Any
 
@@ -81,6 +82,9 @@ MAX_MESH_BYTES = 64 * 1024 * 1024
 MAX_RAY_TESTS = 60_000_000
 #: Bytes of a text input: a drawing, a point list or a recipe.
 MAX_TEXT_BYTES = 16 * 1024 * 1024
+
+
+_PIL_LOCK = threading.Lock()
 
 
 def _size(n: int) -> str:
@@ -300,13 +304,17 @@ def open_image(path: str | os.PathLike[str], *, name: str) -> Any:
 
     check_regular_file(path, what="an image")
     try:
-        with warnings.catch_warnings():
+        # Pillow's own bomb check would raise at open(), before the size can be
+        # reported; it is switched off only while the header is read.
+        with _PIL_LOCK, warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            im = Image.open(Path(path))
+            pillow_limit, Image.MAX_IMAGE_PIXELS = Image.MAX_IMAGE_PIXELS, None
+            try:
+                im = Image.open(Path(path))
+            finally:
+                Image.MAX_IMAGE_PIXELS = pillow_limit
     except VoxfabError:
         raise
-    except Image.DecompressionBombError:
-        raise LimitError(f"{name}: {path} has more pixels than the limit of {_size(MAX_PIXELS)}") from None
     except Exception as exc:  # noqa: BLE001
         # Pillow raises UnidentifiedImageError, DecompressionBombError, SyntaxError,
         # struct errors... on corrupt headers: all mean "not a readable image".

@@ -138,15 +138,19 @@ def resolve_input(source: str | os.PathLike[str], base_dir: str | os.PathLike[st
         path = Path(base_dir) / path
     root = _INPUT_ROOT.get()
     if root is not None:
-        check_confined(path, root, name=name)
+        check_confined(path, root, name=name, shown=str(source))
     return path
 
 
-def check_confined(path: str | os.PathLike[str], root: str | os.PathLike[str], *, name: str) -> None:
-    """Refuse ``path`` unless it resolves (links followed) inside the folder ``root``."""
+def check_confined(path: str | os.PathLike[str], root: str | os.PathLike[str], *, name: str,
+                   shown: str | None = None) -> None:
+    """Refuse ``path`` unless it resolves (links followed) inside the folder ``root``.
+
+    ``shown`` is the file name as the user wrote it, for the message.
+    """
     real = Path(path).resolve()
     if not real.is_relative_to(Path(root).resolve()):
         raise RecipeError(
-            f"{name}: {quote(str(path))} is outside the recipe's folder {Path(root)}; "
+            f"{name}: {quote(shown or str(path))} is outside the recipe's folder {os.path.abspath(root)}; "
             "pass --allow-outside to read files elsewhere"
         )

@@ -225,7 +225,7 @@ def _check_options(
 def _check_inside(name: str, base: Path, keypath: str, err: Callable[[str, str], RecipeError]) -> None:
     """Refuse a file name that resolves outside the recipe's folder ``base``."""
     try:
-        check_confined(base / name, base, name=keypath)
+        check_confined(base / name, base, name=keypath, shown=name)
     except RecipeError as exc:
         raise err(keypath, str(exc).removeprefix(f"{keypath}: ")) from None
 
