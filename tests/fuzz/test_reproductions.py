@@ -4,17 +4,15 @@ from __future__ import annotations
 
 import json
 import os
-import struct
 import subprocess
 import sys
 import zipfile
-import zlib
 from pathlib import Path
 
 import numpy as np
 import pytest
+from _fuzz import check_outcome, png_claiming, refused, run_cli
 
-from _fuzz import check_outcome, refused, run_cli
 from voxfab import io
 from voxfab.shape import examples
 
@@ -23,16 +21,6 @@ def recipe(folder: Path, name: str, body: str) -> Path:
     path = folder / name
     path.write_text(body)
     return path
-
-
-def png_header(width: int, height: int) -> bytes:
-    """A small PNG file whose header claims ``width`` x ``height`` pixels."""
-
-    def chunk(kind: bytes, data: bytes) -> bytes:
-        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
-
-    ihdr = struct.pack(">IIBBBBB", width, height, 8, 0, 0, 0, 0)
-    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", zlib.compress(b"\0" * 64)) + chunk(b"IEND", b"")
 
 
 REVOLVE_GENERATRIX = '[source]\nmaker = "revolution"\ncurve = "x^2 + y^2 - 1"\ngeneratrix = "{}"\n'
@@ -61,7 +49,7 @@ def test_deep_expression_within_the_length_is_refused_with_its_depth(tmp_path):
 
 @pytest.mark.parametrize("template", [REVOLVE_GENERATRIX, REVOLVE_CURVE], ids=["generatrix", "curve"])
 def test_bitmap_whose_header_claims_60000_squared_pixels(tmp_path, template):
-    (tmp_path / "bomb.png").write_bytes(png_header(60000, 60000))
+    (tmp_path / "bomb.png").write_bytes(png_claiming(60000, 60000))
     line = refused(build(tmp_path, recipe(tmp_path, "r.toml", template.format("bomb.png"))))
     assert "60000x60000 = 3,600,000,000 pixels is over the limit of 16,777,216 pixels" in line
 
@@ -167,10 +155,15 @@ def test_net_rerun_onto_fewer_files_leaves_no_stale_file(tmp_path, cube):
     assert sorted(p.name for p in tmp_path.glob("t*")) == ["t-1.json", "t-2.json"]
 
 
-def test_net_drawing_report_names_only_files_that_exist(tmp_path, cube):
-    o = check_outcome(run_cli(["net", cube, "-o", tmp_path / "t.svg", "-o", tmp_path / "t.json"]))
-    written = json.loads(o.out)["written"]
-    assert written and all(Path(p).is_file() for p in written)
+def test_net_drawing_onto_fewer_sheets_leaves_no_stale_sheet(tmp_path):
+    io.write(examples.ball(3), tmp_path / "ball.npy")
+    many = check_outcome(run_cli(["net", tmp_path / "ball.npy", "-o", tmp_path / "t.svg", "--pitch", "30"]))
+    assert len(json.loads(many.out)["written"]) > 3
+    few = check_outcome(run_cli(["net", tmp_path / "ball.npy", "-o", tmp_path / "t.svg", "--pitch", "12"]))
+    written = json.loads(few.out)["written"]
+    # The report names exactly the sheets on disk: none missing, none left from the first run.
+    assert sorted(written) == sorted(str(p) for p in tmp_path.glob("t*.svg"))
+    assert len(written) < len(json.loads(many.out)["written"])
 
 
 def test_next_run_sweeps_what_a_killed_build_left(tmp_path):
@@ -227,18 +220,21 @@ def test_symlink_out_of_the_recipe_folder_is_refused(tmp_path):
 
 # --- messages ----------------------------------------------------------------------------------
 
-def test_library_warnings_do_not_reach_the_terminal(tmp_path, monkeypatch):
-    from voxfab.cli import info
-    from voxfab.errors import InvalidShapeError
-
-    def noisy(args):
-        np.log(np.zeros(3))  # RuntimeWarning: divide by zero
-        np.float64(1e308) * 10  # RuntimeWarning: overflow
-        raise InvalidShapeError("the one line")
-
-    monkeypatch.setattr(info, "run", noisy)
-    o = run_cli(["info", "x.npy"])
-    assert o.err == "voxfab: error: the one line\n"
+def test_library_warnings_do_not_reach_the_terminal(tmp_path):
+    # A subprocess: pytest itself captures warnings, the terminal would not.
+    code = (
+        "import sys, numpy as np\n"
+        "from voxfab.cli import info, main\n"
+        "from voxfab.errors import InvalidShapeError\n"
+        "def noisy(args):\n"
+        "    np.log(np.zeros(3))\n"
+        "    np.float64(1e308) * 10\n"
+        "    raise InvalidShapeError('the one line')\n"
+        "info.run = noisy\n"
+        "sys.exit(main(['info', 'x.npy']))\n"
+    )
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 3 and r.stderr == "voxfab: error: the one line\n"
 
 
 def test_error_lines_do_not_repeat_a_10kb_input(tmp_path):
