@@ -116,10 +116,10 @@ NASTY_TEXT = ["", " ", "x", "1x1", "0x0", "600x400", "1e9x1e9", "-3x4", "nanxnan
 def number_text(kind: type) -> st.SearchStrategy[str]:
     """An option value for an int or float option: usual, extreme or not a number at all."""
     if kind is int:
-        usual = st.integers(-5, 60).map(str)
-        return st.one_of(usual, st.sampled_from(NASTY_INTS), st.sampled_from(["1.5", "x", "1e3"]))
-    usual = st.floats(-50, 500, allow_nan=False).map(lambda f: f"{f:.6g}")
-    return st.one_of(usual, st.sampled_from(NASTY_FLOATS), st.sampled_from(["x", "1,5", ""]))
+        usual = st.integers(0, 40).map(str)
+        return st.one_of(usual, usual, st.sampled_from(NASTY_INTS), st.sampled_from(["1.5", "x", "1e3"]))
+    usual = st.floats(0.1, 100, allow_nan=False).map(lambda f: f"{f:.4g}")
+    return st.one_of(usual, usual, st.sampled_from(NASTY_FLOATS), st.sampled_from(["x", "1,5", ""]))
 
 
 def toml_text(data: dict) -> str:
@@ -385,13 +385,13 @@ def put(folder: _Path, ext: str, data: bytes, name: str = "input") -> _Path:
     return path
 
 
-def parser_actions(command: str) -> list:
-    """The argparse actions of ``voxfab COMMAND``, except help and debug."""
+def command_parser(command: str):  # noqa: ANN201 - argparse type
+    """The argparse parser of ``voxfab COMMAND``."""
     from voxfab.cli._main import build_parser
 
     parser = build_parser()
     sub = next(a for a in parser._actions if a.__class__.__name__ == "_SubParsersAction")
-    return [a for a in sub.choices[command]._actions if a.dest not in ("help", "debug")]
+    return sub.choices[command]
 
 
 @st.composite
@@ -401,22 +401,32 @@ def argv_for(draw: st.DrawFn, command: str, positionals: dict[str, st.SearchStra
 
     ``positionals`` gives a value strategy per positional (and per option dest that
     needs a path); every other option gets values of its type, usual or extreme.
+    Required options are always given, and at most one of mutually exclusive ones,
+    so most command lines get past argparse to voxfab's own checks.
     """
+    parser = command_parser(command)
+    actions = [a for a in parser._actions if a.dest not in ("help", "debug")]
+    exclusive = {id(a): i for i, g in enumerate(parser._mutually_exclusive_groups) for a in g._group_actions}
+    taken: set[int] = set()
     argv = [command]
-    actions = parser_actions(command)
     for action in actions:
         if not action.option_strings:
             argv.append(draw(positionals[action.dest]))
     for action in actions:
-        if not action.option_strings or draw(st.integers(0, 2)) > 0:
+        if not action.option_strings:
             continue
+        if not action.required and (draw(st.integers(0, 3)) > 0 or exclusive.get(id(action), -1) in taken):
+            continue
+        if id(action) in exclusive:
+            taken.add(exclusive[id(action)])
         flag = draw(st.sampled_from(action.option_strings))
         if action.dest in positionals:
             argv += [flag, draw(positionals[action.dest])]
         elif action.nargs == 0:
             argv.append(flag)
         elif action.choices:
-            argv += [flag, draw(st.one_of(st.sampled_from(list(action.choices)), st.sampled_from(NASTY_TEXT)))]
+            good = st.sampled_from(list(action.choices))
+            argv += [flag, draw(st.one_of(good, good, good, st.sampled_from(NASTY_TEXT)))]
         elif action.type in (int, float):
             argv.append(f"{flag}={draw(number_text(action.type))}")
         else:

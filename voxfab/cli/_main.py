@@ -134,7 +134,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     from voxfab._shared import progress
 
     parser = build_parser()
-    args = parser.parse_args(_joined_negative_views(sys.argv[1:] if argv is None else list(argv)))
+    argv = _joined_negative_views(sys.argv[1:] if argv is None else list(argv))
+    for arg in argv:
+        # argparse (3.11) turns the value of "--opt=--" into [] and skips its type check.
+        if arg.startswith("-") and arg.endswith("=--"):
+            parser.error(f"argument {arg[:-3]}: expected a value, got '--'")
+    args = parser.parse_args(argv)
     if not getattr(args, "command", None):
         parser.print_help()
         return 2
