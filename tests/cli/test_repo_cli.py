@@ -208,3 +208,76 @@ def test_module_imports_stay_light() -> None:
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     assert r.stdout.strip() == "[]"
+
+
+def test_explore_then_stats_and_pages(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    repo = tmp_path / "r.sqlite"
+    r = voxfab("explore", "--count", "40", "--seed", "3", "--volume", "25:300", "--repo", repo)
+    assert r.returncode == 0, r.stderr
+    lines = r.stdout.splitlines()
+    assert lines[0].startswith("40 new shapes in ")
+    ranges = [line.split() for line in lines[2:]]
+    assert all(row[0] == "volume" for row in ranges) and sum(int(row[2]) for row in ranges) == 40
+
+    assert main(["repo", "stats", "--json", "--repo", str(repo)]) == 0
+    stats = json.loads(capsys.readouterr().out)
+    assert stats["shapes"] == 40 and stats["drafts"] == 0
+    with Repository(repo, create=False) as opened:
+        entries = opened.list()
+        for row in stats["volumes"]:
+            assert row["count"] == sum(e.volume == row["volume"] for e in entries)
+        for line in ranges:  # the ranges printed by explore count the stored volumes
+            lo, hi = map(int, line[1].split("-"))
+            assert int(line[2]) == sum(lo <= e.volume <= hi for e in entries)
+
+    # Without paging options --json lists every shape; with them, pages chain through next_after.
+    assert main(["repo", "list", "--json", "--repo", str(repo)]) == 0
+    every = [s["name"] for s in json.loads(capsys.readouterr().out)["shapes"]]
+    assert every == [e.name for e in entries] and len(every) == 40
+    paged, after = [], None
+    while True:
+        argv = ["repo", "list", "--json", "--limit", "15", "--repo", str(repo)]
+        assert main(argv + (["--after", after] if after else [])) == 0
+        page = json.loads(capsys.readouterr().out)
+        paged += [s["name"] for s in page["shapes"]]
+        after = page["next_after"]
+        if after is None:
+            break
+    assert paged == every
+
+    assert main(["repo", "list", "--volume", "100:200", "--repo", str(repo)]) == 0
+    shown = [line.split()[0] for line in capsys.readouterr().out.splitlines()]
+    assert shown == [e.name for e in entries if 100 <= e.volume <= 200]
+    assert main(["repo", "stats", "--bins", "3", "--repo", str(repo)]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("shapes: 40\ndrafts: 0\n") and len(out.splitlines()) <= 3 + 3
+
+
+def test_explore_is_reproducible_from_the_command_line(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    outs = []
+    for d in ("a", "b"):
+        assert main(["explore", "--count", "12", "--seed", "8", "--generator", "mix", "--repo",
+                     str(tmp_path / d / "r.sqlite")]) == 0
+        outs.append(capsys.readouterr().out.replace(str(tmp_path / d), "R"))
+        with Repository(tmp_path / d / "r.sqlite", create=False) as opened:
+            outs.append([opened.get(e.name).tobytes() for e in opened.list()])
+    assert outs[0] == outs[2] and outs[1] == outs[3]
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["explore", "--count", "0"], "count"),
+        (["explore", "--count", "2", "--volume", "9:x"], "volume: expected MIN:MAX"),
+        (["explore", "--count", "2", "--volume", "25:25", "--max-attempts", "100"], "only 1 of 2"),
+        (["repo", "list", "--limit", "0"], "--limit"),
+        (["repo", "list", "--after", "00999.001"], "no such shape"),
+        (["repo", "stats", "--bins", "0"], "--bins"),
+    ],
+)
+def test_explore_and_listing_errors(tmp_path: Path, argv: list[str], message: str) -> None:
+    repo = tmp_path / "r.sqlite"
+    Repository(repo).close()
+    r = voxfab(*argv, "--repo", repo)
+    assert r.returncode != 0
+    assert r.stderr.startswith("voxfab: error: ") and message in r.stderr and "Traceback" not in r.stderr

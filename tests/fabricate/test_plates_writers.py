@@ -40,10 +40,16 @@ def test_dxf_audits_clean_and_reads_back_the_geometry(result, tmp_path) -> None:
         assert doc.dxfversion == "AC1009"
         auditor = doc.audit()
         assert not auditor.has_errors and not auditor.has_fixes
-        assert {"CUT", "SCORE", "ENGRAVE"} <= {layer.dxf.name for layer in doc.layers}
+        assert {"CUT", "SCORE", "LABEL"} <= {layer.dxf.name for layer in doc.layers}
         assert doc.layers.get("CUT").dxf.color == 1 and doc.layers.get("SCORE").dxf.color == 5
         msp = doc.modelspace()
         cut = [e for e in msp.query("POLYLINE") if e.dxf.layer == "CUT"]
+        # the extents header holds the geometry
+        x0, y0, _ = doc.header["$EXTMIN"]
+        x1, y1, _ = doc.header["$EXTMAX"]
+        allpts = np.array([tuple(v.dxf.location)[:2] for e in cut for v in e.vertices])
+        assert (x0, y0) == pytest.approx(tuple(allpts.min(axis=0)), abs=1e-3)
+        assert (x1, y1) == pytest.approx(tuple(allpts.max(axis=0)), abs=1e-3)
         circles = list(msp.query("CIRCLE"))
         assert all(e.is_closed for e in cut)
         assert len(cut) == sum(len(p.cut) for p in sheet.parts)
@@ -52,8 +58,9 @@ def test_dxf_audits_clean_and_reads_back_the_geometry(result, tmp_path) -> None:
         area = sum(_signed_area(np.array([tuple(v.dxf.location)[:2] for v in e.vertices])) for e in cut)
         area -= sum(math.pi * c.dxf.radius**2 for c in circles)
         assert area == pytest.approx(sheet.material_area, rel=1e-9)
-        assert len(msp.query('POLYLINE[layer=="SCORE"]')) == sum(len(p.score) for p in sheet.parts)
-        assert len(msp.query('POLYLINE[layer=="ENGRAVE"]')) == sum(len(p.engrave) for p in sheet.parts)
+        # two-point strokes are written as LINEs
+        assert len(msp.query('POLYLINE LINE[layer=="SCORE"]')) == sum(len(p.score) for p in sheet.parts)
+        assert len(msp.query('POLYLINE LINE[layer=="LABEL"]')) == sum(len(p.engrave) for p in sheet.parts)
         # every vertex lies on the sheet
         pts = np.array([tuple(v.dxf.location)[:2] for e in msp.query("POLYLINE") for v in e.vertices])
         assert pts.min() >= 0 and (pts <= (sheet.width, sheet.height)).all()
@@ -75,12 +82,12 @@ def test_svg_is_in_mm_with_flipped_y(result, tmp_path) -> None:
     assert root.get("viewBox") == "0 0 60 50"
     ns = {"s": "http://www.w3.org/2000/svg"}
     groups = {g.get("id"): g for g in root.findall("s:g", ns)}
-    assert groups["CUT"].get("stroke") == "#FF0000" and groups["SCORE"].get("stroke") == "#0000FF"
+    assert groups["CUT"].get("stroke") == "#ff0000" and groups["SCORE"].get("stroke") == "#0000ff"
+    assert groups["CUT"].get("stroke-width") == "0.01"
     paths = groups["CUT"].findall("s:path", ns)
-    assert len(paths) == len(sheet.parts)
-    assert sum(p.get("d").count("M") for p in paths) == sum(len(p.cut) for p in sheet.parts)
+    assert len(paths) == sum(len(p.cut) for p in sheet.parts)
     assert len(groups["CUT"].findall("s:circle", ns)) == sum(len(p.circles) for p in sheet.parts)
-    first = re.match(r"M(\S+) (\S+)", paths[0].get("d"))
+    first = re.match(r"M([^,]+),(\S+)", paths[0].get("d"))
     x, y = sheet.parts[0].cut[0][0]
     assert float(first.group(1)) == pytest.approx(x, abs=1e-4)
     assert float(first.group(2)) == pytest.approx(sheet.height - y, abs=1e-4)

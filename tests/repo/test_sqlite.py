@@ -143,3 +143,57 @@ def test_lock_timeout_is_a_repository_error(tmp_path: Path, monkeypatch: pytest.
             raw.execute("ROLLBACK")
             raw.close()
         assert repo.add(column()).created
+
+
+def _schema_1_file(path: Path, grids: list[np.ndarray]) -> None:
+    """A repository as schema 1 wrote it: hex-text keys, the last row removed."""
+    from voxfab.repo._records import encode_bits
+    from voxfab.shape import canonical_key, crop
+
+    raw = sqlite3.connect(path)
+    try:
+        for statement in _sqlite._MIGRATIONS[0]:
+            raw.execute(statement)
+        for g in grids:
+            c = crop(g)
+            raw.execute(
+                "INSERT INTO shapes (name, rank, draft, volume, nx, ny, nz, bits, key, symmetric_key)"
+                " VALUES (?, 1, 0, ?, ?, ?, ?, ?, ?, ?)",
+                (f"{int(c.sum()):05d}.001", int(c.sum()), *c.shape, encode_bits(c), canonical_key(c),
+                 canonical_key(c, symmetric=True)),
+            )
+            raw.execute("INSERT INTO rank_counters VALUES (?, 1)", (int(c.sum()),))
+        raw.execute("DELETE FROM shapes WHERE id = ?", (len(grids),))
+        raw.execute(f"PRAGMA application_id = {_sqlite.APPLICATION_ID}")
+        raw.execute("PRAGMA user_version = 1")
+        raw.commit()
+    finally:
+        raw.close()
+
+
+def test_schema_1_file_is_migrated(tmp_path: Path) -> None:
+    from voxfab.generate import growth
+    from voxfab.shape import canonical_key
+
+    grids = [growth(s, 40 + s) for s in range(4)]
+    path = tmp_path / "old.sqlite"
+    _schema_1_file(path, grids)
+    with Repository(path, create=False) as repo:
+        assert [e.name for e in repo.list()] == ["00040.001", "00041.001", "00042.001"]
+        for g, name in zip(grids, ("00040.001", "00041.001", "00042.001")):
+            assert repo.find(g) == name and repo.find(g, symmetric=True) == name
+            assert repo.show(name)["key"] == canonical_key(g)
+        assert repo.check() == []
+        # The removed row's id is not given again (draft ids are row ids).
+        bad = grids[0].copy()
+        bad[0, 0, 0] = bad[24, 24, 0] = True
+        assert repo.add(bad, draft=True).name == "draft-5"
+    raw = sqlite3.connect(path)
+    try:
+        assert raw.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION == 2
+        assert {r[0] for r in raw.execute("SELECT typeof(key) || typeof(symmetric_key) FROM shapes")} == {"blobblob"}
+        assert raw.execute("PRAGMA integrity_check").fetchone()[0] == "ok"
+        names = {r[0] for r in raw.execute("SELECT name FROM sqlite_master")}
+        assert {"shapes_key", "shapes_symmetric_key", "shapes_order"} <= names and "shapes_v2" not in names
+    finally:
+        raw.close()

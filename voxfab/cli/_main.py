@@ -31,6 +31,9 @@ COMMANDS: dict[str, str] = {
     "net": "voxfab.cli.net",
     "slices": "voxfab.cli.slices",
     "render": "voxfab.cli.render",
+    "studio": "voxfab.cli.studio",
+    "explore": "voxfab.cli.explore",
+    "batch": "voxfab.cli.batch",
 }
 
 

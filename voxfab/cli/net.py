@@ -39,6 +39,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--fill", action="store_true", help="fill enclosed cavities first")
     parser.add_argument("--compact", action="store_true",
                         help="prefer a small bounding box (slower)")
+    parser.add_argument("--constraints", metavar="FILE.json",
+                        help='edges to cut or keep folded: {"cut": [[[x,y,z,"+z"],[x,y,z,"+x"]], ...], '
+                             '"keep": [...]}')
     try:
         from voxfab.fabricate import netdraw
     except ImportError:
@@ -58,6 +61,27 @@ def _fit(text: str | None, pitch: float | None) -> tuple[int, int] | None:
     if w != int(w) or h != int(h):
         raise InvalidShapeError(f"--fit: whole voxels expected without --pitch, got {text!r}")
     return int(w), int(h)
+
+
+#: Largest constraints file read (a 25³ surface has under 40 000 edges).
+_MAX_CONSTRAINTS_BYTES = 8 << 20
+
+
+def _constraints(path: str | None):
+    if path is None:
+        return None
+    from voxfab.errors import FormatError
+    from voxfab.unfold import EdgeConstraints
+
+    p = Path(path)
+    if not p.is_file():
+        raise FormatError(f"--constraints: {path}: not a readable file")
+    if p.stat().st_size > _MAX_CONSTRAINTS_BYTES:
+        raise FormatError(f"--constraints: {path}: larger than {_MAX_CONSTRAINTS_BYTES >> 20} MB")
+    try:
+        return EdgeConstraints.from_json(p.read_bytes())
+    except OSError as exc:
+        raise FormatError(f"--constraints: {path}: {exc.strerror}") from None
 
 
 def _named(path: Path, *tags: str) -> Path:
@@ -92,8 +116,9 @@ def run(args: argparse.Namespace) -> int:
     shape, name, notes = load_shape(args.shape, args.repo)
     print_notes(notes)
     fit = _fit(args.fit, args.pitch)
+    constraints = _constraints(args.constraints)
     options = dict(strategy=args.strategy, timeout=args.timeout, fit=fit, fill=args.fill,
-                   compact=args.compact)
+                   compact=args.compact, constraints=constraints)
     if args.count > 1:
         if args.pieces != "one":
             raise InvalidShapeError("--count: several nets need --pieces one")
@@ -110,7 +135,7 @@ def run(args: argparse.Namespace) -> int:
     # Every file is published at the end, replacing the whole earlier set (no stale t-3.svg).
     with atomic_files(*outputs) as fileset:
         for t, pieces in enumerate(results):
-            validate(grid, pieces if len(pieces) > 1 else pieces[0])
+            validate(grid, pieces if len(pieces) > 1 else pieces[0], constraints=constraints)
             for q, net in enumerate(pieces):
                 tags = (str(t + 1) if len(results) > 1 else "", f"piece{q + 1}" if len(pieces) > 1 else "")
                 for path in outputs:

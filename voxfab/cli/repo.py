@@ -11,7 +11,7 @@ from voxfab.cli._common import add_repository_option, print_json, print_notes
 if TYPE_CHECKING:
     from voxfab.repo import Repository
 
-HELP = "manage the shape repository (add, list, show, export, remove)"
+HELP = "manage the shape repository (add, list, stats, show, export, remove)"
 
 
 def _subparser(sub: argparse._SubParsersAction, name: str, help_text: str) -> argparse.ArgumentParser:
@@ -22,7 +22,7 @@ def _subparser(sub: argparse._SubParsersAction, name: str, help_text: str) -> ar
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """Add the ``add``, ``list``, ``show``, ``export`` and ``remove`` actions."""
+    """Add the ``add``, ``list``, ``stats``, ``show``, ``export`` and ``remove`` actions."""
     sub = parser.add_subparsers(dest="_repo_action", metavar="ACTION", required=True)
 
     p = _subparser(sub, "add", "store shapes and print their names (NAME created / NAME exists)")
@@ -34,6 +34,17 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
     p = _subparser(sub, "list", "list the stored shapes by volume, then the drafts")
     p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--volume", metavar="MIN:MAX", help="only volumes MIN..MAX (inclusive; MIN: or :MAX open)")
+    p.add_argument("--limit", type=int, metavar="N", help="at most N shapes (one page)")
+    p.add_argument("--after", metavar="NAME",
+                   help="start after this name (the last of the previous page; JSON gives it as 'next_after')")
+    p.add_argument("--no-drafts", action="store_true", help="leave the drafts out")
+
+    p = _subparser(sub, "stats", "count the stored shapes per volume")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--volume", metavar="MIN:MAX", help="only volumes MIN..MAX (inclusive)")
+    p.add_argument("--bins", type=int, metavar="N",
+                   help="group the volumes into at most N ranges of a round width instead of one line per volume")
 
     p = _subparser(sub, "show", "show what is stored about one shape")
     p.add_argument("name", metavar="NAME", help="a name such as 00797.001, or draft-N")
@@ -56,7 +67,9 @@ def run(args: argparse.Namespace) -> int:
         return _add(args)
     with Repository(args.repo, create=False) as repo:
         if action == "list":
-            _list(repo, as_json=args.json)
+            _list(repo, args)
+        elif action == "stats":
+            _stats(repo, args)
         elif action == "show":
             _show(repo, args.name, as_json=args.json)
         elif action == "export":
@@ -95,20 +108,59 @@ def _add(args: argparse.Namespace) -> int:
     return 0
 
 
-def _list(repo: Repository, *, as_json: bool) -> None:
-    entries = repo.list()
-    if as_json:
-        print_json({
+def _volume(text: str | None) -> tuple[int, int] | None:
+    from voxfab.generate import parse_volume_range
+
+    return None if text is None else parse_volume_range(text)
+
+
+def _list(repo: Repository, args: argparse.Namespace) -> None:
+    from voxfab.errors import RepositoryError
+
+    if args.limit is not None and args.limit < 1:
+        raise RepositoryError(f"--limit: expected at least 1, got {args.limit}")
+    entries = repo.list(volume=_volume(args.volume), after=args.after, limit=args.limit,
+                        drafts=not args.no_drafts)
+    if args.json:
+        data: dict[str, object] = {
             "repository": str(repo.path),
             "shapes": [
                 {"name": e.name, "volume": e.volume, "extents": list(e.extents), "draft": e.draft}
                 for e in entries
             ],
-        })
+        }
+        if args.limit is not None:
+            # A full page may have a next one; the name to pass as --after.
+            data["next_after"] = entries[-1].name if len(entries) == args.limit else None
+        print_json(data)
         return
     for e in entries:
         extents = "x".join(map(str, e.extents))
         print(f"{e.name:<12} {e.volume:>6} {extents:<9}{'  draft' if e.draft else ''}".rstrip())
+
+
+def _stats(repo: Repository, args: argparse.Namespace) -> None:
+    from voxfab.errors import RepositoryError
+    from voxfab.generate import volume_bins
+
+    info = repo.stats(volume=_volume(args.volume))
+    if args.bins is not None:
+        if args.bins < 1:
+            raise RepositoryError(f"--bins: expected at least 1, got {args.bins}")
+        volumes = [row["volume"] for row in info["volumes"] for _ in range(row["count"])]
+        info["ranges"] = [{"min": lo, "max": hi, "count": n} for lo, hi, n in volume_bins(volumes, bins=args.bins)]
+    if args.json:
+        print_json({"repository": str(repo.path), **info})
+        return
+    print(f"shapes: {info['shapes']}")
+    print(f"drafts: {info['drafts']}")
+    print(f"volumes: {len(info['volumes'])}")
+    if "ranges" in info:
+        for r in info["ranges"]:
+            print(f"volume {r['min']:>5}-{r['max']:<5} {r['count']:>8}")
+        return
+    for row in info["volumes"]:
+        print(f"volume {row['volume']:>5} {row['count']:>8}")
 
 
 def _show(repo: Repository, name: str, *, as_json: bool) -> None:

@@ -31,11 +31,15 @@ def make_revolution(
     size: int = 25,
     scale: float | None = None,
     at: float | None = None,
+    z_range: list[float] | None = None,
 ) -> np.ndarray:
-    """Surface of revolution: ``curve`` (expression in x, y or x, y, z; SVG/JSON/CSV/PNG file) times ``generatrix``."""
+    """Surface of revolution: ``curve`` (expression in x, y or x, y, z; SVG/JSON/CSV/PNG file) times ``generatrix``.
+
+    An explicit generatrix ``x = g(y)`` spans the heights ``z_range`` (default ``[-1, 1]``).
+    """
     return revolution(
         curve, generatrix, k=k, mode=mode, size=size, scale=scale, at=at, base_dir=Path(base_dir),
-        curve_threshold=curve_threshold, generatrix_threshold=generatrix_threshold, axis=axis,
+        curve_threshold=curve_threshold, generatrix_threshold=generatrix_threshold, axis=axis, z_range=z_range,
     )
 
 

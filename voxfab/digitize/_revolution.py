@@ -8,6 +8,10 @@ by the generatrix's radius. The generatrix lives in the (ρ, z) half-plane:
 - a region (closed drawing, bitmap, implicit ``G(x=ρ, y=z)``):
   ``F = G(ρ_C(p), z)`` where ρ_C is the gauge of C (``p / ρ_C(p)`` lies on C),
   computed by bisection along the ray; C must be star-shaped about the axis;
+- an explicit radius ``x = g(y)`` (the text's left side is ``x`` alone and
+  its right side does not use ``x``): the solid ``ρ <= g(z)`` between the
+  heights ``z_range`` (default ``-1 .. 1``), capped at both ends, so
+  ``x = 0.6 + 0.3*sin(3*y)`` needs no bounding term;
 - open drawn polylines: split into z-monotone runs (explicit radius r(z)) and
   horizontal runs. Each monotone run is digitized with the explicit form
   ``ρ_C - r(z)`` (``C(p / r(z))`` for a curve with several components) and
@@ -18,6 +22,7 @@ by the generatrix's radius. The generatrix lives in the (ρ, z) half-plane:
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -28,7 +33,7 @@ import numpy.typing as npt
 from voxfab.errors import InvalidShapeError
 
 from ._curves import BITMAP_SUFFIXES, DRAWING_SUFFIXES, Curve2D, estimate_bounds, load_curve, star_radius
-from ._expr import compile_expression
+from ._expr import Expression, compile_expression
 from ._fit import Field, Mode, fit
 from ._flake import digitize as flake_digitize
 from ._flake import flake_vertices, half_coordinates
@@ -223,6 +228,68 @@ def split_runs(points: npt.ArrayLike, *, name: str = "generatrix") -> list[Run]:
     return runs
 
 
+#: Samples of an explicit radius r(z) for its bounds and, with a curve that is not star-shaped, its run.
+_EXPLICIT_SAMPLES = 4097
+
+_EXPLICIT = re.compile(r"^\s*x\s*=(?!=)(.*)$", re.DOTALL)
+
+
+def explicit_radius(text: str, *, name: str = "generatrix") -> Expression | None:
+    """The radius function ``g(y)`` of an explicit generatrix ``x = g(y)``, or None for other texts.
+
+    Explicit means: the left side is ``x`` alone and the right side uses ``y`` at most.
+    """
+    m = _EXPLICIT.match(text) if isinstance(text, str) else None
+    if m is None or Path(text).suffix.lower() in DRAWING_SUFFIXES + BITMAP_SUFFIXES:
+        return None
+    rhs = compile_expression(m.group(1), ("x", "y"), name=name)
+    if "x" in rhs.used:
+        return None
+    return rhs
+
+
+def _check_z_range(z_range: Sequence[float] | None) -> tuple[float, float]:
+    if z_range is None:
+        return -1.0, 1.0
+    try:
+        lo, hi = (float(v) for v in z_range)
+    except (TypeError, ValueError):
+        raise InvalidShapeError(f"z_range: expected two heights [low, high], got {z_range!r}") from None
+    if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
+        raise InvalidShapeError(f"z_range: expected finite heights with low < high, got {z_range!r}")
+    return lo, hi
+
+
+def _explicit_generatrix(
+    g: Expression, z_range: Sequence[float] | None, *, star: bool, name: str
+) -> tuple[Curve2D | None, list[np.ndarray]]:
+    """An explicit radius r = g(z) on ``z_range``, capped at both ends.
+
+    With a star-shaped curve of revolution it is the region ``ρ <= g(z)`` cut by
+    the two end planes (exact, no sampling); otherwise the sampled profile
+    ``(0, z0) → (g(z0), z0) → ... → (g(z1), z1) → (0, z1)``, an open polyline
+    whose runs are digitized like a drawing.
+    """
+    z0, z1 = _check_z_range(z_range)
+    zs = np.linspace(z0, z1, _EXPLICIT_SAMPLES)
+    rs = np.broadcast_to(g(np.zeros_like(zs), zs), zs.shape)
+    rs = np.where(np.isfinite(rs), rs, 0.0)
+    rho_max = float(rs.max())
+    if rho_max <= 0:
+        raise InvalidShapeError(f"{name}: the radius {g.text.strip()!r} is never positive for y in [{z0:g}, {z1:g}]")
+    if not star:
+        prof = np.vstack([[0.0, z0], np.stack([np.maximum(rs, 0.0), zs], axis=1), [0.0, z1]])
+        return None, [prof]
+
+    def func(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+        r = np.asarray(g(x, y), dtype=np.float64)
+        # outside the radius function's domain (NaN) counts as outside the solid
+        r = np.where(np.isfinite(r), r, -np.inf)
+        return np.maximum(np.maximum(x - r, z0 - y), y - z1)
+
+    return Curve2D(func, np.array([0.0, z0]), np.array([rho_max, z1]), "implicit", name), []
+
+
 def _load_generatrix(
     source: str | Callable[..., npt.ArrayLike] | Curve2D | np.ndarray | Sequence[Sequence[float]],
     *,
@@ -379,6 +446,7 @@ def revolution_field(
     generatrix_threshold: float = 0.5,
     axis: float | None = None,
     curve_dim: int | None = None,
+    z_range: Sequence[float] | None = None,
 ) -> Field:
     """The continuous surface of revolution as a :class:`Field` (3D, or 4D for a 3D curve).
 
@@ -390,16 +458,27 @@ def revolution_field(
     generatrix : str, callable, Curve2D or (P, 2) points
         In the (ρ = x, z = y) half-plane: an expression ``G(x, y)`` (region
         ``G <= 0``), a file, or points. Open drawings become runs.
+        An explicit radius ``x = g(y)`` is the solid under it between the
+        heights ``z_range``.
     axis : float, optional
         x of the axis in the generatrix drawing or bitmap (default: its
         leftmost point; 0 for expressions).
+    z_range : (float, float), optional
+        Heights ``y`` spanned by an explicit generatrix ``x = g(y)`` (default
+        ``(-1, 1)``); not allowed with other generatrices.
     """
     rc = curve if isinstance(curve, RevolutionCurve) else load_revolution_curve(
         curve, base_dir=base_dir, threshold=curve_threshold, dim=curve_dim
     )
-    region, polys = _load_generatrix(
-        generatrix, base_dir=base_dir, threshold=generatrix_threshold, axis=axis, name="generatrix"
-    )
+    radius = explicit_radius(generatrix, name="generatrix") if isinstance(generatrix, str) else None
+    if radius is not None:
+        region, polys = _explicit_generatrix(radius, z_range, star=rc.star, name="generatrix")
+    else:
+        if z_range is not None:
+            raise InvalidShapeError("z_range: only an explicit generatrix x = g(y) takes a height range")
+        region, polys = _load_generatrix(
+            generatrix, base_dir=base_dir, threshold=generatrix_threshold, axis=axis, name="generatrix"
+        )
     d = rc.dim
     if region is not None:
         if not rc.star:
@@ -442,6 +521,7 @@ def revolution(
     generatrix_threshold: float = 0.5,
     axis: float | None = None,
     curve_dim: int | None = None,
+    z_range: Sequence[float] | None = None,
 ) -> np.ndarray:
     """Digital surface (or solid) of revolution fitted in a ``size``³ grid (``size``⁴ for a 3D curve).
 
@@ -450,7 +530,7 @@ def revolution(
     """
     fld = revolution_field(
         curve, generatrix, base_dir=base_dir, curve_threshold=curve_threshold,
-        generatrix_threshold=generatrix_threshold, axis=axis, curve_dim=curve_dim,
+        generatrix_threshold=generatrix_threshold, axis=axis, curve_dim=curve_dim, z_range=z_range,
     )
     return fit(fld, k=k, mode=mode, size=size, scale=scale, at=at)
 

@@ -23,6 +23,7 @@ OUTPUTS: dict[str, str] = {
     "net": "voxfab.fabricate.netdraw:recipe_output",
     "slices": "voxfab.fabricate.plates:recipe_output",
     "pictures": "voxfab.render:recipe_output",
+    "animation": "voxfab.render._animate:recipe_output",
 }
 
 

@@ -72,6 +72,17 @@ def make_shape(recipe: Recipe) -> VoxelShape:
     return VoxelShape(grid, recipe.pitch)
 
 
+#: Keys an output may declare to get the recipe's source (an animation re-runs the maker).
+SOURCE_KEYS = ("source", "base_dir")
+
+
+def _source_keys(func: object, recipe: Recipe) -> dict[str, object]:
+    import inspect
+
+    params = inspect.signature(func).parameters  # type: ignore[arg-type]
+    return {"source": recipe.source, "base_dir": recipe.base_dir} if "source" in params else {}
+
+
 def _sha256(path: Path) -> str:
     return hashlib.sha256(path.read_bytes()).hexdigest()
 
@@ -101,7 +112,8 @@ def build(recipe: Recipe, outdir: PathLike) -> Path:
         ]
         for spec in progress(recipe.outputs, desc="outputs"):
             func = get_output(spec.name)
-            files += func(shape, tmp, name=recipe.name, seed=recipe.seed, **dict(spec.options))
+            files += func(shape, tmp, name=recipe.name, seed=recipe.seed, **_source_keys(func, recipe),
+                          **dict(spec.options))
         manifest = {
             "format": MANIFEST_FORMAT,
             "voxfab": __version__,

@@ -367,7 +367,9 @@ def load_recipe(path: PathLike, *, allow_outside: bool = False) -> Recipe:
             func = get_output(out_name)
         except UnknownFormatError as exc:
             raise err(f"outputs.{out_name}", str(exc)) from None
-        _check_options(func, options, skip={"name", "seed"}, where=f"outputs.{out_name}", err=err)
+        # source and base_dir come from the build itself (see _build.SOURCE_KEYS), never from keys
+        _check_options(func, options, skip={"name", "seed", "source", "base_dir"}, where=f"outputs.{out_name}",
+                       err=err)
         outputs.append(OutputSpec(out_name, tuple(sorted(options.items()))))
 
     return Recipe(

@@ -21,7 +21,7 @@ from voxfab.unfold import Net
 from ._animate import animation_frames, save_animation, save_turntable, turntable_frames
 from ._contact_sheet import contact_sheet, repository_contact_sheet, sheet_layout
 from ._image import gif_bytes, pdf_bytes, png_bytes, save_picture
-from ._net import DEFAULT_STYLES, LineStyle, Seam, net_layout, net_picture, net_seams
+from ._net import DEFAULT_STYLES, LineStyle, net_picture
 from ._raster import DEFAULT_COLOR, Raster, fit_frame, rasterize
 from ._render import render, render_raster, save_render, supersampling
 from ._slices import SliceAxis, layers, slice_layout, slice_sheet
@@ -47,9 +47,6 @@ __all__ = [
     "slice_sheet",
     "LineStyle",
     "DEFAULT_STYLES",
-    "Seam",
-    "net_seams",
-    "net_layout",
     "net_picture",
     "make_net",
     "triptych",

@@ -1,4 +1,4 @@
-"""Animations: a turntable around one shape, and a GIF of any sequence of grids.
+"""Animations: a turntable around one shape, a GIF of any sequence of grids, a tube's turning profile.
 
 Frames are palette images on the fixed palette of :func:`palette_for` (background
 plus 255 shades of the cube colour), which is exactly the colour model of the
@@ -8,8 +8,9 @@ rasterizer, so no quantization happens and the bytes are reproducible.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable
-from typing import TYPE_CHECKING
+from collections.abc import Iterable, Mapping
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
@@ -19,6 +20,7 @@ from voxfab._shared.progress import progress
 from voxfab._shared.typing import PathLike
 from voxfab._shared.validate import as_grid
 from voxfab.errors import InvalidShapeError
+from voxfab.fabricate._registry import OutputFile
 from voxfab.shape import VoxelShape, bounding_box
 
 from ._image import gif_bytes
@@ -29,7 +31,15 @@ from ._views import ISO_AZIMUTH, ISO_ELEVATION, Camera, View, camera_for, orbit_
 if TYPE_CHECKING:
     from PIL import Image
 
-__all__ = ["turntable_frames", "animation_frames", "save_turntable", "save_animation"]
+__all__ = [
+    "turntable_frames",
+    "animation_frames",
+    "save_turntable",
+    "save_animation",
+    "tube_frames",
+    "save_tube_animation",
+    "recipe_output",
+]
 
 
 def _palette_image(indexed: npt.NDArray[np.uint8], palette: list[int]) -> Image.Image:
@@ -187,3 +197,116 @@ def save_animation(
     write_bytes(path, gif_bytes(pics, duration_ms=d))
     return len(pics)
 
+
+
+#: Keys of the ``tube`` maker that the rotating-profile animation does not take: it sets the phase
+#: itself, and fits one scale for every frame.
+_NOT_ANIMATED = ("phase", "scale")
+
+
+def tube_frames(tube: Mapping[str, Any], *, steps: int = 24, turn: float = 360.0,
+                base_dir: PathLike | None = None) -> list[np.ndarray]:
+    """The grids of a swept tube as its profile turns by ``turn`` degrees in ``steps`` steps.
+
+    Parameters
+    ----------
+    tube : mapping
+        The keys of the recipe maker ``tube`` (``spine``, ``profile``, ``radius``,
+        ``twist``, ``frame``, ``size``, ...; see :func:`voxfab.digitize.tube_rotations`).
+    steps : int
+        Frames, 1..720.
+    turn : float
+        Total rotation of the profile in degrees over the animation.
+    base_dir : path, optional
+        Folder of relative file names (profile drawings, spine files).
+
+    Returns
+    -------
+    list of (size, size, size) bool ndarray
+        Frames on one common grid window, so they line up.
+    """
+    from voxfab.digitize import tube_rotations
+
+    n = _check_frames(steps)
+    if not math.isfinite(float(turn)):
+        raise InvalidShapeError(f"turn: expected a finite angle in degrees, got {turn!r}")
+    bad = [k for k in _NOT_ANIMATED if tube.get(k) is not None]
+    if bad:
+        raise InvalidShapeError(f"{bad[0]}: the rotating-profile animation sets it itself; leave it out")
+    options = {k: v for k, v in tube.items() if k not in _NOT_ANIMATED}
+    if "spine" not in options:
+        raise InvalidShapeError("spine: the rotating-profile animation needs the tube's spine")
+    spine = options.pop("spine")
+    if isinstance(spine, list) and spine and isinstance(spine[0], list):
+        spine = np.asarray(spine, dtype=np.float64)
+    return list(tube_rotations(spine, steps=n, turn=float(turn),
+                               base_dir=None if base_dir is None else Path(base_dir), **options))
+
+
+def save_tube_animation(path: PathLike, tube: Mapping[str, Any], *, steps: int = 24, turn: float = 360.0,
+                        view: str | View = "iso", size: int = 400, duration_ms: int = 80,
+                        base_dir: PathLike | None = None) -> int:
+    """Write a looping GIF of a tube whose profile turns (interlaced strands); return the frame count.
+
+    See :func:`tube_frames` for the tube and the rotation, :func:`save_animation` for the picture
+    (``size`` is the picture's side in pixels; the tube's own ``size`` is its grid side).
+    """
+    d = _check_duration(duration_ms)
+    grids = tube_frames(tube, steps=steps, turn=turn, base_dir=base_dir)
+    pics = animation_frames(grids, view=view, size=size)
+    write_bytes(path, gif_bytes(pics, duration_ms=d))
+    return len(pics)
+
+
+def recipe_output(
+    shape: VoxelShape,
+    outdir: Path,
+    *,
+    name: str,
+    seed: int,
+    source: Any,
+    base_dir: Path,
+    steps: int = 24,
+    turn: float = 360.0,
+    view: str = "iso",
+    size: int = 400,
+    duration_ms: int = 80,
+) -> list[OutputFile]:
+    """The recipe output ``animation``: ``animation.gif``, the tube's profile turning along its spine.
+
+    Parameters
+    ----------
+    shape : VoxelShape
+        The recipe's shape (frame 0 before any operation; the animation shows the source).
+    outdir : Path
+        Folder to write into.
+    name, seed
+        Unused: the animation is deterministic.
+    source, base_dir
+        The recipe's :class:`voxfab.recipe.SourceSpec`, which must be the maker ``tube``,
+        and its folder (passed by the build, not recipe keys).
+    steps : int
+        Frames (1..720).
+    turn : float
+        Rotation of the profile in degrees over the whole animation.
+    view : str
+        ``"iso"``, ``"x"``, ..., ``"-z"``.
+    size : int
+        Picture side in pixels.
+    duration_ms : int
+        Time per frame in milliseconds.
+    """
+    from voxfab.errors import RecipeError, VoxfabError
+
+    del shape, name, seed
+    if source.maker != "tube":
+        raise RecipeError(
+            f"outputs.animation: the rotating-profile animation needs a tube source (maker = \"tube\"), "
+            f"got {source.maker or 'a file'!r}"
+        )
+    try:
+        save_tube_animation(Path(outdir) / "animation.gif", dict(source.params), steps=steps, turn=turn,
+                            view=view, size=size, duration_ms=duration_ms, base_dir=base_dir)
+    except VoxfabError as exc:
+        raise RecipeError(f"outputs.animation: {exc}") from None
+    return [OutputFile("animation.gif", "the tube's profile turning along its spine, one turn per loop")]

@@ -10,7 +10,7 @@ on request), are stored once, found through indexed canonical keys.
 Only this package touches :mod:`sqlite3`.  See :class:`Repository`.
 """
 
-from ._records import DRAFT_PATTERN, MAX_RANK, NAME_PATTERN, format_name
+from ._records import DRAFT_PATTERN, MAX_RANK, NAME_PATTERN, decode_bits, encode_bits, format_name
 from ._repository import DEFAULT_PATH, AddResult, Entry, Repository
 from ._sqlite import SCHEMA_VERSION
 
@@ -24,4 +24,6 @@ __all__ = [
     "NAME_PATTERN",
     "DRAFT_PATTERN",
     "format_name",
+    "encode_bits",
+    "decode_bits",
 ]

@@ -203,6 +203,7 @@ class Repository:
         symmetric: bool = False,
         draft: bool = False,
         metas: Sequence[Mapping[str, Any] | None] | None = None,
+        keys: Sequence[str] | None = None,
     ) -> list[AddResult]:
         """Add several shapes in one transaction: all are stored, or none is.
 
@@ -216,6 +217,9 @@ class Repository:
             As in :meth:`add`.
         metas : sequence of (mapping or None), optional
             One metadata mapping per grid.
+        keys : sequence of str, optional
+            The grids' :func:`voxfab.shape.canonical_key` (``symmetric`` as given),
+            when the caller has computed them already.
 
         Returns
         -------
@@ -227,6 +231,8 @@ class Repository:
             metas = [None] * len(grids)
         if len(metas) != len(grids):
             raise RepositoryError(f"metas: expected {len(grids)} entries, got {len(metas)}")
+        if keys is not None and len(keys) != len(grids):
+            raise RepositoryError(f"keys: expected {len(grids)} entries, got {len(keys)}")
         # Everything is computed before the write lock is taken, so the lock is held
         # only for the index lookups and the inserts.  A shape found by a first
         # lock-free lookup needs neither its other key nor its well-formedness
@@ -237,7 +243,7 @@ class Repository:
             label = "shape" if len(grids) == 1 else f"shape {i}"
             g = check_grid(grid, name=label)
             meta = encode_meta(m)
-            key = canonical_key(g, symmetric=symmetric)
+            key = keys[i] if keys is not None else canonical_key(g, symmetric=symmetric)
             found = self._lookup(key, symmetric=symmetric)
             if found is not None:
                 name, reasons = found
@@ -265,16 +271,19 @@ class Repository:
         column = "symmetric_key" if symmetric else "key"
         with sqlite_errors(self._path):
             row = self._db.execute(
-                f"SELECT name, reasons FROM shapes WHERE {column} = ? {_ORDER} LIMIT 1", (key,)
+                f"SELECT name, reasons FROM shapes WHERE {column} = ? {_ORDER} LIMIT 1", (bytes.fromhex(key),)
             ).fetchone()
         return None if row is None else (row[0], tuple(json.loads(row[1])))
 
     def _insert(self, db: sqlite3.Connection, r: Record, *, symmetric: bool) -> AddResult:
         column, key = ("symmetric_key", r.symmetric_key) if symmetric else ("key", r.key)
-        row = db.execute(f"SELECT name FROM shapes WHERE {column} = ? {_ORDER} LIMIT 1", (key,)).fetchone()
+        row = db.execute(
+            f"SELECT name FROM shapes WHERE {column} = ? {_ORDER} LIMIT 1", (bytes.fromhex(key),)
+        ).fetchone()
         if row is not None:
             return AddResult(row[0], False, r.reasons)
-        values = (r.volume, *r.extents, r.bits, r.key, r.symmetric_key, json.dumps(list(r.reasons)), r.meta)
+        values = (r.volume, *r.extents, r.bits, bytes.fromhex(r.key), bytes.fromhex(r.symmetric_key),
+                  json.dumps(list(r.reasons)), r.meta)
         insert = (
             "INSERT INTO shapes (name, rank, draft, volume, nx, ny, nz, bits, key, symmetric_key, reasons, meta)"
             " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)"
@@ -326,6 +335,15 @@ class Repository:
         bits, nx, ny, nz = self._row(name, "bits, nx, ny, nz")
         return decode_bits(bits, (nx, ny, nz))
 
+    def packed(self, name: str) -> tuple[bytes, tuple[int, int, int]]:
+        """Return the stored packed bits of ``name`` and its extents, without unpacking.
+
+        ``voxfab.repo._records.decode_bits(bits, extents)`` gives the grid of :meth:`get`;
+        a batch sends these few bytes to its workers.
+        """
+        bits, nx, ny, nz = self._row(name, "bits, nx, ny, nz")
+        return bytes(bits), (int(nx), int(ny), int(nz))
+
     def find(self, grid: npt.ArrayLike, *, symmetric: bool = False) -> str | None:
         """Return the name of the stored shape equal to ``grid``, or None.
 
@@ -335,11 +353,99 @@ class Repository:
         found = self._lookup(canonical_key(grid, symmetric=symmetric), symmetric=symmetric)
         return None if found is None else found[0]
 
-    def list(self) -> list[Entry]:
-        """Return every stored shape: named ones by volume then rank, then drafts by volume."""
+    def list(
+        self,
+        *,
+        volume: tuple[int, int] | None = None,
+        after: str | None = None,
+        limit: int | None = None,
+        drafts: bool = True,
+    ) -> list[Entry]:
+        """Return stored shapes: named ones by volume then rank, then drafts by volume.
+
+        Without arguments every shape is listed.  The filters run in the database
+        on its ``(draft, volume, rank, id)`` index, so one page costs the same at
+        any depth of a million-shape repository.
+
+        Parameters
+        ----------
+        volume : (int, int), optional
+            Keep the shapes whose volume is in ``[min, max]`` (inclusive).
+        after : str, optional
+            Start after this stored name or draft id (the last one of the previous
+            page): keyset paging, which no insertion or removal elsewhere can shift.
+        limit : int, optional
+            At most this many entries (at least 1).
+        drafts : bool
+            Include the drafts.
+
+        Raises
+        ------
+        RepositoryError
+            For an unknown ``after`` name, an empty volume range or a limit below 1.
+        """
+        where: list[str] = []
+        params: list[Any] = []
+        if volume is not None:
+            lo, hi = int(volume[0]), int(volume[1])
+            if lo > hi or hi < 1:
+                raise RepositoryError(f"volume: the range {lo}:{hi} is empty")
+            where.append("volume BETWEEN ? AND ?")
+            params += [lo, hi]
+        if not drafts:
+            where.append("draft = 0")
+        if after is not None:
+            row_id, d, v, r = self._row(after, "id, draft, volume, rank")
+            # Drafts have no rank (NULL), so the row-value comparison differs per part.
+            if d:
+                where.append("draft = 1 AND (volume, id) > (?, ?)")
+                params += [v, row_id]
+            else:
+                where.append("(draft = 1 OR (draft = 0 AND (volume, rank) > (?, ?)))")
+                params += [v, r]
+        sql = f"SELECT name, volume, nx, ny, nz, draft FROM shapes {'WHERE ' if where else ''}"
+        sql += " AND ".join(f"({w})" for w in where) + f" {_ORDER}"
+        if limit is not None:
+            if int(limit) < 1:
+                raise RepositoryError(f"limit: expected at least 1, got {limit}")
+            sql += " LIMIT ?"
+            params.append(int(limit))
         with sqlite_errors(self._path):
-            rows = self._db.execute(f"SELECT name, volume, nx, ny, nz, draft FROM shapes {_ORDER}").fetchall()
-        return [Entry(name, volume, (nx, ny, nz), bool(d)) for name, volume, nx, ny, nz, d in rows]
+            rows = self._db.execute(sql, params).fetchall()
+        return [Entry(name, v, (nx, ny, nz), bool(d)) for name, v, nx, ny, nz, d in rows]
+
+    def stats(self, *, volume: tuple[int, int] | None = None) -> dict[str, Any]:
+        """Count the stored shapes per volume.
+
+        Returns
+        -------
+        dict
+            ``shapes`` (named shapes), ``drafts``, and ``volumes``: a list of
+            ``{"volume", "count", "last_rank"}`` by volume, where ``last_rank`` is the
+            highest rank ever given (removed names are not reused, so it can exceed
+            ``count``).  ``volume`` = ``(min, max)`` restricts all three.
+        """
+        lo, hi = (1, 2**62) if volume is None else (int(volume[0]), int(volume[1]))
+        with sqlite_errors(self._path):
+            rows = self._db.execute(
+                "SELECT s.volume, count(*), c.last_rank FROM shapes s"
+                " LEFT JOIN rank_counters c ON c.volume = s.volume"
+                " WHERE s.draft = 0 AND s.volume BETWEEN ? AND ? GROUP BY s.volume ORDER BY s.volume",
+                (lo, hi),
+            ).fetchall()
+            drafts = self._db.execute(
+                "SELECT count(*) FROM shapes WHERE draft = 1 AND volume BETWEEN ? AND ?", (lo, hi)
+            ).fetchone()[0]
+        return {
+            "shapes": sum(r[1] for r in rows),
+            "drafts": int(drafts),
+            "volumes": [{"volume": v, "count": n, "last_rank": last} for v, n, last in rows],
+        }
+
+    def last_ranks(self) -> dict[int, int]:
+        """Return the highest rank ever given per volume (a volume is full at :data:`MAX_RANK`)."""
+        with sqlite_errors(self._path):
+            return dict(self._db.execute("SELECT volume, last_rank FROM rank_counters").fetchall())
 
     def show(self, name: str) -> dict[str, Any]:
         """Return what is known about ``name`` as a JSON-compatible dict.
@@ -358,8 +464,8 @@ class Repository:
             "extents": [nx, ny, nz],
             "draft": bool(d),
             "reasons": json.loads(reasons),
-            "key": key,
-            "symmetric_key": skey,
+            "key": key.hex(),
+            "symmetric_key": skey.hex(),
             "meta": None if meta is None else json.loads(meta),
         }
 

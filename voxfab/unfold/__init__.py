@@ -2,9 +2,11 @@
 
 ``unfold`` searches a net, ``unfold_many`` several distinct ones, ``validate``
 refolds a net and checks it against the shape, ``seam_pairs`` and ``tab_room``
-describe its cut edges for glue tabs.
+describe its cut edges for glue tabs, ``EdgeConstraints`` names edges to cut
+or keep folded.
 """
 
+from ._constraints import EdgeConstraints
 from ._layout import seam_pairs, tab_room
 from ._net import NET_FORMAT, Net
 from ._search import Pieces, Strategy, unfold, unfold_many
@@ -12,6 +14,7 @@ from ._validate import ValidationReport, validate
 
 __all__ = [
     "NET_FORMAT",
+    "EdgeConstraints",
     "Net",
     "Pieces",
     "Strategy",

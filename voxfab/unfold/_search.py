@@ -15,6 +15,7 @@ from voxfab._shared.validate import as_grid, check_choice
 from voxfab.errors import InvalidShapeError, UnfoldError
 from voxfab.shape import SurfaceGraph, cavity_count, component_count, fill_cavities, surface_graph
 
+from ._constraints import EdgeConstraints, Resolved, resolve
 from ._layout import build_net, count_without_tab_room
 from ._net import Net
 
@@ -58,31 +59,38 @@ class Pieces(enum.StrEnum):
     AUTO = "auto"
 
 
-@dataclasses.dataclass(frozen=True)
-class _Params:
-    mode: int
-    tour: int
-    samples: int
-    p_lift: float
-    restart_after: int
-
-
-def _params(strategy: Strategy, faces: int) -> _Params:
-    from . import _core
+def _growth(strategy: Strategy, faces: int):
+    from ._growth import MODE_PAPER, MODE_RUIN, Growth
 
     if strategy is Strategy.PAPER:
-        return _Params(_core.MODE_PAPER, 1, 0, 0.0, max(50, faces // 4))
-    return _Params(_core.MODE_RUIN, 3, 3, 0.05, 0)
+        return Growth(MODE_PAPER, 1, 0, 0.0, max(50, faces // 4))
+    return Growth(MODE_RUIN, 3, 3, 0.05, 0)
+
+
+def _surface(sg: SurfaceGraph, resolved: Resolved | None):
+    from ._board import Surface
+
+    nb = np.ascontiguousarray(sg.neighbor, dtype=np.int64)
+    ne = np.ascontiguousarray(sg.neighbor_edge, dtype=np.int64)
+    if resolved is None:
+        f = sg.face_count
+        none = np.zeros(0, dtype=np.int64)
+        resolved = Resolved(np.zeros((f, 4), dtype=np.int8), np.full(f, -1, dtype=np.int64),
+                            none, none, none, none, np.zeros(1, dtype=np.int64))
+        return Surface(nb, ne, *resolved)
+    return Surface(nb, ne, *resolved)
 
 
 class _Board:
     """Search state for the faces of one piece on one board."""
 
     def __init__(self, sg: SurfaceGraph, faces: npt.NDArray[np.int64], seed: int | list[int],
-                 fit: tuple[int, int] | None) -> None:
-        from . import _core
+                 fit: tuple[int, int] | None, resolved: Resolved | None = None) -> None:
+        from . import _board, _growth, _tabroom
 
-        self.core = _core
+        self.k = _board
+        self.growth = _growth
+        self.tabroom = _tabroom
         f = sg.face_count
         if fit is None:
             side = min(2 * faces.size + 1, MAX_BOARD)
@@ -97,51 +105,47 @@ class _Board:
         else:
             ys, xs = np.nonzero(board == -1)
             cells = (ys * self.width + xs).astype(np.int64)
-        self.board = board.ravel()
-        self.root_cells = cells
-        self.off = np.array([-self.width, 1, self.width, -1], dtype=np.int64)
-        self.nb = np.ascontiguousarray(sg.neighbor, dtype=np.int64)
-        self.ne = np.ascontiguousarray(sg.neighbor_edge, dtype=np.int64)
-        self.pos = np.full(f, -3, dtype=np.int64)
-        self.pos[faces] = -1
-        self.rot = np.zeros(f, dtype=np.int64)
-        self.par = np.full(f, -2, dtype=np.int64)
-        self.cl = np.zeros(5 * f, dtype=np.int64)
-        self.cp = np.full(5 * f, -1, dtype=np.int64)
-        self.cnt = np.zeros(_core.N_COUNTERS, dtype=np.int64)
+        pos = np.full(f, -3, dtype=np.int64)
+        pos[faces] = -1
+        cnt = np.zeros(_board.N_COUNTERS, dtype=np.int64)
+        cnt[_board.C_WIDTH] = self.width
+        cnt[_board.C_CONSTRAINED] = int(resolved is not None)
         state = np.random.SeedSequence(seed).generate_state(1, dtype=np.uint64)
-        self.st = np.array([state[0] | np.uint64(1)], dtype=np.uint64)
-        self.stack = np.zeros(f + 1, dtype=np.int64)
-        self.opt = np.zeros(4 * f, dtype=np.int64)
-        self.bad = np.zeros(8 * f, dtype=np.int64)
+        self.sf = _surface(sg, resolved)
+        self.b = _board.Board(
+            pos=pos, rot=np.zeros(f, dtype=np.int64), par=np.full(f, -2, dtype=np.int64),
+            board=board.ravel(), off=np.array([-self.width, 1, self.width, -1], dtype=np.int64),
+            cl=np.zeros(5 * f, dtype=np.int64), cp=np.full(5 * f, -1, dtype=np.int64), cnt=cnt,
+            st=np.array([state[0] | np.uint64(1)], dtype=np.uint64),
+            stack=np.zeros(f + 1, dtype=np.int64), opt=np.zeros(4 * f, dtype=np.int64),
+            bad=np.zeros(8 * f, dtype=np.int64), blk=np.zeros(5 * f + 4, dtype=np.int64),
+            root_cells=cells)
+        self.pos, self.rot, self.par, self.cnt = self.b.pos, self.b.rot, self.b.par, cnt
         self.faces = faces
-        self.core.start(self.nb, self.ne, self.pos, self.rot, self.par, self.board, self.off,
-                        self.cl, self.cp, self.cnt, self.st, self.root_cells, self.width)
-
-    def _args(self) -> tuple:
-        return (self.nb, self.ne, self.pos, self.rot, self.par, self.board, self.off,
-                self.cl, self.cp, self.cnt, self.st, self.stack, self.opt)
+        self.started = self.growth.start(self.sf, self.b) >= 0
 
     @property
     def unplaced(self) -> int:
-        return int(self.cnt[self.core.C_UNPLACED])
+        return int(self.cnt[self.k.C_UNPLACED])
 
     @property
     def best(self) -> int:
-        return int(self.cnt[self.core.C_BEST])
+        return int(self.cnt[self.k.C_BEST])
 
-    def grow(self, p: _Params, deadline: float, max_steps: int | None = None, bar: Meter | None = None) -> bool:
+    def grow(self, gw, deadline: float, max_steps: int | None = None, bar: Meter | None = None) -> bool:
         """Grow until every face is placed; False when the clock or ``max_steps`` runs out.
 
         ``bar`` counts the faces of the largest partial net so far.
         """
         spent = 0
+        if not self.started:
+            return False
         while self.unplaced > 0:
             if time.monotonic() > deadline or (max_steps is not None and spent >= max_steps):
                 return False
             chunk = _CHUNK if max_steps is None else min(_CHUNK, max_steps - spent)
-            self.core.grow(*self._args(), self.root_cells, self.width, p.mode, p.tour,
-                           chunk, p.restart_after, p.samples, p.p_lift, False)
+            if not self.growth.grow(self.sf, self.b, gw, chunk, False) and self.unplaced == self.faces.size:
+                return False  # a restart found no room for a root
             spent += chunk
             if bar is not None:
                 bar.update(max(self.best, int(self.faces.size) - self.unplaced) - bar.done)
@@ -160,7 +164,7 @@ class _Board:
             return _LARGE_ROUNDS, _LARGE_MOVES_PER_ROUND * n
         return _ROUNDS, _MOVES_PER_ROUND * n
 
-    def anneal(self, p: _Params, deadline: float, bar: Meter | None = None) -> int:
+    def anneal(self, gw, deadline: float, bar: Meter | None = None) -> int:
         """Drive seams without tab room to zero; return the count reached.
 
         Rounds of annealing, each from a freshly grown net (a stuck net is rarely
@@ -169,19 +173,18 @@ class _Board:
         runs out first.  The state ends at the best net seen.  ``bar`` counts the
         moves tried.
         """
-        core = self.core
+        k = self.k
         n = int(self.faces.size)
         rounds, per_round = self.anneal_budget()
+        sched = self.tabroom.Annealing(per_round, _T0, _T1, _REGROW_STEPS, _RUIN_CAP)
         chunk = max(200, 20000 // max(1, n // 100))
         best = None
         for _ in range(rounds):
             done = 0
             score = -1
             while done < per_round and time.monotonic() < deadline:
-                score, _used = core.anneal(
-                    *self._args(), self.bad, self.root_cells, self.width, p.tour,
-                    min(chunk, per_round - done), done, per_round, _T0, _T1, _REGROW_STEPS,
-                    p.samples, p.p_lift, _RUIN_CAP)
+                score, _used = self.tabroom.anneal(self.sf, self.b, gw, sched,
+                                                   min(chunk, per_round - done), done)
                 if score == 0:
                     break
                 if bar is not None:
@@ -189,18 +192,16 @@ class _Board:
                 done += chunk
             if score >= 0 and (best is None or score < best[0]):
                 best = (score, self.pos.copy(), self.rot.copy(), self.par.copy(),
-                        int(self.cnt[core.C_ROOT]))
+                        int(self.cnt[k.C_ROOT]))
             if score == 0 or time.monotonic() >= deadline:
                 break
-            core.start(self.nb, self.ne, self.pos, self.rot, self.par, self.board, self.off,
-                       self.cl, self.cp, self.cnt, self.st, self.root_cells, self.width)
-            if not self.grow(p, deadline):
+            self.growth.start(self.sf, self.b)
+            if not self.grow(gw, deadline):
                 break
         if best is None:
             return -1
-        core.restore(best[1], best[2], best[3], self.pos, self.rot, self.par, self.board,
-                      self.cl, self.cp, self.cnt)
-        self.cnt[core.C_ROOT] = best[4]
+        k.restore(self.sf, self.b, best[1], best[2], best[3])
+        self.cnt[k.C_ROOT] = best[4]
         return int(best[0])
 
     def net(self, sg: SurfaceGraph, *, faces: npt.NDArray[np.int64] | None = None,
@@ -275,6 +276,7 @@ def unfold(
     fill: bool = False,
     pieces: str | Pieces = "one",
     compact: bool = False,
+    constraints: EdgeConstraints | None = None,
 ) -> Net | list[Net]:
     """Find a net of a voxel shape: its surface cut along voxel edges and laid flat.
 
@@ -311,6 +313,9 @@ def unfold(
         runs out the largest partial net plus pieces grown from the rest.  Face
         ``i`` of a piece is then *not* face ``i`` of the surface graph: faces are
         identified by ``(voxel, normal)``.
+    constraints : EdgeConstraints, optional
+        Edges to cut (never folds) and edges to keep (always folds: the faces
+        they join move as one rigid group during the search).
 
     Returns
     -------
@@ -321,8 +326,10 @@ def unfold(
     ------
     UnfoldError
         The shape has cavities or several components (with ``pieces="one"``), the
-        faces cannot fit ``fit``, or the budget ran out; the message says what
-        was tried.
+        faces cannot fit ``fit``, kept edges cannot all be folds, or the budget
+        ran out; the message says what was tried.
+    InvalidShapeError
+        A bad option, or a constrained edge that is not an edge of the surface.
     """
     strat = check_choice(strategy, Strategy, name="strategy")
     mode = check_choice(pieces, Pieces, name="pieces")
@@ -330,6 +337,9 @@ def unfold(
     if not float(timeout) > 0:
         raise InvalidShapeError(f"timeout: expected a positive number of seconds, got {timeout!r}")
     seed = _seed_of(rng)
+    if constraints is not None and not isinstance(constraints, EdgeConstraints):
+        raise InvalidShapeError(
+            f"constraints: expected EdgeConstraints, got {type(constraints).__name__}")
     g = _prepare(grid, fill, mode)
     deadline = time.monotonic() + float(timeout)
     sg = surface_graph(g)
@@ -338,38 +348,58 @@ def unfold(
             f"the surface has {sg.face_count} faces, more than the {fit[0]}x{fit[1]} = "
             f"{fit[0] * fit[1]} cells of fit, so no net fits"
         )
+    _check_groups_fit(resolve(constraints, sg), fit)  # every named edge must be on this surface
     parts = _surface_parts(sg)
     if mode is Pieces.ONE:
         if len(parts) > 1:
             _refuse_parts(g, len(parts))
-        net = _one_piece(g, sg, parts[0], seed, strat, fit, tab_aware, deadline, timeout, compact)
+        net = _one_piece(g, sg, parts[0], seed, strat, fit, tab_aware, deadline, timeout, compact,
+                         resolve(constraints, sg, parts[0]))
         return dataclasses.replace(net, filled=fill)
     nets: list[Net] = []
     for t, part in enumerate(parts):
         remaining = max(deadline - time.monotonic(), 0.0)
         part_deadline = time.monotonic() + remaining / (len(parts) - t)
-        nets.extend(_pieces(g, sg, part, seed + t, strat, fit, tab_aware, part_deadline))
+        nets.extend(_pieces(g, sg, part, seed + t, strat, fit, tab_aware, part_deadline,
+                            constraints))
     return [dataclasses.replace(n, filled=fill) for n in nets]
+
+
+def _check_groups_fit(resolved: Resolved | None, fit: tuple[int, int] | None) -> None:
+    """Refuse kept groups that cannot lie inside ``fit`` in either orientation."""
+    if resolved is None or fit is None:
+        return
+    for g in range(resolved.start.size - 1):
+        m = resolved.members[resolved.start[g]:resolved.start[g + 1]]
+        w = int(np.ptp(resolved.gx[m])) + 1
+        h = int(np.ptp(resolved.gy[m])) + 1
+        if not ((w <= fit[0] and h <= fit[1]) or (h <= fit[0] and w <= fit[1])):
+            raise UnfoldError(
+                f"the {m.size} faces kept together by the constraints span {w}x{h} cells laid "
+                f"flat, so they do not fit inside {fit[0]}x{fit[1]}")
 
 
 def _one_piece(g: npt.NDArray[np.bool_], sg: SurfaceGraph, faces: npt.NDArray[np.int64],
                seed: int, strat: Strategy, fit: tuple[int, int] | None, tab_aware: bool,
-               deadline: float, timeout: float, compact: bool) -> Net:
-    p = _params(strat, faces.size)
-    b = _Board(sg, faces, seed, fit)
+               deadline: float, timeout: float, compact: bool, resolved: Resolved | None) -> Net:
+    p = _growth(strat, faces.size)
+    b = _Board(sg, faces, seed, fit, resolved)
     with meter(int(faces.size), desc="net: faces placed") as bar:
         grown = b.grow(p, deadline, bar=bar)
+    if not grown and not b.started:
+        raise UnfoldError(
+            f"the faces kept together by the constraints do not fit inside {fit[0]}x{fit[1]}")
     if not grown:
         raise UnfoldError(
             f"no one-piece net of the {faces.size}-face surface in {timeout:g} s with strategy "
             f"{strat.value!r}{'' if fit is None else f' inside {fit[0]}x{fit[1]}'}: "
-            f"{int(b.cnt[b.core.C_DEADENDS])} dead ends repaired, "
-            f"{int(b.cnt[b.core.C_RESTARTS])} restarts, best partial net {b.best} of "
+            f"{int(b.cnt[b.k.C_DEADENDS])} dead ends repaired, "
+            f"{int(b.cnt[b.k.C_RESTARTS])} restarts, best partial net {b.best} of "
             f"{faces.size} faces; raise the timeout, try another seed, or allow several "
             "pieces (pieces='auto', CLI --pieces auto)"
         )
     if compact:
-        b = _compact(sg, faces, seed, p, b, deadline)
+        b = _compact(sg, faces, seed, p, b, deadline, resolved)
     if tab_aware and strat is Strategy.DEFAULT:
         rounds, per_round = b.anneal_budget()
         with meter(rounds * per_round, desc="net: tab room, moves (at most)") as bar:
@@ -378,8 +408,8 @@ def _one_piece(g: npt.NDArray[np.bool_], sg: SurfaceGraph, faces: npt.NDArray[np
     return _with_tab_count(g, net)
 
 
-def _compact(sg: SurfaceGraph, faces: npt.NDArray[np.int64], seed: int, p: _Params,
-             board: _Board, deadline: float) -> _Board:
+def _compact(sg: SurfaceGraph, faces: npt.NDArray[np.int64], seed: int, p,
+             board: _Board, deadline: float, resolved: Resolved | None) -> _Board:
     """Shrink the net's bounding box while a fixed growth budget still fits it.
 
     Each trial grows a new net inside the current box with its longer side cut
@@ -397,7 +427,7 @@ def _compact(sg: SurfaceGraph, faces: npt.NDArray[np.int64], seed: int, p: _Para
             h = min(h - 1, int(h * 0.9))
         if w < 1 or h < 1 or w * h < faces.size or time.monotonic() > deadline:
             break
-        trial = _Board(sg, faces, [seed, t + 1], (w, h))
+        trial = _Board(sg, faces, [seed, t + 1], (w, h), resolved)
         if trial.grow(p, deadline, _COMPACT_STEPS_PER_FACE * int(faces.size)):
             best, failures = trial, 0
         else:
@@ -413,10 +443,10 @@ def _with_tab_count(grid: npt.NDArray[np.bool_], net: Net) -> Net:
 
 def _pieces(g: npt.NDArray[np.bool_], sg: SurfaceGraph, faces: npt.NDArray[np.int64],
             seed: int, strat: Strategy, fit: tuple[int, int] | None, tab_aware: bool,
-            deadline: float) -> list[Net]:
+            deadline: float, constraints: EdgeConstraints | None) -> list[Net]:
     """One surface part as few pieces as the budget allows."""
-    p = _params(strat, faces.size)
-    b = _Board(sg, faces, seed, fit)
+    p = _growth(strat, faces.size)
+    b = _Board(sg, faces, seed, fit, resolve(constraints, sg, faces))
     if b.grow(p, deadline):
         if tab_aware and strat is Strategy.DEFAULT:
             b.anneal(p, deadline)
@@ -430,9 +460,10 @@ def _pieces(g: npt.NDArray[np.bool_], sg: SurfaceGraph, faces: npt.NDArray[np.in
         if not rest.size:
             break
         # Grow the rest greedily on a fresh board, one piece per dead end.
-        b = _Board(sg, rest, seed + len(nets), fit)
-        b.core.grow(*b._args(), b.root_cells, b.width, b.core.MODE_PAPER, 1, 4 * rest.size,
-                    0, 0, 0.0, False)
+        b = _Board(sg, rest, seed + len(nets), fit, resolve(constraints, sg, rest))
+        if b.started:
+            b.growth.grow(b.sf, b.b, b.growth.Growth(b.growth.MODE_PAPER, 1, 0, 0.0, 0),
+                          4 * rest.size, False)
         if b.unplaced == rest.size:
             raise UnfoldError("no piece could be placed: fit is too small for a single face")
     return nets

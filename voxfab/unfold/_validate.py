@@ -18,6 +18,7 @@ import numpy.typing as npt
 from voxfab._shared.validate import as_grid
 from voxfab.errors import UnfoldError
 
+from ._constraints import EdgeConstraints
 from ._net import Net
 
 __all__ = ["ValidationReport", "validate"]
@@ -100,7 +101,8 @@ def _rule_neighbour(g, v, n, u):
 
 
 def validate(
-    shape: object, net: Net | Sequence[Net], *, strict: bool = True
+    shape: object, net: Net | Sequence[Net], *, strict: bool = True,
+    constraints: EdgeConstraints | None = None,
 ) -> ValidationReport:
     """Check that ``net`` is a valid unfolding of ``shape`` by refolding it.
 
@@ -113,7 +115,8 @@ def validate(
     connect each net into one piece; no cut edge closes up in the plane (a slit);
     folding each face's 2D square along the fold tree by ±90° (mountain, valley)
     or 0° (flat) puts it on its 3D face; and the stored fold and tab-room counts
-    are right.
+    are right.  With ``constraints``: each named edge is an edge of the surface,
+    no cut edge is a fold, and every kept edge is a fold inside one net.
 
     Parameters
     ----------
@@ -122,6 +125,8 @@ def validate(
         One net, or the pieces of a several-piece unfolding.
     strict : bool
         Raise UnfoldError listing the problems instead of returning them.
+    constraints : EdgeConstraints, optional
+        Edges the net must cut or keep folded.
 
     Returns
     -------
@@ -141,6 +146,8 @@ def validate(
     missing = len(faces) - len(owner)
     if missing:
         problems.append(f"{missing} exposed face(s) missing from the net")
+    if constraints:
+        _check_constraints(g, faces, nets, constraints, problems)
     report = ValidationReport(tuple(problems), len(faces), len(nets), seams, no_room)
     if strict and problems:
         shown = "; ".join(problems[:5])
@@ -354,3 +361,36 @@ def _beyond(c2, i, a, b):
     p, q = c2[i, a], c2[i, b]
     step = np.array([q[1] - p[1], p[0] - q[0]])
     return tuple((c2[i].min(axis=0) + step).tolist())
+
+
+_NORMAL = {"+x": (1, 0, 0), "-x": (-1, 0, 0), "+y": (0, 1, 0), "-y": (0, -1, 0),
+           "+z": (0, 0, 1), "-z": (0, 0, -1)}
+
+
+def _check_constraints(g, faces, nets, constraints: EdgeConstraints, problems: list[str]) -> None:
+    """Cut edges are not folds, kept edges are folds, and both name surface edges."""
+    where: dict[tuple, tuple[int, int]] = {}
+    folded: set[tuple[int, tuple[int, int]]] = set()
+    for p, piece in enumerate(nets):
+        for i, (v, n) in enumerate(zip(np.asarray(piece.voxel).tolist(), np.asarray(piece.normal).tolist())):
+            where[(tuple(v), tuple(n))] = (p, i)
+        for i, j in np.asarray(piece.folds, dtype=np.int64).reshape(-1, 2).tolist():
+            folded.add((p, (min(i, j), max(i, j))))
+    for name, edges in (("cut", constraints.cut), ("keep", constraints.keep)):
+        for edge in sorted(edges):
+            a, b = ((tuple(f[:3]), _NORMAL[f[3]]) for f in edge)
+            label = f"{name} edge {list(edge[0])}-{list(edge[1])}"
+            if a not in faces or b not in faces:
+                problems.append(f"{label}: not an edge between exposed faces")
+                continue
+            va, na = np.array(a[0]), np.array(a[1])
+            axes = [u for u in np.eye(3, dtype=np.int64) if not (u * na).any()]
+            if b not in {_rule_neighbour(g, va, na, s * u)[0] for u in axes for s in (1, -1)}:
+                problems.append(f"{label}: the faces do not meet along an edge (6-connectivity rule)")
+                continue
+            (pa, ia), (pb, ib) = where.get(a, (-1, -1)), where.get(b, (-2, -2))
+            is_fold = pa == pb and (pa, (min(ia, ib), max(ia, ib))) in folded
+            if name == "cut" and is_fold:
+                problems.append(f"{label} is a fold of the net")
+            if name == "keep" and not is_fold:
+                problems.append(f"{label} is not a fold of the net")

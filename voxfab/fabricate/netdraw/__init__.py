@@ -18,12 +18,14 @@ import dataclasses
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal
 
+from voxfab.drawing import LayerStyle, LineStyle, parse_colors
+
 # Light imports only: the recipe loader resolves the hints of recipe_output at runtime.
 from voxfab.fabricate._registry import OutputFile
 from voxfab.shape import VoxelShape
 from voxfab.unfold import Net
 
-from ._options import SHEETS, DrawingOptions, LayerStyle, LineStyle, parse_colors, parse_sheet
+from ._options import SHEETS, DrawingOptions, parse_sheet
 
 if TYPE_CHECKING:
     from ._drawing import Drawing

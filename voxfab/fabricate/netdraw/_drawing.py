@@ -7,17 +7,19 @@ import dataclasses
 import numpy as np
 import numpy.typing as npt
 
+from voxfab.drawing import LAYERS, Fill, Page, Polylines, text_polylines, text_width
+from voxfab.drawing import Drawing as Document
 from voxfab.shape import surface_graph
 from voxfab.unfold import Net
 
-from .._font import text_polylines, text_width
-from .._polylines import Polylines
 from ._geometry import NetEdges, check_net, classify_edges, merge_unit_segments, trace_outlines
-from ._options import LAYERS, DrawingOptions, Perforate
+from ._options import DrawingOptions, Perforate
 from ._sheets import SheetPlan, plan_sheets
 from ._tabs import TabPlan, place_tabs, tab_heights
 
 _NEXT = np.array([1, 2, 3, 0])
+#: Shade of glue tabs in previews and prints (Blender's paper-model convention).
+TAB_FILL = "#e4e4e4"
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -51,6 +53,12 @@ class Sheet:
     face_index: npt.NDArray[np.int64]
     tabs: npt.NDArray[np.float64]
     pieces: int
+
+    def page(self, title: str = "") -> Page:
+        """This sheet as a drawing page; glue tabs are shaded in previews and prints."""
+        tabs = self.tabs[np.isfinite(self.tabs).all(axis=(1, 2))]
+        fills = (Fill(Polylines.from_list(list(tabs), [True] * len(tabs)), TAB_FILL),) if len(tabs) else ()
+        return Page(self.width, self.height, self.layers, fills=fills, title=title)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -104,6 +112,10 @@ class Drawing:
     label_height: float
     tab_height: float
     title: str
+
+    def document(self) -> Document:
+        """The sheets as a :class:`voxfab.drawing.Drawing` for the backends."""
+        return Document(tuple(s.page(self.title) for s in self.sheets), self.title)
 
     @property
     def marked_seams(self) -> list[int]:
@@ -227,6 +239,8 @@ def draw_net(grid: npt.ArrayLike, net: Net, *, options: DrawingOptions | None = 
     pos = plan.face_positions()
     shared = _shared_in_plane(plan)
     w, h = plan.size
+    if not opts.tabs:
+        allowed = np.zeros_like(allowed)
     tabs = place_tabs(pos, fs, sides, pitch=plan.pitch, area=plan.area, sheet_width=w,
                       tab_width=opts.tab_width, tab_angle=opts.tab_angle, allowed=allowed)
     inset, tab_h = tab_heights(plan.pitch, opts.tab_width, opts.tab_angle)
@@ -325,13 +339,13 @@ def _draw_sheet(
         # A seam without a tab gets a bar along both its edges: tape or glue it edge to edge.
         off = inward[no_tab] * (0.015 * p)
         marks.append((p0[no_tab] + d[no_tab] * 0.2 * p + off, p1[no_tab] - d[no_tab] * 0.2 * p + off))
-    if texts:
+    if texts and opts.numbers:
         layers["LABEL"].append(text_polylines(texts, np.concatenate(org), np.concatenate(dirs), label_h,
                                                   center=True, mark_ambiguous=True))
     layers["LABEL"].append(Polylines.from_segments(np.concatenate([m[0] for m in marks]),
                                                    np.concatenate([m[1] for m in marks])))
     heading = title + (f"  SHEET {s + 1}/{plan.count}" if plan.count > 1 else "")
-    if heading:
+    if heading and opts.heading:
         x0, _, x1, _ = plan.area
         # The left 60 % of the band: printed PDFs put a legend on the right.
         th = min(opts.title_height, 0.6 * (x1 - x0) / max(text_width(heading, 1.0), 1e-9))

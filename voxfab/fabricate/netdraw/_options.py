@@ -1,4 +1,4 @@
-"""Drawing options: sheet sizes, tab shape, line styles and the colour map."""
+"""Net drawing options: sheet sizes, tab shape, perforation and the colour map."""
 
 from __future__ import annotations
 
@@ -7,6 +7,8 @@ import re
 from enum import Enum
 
 from voxfab._shared.validate import check_choice, check_positive
+from voxfab.drawing import LayerStyle, parse_colors
+from voxfab.drawing.dxf import DxfVersion
 from voxfab.errors import InvalidShapeError
 
 #: Paper sizes in mm (portrait).
@@ -16,9 +18,6 @@ SHEETS: dict[str, tuple[float, float]] = {
     "Letter": (215.9, 279.4),
 }
 
-#: Drawing layers, in drawing order (scores and labels before the cut).
-LAYERS: tuple[str, ...] = ("LABEL", "GRID", "VALLEY", "MOUNTAIN", "CUT")
-
 
 class Perforate(Enum):
     """Which fold type becomes short through-cuts on the CUT layer."""
@@ -26,89 +25,6 @@ class Perforate(Enum):
     NONE = "none"
     MOUNTAIN = "mountain"
     VALLEY = "valley"
-
-
-class DxfVersion(Enum):
-    """DXF versions written."""
-
-    R12 = "R12"
-    R2000 = "R2000"
-
-
-class LineStyle(Enum):
-    """Dash styles; the patterns are in mm."""
-
-    SOLID = "solid"
-    DASHED = "dashed"
-    DASHDOT = "dashdot"
-    DOTTED = "dotted"
-
-
-#: Dash pattern (on, off, ...) in mm of each style.
-DASH_PATTERNS: dict[LineStyle, tuple[float, ...]] = {
-    LineStyle.SOLID: (),
-    LineStyle.DASHED: (2.0, 1.0),
-    LineStyle.DASHDOT: (3.0, 1.0, 0.5, 1.0),
-    LineStyle.DOTTED: (0.5, 1.0),
-}
-
-
-@dataclasses.dataclass(frozen=True)
-class LayerStyle:
-    """Colour (``#rrggbb``) and dash style of one layer."""
-
-    color: str
-    style: LineStyle
-
-    @property
-    def rgb(self) -> tuple[int, int, int]:
-        """The colour as 0..255 integers."""
-        c = self.color
-        return int(c[1:3], 16), int(c[3:5], 16), int(c[5:7], 16)
-
-
-#: Pure RGB colours so laser drivers map them exactly.
-DEFAULT_STYLES: dict[str, LayerStyle] = {
-    "CUT": LayerStyle("#ff0000", LineStyle.SOLID),
-    "MOUNTAIN": LayerStyle("#0000ff", LineStyle.DASHED),
-    "VALLEY": LayerStyle("#00ff00", LineStyle.DASHDOT),
-    "GRID": LayerStyle("#b0b0b0", LineStyle.DOTTED),
-    "LABEL": LayerStyle("#000000", LineStyle.SOLID),
-}
-
-_NAMED_COLORS = {
-    "red": "#ff0000", "green": "#00ff00", "blue": "#0000ff", "black": "#000000",
-    "cyan": "#00ffff", "magenta": "#ff00ff", "yellow": "#ffff00", "grey": "#808080",
-    "gray": "#808080", "white": "#ffffff",
-}
-
-
-def parse_colors(spec: str) -> dict[str, LayerStyle]:
-    """Layer styles from ``"cut=#ff0000,mountain=blue:dashed,..."`` over the defaults.
-
-    Each item is ``layer=colour[:style]`` with a layer among CUT, MOUNTAIN,
-    VALLEY, GRID, LABEL (any case), a colour ``#rrggbb`` or a basic name, and a
-    style among solid, dashed, dashdot, dotted.
-    """
-    styles = dict(DEFAULT_STYLES)
-    for item in (s.strip() for s in spec.split(",")):
-        if not item:
-            continue
-        if "=" not in item:
-            raise InvalidShapeError(f"colors: expected layer=colour[:style], got {item!r}")
-        layer, value = (s.strip() for s in item.split("=", 1))
-        layer = layer.upper()
-        if layer not in styles:
-            raise InvalidShapeError(
-                f"colors: unknown layer {layer!r}; expected one of {', '.join(DEFAULT_STYLES)}"
-            )
-        color, _, style = value.partition(":")
-        color = _NAMED_COLORS.get(color.lower(), color.lower())
-        if not re.fullmatch(r"#[0-9a-f]{6}", color):
-            raise InvalidShapeError(f"colors: {layer}: expected #rrggbb or a colour name, got {value!r}")
-        ls = check_choice(style.lower(), LineStyle, name=f"colors: {layer} style") if style else styles[layer].style
-        styles[layer] = LayerStyle(color, ls)
-    return styles
 
 
 def parse_sheet(spec: str) -> tuple[float, float]:
@@ -158,6 +74,13 @@ class DrawingOptions:
         Overrides of the colour map, see :func:`parse_colors`.
     min_auto_pitch : float
         Smallest pitch picked automatically; larger nets are split over sheets.
+    numbers : bool
+        Print the edge numbers (``False``: an explicit opt-out for faces too small
+        to carry them).
+    tabs : bool
+        Add glue tabs (``False``: every seam is marked for tape instead).
+    heading : bool
+        Print the title line (name, face size, seed, sheet) in a band at the bottom.
     """
 
     pitch: float | None = None
@@ -174,6 +97,9 @@ class DrawingOptions:
     dxf_version: str = "R12"
     colors: str = ""
     min_auto_pitch: float = 5.0
+    numbers: bool = True
+    tabs: bool = True
+    heading: bool = True
 
     def __post_init__(self) -> None:
         if self.pitch is not None:

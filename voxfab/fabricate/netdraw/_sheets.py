@@ -60,7 +60,8 @@ def drawable_area(options: DrawingOptions) -> tuple[float, float, float, float]:
     """``(x0, y0, x1, y1)`` of the sheet inside the margin, above the title band, mm."""
     w, h = options.sheet_size
     m = float(options.margin)
-    return (m, m + options.title_height + 2.0, w - m, h - m)
+    band = options.title_height + 2.0 if options.heading else 0.0
+    return (m, m + band, w - m, h - m)
 
 
 def _turned(c: npt.NDArray[np.int64], rotated: bool) -> npt.NDArray[np.int64]:

@@ -179,7 +179,7 @@ def write_slices(result: Slices, folder: PathLike, *, name: str = "", step: bool
     for sheet in result.sheets:
         stem = f"sheet-{sheet.index:0{digits}d}"
         write_dxf(sheet, folder / f"{stem}.dxf")
-        files.append(OutputFile(f"{stem}.dxf", f"sheet {sheet.index} for laser cutting (DXF R12: CUT, SCORE, ENGRAVE)"))
+        files.append(OutputFile(f"{stem}.dxf", f"sheet {sheet.index} for laser cutting (DXF R12: CUT, SCORE, LABEL)"))
         write_svg(sheet, folder / f"{stem}.svg")
         files.append(OutputFile(f"{stem}.svg", f"sheet {sheet.index} for laser cutting (SVG, mm)"))
     write_assembly_pdf(result.stack, folder / "assembly.pdf", title=name)

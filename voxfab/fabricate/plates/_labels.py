@@ -13,7 +13,7 @@ import dataclasses
 import numpy as np
 import numpy.typing as npt
 
-from .._font import text_polylines, text_width
+from voxfab.drawing import text_polylines, text_width
 
 #: Label heights tried, as fractions of the pitch, largest first.
 _HEIGHTS = (0.6, 0.45, 0.32, 0.22)

@@ -1,28 +1,37 @@
-"""Assembly instructions as PDF: the stack order as a grid of layers.
+"""Assembly instructions as PDF: the stack order as a grid of layers, drawn with the drawing backends.
 
-Each panel shows one voxel layer from above: its pieces filled and numbered,
-the layer below as a dashed outline (where to glue it) and the dowel holes.
-Panels run left to right, top to bottom, from the bottom layer up.  The PDF
-metadata carries no dates, so equal stacks give equal bytes.
+Each panel shows one voxel layer from above: its pieces shaded and numbered,
+the layer below as a dotted outline (where to glue it) and the dowel holes.
+Panels run left to right, top to bottom, from the bottom layer up, 25 to an A4
+page.  Text is the single-stroke font, so the PDF needs no fonts, and it
+carries no dates, so equal stacks give equal bytes.
 """
 
 from __future__ import annotations
 
-import io
 import math
 
 import numpy as np
 
 from voxfab._shared.atomic import write_bytes
 from voxfab._shared.typing import PathLike
+from voxfab.drawing import Drawing, Fill, Page, Polylines, text_polylines, text_width
 
 from ._outline import cells_outline, scaled
 from ._stack import PlateStack
 
-__all__ = ["PANELS_PER_PAGE", "assembly_pdf", "write_assembly_pdf"]
+__all__ = ["PANELS_PER_PAGE", "assembly_drawing", "assembly_pdf", "write_assembly_pdf"]
 
 #: Layers drawn per page (a 5 × 5 grid fits the artist's 25 layers on one page).
 PANELS_PER_PAGE = 25
+#: Page size (A4 portrait) and margin, mm.
+PAGE = (210.0, 297.0)
+MARGIN = 10.0
+#: Shade of the pieces.
+PIECE_FILL = "#f2c48d"
+#: Cap heights of the heading and the panel captions, mm.
+HEADING = 3.0
+CAPTION = 2.2
 
 
 def _rings(geometry: object) -> list[np.ndarray]:
@@ -30,101 +39,94 @@ def _rings(geometry: object) -> list[np.ndarray]:
     for poly in getattr(geometry, "geoms", [geometry]):
         if poly.is_empty:
             continue
-        out.append(np.asarray(poly.exterior.coords))
-        out.extend(np.asarray(r.coords) for r in poly.interiors)
+        out.append(np.asarray(poly.exterior.coords)[:-1])
+        out.extend(np.asarray(r.coords)[:-1] for r in poly.interiors)
     return out
 
 
-def _layer_art(stack: PlateStack, k: int, unions: list[object | None], offset: np.ndarray, art: dict[str, list]) -> None:
-    """Collect the drawing of layer ``k`` (mm, moved by ``offset``) into ``art``."""
+def _text(lines: list[Polylines], text: str, x: float, y: float, height: float, *, center: bool = False,
+          width: float | None = None) -> None:
+    """Add ``text`` at baseline ``(x, y)``, shrunk to ``width`` when given."""
+    if width is not None:
+        height = min(height, width / max(text_width(text, 1.0), 1e-9))
+    lines.append(text_polylines([text], [(x, y)], [(1.0, 0.0)], height, center=center))
+
+
+def _heading(stack: PlateStack, title: str) -> list[str]:
+    n = len(stack.layers)
+    return [
+        f"{title + ': ' if title else ''}STACK ORDER LAYER 1 (BOTTOM) TO {n} (TOP) - AXIS {stack.axis} - "
+        f"{stack.plates_per_layer} PLATE(S) OF {stack.thickness:g} MM PER LAYER",
+        "SHADED: THIS LAYER WITH ITS PIECE NUMBERS - DOTTED: THE LAYER BELOW - CIRCLES: DOWEL HOLES",
+    ]
+
+
+def _page(stack: PlateStack, start: int, unions: list, lo: np.ndarray, size: np.ndarray, title: str) -> Page:
     from shapely.ops import polylabel
 
+    count = min(PANELS_PER_PAGE, len(stack.layers) - start)
+    cols = math.ceil(math.sqrt(count))
+    rows = math.ceil(count / cols)
+    gap = 0.15 * float(np.max(size))
+    cell = size + gap
+    top = PAGE[1] - MARGIN - 2.5 * HEADING * 2
+    k = min((PAGE[0] - 2 * MARGIN) / (cols * cell[0]), (top - MARGIN) / (rows * cell[1]))
     pitch = stack.pitch
-    if k > 0 and unions[k - 1] is not None:
-        art["below"].extend(r + offset for r in _rings(scaled(unions[k - 1], pitch)))
-    for piece in stack.layers[k]:
-        poly = scaled(piece.outline, pitch)
-        art["pieces"].append([r + offset for r in _rings(poly)])
-        c = polylabel(poly, tolerance=0.05 * pitch)
-        art["ids"].append((c.x + offset[0], c.y + offset[1], piece.id))
-    for d in stack.dowels:
-        if int(d.lower.split("-")[0]) == k + 1 or int(d.upper.split("-")[0]) == k + 1:
-            art["holes"].append((d.x + offset[0], d.y + offset[1]))
+    cut: list[np.ndarray] = []
+    below: list[np.ndarray] = []
+    label: list[Polylines] = []
+    holes: list[tuple[float, float, float]] = []
+    for i, line in enumerate(_heading(stack, title.upper())):
+        _text(label, line, MARGIN, PAGE[1] - MARGIN - HEADING - i * 2 * HEADING, HEADING, width=PAGE[0] - 2 * MARGIN)
+    for i in range(count):
+        layer = start + i
+        r, c = divmod(i, cols)
+        # Panel origin on the page: its drawing's lower-left corner.
+        ox = MARGIN + (c * cell[0] + gap / 2) * k
+        oy = top - ((r + 1) * cell[1]) * k
+        shift = np.array([ox, oy]) - lo * k
+        if layer > 0 and unions[layer - 1] is not None:
+            below.extend(ring * k + shift for ring in _rings(scaled(unions[layer - 1], pitch)))
+        for piece in stack.layers[layer]:
+            poly = scaled(piece.outline, pitch)
+            cut.extend(ring * k + shift for ring in _rings(poly))
+            at = np.array(polylabel(poly, tolerance=0.05 * pitch).coords)[0] * k + shift
+            _text(label, piece.id, float(at[0]), float(at[1]) - 0.75, 1.5, center=True)
+        for d in stack.dowels:
+            if int(d.lower.split("-")[0]) == layer + 1 or int(d.upper.split("-")[0]) == layer + 1:
+                x, y = np.array([d.x, d.y]) * k + shift
+                holes.append((float(x), float(y), stack.dowel_diameter / 2 * k))
+        first = layer * stack.plates_per_layer + 1
+        last = first + stack.plates_per_layer - 1
+        plates = f"PLATE {first}" if first == last else f"PLATES {first}-{last}"
+        _text(label, f"LAYER {layer + 1} ({plates})", ox + size[0] * k / 2, oy + (size[1] + 0.3 * gap) * k,
+              CAPTION, center=True, width=0.9 * cell[0] * k)
+    rings = Polylines.from_list(cut, [True] * len(cut))
+    return Page(
+        PAGE[0], PAGE[1],
+        layers={"CUT": rings, "GRID": Polylines.from_list(below, [True] * len(below)),
+                "LABEL": Polylines.concat(label)},
+        circles={"CUT": np.array(holes, dtype=np.float64).reshape(-1, 3)},
+        fills=(Fill(rings, PIECE_FILL),),
+    )
+
+
+def assembly_drawing(stack: PlateStack, *, title: str = "") -> Drawing:
+    """The assembly instructions of ``stack`` as a drawing (one A4 page per 25 layers)."""
+    unions = [cells_outline(np.concatenate([p.cells for p in pcs])) if pcs else None for pcs in stack.layers]
+    bounds = np.array([u.bounds for u in unions if u is not None]).reshape(-1, 4)
+    lo = bounds[:, :2].min(axis=0) * stack.pitch
+    size = bounds[:, 2:].max(axis=0) * stack.pitch - lo
+    pages = tuple(_page(stack, start, unions, lo, size, title)
+                  for start in range(0, len(stack.layers), PANELS_PER_PAGE))
+    return Drawing(pages, title or "plate stack")
 
 
 def assembly_pdf(stack: PlateStack, *, title: str = "") -> bytes:
-    """Return the assembly PDF of ``stack`` as bytes (one page per 25 layers).
+    """Return the assembly PDF of ``stack`` as bytes (one page per 25 layers)."""
+    from voxfab.drawing.pdf import pdf_document
 
-    Each page is a single set of axes with the layer panels side by side on a
-    common scale (faster and more regular than one axes per panel).
-    """
-    from matplotlib.backends.backend_pdf import PdfPages
-    from matplotlib.collections import LineCollection, PatchCollection
-    from matplotlib.figure import Figure
-    from matplotlib.patches import Circle, PathPatch
-    from matplotlib.path import Path as MplPath
-
-    unions = [cells_outline(np.concatenate([p.cells for p in pcs])) if pcs else None for pcs in stack.layers]
-    lo = np.array([np.inf, np.inf])
-    hi = -lo
-    for u in unions:
-        if u is not None:
-            x0, y0, x1, y1 = u.bounds
-            lo = np.minimum(lo, (x0, y0))
-            hi = np.maximum(hi, (x1, y1))
-    lo, hi = lo * stack.pitch, hi * stack.pitch
-    size = hi - lo
-    gap = 0.15 * float(np.max(size))
-    cell = size + gap  # panel pitch: drawing plus room for the title
-    n = len(stack.layers)
-    buf = io.BytesIO()
-    metadata = {"Creator": "voxfab", "Producer": None, "CreationDate": None, "Title": title or "plate stack"}
-    with PdfPages(buf, metadata=metadata) as pdf:
-        for start in range(0, n, PANELS_PER_PAGE):
-            count = min(PANELS_PER_PAGE, n - start)
-            cols = math.ceil(math.sqrt(count))
-            rows = math.ceil(count / cols)
-            fig = Figure(figsize=(8.27, 11.69))
-            fig.suptitle(
-                f"{title + ': ' if title else ''}stack order, layer 1 (bottom) to {n} (top), axis {stack.axis}; "
-                f"{stack.plates_per_layer} plate(s) of {stack.thickness:g} mm per layer\n"
-                "filled: this layer with its piece numbers; dashed: the layer below; circles: dowel holes",
-                fontsize=8,
-            )
-            ax = fig.add_axes((0.03, 0.03, 0.94, 0.9))
-            ax.set_axis_off()
-            art: dict[str, list] = {"below": [], "pieces": [], "ids": [], "holes": []}
-            for i in range(count):
-                k = start + i
-                r, c = divmod(i, cols)
-                offset = np.array([c * cell[0], -r * cell[1]]) - lo
-                _layer_art(stack, k, unions, offset, art)
-                first = k * stack.plates_per_layer + 1
-                last = first + stack.plates_per_layer - 1
-                plates = f"plate {first}" if first == last else f"plates {first}-{last}"
-                ax.text(c * cell[0] + size[0] / 2, -r * cell[1] + size[1] + 0.3 * gap,
-                        f"layer {k + 1} ({plates})", ha="center", va="bottom", fontsize=6)
-            if art["below"]:
-                ax.add_collection(LineCollection(art["below"], colors="0.55", linewidths=0.6, linestyles=(0, (3, 2))))
-            patches = []
-            for rings in art["pieces"]:
-                verts = np.concatenate(rings)
-                codes = np.concatenate(
-                    [[MplPath.MOVETO] + [MplPath.LINETO] * (len(q) - 2) + [MplPath.CLOSEPOLY] for q in rings]
-                )
-                patches.append(PathPatch(MplPath(verts, codes)))
-            ax.add_collection(PatchCollection(patches, facecolors="#f2c48d", edgecolors="#b02020", linewidths=0.6))
-            if art["holes"]:
-                rad = stack.dowel_diameter / 2.0
-                ax.add_collection(PatchCollection([Circle(h, rad) for h in art["holes"]],
-                                                  facecolors="white", edgecolors="black", linewidths=0.4))
-            for x, y, text in art["ids"]:
-                ax.text(x, y, text, ha="center", va="center", fontsize=3.5)
-            ax.set_xlim(-0.5 * gap, cols * cell[0])
-            ax.set_ylim(-(rows - 1) * cell[1] - 0.5 * gap, size[1] + gap)
-            ax.set_aspect("equal")
-            pdf.savefig(fig)
-    return buf.getvalue()
+    return pdf_document(assembly_drawing(stack, title=title), creator="voxfab slices")
 
 
 def write_assembly_pdf(stack: PlateStack, path: PathLike, *, title: str = "") -> None:

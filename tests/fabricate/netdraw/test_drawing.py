@@ -9,8 +9,8 @@ import pytest
 import shapely
 from _handnets import tree_net
 
+from voxfab.drawing import Polylines
 from voxfab.errors import FormatError, InvalidShapeError
-from voxfab.fabricate._polylines import Polylines
 from voxfab.fabricate.netdraw import DrawingOptions, draw_net, parse_colors, parse_sheet
 from voxfab.fabricate.netdraw._geometry import merge_unit_segments
 from voxfab.fabricate.netdraw._tabs import place_tabs
@@ -191,7 +191,7 @@ def test_every_seam_numbered_on_both_edges_inside_its_faces() -> None:
     assert np.unique(inside[0]).size == numbers.shape[0]
     title_strokes = int((labels.points[labels.offsets[:-1], 1] < title_band).sum())
     assert title_strokes > 10
-    from voxfab.fabricate._font import _local
+    from voxfab.drawing._font import _local
 
     strokes = sum(2 * len(_local(str(i + 1), "6" in str(i + 1) or "9" in str(i + 1))[1]) for i in range(d.seams))
     marks = 2 * int((~d.tab_seams).sum())

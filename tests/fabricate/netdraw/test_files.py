@@ -151,7 +151,7 @@ def test_split_sheets_write_numbered_files(tmp_path: Path) -> None:
     for ext in ("svg", "dxf"):
         lines = write_drawing(VoxelShape(g), net, tmp_path / f"box.{ext}", args, title="box")
         assert [ln for ln in lines if ln.startswith("wrote")] == [
-            f"wrote {tmp_path / f'box-{i}.{ext}'}" for i in range(1, n + 1)]
+            f"wrote {tmp_path / f'box.sheet-{i}.{ext}'}" for i in range(1, n + 1)]
     write_drawing(VoxelShape(g), net, tmp_path / "box.pdf", args, title="box")
     assert (tmp_path / "box.pdf").read_bytes().count(b"/Type /Page ") == n
     assert not (tmp_path / "box.svg").exists()
@@ -183,7 +183,7 @@ def test_colors_reach_the_files(tmp_path: Path, ball_net: Net) -> None:
 
 def test_unknown_extension(tmp_path: Path, ball_net: Net) -> None:
     with pytest.raises(UnknownFormatError, match="unknown drawing format"):
-        write_drawing(VoxelShape(BALL), ball_net, tmp_path / "x.png", drawing_args())
+        write_drawing(VoxelShape(BALL), ball_net, tmp_path / "x.eps", drawing_args())
 
 
 def _recipe(tmp_path: Path, outputs: str) -> Path:

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 import shapely
 
-from voxfab.fabricate._font import CAP_HEIGHT, GLYPHS, glyph_for, text_polylines, text_width
+from voxfab.drawing._font import CAP_HEIGHT, GLYPHS, glyph_for, text_polylines, text_width
 
 REQUIRED = "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZ.-"
 

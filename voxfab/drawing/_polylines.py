@@ -1,4 +1,4 @@
-"""Polylines: the 2D drawing model shared by every cut, score and engrave output.
+"""Polylines: many 2D polylines in one ragged array, the geometry of every drawing.
 
 Lengths are millimetres.
 """

@@ -1,0 +1,97 @@
+"""Studio fixtures: the app in-process for API tests, a real uvicorn server and headless Chromium for end to end."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import socket
+import subprocess
+import sys
+import time
+import urllib.request
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+SHOTS = ROOT / "output" / "studio"
+
+
+@pytest.fixture
+def client(tmp_path):
+    import warnings
+
+    with warnings.catch_warnings():
+        # Starlette asks for httpx2 in future; httpx is what its test client uses today
+        warnings.simplefilter("ignore")
+        from starlette.testclient import TestClient
+
+    from voxfab.studio import Settings, create_app
+
+    app = create_app(Settings(repo=tmp_path / "repo.sqlite", hosts=frozenset({"testserver"}), work=tmp_path / "work"))
+    with TestClient(app) as c:
+        yield c
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@pytest.fixture(scope="module")
+def server(tmp_path_factory):
+    """``voxfab studio`` as a real uvicorn process on 127.0.0.1 and a free port; always stopped."""
+    folder = tmp_path_factory.mktemp("studio")
+    port = free_port()
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]))
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "voxfab", "studio", "--port", str(port), "--repo", str(folder / "repo.sqlite"),
+         "--no-browser"],
+        env=env, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+    )
+    url = f"http://127.0.0.1:{port}"
+    try:
+        end = time.monotonic() + 30
+        while True:
+            try:
+                with urllib.request.urlopen(f"{url}/api/info", timeout=1):
+                    break
+            except OSError:
+                if proc.poll() is not None or time.monotonic() > end:
+                    raise AssertionError(f"studio did not start: {proc.stdout.read().decode()[-2000:]}") from None
+                time.sleep(0.1)
+        yield {"url": url, "repo": folder / "repo.sqlite", "folder": folder}
+    finally:
+        proc.terminate()
+        try:
+            proc.wait(10)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait(5)
+
+
+@pytest.fixture(scope="module")
+def browser(tmp_path_factory):
+    """Headless Debian Chromium through chromedriver, downloading into a temporary folder."""
+    webdriver = pytest.importorskip("selenium.webdriver")
+    chromium = shutil.which("chromium") or shutil.which("chromium-browser")
+    driver_path = shutil.which("chromedriver")
+    if not chromium or not driver_path:
+        pytest.skip("needs Debian's chromium and chromium-driver (.ci/run installs them)")
+    downloads = tmp_path_factory.mktemp("downloads")
+    opts = webdriver.ChromeOptions()
+    opts.binary_location = chromium
+    for arg in ("--headless=new", "--no-sandbox", "--disable-dev-shm-usage", "--window-size=1400,1000",
+                "--disable-gpu", "--no-first-run"):
+        opts.add_argument(arg)
+    opts.add_experimental_option("prefs", {"download.default_directory": str(downloads),
+                                           "download.prompt_for_download": False})
+    driver = webdriver.Chrome(options=opts, service=webdriver.ChromeService(executable_path=driver_path))
+    driver.set_page_load_timeout(30)
+    driver.downloads = downloads
+    SHOTS.mkdir(parents=True, exist_ok=True)
+    try:
+        yield driver
+    finally:
+        driver.quit()

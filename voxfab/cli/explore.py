@@ -1,0 +1,42 @@
+"""``voxfab explore``: generate new well-formed shapes and store them in the repository."""
+
+from __future__ import annotations
+
+import argparse
+
+from voxfab.cli._common import add_repository_option
+
+HELP = "generate N new well-formed shapes (distinct up to the 48 cube symmetries) into the repository"
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--count", type=int, required=True, metavar="N", help="new shapes to store")
+    parser.add_argument("--seed", type=int, default=0, metavar="S",
+                        help="seed of the candidates: the same seed on the same repository stores the same shapes "
+                             "(default 0)")
+    parser.add_argument("--generator", default="growth", choices=("growth", "revolution", "tube", "focal", "mix"),
+                        help="growth: random face-connected growth spanning the grid; revolution, tube, focal: "
+                             "random parameters for that maker; mix: a blend (default growth)")
+    parser.add_argument("--volume", metavar="MIN:MAX",
+                        help="keep volumes in MIN..MAX (inclusive); growth aims inside it (default 25:625)")
+    parser.add_argument("--max-attempts", type=int, metavar="N",
+                        help="give up after N candidates (default max(2000, 50 x count))")
+    add_repository_option(parser)
+
+
+def run(args: argparse.Namespace) -> int:
+    from voxfab._shared.progress import meter
+    from voxfab.generate import explore, parse_volume_range, volume_bins
+    from voxfab.repo import Repository
+
+    volume = parse_volume_range(args.volume) if args.volume is not None else None
+    with Repository(args.repo, create=True) as repo, meter(args.count, desc="exploring") as bar:
+        report = explore(repo, args.count, seed=args.seed, generator=args.generator, volume=volume,
+                         max_attempts=args.max_attempts, on_added=bar.update)
+    volumes = [v for _, v in report.added]
+    print(f"{len(report.added)} new shapes in {args.repo} ({report.attempts} candidates, "
+          f"{report.duplicates} duplicates, {report.rejected} rejected)")
+    print(f"first {report.added[0][0]}, last {report.added[-1][0]}")
+    for lo, hi, n in volume_bins(volumes):
+        print(f"volume {lo:>5}-{hi:<5} {n:>7}")
+    return 0

@@ -1,0 +1,137 @@
+"""Pages and drawings: layered polylines, circles and preview fills in millimetres."""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping
+
+import numpy as np
+import numpy.typing as npt
+
+from voxfab.errors import InvalidShapeError
+
+from ._layers import LAYERS
+from ._polylines import Polylines
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Fill:
+    """An area painted in previews and prints (never sent to a laser).
+
+    Attributes
+    ----------
+    rings : Polylines
+        Closed rings; a point is inside when it is inside an odd number of them,
+        so holes are rings inside rings.
+    color : str
+        ``#rrggbb``.
+    """
+
+    rings: Polylines
+    color: str
+
+    @property
+    def rgb(self) -> tuple[int, int, int]:
+        """The colour as 0..255 integers."""
+        c = self.color
+        return int(c[1:3], 16), int(c[3:5], 16), int(c[5:7], 16)
+
+
+def _no_circles() -> npt.NDArray[np.float64]:
+    return np.zeros((0, 3))
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Page:
+    """One page (a sheet of paper or material) of a drawing.
+
+    Coordinates are mm with the origin at the page's lower-left corner and y
+    up; the SVG and PNG backends flip y on output.
+
+    Attributes
+    ----------
+    width, height : float
+        Page size, mm.
+    layers : mapping of str to Polylines
+        Lines per layer; every name is a key of :data:`~voxfab.drawing.LAYERS`.
+        Missing layers are empty.
+    circles : mapping of str to (n, 3) float ndarray
+        Circles per layer as ``x, y, radius`` (mm), e.g. dowel holes.
+    fills : tuple of Fill
+        Areas painted under the lines in previews and prints, in order.
+    title : str
+        Page title (SVG ``<title>``).
+    """
+
+    width: float
+    height: float
+    layers: Mapping[str, Polylines]
+    circles: Mapping[str, npt.NDArray[np.float64]] = dataclasses.field(default_factory=dict)
+    fills: tuple[Fill, ...] = ()
+    title: str = ""
+
+    def __post_init__(self) -> None:
+        for name in list(self.layers) + list(self.circles):
+            if name not in LAYERS:
+                raise InvalidShapeError(f"drawing: unknown layer {name!r}; expected one of {', '.join(LAYERS)}")
+
+    def lines(self, layer: str) -> Polylines:
+        """The polylines of ``layer`` (empty when it has none)."""
+        return self.layers.get(layer, Polylines.empty())
+
+    def circles_of(self, layer: str) -> npt.NDArray[np.float64]:
+        """The ``(n, 3)`` circles of ``layer``."""
+        return self.circles.get(layer, _no_circles())
+
+    def used_layers(self) -> list[str]:
+        """Names of the layers holding something, in drawing order."""
+        return [n for n in LAYERS if len(self.lines(n)) or len(self.circles_of(n))]
+
+    def extents(self) -> tuple[float, float, float, float]:
+        """``(xmin, ymin, xmax, ymax)`` of all lines and circles, mm; the page box when empty."""
+        lo, hi = [], []
+        for name in LAYERS:
+            pts = self.lines(name).points
+            if pts.shape[0]:
+                lo.append(pts.min(axis=0))
+                hi.append(pts.max(axis=0))
+            c = self.circles_of(name)
+            if c.shape[0]:
+                lo.append((c[:, :2] - c[:, 2:]).min(axis=0))
+                hi.append((c[:, :2] + c[:, 2:]).max(axis=0))
+        if not lo:
+            return 0.0, 0.0, float(self.width), float(self.height)
+        a, b = np.min(lo, axis=0), np.max(hi, axis=0)
+        return float(a[0]), float(a[1]), float(b[0]), float(b[1])
+
+    def shifted(self, shift: npt.ArrayLike, *, width: float, height: float) -> Page:
+        """A copy moved by ``shift`` (2,) mm on a page of the given size."""
+        d = np.asarray(shift, dtype=np.float64).reshape(2)
+        return dataclasses.replace(
+            self, width=float(width), height=float(height),
+            layers={k: v.translated(d) for k, v in self.layers.items()},
+            circles={k: v + (d[0], d[1], 0.0) for k, v in self.circles.items()},
+            fills=tuple(Fill(f.rings.translated(d), f.color) for f in self.fills),
+        )
+
+    def with_layers(self, extra: Mapping[str, Polylines]) -> Page:
+        """A copy with ``extra`` polylines appended to their layers."""
+        merged = dict(self.layers)
+        for name, lines in extra.items():
+            merged[name] = Polylines.concat([self.lines(name), lines])
+        return dataclasses.replace(self, layers=merged)
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Drawing:
+    """Pages of layered lines, ready for the SVG, DXF, PDF and PNG backends.
+
+    Attributes
+    ----------
+    pages : tuple of Page
+    title : str
+        Document title (PDF metadata).
+    """
+
+    pages: tuple[Page, ...]
+    title: str = ""

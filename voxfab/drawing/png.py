@@ -1,0 +1,156 @@
+"""PNG backend: a page rasterized for people, lines at visible widths over the fills.
+
+Pillow draws the lines; fills use an even-odd scanline fill computed with numpy
+(holes are rings inside rings), so areas with holes come out right.  Dashes
+follow the layer's pattern in mm; when a pattern would be finer than a few
+pixels the line is drawn solid, which reads better than noise.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+import numpy.typing as npt
+
+from voxfab._shared.atomic import write_bytes
+
+from ._layers import DASH_PATTERNS, LAYERS, LayerStyle, Lines
+from ._legend import Legend, legend_layers
+from ._model import Page
+from ._polylines import Polylines
+
+if TYPE_CHECKING:
+    from PIL import Image
+
+__all__ = ["dashes", "even_odd_mask", "page_image", "png_bytes", "write_png"]
+
+#: Patterns shorter than this many pixels are drawn solid.
+_MIN_DASH_PX = 4.0
+
+
+def dashes(lines: Polylines, pattern: tuple[float, ...]) -> Polylines:
+    """The "on" pieces of ``pattern`` (on, off, ... mm) along every straight piece of ``lines``.
+
+    The pattern restarts at the start of each piece, so a fold line drawn as
+    one segment gets the same dashes in every backend that restarts likewise.
+    """
+    a, b = lines.segments()
+    if not pattern or not a.shape[0]:
+        return Polylines.from_segments(a, b)
+    length = np.linalg.norm(b - a, axis=1)
+    period = float(sum(pattern))
+    starts = np.cumsum((0.0,) + pattern[:-1])[0::2]
+    ons = np.asarray(pattern[0::2])
+    reps = np.floor(length / period).astype(np.int64) + 1
+    seg = np.repeat(np.arange(a.shape[0]), reps * ons.size)
+    k = np.arange(seg.size) - np.repeat(np.cumsum(reps * ons.size) - reps * ons.size, reps * ons.size)
+    t0 = (k // ons.size) * period + starts[k % ons.size]
+    t1 = np.minimum(t0 + ons[k % ons.size], length[seg])
+    keep = t0 < length[seg]
+    seg, t0, t1 = seg[keep], t0[keep], t1[keep]
+    d = (b - a)[seg] / np.maximum(length[seg], 1e-12)[:, None]
+    return Polylines.from_segments(a[seg] + t0[:, None] * d, a[seg] + t1[:, None] * d)
+
+
+def even_odd_mask(rings: Polylines, width: int, height: int, to_px) -> npt.NDArray[np.bool_]:  # noqa: ANN001
+    """``(height, width)`` pixels whose centres lie inside an odd number of ``rings``.
+
+    ``to_px`` maps ``(N, 2)`` mm points to pixel ``(col, row)``.
+    """
+    a, b = rings.segments()
+    if not a.shape[0]:
+        return np.zeros((height, width), dtype=bool)
+    p, q = to_px(a), to_px(b)
+    y0, y1 = np.minimum(p[:, 1], q[:, 1]), np.maximum(p[:, 1], q[:, 1])
+    # Rows whose centre (r + 0.5) lies in [y0, y1): each such row crosses the edge once.
+    r0 = np.clip(np.ceil(y0 - 0.5), 0, height).astype(np.int64)
+    r1 = np.clip(np.ceil(y1 - 0.5), 0, height).astype(np.int64)
+    n = r1 - r0
+    e = np.repeat(np.arange(a.shape[0]), n)
+    row = np.arange(e.size) - np.repeat(np.cumsum(n) - n, n) + r0[e]
+    yc = row + 0.5
+    t = (yc - p[e, 1]) / (q[e, 1] - p[e, 1])
+    xc = p[e, 0] + t * (q[e, 0] - p[e, 0])
+    col = np.clip(np.ceil(xc - 0.5), 0, width).astype(np.int64)
+    toggles = np.zeros((height, width + 1), dtype=np.int64)
+    np.add.at(toggles, (row, col), 1)
+    return (np.cumsum(toggles, axis=1)[:, :width] % 2).astype(bool)
+
+
+def page_image(page: Page, *, scale: float, styles: Mapping[str, LayerStyle] | None = None,
+               background: tuple[int, int, int] = (255, 255, 255), legend: Legend | None = None,
+               hidden: frozenset[str] = frozenset()) -> Image.Image:
+    """Rasterize ``page`` at ``scale`` pixels per mm.
+
+    Parameters
+    ----------
+    page : Page
+    scale : float
+        Pixels per mm.
+    styles : mapping of str to LayerStyle, optional
+        Colour map (default :data:`~voxfab.drawing.LAYERS`).
+    background : (r, g, b)
+        Paper colour.
+    legend : bool
+        Add the legend of :func:`~voxfab.drawing.pdf.page_content`.
+    hidden : frozenset of str
+        Layers left out.
+
+    Returns
+    -------
+    PIL.Image.Image
+        RGB, ``round(width · scale) × round(height · scale)`` pixels.
+    """
+    from PIL import Image, ImageDraw
+
+    st_map = LAYERS if styles is None else styles
+    w = max(1, int(round(page.width * scale)))
+    h = max(1, int(round(page.height * scale)))
+
+    def to_px(xy: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+        return np.stack([xy[:, 0] * scale, (page.height - xy[:, 1]) * scale], axis=1)
+
+    pixels = np.empty((h, w, 3), dtype=np.uint8)
+    pixels[:] = background
+    for fill in page.fills:
+        pixels[even_odd_mask(fill.rings, w, h, to_px)] = fill.rgb
+    image = Image.fromarray(pixels, "RGB")
+    draw = ImageDraw.Draw(image)
+    extra = legend_layers(page, legend) if legend else {}
+    for name in LAYERS:
+        if name in hidden:
+            continue
+        st = st_map[name]
+        lines = Polylines.concat([page.lines(name), extra.get(name, Polylines.empty())])
+        px_width = max(1, int(round(st.line_width(Lines.PREVIEW) * scale)))
+        pattern = DASH_PATTERNS[st.style]
+        if pattern and sum(pattern) * scale >= _MIN_DASH_PX:
+            lines = dashes(lines, pattern)
+        for pts, closed in zip(lines.lines(), lines.closed.tolist()):
+            pp = to_px(np.concatenate([pts, pts[:1]]) if closed else pts)
+            if pp.shape[0] > 1:
+                draw.line([tuple(v) for v in pp.tolist()], fill=st.rgb, width=px_width)
+        for x, y, r in page.circles_of(name).tolist():
+            cx, cy = x * scale, (page.height - y) * scale
+            draw.ellipse([cx - r * scale, cy - r * scale, cx + r * scale, cy + r * scale], outline=st.rgb,
+                         width=px_width)
+    return image
+
+
+def png_bytes(image: Image.Image) -> bytes:
+    """PNG bytes of ``image`` with no text or time chunks."""
+    import io
+
+    buf = io.BytesIO()
+    image.save(buf, format="PNG", optimize=False, compress_level=6)
+    return buf.getvalue()
+
+
+def write_png(page: Page, path: Path, *, scale: float, styles: Mapping[str, LayerStyle] | None = None,
+              legend: Legend | None = None) -> list[str]:
+    """Write ``page`` rasterized at ``scale`` px/mm as PNG (atomically); returns the path written."""
+    write_bytes(path, png_bytes(page_image(page, scale=scale, styles=styles, legend=legend)))
+    return [str(path)]

@@ -1,0 +1,22 @@
+"""Random shape generators and exploration of the space of well-formed shapes.
+
+The artist's repository follows Borges' *Library of Babel*: every well-formed
+shape of the 25³ grid has a place, named by volume and rank.  This package draws
+candidates (face-connected growth spanning the grid, or random parameters for the
+makers of :mod:`voxfab.digitize`) and :func:`explore` stores the new ones.
+"""
+
+from ._explore import ExploreReport, explore, parse_volume_range, volume_bins
+from ._makers import GENERATORS, MAKER_GENERATORS, Candidate, candidate, growth
+
+__all__ = [
+    "GENERATORS",
+    "MAKER_GENERATORS",
+    "Candidate",
+    "ExploreReport",
+    "candidate",
+    "explore",
+    "growth",
+    "parse_volume_range",
+    "volume_bins",
+]

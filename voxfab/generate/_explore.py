@@ -1,0 +1,189 @@
+"""Exploration: draw candidates by seed and store the new well-formed ones in the repository."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Callable
+
+import numpy as np
+
+from voxfab.errors import InvalidShapeError, RepositoryError
+from voxfab.shape import GRID_SIDE, canonical_key, well_formed_reasons
+
+from ._makers import GENERATORS, candidate
+
+__all__ = ["ExploreReport", "explore", "volume_bins", "parse_volume_range"]
+
+#: Candidates drawn, keyed and looked up before one write transaction.
+_CHUNK = 512
+
+
+@dataclasses.dataclass(frozen=True)
+class ExploreReport:
+    """What :func:`explore` did.
+
+    Attributes
+    ----------
+    added : tuple of (str, int)
+        Name and volume of each stored shape, in storage order.
+    attempts : int
+        Candidates drawn (indexes ``0 .. attempts - 1`` of the seed).
+    duplicates : int
+        Candidates equal, up to translation and the 48 cube symmetries, to a stored
+        shape or to an earlier candidate.
+    rejected : int
+        Candidates a maker refused, not well formed, outside the volume range, or of
+        a volume whose 999 ranks are all given.
+    """
+
+    added: tuple[tuple[str, int], ...]
+    attempts: int
+    duplicates: int
+    rejected: int
+
+
+def parse_volume_range(text: str) -> tuple[int, int]:
+    """Parse ``MIN:MAX`` (inclusive; either side may be left empty) into a volume range."""
+    lo_text, sep, hi_text = str(text).partition(":")
+    try:
+        lo = int(lo_text) if lo_text.strip() else 1
+        hi = int(hi_text) if hi_text.strip() else GRID_SIDE**3
+    except ValueError:
+        raise InvalidShapeError(f"volume: expected MIN:MAX with whole numbers, got {text!r}") from None
+    if not sep:
+        hi = lo
+    if not 1 <= lo <= hi <= GRID_SIDE**3:
+        raise InvalidShapeError(f"volume: expected 1 <= MIN <= MAX <= {GRID_SIDE**3}, got {text!r}")
+    return lo, hi
+
+
+def volume_bins(volumes: list[int], *, bins: int = 10) -> list[tuple[int, int, int]]:
+    """Count ``volumes`` in at most ``bins`` ranges of a round width.
+
+    Returns
+    -------
+    list of (int, int, int)
+        ``(low, high, count)`` per non-empty range, low to high, both ends inclusive.
+    """
+    if not volumes:
+        return []
+    lo, hi = min(volumes), max(volumes)
+    raw = max(1.0, (hi - lo + 1) / bins)
+    # A width of 1, 2 or 5 times a power of ten reads well in a table.
+    power = 10 ** math.floor(math.log10(raw))
+    width = next(m * power for m in (1, 2, 5, 10) if m * power >= raw)
+    start = (lo // width) * width
+    counts = np.bincount((np.asarray(volumes) - start) // width)
+    return [(start + i * width, start + (i + 1) * width - 1, int(n)) for i, n in enumerate(counts) if n]
+
+
+def explore(
+    repo: object,
+    count: int,
+    *,
+    seed: int,
+    generator: str = "growth",
+    volume: tuple[int, int] | None = None,
+    max_attempts: int | None = None,
+    on_added: Callable[[int], None] | None = None,
+) -> ExploreReport:
+    """Generate ``count`` new well-formed shapes and store them in ``repo``.
+
+    Candidates ``0, 1, 2, ...`` of ``seed`` are drawn in order
+    (:func:`voxfab.generate.candidate`); each one that is well formed, within
+    ``volume``, and not equal up to translation and the 48 cube symmetries to a
+    stored shape or an earlier candidate is stored, until ``count`` are.  The same
+    seed on the same repository stores the same shapes under the same names: a
+    shape's rank is its order of storage within its volume.
+
+    Parameters
+    ----------
+    repo : voxfab.repo.Repository
+    count : int
+        Shapes to add (at least 1).
+    seed : int
+        Seed of the candidates (>= 0).
+    generator : str
+        One of :data:`voxfab.generate.GENERATORS`.
+    volume : (int, int), optional
+        Keep the volumes in ``[min, max]``; growth aims inside it (at least 25).
+    max_attempts : int, optional
+        Give up after this many candidates (default ``max(2000, 50 * count)``).
+    on_added : callable, optional
+        Called with the number of shapes stored by each write (for a progress bar).
+
+    Raises
+    ------
+    RepositoryError
+        When ``max_attempts`` candidates did not give ``count`` new shapes (those
+        found are stored; the message says how many).
+    InvalidShapeError
+        For a bad count, seed, generator or volume range.
+    """
+    from voxfab.repo import MAX_RANK
+
+    if generator not in GENERATORS:
+        raise InvalidShapeError(f"generator: expected one of {', '.join(GENERATORS)}, got {generator!r}")
+    if isinstance(count, bool) or int(count) != count or count < 1:
+        raise InvalidShapeError(f"count: expected a whole number >= 1, got {count!r}")
+    if isinstance(seed, bool) or int(seed) != seed or seed < 0:
+        raise InvalidShapeError(f"seed: expected a whole number >= 0, got {seed!r}")
+    if volume is not None:
+        volume = (int(volume[0]), int(volume[1]))
+        if volume[1] < GRID_SIDE:
+            raise InvalidShapeError(
+                f"volume: a well-formed shape spans {GRID_SIDE} voxels, so MAX must be at least {GRID_SIDE}"
+            )
+    limit = max(2000, 50 * int(count)) if max_attempts is None else int(max_attempts)
+    ranks = repo.last_ranks()  # type: ignore[attr-defined]
+    seen: set[str] = set()
+    added: list[tuple[str, int]] = []
+    index = duplicates = rejected = 0
+    while len(added) < count and index < limit:
+        grids: list[np.ndarray] = []
+        keys: list[str] = []
+        metas: list[dict[str, object]] = []
+        pending: dict[int, int] = {}
+        while len(added) + len(grids) < count and len(grids) < _CHUNK and index < limit:
+            i, index = index, index + 1
+            c = candidate(generator, seed, i, volume=volume)
+            if c is None:
+                rejected += 1
+                continue
+            v = int(np.count_nonzero(c.grid))
+            full = ranks.get(v, 0) + pending.get(v, 0) >= MAX_RANK
+            outside = volume is not None and not volume[0] <= v <= volume[1]
+            # Growth is well formed by construction; the repository checks again.
+            if full or outside or (c.generator != "growth" and well_formed_reasons(c.grid)):
+                rejected += 1
+                continue
+            key = canonical_key(c.grid, symmetric=True)
+            if key in seen:
+                duplicates += 1
+                continue
+            seen.add(key)
+            pending[v] = pending.get(v, 0) + 1
+            grids.append(c.grid)
+            keys.append(key)
+            metas.append({"generator": c.generator, "seed": seed, "index": i, "params": c.params})
+        if not grids:
+            continue
+        results = repo.add_many(grids, symmetric=True, metas=metas, keys=keys)  # type: ignore[attr-defined]
+        new = 0
+        for r, g in zip(results, grids):
+            if not r.created:
+                duplicates += 1
+                continue
+            v = int(np.count_nonzero(g))
+            ranks[v] = ranks.get(v, 0) + 1
+            added.append((r.name, v))
+            new += 1
+        if on_added is not None:
+            on_added(new)
+    if len(added) < count:
+        raise RepositoryError(
+            f"explore: only {len(added)} of {count} new shapes after {index} candidates "
+            f"({duplicates} duplicates, {rejected} rejected); try another seed, generator or volume range"
+        )
+    return ExploreReport(tuple(added), index, duplicates, rejected)

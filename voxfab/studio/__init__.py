@@ -1,0 +1,24 @@
+"""voxfab studio: a local web app where the artist draws, edits, keeps and chooses.
+
+``voxfab studio`` serves one page on 127.0.0.1: draw a surface of revolution, a
+tube or an egg and see its 25³ digitization at once; edit voxels layer by
+layer with live well-formedness; keep shapes in the repository; pick a net
+from a gallery, mark edges to cut or keep; download meshes, nets, plates and
+the triptych.  The page is plain HTML, CSS and JS modules shipped in this
+package; the server is a thin Starlette layer over the library (the library
+never imports this package).
+
+Public API: :func:`create_app`, :class:`Settings`, :func:`allowed_hosts`, :func:`serve`.
+"""
+
+from ._server import serve
+
+__all__ = ["Settings", "allowed_hosts", "create_app", "serve"]
+
+
+def __getattr__(name: str):  # noqa: ANN202 - lazy re-exports keep `import voxfab.studio` free of Starlette
+    if name in ("Settings", "allowed_hosts", "create_app"):
+        from . import _app
+
+        return getattr(_app, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

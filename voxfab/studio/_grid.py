@@ -1,0 +1,68 @@
+"""Grids on the wire: packed bits in base64, and the facts the page shows about a shape."""
+
+from __future__ import annotations
+
+import base64
+import binascii
+from typing import Any
+
+import numpy as np
+
+from voxfab.errors import InvalidShapeError
+
+#: The editor's grid side: every shape the page holds is centred in 25³.
+SIDE = 25
+
+
+def pack(grid: np.ndarray) -> dict[str, Any]:
+    """``{"dims": [X, Y, Z], "bits": base64}``; bit ``(x * Y + y) * Z + z``, most significant bit first."""
+    g = np.ascontiguousarray(grid, dtype=bool)
+    return {"dims": list(g.shape), "bits": base64.b64encode(np.packbits(g.reshape(-1)).tobytes()).decode("ascii")}
+
+
+def unpack(data: Any, *, name: str = "grid") -> np.ndarray:
+    """The bool grid of :func:`pack`'s form, checked like every shape input (at most 256 per side)."""
+    from voxfab._shared.validate import as_grid
+
+    if not isinstance(data, dict) or not isinstance(data.get("bits"), str) or not isinstance(data.get("dims"), list):
+        raise InvalidShapeError(f"{name}: expected {{\"dims\": [X, Y, Z], \"bits\": base64}}")
+    dims = data["dims"]
+    if len(dims) != 3 or not all(isinstance(d, int) and not isinstance(d, bool) and 1 <= d <= 256 for d in dims):
+        raise InvalidShapeError(f"{name}: dims must be three integers in 1..256, got {dims!r}")
+    try:
+        raw = base64.b64decode(data["bits"], validate=True)
+    except (binascii.Error, ValueError):
+        raise InvalidShapeError(f"{name}: bits is not base64") from None
+    count = dims[0] * dims[1] * dims[2]
+    if len(raw) != (count + 7) // 8:
+        raise InvalidShapeError(f"{name}: {len(raw)} bytes of bits for {count} voxels, expected {(count + 7) // 8}")
+    g = np.unpackbits(np.frombuffer(raw, dtype=np.uint8))[:count].astype(bool).reshape(dims)
+    return np.asarray(as_grid(g, name=name, allow_empty=True))
+
+
+def centred(grid: np.ndarray, side: int = SIDE) -> np.ndarray:
+    """The shape cropped and centred in a ``side``³ grid (the editor's canvas)."""
+    from voxfab.shape import crop
+
+    if not grid.any():
+        return np.zeros((side,) * 3, dtype=bool)
+    c = crop(grid)
+    if max(c.shape) > side:
+        raise InvalidShapeError(f"shape: {'x'.join(map(str, c.shape))} voxels does not fit the {side}³ editor")
+    out = np.zeros((side,) * 3, dtype=bool)
+    off = [(side - s) // 2 for s in c.shape]
+    out[off[0]:off[0] + c.shape[0], off[1]:off[1] + c.shape[1], off[2]:off[2] + c.shape[2]] = c
+    return out
+
+
+def facts(grid: np.ndarray) -> dict[str, Any]:
+    """Volume, extents and well-formedness with its reasons, as ``voxfab info`` reports them."""
+    from voxfab.shape import VoxelShape
+
+    s = VoxelShape(grid)
+    return {
+        "volume": s.volume,
+        "extents": list(s.extents),
+        "well_formed": s.well_formed,
+        "reasons": list(s.reasons),
+    }

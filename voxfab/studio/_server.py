@@ -1,0 +1,54 @@
+"""Run the studio under uvicorn on a local address, and open the browser on it."""
+
+from __future__ import annotations
+
+import socket
+import threading
+import webbrowser
+from pathlib import Path
+
+from voxfab.errors import InvalidShapeError, MissingDependencyError
+
+
+def _check_port(host: str, port: int) -> None:
+    """Fail early with one line when the address is taken, instead of uvicorn's log."""
+    family = socket.AF_INET6 if ":" in host else socket.AF_INET
+    with socket.socket(family, socket.SOCK_STREAM) as s:
+        s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        try:
+            s.bind((host, port))
+        except OSError as exc:
+            raise InvalidShapeError(f"--port: cannot listen on {host}:{port}: {exc.strerror or exc}") from None
+
+
+def serve(*, host: str = "127.0.0.1", port: int = 8765, repo: Path, open_browser: bool = True,
+          work: Path | None = None) -> None:
+    """Serve the studio until interrupted.
+
+    Parameters
+    ----------
+    host, port : str, int
+        Address to listen on (loopback by default: the studio is for this computer).
+    repo : Path
+        The repository database.
+    open_browser : bool
+        Open the page in the default browser once the server listens.
+    work : Path, optional
+        The session's work folder (default: a temporary folder removed at exit).
+    """
+    try:
+        import uvicorn
+    except ImportError:
+        raise MissingDependencyError("uvicorn", "voxfab studio") from None
+    from ._app import Settings, allowed_hosts, create_app
+
+    if not 1 <= port <= 65535:
+        raise InvalidShapeError(f"--port: expected 1..65535, got {port}")
+    _check_port(host, port)
+    app = create_app(Settings(repo=Path(repo), hosts=allowed_hosts(host, port), work=work))
+    shown = f"[{host}]" if ":" in host else host
+    url = f"http://{shown}:{port}/"
+    print(f"voxfab studio: {url}  (repository {repo}; Ctrl+C stops)", flush=True)
+    if open_browser:
+        threading.Timer(0.8, webbrowser.open, args=(url,)).start()
+    uvicorn.run(app, host=host, port=port, log_level="warning", lifespan="on")

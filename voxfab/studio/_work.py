@@ -1,0 +1,258 @@
+"""The studio's heavy work: a gallery of distinct nets, and the fabrication files of the current shape.
+
+Both run inside a :class:`~voxfab.studio._jobs.Job` on a worker thread and call
+the same library functions as the CLI: ``voxfab.unfold.unfold`` and
+``validate`` (``voxfab net``), ``netdraw.write_drawing`` (``voxfab net -o
+NET.svg``), and the recipe outputs ``mesh``, ``slices`` and ``pictures``
+(``voxfab build``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import inspect
+import math
+import shutil
+import time
+import zipfile
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from voxfab.errors import InvalidShapeError
+
+from ._jobs import Job
+
+#: Limits of a gallery: nets, seconds per net, seconds in all.
+MAX_NETS = 12
+MAX_NET_SECONDS = 60.0
+MAX_GALLERY_SECONDS = 180.0
+
+#: The files the page can ask for, with what makes them.
+ARTEFACTS = ("mesh.3mf", "mesh.stl", "net.svg", "net.dxf", "net.pdf", "net.json", "plates.zip",
+             "triptych.png", "triptych.pdf", "animation.gif")
+
+_DIRS = ("+x", "-x", "+y", "-y", "+z", "-z")
+
+
+def check_number(value: Any, *, name: str, lo: float, hi: float, integer: bool = False) -> float:
+    """``value`` as a number in ``[lo, hi]`` (an int when ``integer``), or an error naming it."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise InvalidShapeError(f"{name}: expected a number, got {value!r:.40}")
+    if integer and value != int(value):
+        raise InvalidShapeError(f"{name}: expected a whole number, got {value!r}")
+    if not lo <= value <= hi:
+        raise InvalidShapeError(f"{name}: expected {lo:g} to {hi:g}, got {value:g}")
+    return int(value) if integer else float(value)
+
+
+# --- the net gallery --------------------------------------------------------------------------
+
+def outline_key(net: Any) -> bytes:
+    """The net's cells up to the 8 rotations and mirrors of the sheet: equal keys look the same cut out."""
+    cells = net.corners2d.min(axis=1)
+    best = None
+    for swap in (False, True):
+        c = cells[:, ::-1] if swap else cells
+        for sx in (1, -1):
+            for sy in (1, -1):
+                t = c * np.array([sx, sy])
+                t = t - t.min(axis=0)
+                order = np.lexsort((t[:, 1], t[:, 0]))
+                key = t[order].astype(np.int32).tobytes()
+                if best is None or key < best:
+                    best = key
+    assert best is not None
+    return best
+
+
+def sheet_fit(net: Any, *, sheet: str, face_mm: float | None, margin: float = 10.0,
+              tab_width: float = 5.0) -> dict[str, Any]:
+    """How the net sits on the sheet: its extent in faces, the largest face size that fits, and the fit at ``face_mm``."""
+    from voxfab.fabricate.netdraw import parse_sheet
+
+    sw, sh = parse_sheet(sheet)
+    x0, y0, x1, y1 = net.bounds()
+    w, h = x1 - x0, y1 - y0
+    # the drawable area loses the margins and room for glue tabs all around
+    aw, ah = sw - 2 * margin - 2 * tab_width, sh - 2 * margin - 2 * tab_width
+    largest = max(min(aw / w, ah / h), min(aw / h, ah / w))
+    out: dict[str, Any] = {"extent": [int(w), int(h)], "sheet": sheet, "largest_face_mm": math.floor(largest * 10) / 10}
+    if face_mm is not None:
+        out["face_mm"] = face_mm
+        out["fits"] = bool(largest >= face_mm)
+        out["size_mm"] = [round(w * face_mm, 1), round(h * face_mm, 1)]
+    return out
+
+
+def net_layout(net: Any, grid: np.ndarray) -> dict[str, Any]:
+    """What the page draws and marks: faces, 2D corners, folds, and each edge's neighbour and fold type."""
+    from voxfab.shape import fill_cavities, surface_graph
+
+    sg = surface_graph(fill_cavities(grid) if net.filled else grid)
+    faces = [[int(v[0]), int(v[1]), int(v[2]), _DIRS[int(d)]] for v, d in zip(sg.voxel, sg.direction)]
+    return {
+        "faces": faces,
+        "corners": net.corners2d.reshape(-1).tolist(),
+        "folds": net.folds.reshape(-1).tolist(),
+        "neighbor": sg.neighbor.reshape(-1).tolist(),
+        "fold_type": sg.fold.reshape(-1).tolist(),
+    }
+
+
+def edge_constraints(data: Any) -> Any:
+    """``voxfab.unfold.EdgeConstraints`` from the page's JSON, or None when nothing is marked."""
+    if data is None or (isinstance(data, dict) and not data.get("cut") and not data.get("keep")):
+        return None
+    try:
+        from voxfab.unfold import EdgeConstraints
+    except ImportError:
+        raise InvalidShapeError("constraints: this voxfab's net engine does not take marked edges") from None
+    return EdgeConstraints.from_dict(data)
+
+
+def net_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, timeout: float, sheet: str,
+                face_mm: float | None, constraints: Any, budget: float = MAX_GALLERY_SECONDS) -> None:
+    """Search ``count`` nets that look different once cut out, validate each, and lay them out for the page.
+
+    Nets are ``unfold(grid, rng=s)`` for seeds ``s`` drawn from ``seed``, as
+    ``voxfab net --count``; a net whose outline repeats an earlier one (up to
+    turning or flipping the sheet) is skipped.  Stops at ``budget`` seconds.
+    """
+    from voxfab.unfold import unfold, validate
+
+    options: dict[str, Any] = {"timeout": timeout}
+    if constraints is not None:
+        if "constraints" not in inspect.signature(unfold).parameters:
+            raise InvalidShapeError("constraints: this voxfab's net engine does not take marked edges")
+        options["constraints"] = constraints
+    gen = np.random.default_rng(seed)
+    start = time.monotonic()
+    nets, seen, tries = [], set(), 0
+    job.step(0, count, "searching nets")
+    while len(nets) < count and tries < 4 * count + 8 and time.monotonic() - start < budget:
+        tries += 1
+        s = int(gen.integers(0, 2**31 - 1))
+        net = unfold(grid, rng=s, **options)
+        key = outline_key(net)
+        if key in seen:
+            continue
+        seen.add(key)
+        from voxfab.shape import fill_cavities
+
+        report = validate(fill_cavities(grid) if net.filled else grid, net)
+        if not report.ok:  # pragma: no cover - the engine validates its own nets
+            continue
+        nets.append(net)
+        job.step(len(nets), count, f"{len(nets)} of {count} nets")
+    job.data["nets"] = nets
+    job.result = {
+        "asked": count,
+        "found": len(nets),
+        "tries": tries,
+        "seconds": round(time.monotonic() - start, 3),
+        "nets": [
+            {
+                "index": i, "seed": int(n.seed), "faces": n.face_count, "mountain": int(n.mountain),
+                "valley": int(n.valley), "seams_without_tab_room": int(n.seams_without_tab_room),
+                "fit": sheet_fit(n, sheet=sheet, face_mm=face_mm), "layout": net_layout(n, grid),
+            }
+            for i, n in enumerate(nets)
+        ],
+    }
+
+
+# --- fabrication files ------------------------------------------------------------------------
+
+def _zip(folder: Path, files: list[Path], target: Path) -> Path:
+    # fixed dates and order: the same shape gives the same archive
+    with zipfile.ZipFile(target, "w", compression=zipfile.ZIP_DEFLATED) as zf:
+        for f in sorted(files):
+            info = zipfile.ZipInfo(f.relative_to(folder).as_posix(), date_time=(1980, 1, 1, 0, 0, 0))
+            info.compress_type = zipfile.ZIP_DEFLATED
+            zf.writestr(info, f.read_bytes())
+    return target
+
+
+def _one(job: Job, name: str, paths: list[Path]) -> None:
+    """Offer one download: the file itself, or a zip of several (a net over several sheets)."""
+    if len(paths) == 1:
+        job.files.append((name if paths[0].suffix == Path(name).suffix else paths[0].name, paths[0]))
+        return
+    stem = Path(name).stem
+    job.files.append((f"{stem}.zip", _zip(job.folder, paths, job.folder / f"{stem}.zip")))
+
+
+def make_files(job: Job, grid: np.ndarray, *, artefact: str, title: str, pitch: float, net: Any,
+               options: dict[str, Any], tube: tuple[dict[str, Any], Path] | None = None) -> None:
+    """Write one artefact of the shape into the job's folder through the CLI's library functions."""
+    from voxfab.fabricate import get_output
+    from voxfab.shape import VoxelShape
+
+    shape = VoxelShape(grid, pitch)
+    out = job.folder
+    stem = title.replace(" ", "_")
+    job.step(0, 1, f"making {artefact}")
+    if artefact in ("mesh.3mf", "mesh.stl"):
+        fmt = artefact.split(".")[1]
+        get_output("mesh")(shape, out, name=title, seed=0, format=fmt)
+        _one(job, f"{stem}.{fmt}", [out / f"mesh.{fmt}"])
+    elif artefact.startswith("net."):
+        from voxfab.fabricate import netdraw
+        from voxfab.shape import fill_cavities
+
+        if net is None:
+            from voxfab.unfold import unfold
+
+            job.step(0, 2, "searching a net (pick one in Net to choose)")
+            net = unfold(grid, rng=0, timeout=60.0)
+        from voxfab.unfold import validate
+
+        drawn_grid = fill_cavities(grid) if net.filled else grid
+        if not validate(drawn_grid, net).ok:
+            raise InvalidShapeError("net: the chosen net is not a net of this shape; pick a net again")
+        ext = artefact.split(".")[1]
+        target = out / f"{stem}-net.{ext}"
+        if ext == "json":
+            from voxfab._shared.atomic import write_text
+
+            write_text(target, net.to_json())
+            _one(job, target.name, [target])
+        else:
+            face = options.get("face_mm")
+            args = argparse.Namespace(pitch=face, sheet=options.get("sheet", "A4"))
+            lines = netdraw.write_drawing(VoxelShape(drawn_grid, face if face else pitch), net, target, args,
+                                          title=title)
+            written = [Path(line[len("wrote "):]) for line in lines if line.startswith("wrote ")]
+            job.result["report"] = [line for line in lines if not line.startswith("wrote ")]
+            _one(job, target.name, written)
+    elif artefact == "plates.zip":
+        thickness = options.get("thickness", 3.0)
+        get_output("slices")(shape, out, name=title, seed=0, thickness=thickness,
+                             sheet=options.get("plate_sheet", "600x400"))
+        files = [p for p in sorted((out / "slices").rglob("*")) if p.is_file()]
+        job.files.append((f"{stem}-plates.zip", _zip(out, files, out / f"{stem}-plates.zip")))
+    elif artefact in ("triptych.png", "triptych.pdf"):
+        from voxfab._shared.atomic import write_bytes
+        from voxfab.render import pdf_bytes, png_bytes, triptych
+
+        image = triptych(shape, name=title, rng=0, net=net, panel=int(options.get("panel", 600)))
+        target = out / f"{stem}-triptych.{artefact.split('.')[1]}"
+        write_bytes(target, png_bytes(image) if artefact.endswith("png") else pdf_bytes(image, title=title))
+        _one(job, target.name, [target])
+    elif artefact == "animation.gif":
+        from voxfab.render._animate import save_tube_animation
+
+        if tube is None:
+            raise InvalidShapeError("animation: only a drawn tube has a turning profile; choose Tube in Draw")
+        params, folder = tube
+        target = out / f"{stem}-animation.gif"
+        try:
+            save_tube_animation(target, params, steps=int(options.get("steps", 24)), size=400, base_dir=folder)
+        finally:
+            shutil.rmtree(folder, ignore_errors=True)
+        _one(job, target.name, [target])
+    else:
+        raise InvalidShapeError(f"artefact: expected one of {', '.join(ARTEFACTS)}, got {artefact!r:.40}")
+    job.step(1, 1, "done")

@@ -1,0 +1,99 @@
+// Layer-by-layer voxel editing with undo and redo (one step per stroke).
+
+export class LayerEditor {
+  constructor(canvas, {onEdit}) {
+    this.canvas = canvas; this.onEdit = onEdit;
+    this.grid = null; this.layer = 12; this.undoStack = []; this.redoStack = [];
+    let painting = null; // 1: adding, 0: removing, null: idle
+    const cellAt = (e) => {
+      const r = canvas.getBoundingClientRect();
+      const n = this.grid.nx, cell = canvas.width / n;
+      const x = Math.floor((e.clientX - r.left) * canvas.width / r.width / cell);
+      const yFromTop = Math.floor((e.clientY - r.top) * canvas.height / r.height / cell);
+      const y = this.grid.ny - 1 - yFromTop; // y up, as in the 3D view from above
+      return x >= 0 && y >= 0 && x < this.grid.nx && y < this.grid.ny ? [x, y] : null;
+    };
+    canvas.addEventListener('pointerdown', (e) => {
+      if (!this.grid) return;
+      const c = cellAt(e);
+      if (!c) return;
+      canvas.setPointerCapture(e.pointerId);
+      this.snapshot();
+      painting = this.grid.get(c[0], c[1], this.layer) ? 0 : 1;
+      this.grid.set(c[0], c[1], this.layer, painting);
+      this.paint(); this.onEdit(false);
+    });
+    canvas.addEventListener('pointermove', (e) => {
+      if (painting === null) return;
+      const c = cellAt(e);
+      if (!c || this.grid.get(c[0], c[1], this.layer) === painting) return;
+      this.grid.set(c[0], c[1], this.layer, painting);
+      this.paint(); this.onEdit(false);
+    });
+    const up = () => { if (painting !== null) { painting = null; this.onEdit(true); } };
+    canvas.addEventListener('pointerup', up);
+    canvas.addEventListener('pointercancel', up);
+  }
+
+  setGrid(grid, {keepHistory = false} = {}) {
+    this.grid = grid;
+    if (!keepHistory) { this.undoStack = []; this.redoStack = []; }
+    this.paint();
+  }
+
+  setLayer(z) { this.layer = Math.max(0, Math.min(this.grid ? this.grid.nz - 1 : 24, z)); this.paint(); }
+
+  snapshot() {
+    this.undoStack.push(this.grid.clone());
+    if (this.undoStack.length > 200) this.undoStack.shift();
+    this.redoStack = [];
+  }
+
+  undo() {
+    if (!this.undoStack.length) return false;
+    this.redoStack.push(this.grid.clone());
+    this.grid.data.set(this.undoStack.pop().data);
+    this.paint(); return true;
+  }
+
+  redo() {
+    if (!this.redoStack.length) return false;
+    this.undoStack.push(this.grid.clone());
+    this.grid.data.set(this.redoStack.pop().data);
+    this.paint(); return true;
+  }
+
+  clearLayer() {
+    this.snapshot();
+    for (let x = 0; x < this.grid.nx; x++) for (let y = 0; y < this.grid.ny; y++) this.grid.set(x, y, this.layer, 0);
+    this.paint();
+  }
+
+  copyBelow() {
+    if (this.layer === 0) return;
+    this.snapshot();
+    for (let x = 0; x < this.grid.nx; x++) for (let y = 0; y < this.grid.ny; y++) {
+      this.grid.set(x, y, this.layer, this.grid.get(x, y, this.layer - 1));
+    }
+    this.paint();
+  }
+
+  paint() {
+    const c = this.canvas, ctx = c.getContext('2d'), g = this.grid;
+    ctx.fillStyle = '#fff'; ctx.fillRect(0, 0, c.width, c.height);
+    if (!g) return;
+    const cell = c.width / g.nx;
+    for (let x = 0; x < g.nx; x++) for (let y = 0; y < g.ny; y++) {
+      const top = (g.ny - 1 - y) * cell;
+      if (g.get(x, y, this.layer)) ctx.fillStyle = '#c2632b';
+      else if (g.get(x, y, this.layer - 1)) ctx.fillStyle = '#f1dcc9';
+      else continue;
+      ctx.fillRect(x * cell + 1, top + 1, cell - 2, cell - 2);
+    }
+    ctx.strokeStyle = '#e6e0d6'; ctx.lineWidth = 1;
+    for (let i = 0; i <= g.nx; i++) {
+      ctx.beginPath(); ctx.moveTo(i * cell + 0.5, 0); ctx.lineTo(i * cell + 0.5, c.height); ctx.stroke();
+      ctx.beginPath(); ctx.moveTo(0, i * cell + 0.5); ctx.lineTo(c.width, i * cell + 0.5); ctx.stroke();
+    }
+  }
+}

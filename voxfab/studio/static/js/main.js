@@ -1,0 +1,392 @@
+// voxfab studio: wiring of the tabs, the shape being worked on, and the server calls.
+
+import {fileUrl, get, post, saveBlob, waitJob} from './api.js';
+import {CurveSource, FociInput, SpineDrawing} from './draw.js';
+import {LayerEditor} from './editor.js';
+import {Grid} from './grid.js';
+import {drawNet, NetMarker} from './nets.js';
+import {Viewer} from './viewer.js';
+
+const $ = (sel) => document.querySelector(sel);
+const $$ = (sel) => [...document.querySelectorAll(sel)];
+
+const SPINES = {
+  circle: ['cos(2*pi*t)', 'sin(2*pi*t)', '0'],
+  trefoil: ['sin(2*pi*t) + 2*sin(4*pi*t)', 'cos(2*pi*t) - 2*cos(4*pi*t)', '-sin(6*pi*t)'],
+  helix: ['cos(6*pi*t)', 'sin(6*pi*t)', '2*t'],
+  wave: ['4*t', '0', '0.6*sin(4*pi*t)'],
+};
+
+const state = {
+  shape: new Grid(), // the current 25³ shape
+  drawn: null, // the drawing that made it, while unedited (for the recipe)
+  edited: false,
+  name: null, // repository name once saved
+  gallery: null, // {job, nets}
+  chosen: null, // index of the chosen net in the gallery
+};
+
+// --- messages and progress ---------------------------------------------------------------------
+
+function say(text, info = false) {
+  const m = $('#message');
+  m.textContent = text; m.classList.toggle('info', info);
+}
+
+function progress(done, total, text) {
+  $('#progress').classList.remove('hidden');
+  $('#progress-bar').style.width = `${Math.round(300 * done / Math.max(total, 1))}px`;
+  $('#progress-text').textContent = text || '';
+}
+
+function progressDone() { $('#progress').classList.add('hidden'); }
+
+// --- the shape and its facts --------------------------------------------------------------------
+
+const viewer = new Viewer($('#viewer'));
+
+function showFacts(f) {
+  const wf = $('#wf');
+  wf.textContent = f.well_formed ? 'well formed' : 'not well formed';
+  wf.className = `badge ${f.well_formed ? 'ok' : 'bad'}`;
+  wf.dataset.wellFormed = String(f.well_formed);
+  $('#volume').textContent = `${f.volume} voxels · ${f.extents.join('×')}`;
+  $('#volume').dataset.volume = String(f.volume);
+  $('#reasons').replaceChildren(...f.reasons.map((r) => Object.assign(document.createElement('li'), {textContent: r})));
+}
+
+function setShape(grid, facts, {drawn = null, name = null} = {}) {
+  state.shape = grid; state.drawn = drawn; state.edited = false; state.name = name;
+  state.gallery = null; state.chosen = null;
+  $('#shape-name').textContent = name || 'unsaved';
+  viewer.stop();
+  viewer.setGrid(grid, currentTab() === 'edit' ? editor.layer : null);
+  editor.setGrid(grid);
+  showFacts(facts);
+  recipeNote();
+  netNote();
+}
+
+// --- Draw ---------------------------------------------------------------------------------------
+
+let inFlight = false, pending = null;
+
+function schedule(final) {
+  pending = {final, t: performance.now()};
+  if (!inFlight) runPreview();
+}
+
+function drawnEmpty(src) { return src.kind === 'drawn' && !src.polylines.some((p) => p.points.length >= 2); }
+
+function currentSpec() {
+  const maker = $('#maker').value;
+  const spec = {maker, k: Number($('#k').value), mode: $('#mode').value};
+  if (maker === 'revolution') {
+    spec.curve = sources.curve.spec(); spec.generatrix = sources.generatrix.spec();
+    if (spec.generatrix.kind === 'drawn') spec.axis = sources.generatrix.axisX();
+    if (spec.generatrix.kind === 'expr' && /^\s*x\s*=[^=]/.test(spec.generatrix.text)) {
+      spec.z_range = [Number($('#z-lo').value), Number($('#z-hi').value)];
+    }
+  } else if (maker === 'tube') {
+    spec.profile = sources.profile.spec();
+    if ($('input[name=spine-kind]:checked').value === 'expr') {
+      spec.spine = {kind: 'expr', x: $('#spine-x').value, y: $('#spine-y').value, z: $('#spine-z').value};
+    } else {
+      spec.spine = spine.spec(Number($('#spine-rise').value), $('#spine-closed').checked);
+    }
+    spec.frame = $('#frame').value; spec.radius = Number($('#radius').value); spec.twist = Number($('#twist').value);
+  } else {
+    Object.assign(spec, foci.spec(), {radius: Number($('#focal-radius').value)});
+  }
+  return spec;
+}
+
+function emptyDrawing(spec) {
+  if (spec.maker === 'revolution') {
+    return drawnEmpty(sources.curve) ? 'curve of revolution' : drawnEmpty(sources.generatrix) ? 'generatrix' : null;
+  }
+  if (spec.maker === 'tube') {
+    if (drawnEmpty(sources.profile)) return 'profile';
+    if (spec.spine.kind === 'drawn' && spec.spine.points.length < 2) return 'spine';
+  }
+  if (spec.maker === 'focal' && !spec.foci.length) return 'foci';
+  return null;
+}
+
+async function runPreview() {
+  const req = pending; pending = null;
+  const spec = currentSpec();
+  const missing = emptyDrawing(spec);
+  if (missing) { say(`Draw the ${missing} to see the shape.`, true); return; }
+  inFlight = true;
+  try {
+    const r = await post('/api/preview', spec);
+    setShape(Grid.unpack(r.grid), r.facts, {drawn: spec});
+    const ms = performance.now() - req.t;
+    const lat = $('#latency');
+    lat.textContent = `preview ${Math.round(ms)} ms (digitizing ${Math.round(r.ms)} ms)`;
+    if (req.final) { lat.dataset.ms = String(Math.round(ms)); lat.dataset.count = String(Number(lat.dataset.count || 0) + 1); }
+    say('');
+  } catch (e) {
+    say(e.message);
+  } finally {
+    inFlight = false;
+    if (pending) runPreview();
+  }
+}
+
+const sources = {
+  curve: new CurveSource($('#src-curve'), {expr: 'x^2 + y^2 = 1', onChange: schedule}),
+  generatrix: new CurveSource($('#src-generatrix'), {expr: 'x = 0.6 + 0.3*sin(3*y)', onChange: schedule, axis: true}),
+  profile: new CurveSource($('#src-profile'), {
+    expr: 'min((x - 0.5)^2 + y^2 - 0.2, (x + 0.5)^2 + y^2 - 0.2)', onChange: schedule}),
+};
+const spine = new SpineDrawing($('#spine-canvas'), {onChange: schedule});
+const foci = new FociInput($('#foci-canvas'), $('#foci-list'), {onChange: schedule});
+
+$('#maker').addEventListener('change', () => {
+  for (const m of ['revolution', 'tube', 'focal']) $(`#maker-${m}`).classList.toggle('hidden', m !== $('#maker').value);
+  schedule(true);
+});
+for (const id of ['#k', '#mode', '#z-lo', '#z-hi', '#frame', '#radius', '#twist', '#spine-x', '#spine-y', '#spine-z',
+  '#focal-radius', '#spine-rise', '#spine-closed']) {
+  $(id).addEventListener('change', () => schedule(true));
+}
+$$('input[name=spine-kind]').forEach((r) => r.addEventListener('change', () => {
+  const drawn = $('input[name=spine-kind]:checked').value === 'drawn';
+  $('#spine-expr').classList.toggle('hidden', drawn); $('#spine-drawn').classList.toggle('hidden', !drawn);
+  schedule(true);
+}));
+$('#spine-preset').addEventListener('change', () => {
+  const [x, y, z] = SPINES[$('#spine-preset').value];
+  $('#spine-x').value = x; $('#spine-y').value = y; $('#spine-z').value = z;
+  schedule(true);
+});
+$('#spine-clear').addEventListener('click', () => spine.clear());
+$('#foci-clear').addEventListener('click', () => { foci.clear(); schedule(true); });
+
+$('#play').addEventListener('click', async () => {
+  $('#anim-status').textContent = 'computing frames…';
+  try {
+    const r = await post('/api/animate', {shape: currentSpec(), steps: 24});
+    viewer.play(r.frames.map(Grid.unpack));
+    $('#anim-status').textContent = `${r.frames.length} frames`;
+    $('#anim-status').dataset.frames = String(r.frames.length);
+  } catch (e) { $('#anim-status').textContent = ''; say(e.message); }
+});
+$('#stop').addEventListener('click', () => { viewer.stop(); viewer.setGrid(state.shape); $('#anim-status').textContent = ''; });
+
+// --- Edit ---------------------------------------------------------------------------------------
+
+let checking = false, recheck = false;
+
+async function check() {
+  if (checking) { recheck = true; return; }
+  checking = true;
+  try {
+    const r = await post('/api/check', {grid: state.shape.pack()});
+    showFacts(r.facts);
+  } catch (e) { say(e.message); } finally {
+    checking = false;
+    if (recheck) { recheck = false; check(); }
+  }
+}
+
+function edited() {
+  state.edited = true; state.drawn = null; state.name = null;
+  state.gallery = null; state.chosen = null;
+  $('#shape-name').textContent = 'unsaved';
+  viewer.setGrid(state.shape, editor.layer);
+  recipeNote(); netNote();
+  check();
+}
+
+const editor = new LayerEditor($('#layer-canvas'), {onEdit: () => edited()});
+
+function setLayer(z) {
+  editor.setLayer(z);
+  $('#layer').value = String(editor.layer); $('#layer-out').textContent = String(editor.layer);
+  viewer.setLayer(editor.layer);
+}
+$('#layer').addEventListener('input', () => setLayer(Number($('#layer').value)));
+$('#layer-up').addEventListener('click', () => setLayer(editor.layer + 1));
+$('#layer-down').addEventListener('click', () => setLayer(editor.layer - 1));
+$('#undo').addEventListener('click', () => { if (editor.undo()) edited(); });
+$('#redo').addEventListener('click', () => { if (editor.redo()) edited(); });
+$('#clear-layer').addEventListener('click', () => { editor.clearLayer(); edited(); });
+$('#fill-layer').addEventListener('click', () => { editor.copyBelow(); edited(); });
+document.addEventListener('keydown', (e) => {
+  if (currentTab() !== 'edit' || !(e.ctrlKey || e.metaKey)) return;
+  if (e.key === 'z' && !e.shiftKey) { e.preventDefault(); if (editor.undo()) edited(); }
+  if (e.key === 'y' || (e.key === 'z' && e.shiftKey)) { e.preventDefault(); if (editor.redo()) edited(); }
+});
+
+// --- Keep ---------------------------------------------------------------------------------------
+
+function recipeNote() {
+  $('#recipe-note').textContent = state.drawn ? ''
+    : 'The recipe describes a drawn shape: this one was edited by hand or opened from the repository, so keep it in the repository instead.';
+  $('#save-recipe').disabled = !state.drawn;
+}
+
+$('#save-repo').addEventListener('click', async () => {
+  try {
+    const r = await post('/api/repo', {grid: state.shape.pack(), draft: $('#save-draft').checked});
+    state.name = r.name;
+    $('#shape-name').textContent = r.name;
+    const text = r.draft ? `Kept as draft ${r.name}: ${r.reasons.join('; ')}`
+      : r.created ? `Saved as ${r.name}` : `Already in the repository as ${r.name}`;
+    $('#save-result').textContent = text; $('#save-result').dataset.name = r.name;
+    say(text, true);
+    refreshRepo();
+  } catch (e) { $('#save-result').textContent = ''; say(e.message); }
+});
+
+$('#save-recipe').addEventListener('click', async () => {
+  try {
+    const resp = await fetch('/api/recipe', {method: 'POST', headers: {'Content-Type': 'application/json'},
+      body: JSON.stringify({shape: state.drawn, name: $('#recipe-name').value, pitch: Number($('#pitch').value)})});
+    if (!resp.ok) throw new Error((await resp.json()).error);
+    const name = /filename="([^"]+)"/.exec(resp.headers.get('content-disposition'))[1];
+    saveBlob(await resp.blob(), name);
+    say(`Recipe saved as ${name}: voxfab build ${name.replace('.zip', '/…toml')} makes this shape.`, true);
+  } catch (e) { say(e.message); }
+});
+
+async function refreshRepo(after = null) {
+  try {
+    const r = await get(after ? `/api/repo?after=${encodeURIComponent(after)}` : '/api/repo');
+    const figures = r.shapes.map((s) => {
+      const fig = document.createElement('figure');
+      fig.dataset.name = s.name;
+      const img = Object.assign(document.createElement('img'), {src: `/api/repo/thumb?name=${encodeURIComponent(s.name)}`,
+        alt: s.name, loading: 'lazy'});
+      const cap = Object.assign(document.createElement('figcaption'), {textContent: `${s.name} · ${s.volume}`});
+      fig.append(img, cap);
+      fig.addEventListener('click', () => openShape(s.name));
+      return fig;
+    });
+    // a page at a time: a repository may hold many thousands of shapes
+    if (after) $('#repo-grid').append(...figures); else $('#repo-grid').replaceChildren(...figures);
+    $('#repo-more').classList.toggle('hidden', !r.more);
+    $('#repo-more').dataset.after = r.shapes.length ? r.shapes[r.shapes.length - 1].name : '';
+  } catch (e) { say(e.message); }
+}
+$('#repo-refresh').addEventListener('click', () => refreshRepo());
+$('#repo-more').addEventListener('click', () => refreshRepo($('#repo-more').dataset.after));
+
+async function openShape(name) {
+  try {
+    const r = await get(`/api/repo/shape?name=${encodeURIComponent(name)}`);
+    setShape(Grid.unpack(r.grid), r.facts, {name});
+    say(`Opened ${name}`, true);
+  } catch (e) { say(e.message); }
+}
+
+// --- Net ----------------------------------------------------------------------------------------
+
+const marker = new NetMarker($('#net-canvas'), {onChange: () => {
+  const c = marker.constraints();
+  $('#marks-count').textContent = `${c.cut.length} cut, ${c.keep.length} kept`;
+}});
+
+function netNote() {
+  const g = state.gallery;
+  $('#make-net').textContent = g && state.chosen !== null
+    ? `Net files use net ${state.chosen + 1} of the gallery (seed ${g.nets[state.chosen].seed}).`
+    : 'Net files use a new net (seed 0) unless you pick one in Net.';
+  if (!g) { $('#net-gallery').replaceChildren(); $('#net-chosen-label').textContent = ''; }
+}
+
+async function gallery(withMarks) {
+  const face = $('#net-face').value;
+  const body = {grid: state.shape.pack(), count: Number($('#net-count').value), seed: Number($('#net-seed').value),
+    timeout: Number($('#net-timeout').value), sheet: $('#net-sheet').value, face_mm: face ? Number(face) : null,
+    constraints: withMarks ? marker.constraints() : null};
+  try {
+    $('#net-go').disabled = true; $('#net-regen').disabled = true;
+    const t0 = performance.now();
+    const {job} = await post('/api/nets', body);
+    progress(0, body.count, 'searching nets');
+    const s = await waitJob(job, progress);
+    const r = s.result;
+    state.gallery = {job, nets: r.nets}; state.chosen = null;
+    const secs = ((performance.now() - t0) / 1000).toFixed(1);
+    $('#net-summary').textContent = `${r.found} of ${r.asked} nets in ${secs} s (search ${r.seconds} s), each different once cut out.`;
+    $('#net-summary').dataset.found = String(r.found); $('#net-summary').dataset.seconds = secs;
+    $('#net-gallery').replaceChildren(...r.nets.map((n, i) => {
+      const fig = document.createElement('figure');
+      const cv = Object.assign(document.createElement('canvas'), {width: 356, height: 356});
+      drawNet(cv, n.layout);
+      const f = n.fit;
+      const fit = f.fits === undefined ? `${f.sheet}: up to ${f.largest_face_mm} mm per face`
+        : `${f.fits ? 'fits' : 'does not fit'} ${f.sheet} at ${f.face_mm} mm (up to ${f.largest_face_mm} mm)`;
+      const cap = document.createElement('figcaption');
+      cap.innerHTML = `<b>#${i + 1}</b> ${f.extent[0]}×${f.extent[1]} faces<br><span class="${f.fits === false ? 'nofit' : 'fits'}"></span>`;
+      cap.querySelector('span').textContent = fit;
+      fig.append(cv, cap);
+      fig.addEventListener('click', () => choose(i));
+      return fig;
+    }));
+    netNote();
+    say('');
+  } catch (e) { say(e.message); } finally {
+    progressDone(); $('#net-go').disabled = false; $('#net-regen').disabled = false;
+  }
+}
+
+function choose(i) {
+  state.chosen = i;
+  $$('#net-gallery figure').forEach((f, j) => f.classList.toggle('chosen', i === j));
+  marker.setLayout(state.gallery.nets[i].layout);
+  $('#net-chosen-label').textContent = `#${i + 1} (seed ${state.gallery.nets[i].seed})`;
+  $('#net-chosen-label').dataset.index = String(i);
+  netNote();
+}
+
+$('#net-go').addEventListener('click', () => gallery(false));
+$('#net-regen').addEventListener('click', () => gallery(true));
+$('#marks-clear').addEventListener('click', () => marker.clear());
+$('#net-svg').addEventListener('click', () => make('net.svg'));
+
+// --- Make ---------------------------------------------------------------------------------------
+
+async function make(artefact) {
+  const face = $('#net-face').value;
+  const body = {grid: state.shape.pack(), artefact, pitch: Number($('#pitch').value),
+    title: state.name || $('#recipe-name').value || 'studio',
+    options: {face_mm: face ? Number(face) : null, sheet: $('#net-sheet').value, thickness: Number($('#thickness').value)},
+    net: state.gallery && state.chosen !== null ? {job: state.gallery.job, index: state.chosen} : null,
+    shape: artefact === 'animation.gif' ? state.drawn : undefined};
+  try {
+    const {job} = await post('/api/make', body);
+    progress(0, 1, `making ${artefact}`);
+    const s = await waitJob(job, progress);
+    for (const f of s.files) {
+      const a = Object.assign(document.createElement('a'), {href: fileUrl(job, f.index), download: f.name,
+        textContent: `${f.name} (${Math.ceil(f.bytes / 1024)} kB)`});
+      a.dataset.artefact = artefact;
+      const li = document.createElement('li'); li.append(a);
+      $('#downloads').prepend(li);
+      a.click();
+    }
+    say(`${artefact}: ${s.files.map((f) => f.name).join(', ')} in ${s.seconds.toFixed(1)} s`, true);
+  } catch (e) { say(e.message); } finally { progressDone(); }
+}
+$$('[data-make]').forEach((b) => b.addEventListener('click', () => make(b.dataset.make)));
+
+// --- tabs ---------------------------------------------------------------------------------------
+
+function currentTab() { return $('#tabs .active').dataset.tab; }
+
+$$('#tabs button').forEach((b) => b.addEventListener('click', () => {
+  $$('#tabs button').forEach((x) => x.classList.toggle('active', x === b));
+  $$('.pane').forEach((p) => p.classList.toggle('active', p.id === `pane-${b.dataset.tab}`));
+  if (b.dataset.tab === 'edit') { editor.setGrid(state.shape, {keepHistory: true}); viewer.setLayer(editor.layer); }
+  else viewer.setLayer(null);
+  if (b.dataset.tab === 'keep') refreshRepo();
+}));
+
+recipeNote(); netNote();
+schedule(true);
+document.body.dataset.ready = 'true';
