@@ -51,7 +51,8 @@ def _dead_pid() -> int:
 def test_file_set_is_published_together_and_replaces_the_earlier_set(tmp_path):
     from voxfab._shared.atomic import atomic_files
 
-    for name in ("t-1.svg", "t-2.svg", "t-3.svg", "t-2-piece1.svg", "t-notes.svg", "other.svg"):
+    for name in ("t-1.svg", "t-2.svg", "t-3.svg", "t-2-piece1.svg", "t.sheet-4.svg", "t-2.sheet-1.svg",
+                 "t-notes.svg", "other.svg"):
         (tmp_path / name).write_text("old")
     with atomic_files(tmp_path / "t.svg") as fileset:
         write_bytes(tmp_path / "t-1.svg", b"new1")

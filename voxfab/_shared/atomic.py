@@ -241,8 +241,13 @@ def write_text(path: PathLike, text: str) -> None:
 
 
 def _family(base: Path) -> re.Pattern[str]:
-    """Names of the files an output ``base`` may stand for: ``t.svg``, ``t-2.svg``, ``t-1-piece2.svg``."""
-    return re.compile(rf"^{re.escape(base.stem)}(?:-(?:\d+|piece\d+))*{re.escape(base.suffix)}$")
+    """Names of the files an output ``base`` may stand for.
+
+    ``t.svg``, ``t-2.svg`` (net 2), ``t-1-piece2.svg`` (a piece), ``t.sheet-3.svg``
+    (sheet 3 of a drawing) and their combinations.
+    """
+    tags = r"(?:-(?:\d+|piece\d+)|\.sheet-\d+)*"
+    return re.compile(rf"^{re.escape(base.stem)}{tags}{re.escape(base.suffix)}$")
 
 
 @contextlib.contextmanager
@@ -253,7 +258,7 @@ def atomic_files(*families: PathLike) -> Iterator[FileSet]:
     ----------
     *families : path
         The outputs as the user named them (``t.svg``).  Files beside them named
-        ``t.svg``, ``t-N.svg`` or ``t-N-pieceM.svg`` that the block did not write
+        ``t.svg``, ``t-N.svg``, ``t-N-pieceM.svg`` or ``t.sheet-N.svg`` that the block did not write
         are left from an earlier run: they are removed after a successful block.
 
     Yields
