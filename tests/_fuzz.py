@@ -432,3 +432,52 @@ def argv_for(draw: st.DrawFn, command: str, positionals: dict[str, st.SearchStra
         else:
             argv.append(f"{flag}={draw(st.sampled_from(NASTY_TEXT))}")
     return argv + list(fixed)
+
+
+#: Outputs a command line may name: usual ones, and ones that must be refused.
+OUTPUT_NAMES = {
+    "mesh": ["m.stl", "m.3mf", "m.obj", "m.glb", "m.ply", "missing/m.stl", "folder", "m"],
+    "net": ["n.json", "n.svg", "n.pdf", "n.dxf", "n.png", "missing/n.json", "folder"],
+    "slices": ["plates", "folder", "file.txt", "missing/plates"],
+    "render": ["r.png", "r.pdf", "r.gif", "missing/r.png", "folder", "r.bmp"],
+    "convert": ["c.npy", "c.npz", "c.txt", "c.vox", "c.binvox", "c.stl", "missing/c.npy", "folder"],
+}
+#: Options added to every command line: net searches are bounded by time.
+CLI_FIXED = {"net": ("--timeout", "2")}
+#: Commands fuzzed through their options.
+CLI_COMMANDS = ["info", "convert", "mesh", "net", "slices", "render"]
+
+
+def cli_corpus(folder: _Path) -> None:
+    """The files the command-line fuzz names: a small shape, a corrupt one, a folder of someone's files."""
+    import numpy as np
+
+    from voxfab import io
+
+    grid = np.zeros((3, 3, 3), bool)
+    grid[1, 1, :] = True
+    io.write(grid, folder / "bar.npy")
+    (folder / "folder").mkdir(exist_ok=True)
+    (folder / "folder" / "keep.txt").write_text("not an output")
+    (folder / "file.txt").write_text("not a folder")
+    (folder / "bad.npy").write_bytes(b"\x93NUMPY garbage")
+    (folder / "out").mkdir(exist_ok=True)
+
+
+def cli_positionals(folder: _Path, command: str) -> dict[str, st.SearchStrategy[str]]:
+    """Value strategies for the positionals and path options of ``command`` over :func:`cli_corpus`."""
+    good = st.just(str(folder / "bar.npy"))
+    bad = st.sampled_from([str(folder / "bad.npy"), str(folder / "missing.npy"), str(folder / "folder"),
+                           "00001.001"])
+    positionals = {
+        "shape": st.one_of(good, good, bad),
+        "input": st.one_of(good, good, bad),
+        "repo": st.just(str(folder / "repo.sqlite")),
+        "recipes": st.just(str(folder / "none.toml")),
+    }
+    if command in OUTPUT_NAMES:
+        names = [str(folder / "out" / n) if not n.startswith(("folder", "file")) else str(folder / n)
+                 for n in OUTPUT_NAMES[command]]
+        positionals["output"] = st.one_of(st.sampled_from(names[:2]), st.sampled_from(names))
+        positionals["net"] = st.sampled_from([str(folder / "out" / "n.json"), str(folder / "missing.json")])
+    return positionals

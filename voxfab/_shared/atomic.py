@@ -17,10 +17,12 @@ exception).  A run killed outright (SIGKILL, power cut) leaves them behind; the
 next run writing into the same folder removes those whose process is gone
 (:func:`sweep`).
 
-An output's folder must exist: a mistyped ``-o /nonexistent/dir/x.json`` is
-refused instead of creating folders.  Only the folder a command itself assembles
-(:func:`atomic_dir`, with ``parents=True`` for its parent, as ``build -o DIR``)
-is created, and files inside a folder being assembled may go in subfolders.
+An output the user names must go in an existing folder: a mistyped ``-o
+/nonexistent/dir/x.json`` is refused by :func:`check_output`, which each command
+calls before its work, instead of creating folders.  A command creates only the
+output folder it makes itself, one level below an existing folder (``build -o
+DIR``).  Library callers (recipe outputs writing ``DIR/slices/``) may name new
+folders: :func:`atomic_open` creates them.
 """
 
 from __future__ import annotations
@@ -143,25 +145,25 @@ def _inside_assembly(folder: Path) -> bool:
 
 
 def _output_folder(target: Path, *, parents: bool = False, create: bool = True) -> Path:
-    """The existing folder ``target`` goes in; refuse a missing one unless voxfab is assembling it."""
+    """The folder ``target`` goes in; a missing one is created when allowed, else refused.
+
+    Inside a folder being assembled any missing folder is made.  Elsewhere,
+    ``parents=False`` refuses a missing folder, and ``parents=True`` makes it one
+    level below an existing folder (the output folder a command makes itself).
+    """
     parent = target.parent
     if parent.is_dir():
         return parent
     if parent.exists():
         raise OutputError(f"{target}: {parent} is not a folder")
-    if _inside_assembly(parent):
-        if create:
-            parent.mkdir(parents=True, exist_ok=True)
-        return parent
-    if parents and parent.parent.is_dir():
+    if _inside_assembly(parent) or (parents and parent.parent.is_dir()):
         if create:
             try:
-                parent.mkdir(exist_ok=True)  # one level: the output folder the command itself creates
+                parent.mkdir(parents=True, exist_ok=True)
             except OSError as exc:
                 raise OutputError(f"{target}: cannot create the folder {parent}: {exc.strerror or exc}") from None
         return parent
-    missing = parent.parent if parents else parent
-    raise OutputError(f"{target}: the folder {missing} does not exist")
+    raise OutputError(f"{target}: the folder {parent} does not exist")
 
 
 def check_output(path: PathLike, *, folder: bool = False, parents: bool = False, marker: str | None = None) -> None:
@@ -200,14 +202,19 @@ def atomic_open(path: PathLike, mode: str = "wb") -> Iterator[IO]:
 
     On an exception the temporary file is removed and ``path`` is untouched.
     Inside :func:`atomic_files` the rename waits for the end of that block.
+    Missing folders are created, as a library caller asks; commands check the
+    outputs the user names with :func:`check_output` first, which refuses them.
 
     Raises
     ------
     OutputError
-        When the folder of ``path`` does not exist or ``path`` is a folder.
+        When ``path`` is a folder.
     """
     target = Path(path)
-    check_output(target)
+    if target.is_dir():
+        raise OutputError(f"{target}: is a folder, expected a file name")
+    # Library callers may name new folders; commands check the user's outputs first.
+    target.parent.mkdir(parents=True, exist_ok=True)
     folder = _output_folder(target)
     sweep(folder)
     try:

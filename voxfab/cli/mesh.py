@@ -36,9 +36,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from voxfab._shared.atomic import check_output
     from voxfab.fabricate.mesh import build_mesh, format_for, report_dict, write_mesh
 
     format_for(args.output)  # refuse an unknown extension before any work
+    check_output(args.output)  # and a folder that does not exist
     shape, repo_name, notes = load_shape(args.shape, args.repo)
     print_notes(notes)
     name = repo_name or Path(args.shape).stem

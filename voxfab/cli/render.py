@@ -45,9 +45,10 @@ def _suffix(path: Path, allowed: tuple[str, ...], what: str) -> str:
 def run(args: argparse.Namespace) -> int:
     """Draw the requested picture and print a JSON summary."""
     from voxfab import render
-    from voxfab._shared.atomic import write_bytes
+    from voxfab._shared.atomic import check_output, write_bytes
 
     out: Path = args.output
+    check_output(out)  # an existing folder, before the drawing
     if args.contact_sheet:
         if args.shape is not None:
             raise InvalidShapeError("render --contact-sheet: takes no SHAPE, only --repo PATH")
