@@ -471,6 +471,21 @@ def load_curve(
     ``source`` is a callable, a point list, a file name (``.svg``, ``.json``,
     ``.csv``: drawing; ``.png``, ``.gif``, ``.bmp``: bitmap; relative names are
     resolved in ``base_dir``), or else an expression in ``x, y``.
+
+    Inputs are bounded (:mod:`voxfab._shared.limits`): only regular files of at
+    most 16 MiB, JSON nested at most 64 levels with integers of at most 30
+    digits, bitmaps of at most 4096 x 4096 pixels, expressions of at most 1,000
+    characters.  While a recipe is built, files must be inside its folder
+    (:func:`voxfab._shared.validate.confine_inputs`).
+
+    Raises
+    ------
+    LimitError
+        An input over one of those limits.
+    RecipeError
+        A file outside the recipe's folder.
+    FormatError, InvalidShapeError
+        An unreadable or empty drawing or bitmap, or a bad expression.
     """
     if callable(source):
         return implicit_curve(source, name=name, half_plane=half_plane)

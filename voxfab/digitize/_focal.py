@@ -94,5 +94,14 @@ def focal(
     """Weighted focal shape fitted in a ``size``³ grid: a k-separating surface or a solid.
 
     See :func:`voxfab.digitize.fit` for ``k``, ``mode``, ``size``, ``scale``, ``at``.
+    At most 256 foci (:data:`voxfab._shared.limits.MAX_FOCI`): each adds a
+    distance to every evaluation of the field.
+
+    Raises
+    ------
+    LimitError
+        For more than 256 foci.
+    InvalidShapeError
+        For foci that are not 3D or 4D points, or weights that are not positive.
     """
     return fit(focal_field(foci, weights, radius), k=k, mode=mode, size=size, scale=scale, at=at)

@@ -91,7 +91,18 @@ def load_spine(
     samples: int = 1024,
     closed: bool | None = None,
 ) -> tuple[np.ndarray, bool]:
-    """Spine points from three expressions in ``t``, a JSON/CSV file of 3D points, or a (P, 3) array."""
+    """Spine points from three expressions in ``t``, a JSON/CSV file of 3D points, or a (P, 3) array.
+
+    Expressions are sampled at ``samples + 1`` values of ``t``; ``samples`` is at
+    most 100,000 (:data:`voxfab._shared.limits.MAX_SAMPLES`).  A file name is
+    resolved in ``base_dir``, and must stay in it while a recipe is built (see
+    :func:`voxfab._shared.validate.confine_inputs`).
+
+    Raises
+    ------
+    LimitError
+        ``samples`` over 100,000, or a JSON file over the nesting or integer limits.
+    """
     if isinstance(spine, (list, tuple)) and len(spine) == 3 and all(isinstance(e, str) for e in spine):
         if not t_max > t_min:
             raise InvalidShapeError(f"t_max: expected > t_min = {t_min}, got {t_max}")
