@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from ._common import add_strict_option, print_warnings
+
 HELP = "build recipes (TOML) into DIR/<name>/ with the shape, its outputs and a manifest"
 
 
@@ -15,6 +17,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--check", action="store_true", help="validate the recipes only, build nothing")
     parser.add_argument("--allow-outside", action="store_true",
                         help="let recipes read files outside their own folder (refused by default)")
+    add_strict_option(parser)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -34,8 +37,10 @@ def run(args: argparse.Namespace) -> int:
         for r in recipes:
             print(f"{r.path}: ok ({r.name})")
         return 0
+    warnings = []
     for recipe in recipes:
         folder = build(recipe, args.output)
         manifest = json.loads((folder / "manifest.json").read_text())
         print(f"{folder}: {len(manifest['files'])} files")
-    return 0
+        warnings += [f"{recipe.name}: {w}" for w in manifest["warnings"]]
+    return print_warnings(warnings, strict=args.strict)

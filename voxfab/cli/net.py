@@ -10,7 +10,8 @@ from pathlib import Path
 
 from voxfab.errors import InvalidShapeError, UnknownFormatError
 
-from ._common import add_shape_argument, load_shape, print_json, print_notes
+from ._common import add_pitch_option, add_shape_argument, load_scaled_shape, print_json, print_notes
+from ._options import add_option_arguments, options_from_args
 
 HELP = "unfold the surface into a one-piece paper net (JSON, or drawings .svg .dxf .pdf)"
 
@@ -19,26 +20,17 @@ _FIT = re.compile(r"^\s*(\d+(?:\.\d*)?)\s*[xX×]\s*(\d+(?:\.\d*)?)\s*$")
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the ``net`` options."""
+    from voxfab.fabricate.netdraw import NetOptions
+
     add_shape_argument(parser)
     parser.add_argument("-o", "--output", action="append", required=True, metavar="PATH",
                         help="NET.json, or a drawing (.svg .dxf .pdf); repeat for several files "
                              "of the same net")
     parser.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
-    parser.add_argument("--count", type=int, default=1, metavar="N",
-                        help="write N distinct nets as NAME-1.ext ... NAME-N.ext")
-    parser.add_argument("--strategy", choices=["default", "paper"], default="default",
-                        help="search strategy (default: ruin-and-recreate with tab room)")
-    parser.add_argument("--timeout", type=float, default=60.0, metavar="S",
-                        help="search budget in seconds per net (default 60)")
     parser.add_argument("--fit", metavar="WxH",
-                        help="keep the net inside W×H (voxels, or mm when --pitch is given)")
-    parser.add_argument("--pitch", type=float, metavar="MM",
-                        help="face size in mm; drawings pick the largest that fits the sheet when omitted")
-    parser.add_argument("--pieces", choices=["one", "auto"], default="one",
-                        help="auto: accept the fewest pieces found (one file per piece)")
-    parser.add_argument("--fill", action="store_true", help="fill enclosed cavities first")
-    parser.add_argument("--compact", action="store_true",
-                        help="prefer a small bounding box (slower)")
+                        help="keep the net inside W×H (voxels, or mm when the face size is known)")
+    add_pitch_option(parser)
+    add_option_arguments(parser, NetOptions)
     parser.add_argument("--constraints", metavar="FILE.json",
                         help='edges to cut or keep folded: {"cut": [[[x,y,z,"+z"],[x,y,z,"+x"]], ...], '
                              '"keep": [...]}')
@@ -94,12 +86,10 @@ def _named(path: Path, *tags: str) -> Path:
 def run(args: argparse.Namespace) -> int:
     """Search, validate and write the nets."""
     from voxfab._shared.atomic import atomic_files, check_output, write_text
+    from voxfab.fabricate.netdraw import NetOptions
     from voxfab.unfold import unfold, unfold_many, validate
 
-    if args.pitch is not None and not (math.isfinite(args.pitch) and args.pitch > 0):
-        raise InvalidShapeError(f"--pitch: expected a positive number of mm, got {args.pitch}")
-    if args.count < 1:
-        raise InvalidShapeError(f"--count: expected an integer >= 1, got {args.count}")
+    search = options_from_args(NetOptions, args)
     outputs = [Path(p) for p in args.output]
     for p in outputs:
         check_output(p)  # before the search, which may take minutes
@@ -113,23 +103,33 @@ def run(args: argparse.Namespace) -> int:
                 f"{drawings[0]}: drawings need voxfab.fabricate.netdraw, which is not "
                 "installed; write a .json net"
             ) from None
-    shape, name, notes = load_shape(args.shape, args.repo)
+    # The paper scale: --face-size, else the shape's pitch (--pitch or the file's own); a shape
+    # with neither is drawn at the largest face size that puts the net on the sheet (None).
+    shape_pitch = args.pitch
+    face_size = search.face_size if search.face_size is not None else shape_pitch
+    fit = _fit(args.fit, face_size)
+    if netdraw is not None:
+        args.pitch = face_size  # the drawing options read the face size as `pitch`
+        netdraw.options_from_args(args)  # check the drawing options before the search
+    shape, name, notes, scaled = load_scaled_shape(args.shape, args.repo, pitch=shape_pitch)
     print_notes(notes)
-    fit = _fit(args.fit, args.pitch)
+    if face_size is None and scaled:
+        face_size = args.pitch = shape.pitch
+        fit = _fit(args.fit, face_size)
     constraints = _constraints(args.constraints)
-    options = dict(strategy=args.strategy, timeout=args.timeout, fit=fit, fill=args.fill,
-                   compact=args.compact, constraints=constraints)
-    if args.count > 1:
-        if args.pieces != "one":
+    options = dict(strategy=search.strategy, timeout=search.timeout, fit=fit, fill=search.fill,
+                   compact=search.compact, constraints=constraints)
+    if search.count > 1:
+        if search.pieces != "one":
             raise InvalidShapeError("--count: several nets need --pieces one")
-        results = [[n] for n in unfold_many(shape.grid, count=args.count, rng=args.seed, **options)]
+        results = [[n] for n in unfold_many(shape.grid, count=search.count, rng=args.seed, **options)]
     else:
-        found = unfold(shape.grid, rng=args.seed, pieces=args.pieces, **options)
+        found = unfold(shape.grid, rng=args.seed, pieces=search.pieces, **options)
         results = [found if isinstance(found, list) else [found]]
     from voxfab.shape import VoxelShape, fill_cavities
 
-    grid = fill_cavities(shape.grid) if args.fill else shape.grid
-    drawn = VoxelShape(grid, args.pitch if args.pitch is not None else shape.pitch)
+    grid = fill_cavities(shape.grid) if search.fill else shape.grid
+    drawn = VoxelShape(grid, face_size if face_size is not None else shape.pitch)
     title = name or Path(args.shape).stem
     summary = []
     # Every file is published at the end, replacing the whole earlier set (no stale t-3.svg).

@@ -72,15 +72,6 @@ def make_shape(recipe: Recipe) -> VoxelShape:
     return VoxelShape(grid, recipe.pitch)
 
 
-#: Keys an output may declare to get the recipe's source (an animation re-runs the maker).
-SOURCE_KEYS = ("source", "base_dir")
-
-
-def _source_keys(func: object, recipe: Recipe) -> dict[str, object]:
-    import inspect
-
-    params = inspect.signature(func).parameters  # type: ignore[arg-type]
-    return {"source": recipe.source, "base_dir": recipe.base_dir} if "source" in params else {}
 
 
 def _sha256(path: Path) -> str:
@@ -98,7 +89,9 @@ def build(recipe: Recipe, outdir: PathLike) -> Path:
     """
     from voxfab import io
     from voxfab._shared.progress import progress
-    from voxfab.fabricate import OutputFile, get_output
+    from voxfab.fabricate import OutputFile
+
+    from ._outputs import outputs as output_kinds
 
     target = Path(outdir) / recipe.name
     check_output(target, folder=True, parents=True, marker="manifest.json")  # before the work
@@ -110,10 +103,14 @@ def build(recipe: Recipe, outdir: PathLike) -> Path:
             OutputFile("shape.npy", "the voxel shape as a NumPy bool array [x, y, z], z up"),
             OutputFile("shape.vox", "the voxel shape for MagicaVoxel and other voxel editors"),
         ]
+        warnings: list[str] = []
+        kinds = output_kinds()
         for spec in progress(recipe.outputs, desc="outputs"):
-            func = get_output(spec.name)
-            files += func(shape, tmp, name=recipe.name, seed=recipe.seed, **_source_keys(func, recipe),
-                          **dict(spec.options))
+            settings = spec.settings if spec.settings is not None else kinds[spec.name].parse(dict(spec.options))
+            made = kinds[spec.name].run(shape, settings, tmp, name=recipe.name, seed=recipe.seed,
+                                      recipe=recipe)
+            files += made.files
+            warnings += [f"{spec.name}: {w}" for w in made.warnings]
         manifest = {
             "format": MANIFEST_FORMAT,
             "voxfab": __version__,
@@ -130,6 +127,7 @@ def build(recipe: Recipe, outdir: PathLike) -> Path:
                 "key": canonical_key(shape.grid),
             },
             "outputs": [spec.name for spec in recipe.outputs],
+            "warnings": warnings,
             "files": [
                 {"path": f.path, "sha256": _sha256(tmp / f.path), "purpose": f.purpose}
                 for f in sorted(files, key=lambda f: f.path)

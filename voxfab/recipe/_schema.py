@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import Any, Literal, Union
 
 from voxfab._shared.limits import parse_toml, read_input_bytes
+from voxfab._shared.options import OptionError
 from voxfab._shared.typing import PathLike
 from voxfab._shared.validate import check_confined
 from voxfab.errors import RecipeError, UnknownFormatError, VoxfabError
@@ -61,10 +62,21 @@ class OperationSpec:
 
 @dataclasses.dataclass(frozen=True)
 class OutputSpec:
-    """One requested output with its options."""
+    """One requested output with its options.
+
+    Attributes
+    ----------
+    name : str
+        The output, ``[outputs.NAME]``.
+    options : tuple of (str, value)
+        The recipe's keys as written.
+    settings : object
+        The checked options object its pipeline takes (see :mod:`voxfab.recipe._outputs`).
+    """
 
     name: str
     options: tuple[tuple[str, Any], ...]
+    settings: Any = dataclasses.field(default=None, compare=False)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -285,7 +297,10 @@ def load_recipe(path: PathLike, *, allow_outside: bool = False) -> Recipe:
     RecipeError
         Naming the file, line and key path of the first problem.
     """
-    from voxfab.fabricate import get_output
+    from voxfab.errors import VoxfabError
+    from voxfab.shape import ShapeOptions
+
+    from ._outputs import outputs as output_kinds
 
     p = Path(path)
     try:
@@ -314,8 +329,10 @@ def load_recipe(path: PathLike, *, allow_outside: bool = False) -> Recipe:
     if not check_type(seed, int) or seed < 0:
         raise err("seed", f"expected an integer >= 0, got {seed!r}")
     pitch = data.get("pitch", 1.0)
-    if not check_type(pitch, float) or pitch <= 0:
-        raise err("pitch", f"expected a positive number (mm per voxel), got {pitch!r}")
+    try:
+        pitch = ShapeOptions(pitch=pitch).pitch
+    except OptionError as exc:
+        raise err("pitch", exc.reason) from None
     description = data.get("description", "")
     if not isinstance(description, str):
         raise err("description", "expected a string")
@@ -359,18 +376,25 @@ def load_recipe(path: PathLike, *, allow_outside: bool = False) -> Recipe:
     raw_out = data.get("outputs", {})
     if not isinstance(raw_out, dict):
         raise err("outputs", "expected a table of output tables, e.g. [outputs.mesh]")
+    kinds = output_kinds()
     for out_name in sorted(raw_out):
         options = raw_out[out_name]
         if not isinstance(options, dict):
             raise err(f"outputs.{out_name}", "expected a table")
+        if out_name not in kinds:
+            raise err(f"outputs.{out_name}", f"unknown output {out_name!r}; expected one of {', '.join(sorted(kinds))}")
+        kind = kinds[out_name]
+        for key in options:
+            if key not in kind.keys:
+                raise err(f"outputs.{out_name}.{key}", f"unknown key; outputs.{out_name} accepts: "
+                          f"{', '.join(sorted(kind.keys))}")
         try:
-            func = get_output(out_name)
-        except UnknownFormatError as exc:
+            settings = kind.parse(options)
+        except OptionError as exc:
+            raise err(f"outputs.{out_name}.{exc.option}", exc.reason) from None
+        except VoxfabError as exc:
             raise err(f"outputs.{out_name}", str(exc)) from None
-        # source and base_dir come from the build itself (see _build.SOURCE_KEYS), never from keys
-        _check_options(func, options, skip={"name", "seed", "source", "base_dir"}, where=f"outputs.{out_name}",
-                       err=err)
-        outputs.append(OutputSpec(out_name, tuple(sorted(options.items()))))
+        outputs.append(OutputSpec(out_name, tuple(sorted(options.items())), settings))
 
     return Recipe(
         name=name,

@@ -187,7 +187,6 @@ def _one(job: Job, name: str, paths: list[Path]) -> None:
 def make_files(job: Job, grid: np.ndarray, *, artefact: str, title: str, pitch: float, net: Any,
                options: dict[str, Any], tube: tuple[dict[str, Any], Path] | None = None) -> None:
     """Write one artefact of the shape into the job's folder through the CLI's library functions."""
-    from voxfab.fabricate import get_output
     from voxfab.shape import VoxelShape
 
     shape = VoxelShape(grid, pitch)
@@ -195,8 +194,11 @@ def make_files(job: Job, grid: np.ndarray, *, artefact: str, title: str, pitch: 
     stem = title.replace(" ", "_")
     job.step(0, 1, f"making {artefact}")
     if artefact in ("mesh.3mf", "mesh.stl"):
+        from voxfab.fabricate.mesh import MeshOptions, fabricate_mesh
+
         fmt = artefact.split(".")[1]
-        get_output("mesh")(shape, out, name=title, seed=0, format=fmt)
+        made = fabricate_mesh(shape, MeshOptions(), out / f"mesh.{fmt}", name=title)
+        job.result["warnings"] = list(made.warnings)
         _one(job, f"{stem}.{fmt}", [out / f"mesh.{fmt}"])
     elif artefact.startswith("net."):
         from voxfab.fabricate import netdraw
@@ -228,9 +230,12 @@ def make_files(job: Job, grid: np.ndarray, *, artefact: str, title: str, pitch: 
             job.result["report"] = [line for line in lines if not line.startswith("wrote ")]
             _one(job, target.name, written)
     elif artefact == "plates.zip":
-        thickness = options.get("thickness", 3.0)
-        get_output("slices")(shape, out, name=title, seed=0, thickness=thickness,
-                             sheet=options.get("plate_sheet", "600x400"))
+        from voxfab.fabricate.plates import PlateOptions, fabricate_plates
+
+        plate_options = PlateOptions(thickness=options.get("thickness", 3.0),
+                                     sheet=options.get("plate_sheet", "600x400"))
+        made = fabricate_plates(shape, plate_options, out / "slices", name=title)
+        job.result["warnings"] = list(made.warnings)
         files = [p for p in sorted((out / "slices").rglob("*")) if p.is_file()]
         job.files.append((f"{stem}-plates.zip", _zip(out, files, out / f"{stem}-plates.zip")))
     elif artefact in ("triptych.png", "triptych.pdf"):

@@ -21,10 +21,11 @@ from typing import TYPE_CHECKING, Any, Literal
 from voxfab.drawing import LayerStyle, LineStyle, parse_colors
 
 # Light imports only: the recipe loader resolves the hints of recipe_output at runtime.
-from voxfab.fabricate._registry import OutputFile
+from voxfab.fabricate._outputs import OutputFile
 from voxfab.shape import VoxelShape
 from voxfab.unfold import Net
 
+from ._net_options import NetOptions
 from ._options import SHEETS, DrawingOptions, parse_sheet
 
 if TYPE_CHECKING:
@@ -36,6 +37,7 @@ __all__ = [
     "DrawingOptions",
     "LayerStyle",
     "LineStyle",
+    "NetOptions",
     "add_drawing_arguments",
     "draw_net",
     "drawing_formats",

@@ -18,6 +18,9 @@ SHEETS: dict[str, tuple[float, float]] = {
     "Letter": (215.9, 279.4),
 }
 
+#: Largest sheet side accepted, mm (the largest laser beds and cutting services stay under 3 m).
+MAX_SHEET = 5000.0
+
 
 class Perforate(Enum):
     """Which fold type becomes short through-cuts on the CUT layer."""
@@ -38,6 +41,8 @@ def parse_sheet(spec: str) -> tuple[float, float]:
     w, h = float(m.group(1)), float(m.group(2))
     if w <= 0 or h <= 0:
         raise InvalidShapeError(f"sheet: sides must be positive, got {spec!r}")
+    if max(w, h) > MAX_SHEET:
+        raise InvalidShapeError(f"sheet: expected sides of at most {MAX_SHEET:g} mm, got {spec[:80]!r}")
     return w, h
 
 

@@ -124,3 +124,30 @@ def make_report(stack: PlateStack, sheets: tuple[Sheet, ...], *, kerf: float = 0
         thin=stack.thin,
         undowelled=stack.undowelled,
     )
+
+
+def _ids(ids: tuple[str, ...], most: int = 6) -> str:
+    shown = ", ".join(ids[:most])
+    return shown + (f" and {len(ids) - most} more" if len(ids) > most else "")
+
+
+def plate_warnings(report: PlatesReport) -> list[str]:
+    """What a maker must know before cutting, one line each (empty when all is well)."""
+    out = []
+    if report.unsupported:
+        out.append(f"{len(report.unsupported)} loose island(s) touch no plate above or below: "
+                   f"{_ids(report.unsupported)}")
+    if report.dowel_diameter > 0 and report.undowelled:
+        out.append(f"{len(report.undowelled)} plate piece(s) without dowels (no room for a "
+                   f"{report.dowel_diameter:g} mm hole): {_ids(report.undowelled)}")
+    elif report.dowel_diameter == 0 and report.layers > 1:
+        out.append("plates without dowels (dowel = 0): align the stack by the scored outlines")
+    if abs(report.drift) >= report.thickness / 2:
+        out.append(f"the stack is {report.stack_height:g} mm tall, {report.drift:+g} mm from the object's "
+                   f"{report.shape_height:g} mm")
+    if report.thin:
+        out.append(f"{len(report.thin)} piece(s) narrower than {report.min_width:g} mm somewhere: "
+                   f"{_ids(report.thin)}")
+    if report.labels_clipped:
+        out.append(f"{report.labels_clipped} plate label(s) clipped: the plate is too small for the text")
+    return out
