@@ -297,7 +297,6 @@ def load_recipe(path: PathLike, *, allow_outside: bool = False) -> Recipe:
     RecipeError
         Naming the file, line and key path of the first problem.
     """
-    from voxfab.errors import VoxfabError
     from voxfab.shape import ShapeOptions
 
     from ._outputs import outputs as output_kinds
