@@ -218,7 +218,7 @@ def recipe_trees(draw: st.DrawFn, *, with_outputs: bool = True, strict: bool = F
     extreme), so most recipes reach the makers.
     """
     from voxfab.digitize import available_makers, get_maker
-    from voxfab.fabricate import available_outputs, get_output
+    from voxfab.recipe._outputs import outputs as output_kinds
     from voxfab.recipe._schema import _OPERATIONS, keyword_options
 
     def source() -> dict:
@@ -261,12 +261,13 @@ def recipe_trees(draw: st.DrawFn, *, with_outputs: bool = True, strict: bool = F
         data["operations"] = ops
     if with_outputs and draw(st.integers(0, 2)) == 0:
         outputs = {}
-        for name in draw(st.lists(st.sampled_from([*available_outputs(), "hologram"]), max_size=2, unique=True)):
+        kinds = output_kinds()
+        any_value = st.one_of(value_for(float), value_for(int), value_for(str), value_for(bool))
+        for name in draw(st.lists(st.sampled_from([*sorted(kinds), "hologram"]), max_size=2, unique=True)):
             table = {}
-            if name != "hologram":
-                for key, (tp, _) in keyword_options(get_output(name), skip={"name", "seed"}).items():
-                    if draw(st.integers(0, 3)) == 0:
-                        table[key] = draw(value_for(tp))
+            for key in kinds[name].keys if name in kinds else ():
+                if draw(st.integers(0, 3)) == 0:
+                    table[key] = draw(any_value)
             outputs[name] = table
         data["outputs"] = outputs
     if not strict and draw(st.integers(0, 19)) == 0:
