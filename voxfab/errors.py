@@ -103,8 +103,11 @@ class LimitError(VoxfabError, ValueError):
     """Input over one of voxfab's documented size limits (see ``voxfab._shared.limits``)."""
 
 
-class OutputError(VoxfabError, OSError):
-    """An output that cannot be written where it was asked (no such folder, not a folder...)."""
+class OutputError(InvalidShapeError):
+    """An output that cannot be written where it was asked (no such folder, not a folder...).
+
+    An output path is a parameter: its exit status is that of :class:`InvalidShapeError`.
+    """
 
 
 class VoxfabWarning(UserWarning):
@@ -132,5 +135,4 @@ EXIT_CODES: dict[type[VoxfabError], int] = {
     MissingDependencyError: 9,
     FabricationError: 10,
     LimitError: 11,
-    OutputError: 12,
 }

@@ -55,8 +55,6 @@ __all__ = [
 
 # ".NAME.PID-RANDOM.tmp": the process id tells a live run's temporary from a dead one's.
 _TEMPORARY = re.compile(r"^\..+\.(?P<pid>\d+)-[A-Za-z0-9_]+\.tmp$")
-# Temporary folders this process is assembling: files may be written in new subfolders there.
-_ASSEMBLING: set[str] = set()
 
 
 @dataclasses.dataclass
@@ -139,41 +137,28 @@ def sweep(folder: PathLike) -> list[Path]:
     return removed
 
 
-def _inside_assembly(folder: Path) -> bool:
-    here = os.path.abspath(folder)
-    return any(here == d or here.startswith(d + os.sep) for d in _ASSEMBLING)
-
-
-def _output_folder(target: Path, *, parents: bool = False, create: bool = True) -> Path:
-    """The folder ``target`` goes in; a missing one is created when allowed, else refused.
-
-    Inside a folder being assembled any missing folder is made.  Elsewhere,
-    ``parents=False`` refuses a missing folder, and ``parents=True`` makes it one
-    level below an existing folder (the output folder a command makes itself).
-    """
-    parent = target.parent
-    if parent.is_dir():
-        return parent
-    if parent.exists():
-        raise OutputError(f"{target}: {parent} is not a folder")
-    if _inside_assembly(parent) or (parents and parent.parent.is_dir()):
-        if create:
-            try:
-                parent.mkdir(parents=True, exist_ok=True)
-            except OSError as exc:
-                raise OutputError(f"{target}: cannot create the folder {parent}: {exc.strerror or exc}") from None
-        return parent
-    raise OutputError(f"{target}: the folder {parent} does not exist")
+def _make_folder(target: Path) -> Path:
+    """The folder ``target`` goes in, created when missing (library callers may name new folders)."""
+    try:
+        target.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise OutputError(f"{target}: cannot create its folder: {exc.strerror or exc}") from None
+    return target.parent
 
 
 def check_output(path: PathLike, *, folder: bool = False, parents: bool = False, marker: str | None = None) -> None:
-    """Refuse, before any work, an output :func:`atomic_open` or :func:`atomic_dir` would refuse.
+    """Refuse an output the user named, before any work: its folder must exist.
 
     Parameters
     ----------
     path : path
         The output file (or folder, with ``folder=True``).
-    folder, parents, marker
+    folder : bool
+        ``path`` names a folder (written with :func:`atomic_dir`), not a file.
+    parents : bool
+        The command makes the folder ``path`` goes in itself, one level below an
+        existing folder (``build -o DIR`` makes ``DIR``).
+    marker : str, optional
         As for :func:`atomic_dir`.
 
     Raises
@@ -183,7 +168,12 @@ def check_output(path: PathLike, *, folder: bool = False, parents: bool = False,
         the reverse), or it is a folder of someone's files.
     """
     target = Path(path)
-    _output_folder(target, parents=parents, create=False)
+    parent = target.parent
+    if parent.exists() and not parent.is_dir():
+        raise OutputError(f"{target}: {parent} is not a folder")
+    # With parents=True the command makes its output folder itself, one level down.
+    if not parent.is_dir() and not (parents and parent.parent.is_dir()):
+        raise OutputError(f"{target}: the folder {parent} does not exist")
     if folder:
         if target.exists() and not target.is_dir():
             raise OutputError(f"{target}: exists and is not a folder")
@@ -213,9 +203,7 @@ def atomic_open(path: PathLike, mode: str = "wb") -> Iterator[IO]:
     target = Path(path)
     if target.is_dir():
         raise OutputError(f"{target}: is a folder, expected a file name")
-    # Library callers may name new folders; commands check the user's outputs first.
-    target.parent.mkdir(parents=True, exist_ok=True)
-    folder = _output_folder(target)
+    folder = _make_folder(target)
     sweep(folder)
     try:
         fd, tmp = tempfile.mkstemp(prefix=_prefix(target), suffix=".tmp", dir=folder)
@@ -305,16 +293,15 @@ def atomic_files(*families: PathLike) -> Iterator[FileSet]:
 
 
 @contextlib.contextmanager
-def atomic_dir(path: PathLike, *, parents: bool = False, marker: str | None = None) -> Iterator[Path]:
+def atomic_dir(path: PathLike, *, marker: str | None = None) -> Iterator[Path]:
     """Yield a temporary folder that replaces ``path`` only on success.
 
     Parameters
     ----------
     path : path
-        The folder to make.
-    parents : bool
-        Create the folder ``path`` goes in when missing (one level only), for a
-        command whose ``-o DIR`` holds its output folders.
+        The folder to make.  Missing folders above it are created, as a library
+        caller asks; commands check the folder the user names with
+        :func:`check_output` first.
     marker : str, optional
         A file every output of this kind holds (``plates.json``).  An existing
         non-empty folder without it is refused rather than replaced: it is not an
@@ -323,18 +310,16 @@ def atomic_dir(path: PathLike, *, parents: bool = False, marker: str | None = No
     Raises
     ------
     OutputError
-        When ``path`` is a file, its folder does not exist, or it holds files
-        that are not an earlier output.
+        When ``path`` is a file, or holds files that are not an earlier output.
     """
     target = Path(path)
-    check_output(target, folder=True, parents=parents, marker=marker)
-    folder = _output_folder(target, parents=parents)
+    folder = _make_folder(target)
+    check_output(target, folder=True, marker=marker)
     sweep(folder)
     try:
         tmp = Path(tempfile.mkdtemp(prefix=_prefix(target), suffix=".tmp", dir=folder))
     except OSError as exc:
         raise OutputError(f"{target}: cannot create a folder: {exc.strerror or exc}") from None
-    _ASSEMBLING.add(os.path.abspath(tmp))
     try:
         yield tmp
         _publish(tmp, directory=True)
@@ -350,5 +335,3 @@ def atomic_dir(path: PathLike, *, parents: bool = False, marker: str | None = No
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)
         raise
-    finally:
-        _ASSEMBLING.discard(os.path.abspath(tmp))

@@ -96,7 +96,7 @@ def build(recipe: Recipe, outdir: PathLike) -> Path:
     target = Path(outdir) / recipe.name
     check_output(target, folder=True, parents=True, marker="manifest.json")  # before the work
     shape = make_shape(recipe)
-    with atomic_dir(target, parents=True, marker="manifest.json") as tmp:
+    with atomic_dir(target, marker="manifest.json") as tmp:
         io.write(shape.grid, tmp / "shape.npy")
         io.write(shape.grid, tmp / "shape.vox")
         files = [
