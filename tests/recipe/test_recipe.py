@@ -168,3 +168,27 @@ def test_check_catches_what_the_build_would_reject(tmp_path, table, message):
     body = (top if not rest else "") + '[source]\nfile = "x.npy"\n' + ("[" + rest if rest else "") + "\n"
     with pytest.raises(RecipeError, match=message):
         load_recipe(write(tmp_path, body))
+
+
+def test_net_faces_default_to_the_shape_pitch(tmp_path):
+    """One scale: without face_size, the paper faces are the print's voxels."""
+    import ezdxf
+
+    np.save(tmp_path / "box.npy", examples.box(2, 3, 4))
+    r = load_recipe(write(tmp_path, 'pitch = 7.0\n[source]\nfile = "box.npy"\n[outputs.net]\nformats = ["dxf"]\n'
+                                    'sheet = "A3"\n[outputs.mesh]\n'))
+    folder = build(r, tmp_path / "out")
+    folds = ezdxf.readfile(folder / "net.dxf").modelspace().query('LINE[layer=="MOUNTAIN" | layer=="VALLEY"]')
+    xs = sorted({round(e.dxf.start.x, 6) for e in folds if abs(e.dxf.end.x - e.dxf.start.x) < 1e-9})
+    assert min(np.diff(xs)) == pytest.approx(7.0)  # folds lie on the face lattice
+    assert json.loads((folder / "mesh.json").read_text())["size_mm"] == [14.0, 21.0, 28.0]
+
+
+def test_a_net_split_over_sheets_is_a_warning():
+    from voxfab.fabricate import OutputFile
+    from voxfab.recipe._outputs import _net_warnings
+
+    one = [OutputFile("net.json", "x"), OutputFile("net.svg", "x"), OutputFile("net.dxf", "x")]
+    two = [OutputFile(f"net-{i}.{e}", "x") for i in (1, 2) for e in ("svg", "dxf")]
+    assert _net_warnings(one) == [] and _net_warnings(two) == [
+        "the net is split over 2 sheets; glue them along the numbered seams"]

@@ -8,7 +8,9 @@ A mesh is voxelized so that its longest side spans ``resolution`` voxels:
    the three answers, so a hole in a mesh that is not watertight, or a ray grazing
    an edge, spoils at most one of three votes;
 3. enclosed cavities are filled (the shape is solid) and only the largest
-   6-connected piece is kept; the notes say what was dropped and filled.
+   6-connected piece is kept; the notes say what was dropped and filled;
+4. when stray pieces were dropped, the mesh parts of the kept piece are
+   voxelized again, so that the kept piece spans ``resolution`` voxels.
 
 ``pitch`` is the voxel size in the mesh's units (millimetres for STL and 3MF as
 usually written).  trimesh is imported only when a mesh is read.
@@ -182,31 +184,92 @@ def mesh_grid(
     InvalidShapeError
         When no voxel centre lies inside the mesh.
     """
-    from voxfab.shape import cavity_count, crop, fill_cavities, label_components
-
-    raw, pitch, _ = voxelize(vertices, faces, resolution=resolution)
+    raw, pitch, origin = voxelize(vertices, faces, resolution=resolution)
     if not raw.any():
         raise InvalidShapeError(
             f"{name}: no voxel centre lies inside the mesh at resolution {resolution} "
             "(is it a closed solid? try a higher --resolution)"
         )
     notes = [f"voxelized at {resolution} voxels along the longest side ({pitch:.6g} mesh units per voxel)"]
+    solid, kept = _solid_piece(raw, notes)
+    if kept is not None and max(kept[1] - kept[0]) < resolution:
+        # Stray pieces set the scale of the first pass; voxelize the kept piece's own mesh
+        # parts again, so it spans the requested resolution as a whole mesh would.
+        lo_mm, hi_mm = origin + kept[0] * pitch, origin + kept[1] * pitch
+        part = _faces_within(vertices, faces, lo_mm, hi_mm)
+        if part is not None:
+            raw, pitch, origin = voxelize(vertices, part, resolution=resolution)
+            notes.append(
+                f"voxelized the kept piece again at {resolution} voxels along its longest side "
+                f"({pitch:.6g} mesh units per voxel)"
+            )
+            solid, _ = _solid_piece(raw, notes)
+    from voxfab.shape import crop
+
+    return crop(solid), pitch, notes
+
+
+def _solid_piece(raw: BoolGrid, notes: list[str]) -> tuple[BoolGrid, tuple[np.ndarray, np.ndarray] | None]:
+    """Fill cavities and keep the largest 6-connected piece, noting what changed.
+
+    Returns
+    -------
+    solid : bool ndarray
+    kept : (lo, hi) voxel index bounds of the kept piece (hi exclusive), or None when nothing was dropped
+    """
+    from voxfab.shape import cavity_count, fill_cavities, label_components
+
     solid = fill_cavities(raw)
     added = int(np.count_nonzero(solid)) - int(np.count_nonzero(raw))
     if added:
         cavities = cavity_count(raw)
         notes.append(f"filled {cavities} enclosed cavit{'y' if cavities == 1 else 'ies'} ({added} voxels)")
     labels, count = label_components(solid)
-    if count > 1:
-        sizes = np.bincount(labels.ravel())[1:]
-        keep = int(np.argmax(sizes))
-        dropped = int(sizes.sum() - sizes[keep])
-        solid = labels == keep + 1
-        notes.append(
-            f"kept the largest 6-connected piece ({int(sizes[keep])} voxels); dropped "
-            f"{count - 1} other piece{'s' if count > 2 else ''} ({dropped} voxels)"
-        )
-    return crop(solid), pitch, notes
+    if count <= 1:
+        return solid, None
+    sizes = np.bincount(labels.ravel())[1:]
+    keep = int(np.argmax(sizes))
+    dropped = int(sizes.sum() - sizes[keep])
+    solid = labels == keep + 1
+    notes.append(
+        f"kept the largest 6-connected piece ({int(sizes[keep])} voxels); dropped "
+        f"{count - 1} other piece{'s' if count > 2 else ''} ({dropped} voxels)"
+    )
+    idx = np.argwhere(solid)
+    return solid, (idx.min(axis=0), idx.max(axis=0) + 1)
+
+
+def _faces_within(
+    vertices: npt.ArrayLike, faces: npt.ArrayLike, lo: npt.NDArray[np.float64], hi: npt.NDArray[np.float64]
+) -> npt.NDArray[np.int64] | None:
+    """The triangles of the mesh parts whose bounding box meets the box ``lo..hi``.
+
+    Mesh parts are the triangles connected through shared vertex positions.  Returns
+    None when that is every triangle (nothing to leave out).
+    """
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    vert = np.asarray(vertices, dtype=np.float64)
+    tri = np.asarray(faces, dtype=np.int64)
+    # STL stores each corner apart: weld by position before following the connections.
+    _, welded = np.unique(vert, axis=0, return_inverse=True)
+    t = welded.reshape(-1)[tri]
+    n = int(t.max()) + 1
+    edges = coo_matrix((np.ones(2 * len(t)), (np.r_[t[:, 0], t[:, 1]], np.r_[t[:, 1], t[:, 2]])), shape=(n, n))
+    _, comp = connected_components(edges, directed=False)
+    face_comp = comp[t[:, 0]]
+    corners = vert[tri]
+    n_comp = int(face_comp.max()) + 1
+    cmin = np.full((n_comp, 3), np.inf)
+    cmax = np.full((n_comp, 3), -np.inf)
+    np.minimum.at(cmin, face_comp, corners.min(axis=1))
+    np.maximum.at(cmax, face_comp, corners.max(axis=1))
+    meets = np.all((cmin <= hi) & (cmax >= lo), axis=1)
+    chosen = meets[face_comp]
+    if chosen.all() or not chosen.any():
+        return None
+    return tri[chosen]
 
 
 def check_mesh_size(path: PathLike, file_type: str) -> None:

@@ -118,13 +118,27 @@ def _run_net(shape: VoxelShape, settings: NetSettings, outdir: Path, *, name: st
 
     del recipe
     n, d = settings.net, settings.drawing
+    if n.face_size is None:
+        # One scale for the whole object: the paper faces are the print's voxels unless the
+        # recipe gives another face size.
+        d = dataclasses.replace(d, pitch=shape.pitch)
     files = recipe_output(
         shape, outdir, name=name, seed=seed, formats=list(n.formats), sheet=d.sheet, pitch=d.pitch, fit=n.fit,
         margin=d.margin, tab_width=d.tab_width, tab_angle=d.tab_angle, label_height=d.label_height,
         grid_lines=d.grid_lines, perforate=d.perforate, dxf_version=d.dxf_version, colors=d.colors,
         fill=n.fill, timeout=n.timeout,
     )
-    return Artefact(tuple(files))
+    return Artefact(tuple(files), tuple(_net_warnings(files)))
+
+
+def _net_warnings(files: list[OutputFile]) -> list[str]:
+    """A net drawn over several sheets is a split a maker must know about."""
+    import re
+
+    sheets = {m.group(1) for f in files if (m := re.fullmatch(r"net-(\d+)\.(svg|dxf)", f.path))}
+    if len(sheets) > 1:
+        return [f"the net is split over {len(sheets)} sheets; glue them along the numbered seams"]
+    return []
 
 
 # ---- animation ----------------------------------------------------------------------------------

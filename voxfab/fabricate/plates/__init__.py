@@ -150,6 +150,7 @@ def plates_json(result: Slices, *, name: str = "") -> dict:
             "number": p.number,
             "label": p.label.text,
             "layer": p.layer,
+            "voxel_layer": result.stack.sources[p.layer - 1],
             "piece": p.piece,
             "copy": p.copy,
             "z": _r(p.z),
