@@ -288,6 +288,7 @@ async function openShape(name) {
 const marker = new NetMarker($('#net-canvas'), {onChange: () => {
   const c = marker.constraints();
   $('#marks-count').textContent = `${c.cut.length} cut, ${c.keep.length} kept`;
+  $('#marks-count').dataset.constraints = JSON.stringify(c);
 }});
 
 function netNote() {
@@ -311,6 +312,9 @@ async function gallery(withMarks) {
     const s = await waitJob(job, progress);
     const r = s.result;
     state.gallery = {job, nets: r.nets}; state.chosen = null;
+    // a new gallery: nothing chosen yet; the marks stay (they name faces, not a net)
+    $('#net-chosen-label').textContent = ''; delete $('#net-chosen-label').dataset.index;
+    marker.setLayout(null);
     const secs = ((performance.now() - t0) / 1000).toFixed(1);
     $('#net-summary').textContent = `${r.found} of ${r.asked} nets in ${secs} s (search ${r.seconds} s), each different once cut out.`;
     $('#net-summary').dataset.found = String(r.found); $('#net-summary').dataset.seconds = secs;
