@@ -100,13 +100,15 @@ def _drawing_formats(drawings: list[Path]) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Search, validate and write the nets."""
-    from voxfab._shared.atomic import write_text
+    from voxfab._shared.atomic import atomic_files, check_output, write_text
     from voxfab.fabricate import netdraw
     from voxfab.shape import fill_cavities
     from voxfab.unfold import unfold, unfold_many, validate
 
     search = options_from_args(netdraw.NetOptions, args)
     outputs = [Path(p) for p in args.output]
+    for p in outputs:
+        check_output(p)  # before the search, which may take minutes
     drawings = [p for p in outputs if p.suffix.lower() != ".json"]
     _drawing_formats(drawings)
     if search.count > 1 and search.pieces != "one":
@@ -139,28 +141,28 @@ def run(args: argparse.Namespace) -> int:
         results = [found if isinstance(found, list) else [found]]
     grid = fill_cavities(shape.grid) if search.fill else shape.grid
     title = name or Path(args.shape).stem
-    written, summary, warnings = [], [], []
-    for t, pieces in enumerate(results):
-        validate(grid, pieces if len(pieces) > 1 else pieces[0], constraints=constraints)
-        tag = str(t + 1) if len(results) > 1 else ""
-        record = {"seed": pieces[0].seed, "faces": sum(n.face_count for n in pieces), "pieces": len(pieces),
-                  "seams_without_tab_room": sum(n.seams_without_tab_room for n in pieces)}
-        for path in outputs:
-            target = _named(path, tag)
-            if path in drawings:
-                result = netdraw.write_net_drawing(grid, pieces, target, drawing, title=title)
-                for line in result.report:
-                    print(f"voxfab: {target.name}: {line}", file=sys.stderr)
-                written += result.files
-                record.update(face_size=result.face_size, fill=[round(f, 4) for f in result.fill])
-                # Every drawing of one net says the same: once per net.
-                warnings += [w for w in (f"net {tag}: {x}" if tag else x for x in result.warnings)
-                             if w not in warnings]
-                continue
-            for q, net in enumerate(pieces):
-                piece = _named(target, f"piece{q + 1}" if len(pieces) > 1 else "")
-                write_text(piece, net.to_json())
-                written.append(str(piece))
-        summary.append(record)
+    summary, warnings = [], []
+    # Every file is published at the end, replacing the whole earlier set (no stale t-3.svg).
+    with atomic_files(*outputs) as fileset:
+        for t, pieces in enumerate(results):
+            validate(grid, pieces if len(pieces) > 1 else pieces[0], constraints=constraints)
+            tag = str(t + 1) if len(results) > 1 else ""
+            record = {"seed": pieces[0].seed, "faces": sum(n.face_count for n in pieces), "pieces": len(pieces),
+                      "seams_without_tab_room": sum(n.seams_without_tab_room for n in pieces)}
+            for path in outputs:
+                target = _named(path, tag)
+                if path in drawings:
+                    result = netdraw.write_net_drawing(grid, pieces, target, drawing, title=title)
+                    for line in result.report:
+                        print(f"voxfab: {target.name}: {line}", file=sys.stderr)
+                    record.update(face_size=result.face_size, fill=[round(f, 4) for f in result.fill])
+                    # Every drawing of one net says the same: once per net.
+                    warnings += [w for w in (f"net {tag}: {x}" if tag else x for x in result.warnings)
+                                 if w not in warnings]
+                    continue
+                for q, net in enumerate(pieces):
+                    write_text(_named(target, f"piece{q + 1}" if len(pieces) > 1 else ""), net.to_json())
+            summary.append(record)
+    written = [str(p) for p in fileset.written]
     print_json({"written": written, "nets": summary, "warnings": warnings})
     return print_warnings(warnings, strict=args.strict)
