@@ -31,8 +31,8 @@ formats = ["svg"]
 """
 
 
-def _batch(repo: Path, outputs: Path, out: Path, workers: int) -> tuple[float, int, float]:
-    """Run one batch; return (seconds, shapes built, peak memory MB of the busiest worker)."""
+def _batch(repo: Path, outputs: Path, out: Path, workers: int) -> tuple[float, int, float, float]:
+    """Run one batch; return (seconds, shapes built, peak memory MB of the busiest worker, task seconds)."""
     from distributed import LocalCluster
 
     import voxfab.batch._run as run
@@ -63,7 +63,11 @@ def _batch(repo: Path, outputs: Path, out: Path, workers: int) -> tuple[float, i
     finally:
         stop.set()
         run._connect = connect
-    return report.seconds, report.built, max(peaks.values(), default=0.0)
+    import json
+
+    tasks = json.loads((out / "batch.json").read_text())["shapes"].values()
+    busy = sum(t["seconds"] for t in tasks)
+    return report.seconds, report.built, max(peaks.values(), default=0.0), busy
 
 
 def main() -> None:
@@ -87,9 +91,11 @@ def main() -> None:
             print(f"explore: {args.shapes} shapes in {time.perf_counter() - t:.2f} s")
         rates = {}
         for workers in (1, 2):
-            seconds, built, peak = _batch(root / "r.sqlite", outputs, root / f"out{workers}", workers)
+            seconds, built, peak, busy = _batch(root / "r.sqlite", outputs, root / f"out{workers}", workers)
             rates[workers] = 60.0 * built / seconds
+            # Task seconds over wall seconds: how many builds ran at once on average.
             print(f"{workers} worker(s): {built} shapes in {seconds:.1f} s = {rates[workers]:.1f} shapes/min; "
+                  f"{busy / built:.2f} s per task; {busy / seconds:.2f} tasks at once; "
                   f"peak worker memory {peak:.0f} MB")
         print(f"scaling 2 workers / 1 worker: {rates[2] / rates[1]:.2f} (2 cores, shared with other work)")
 

@@ -37,6 +37,7 @@ def _closed_port() -> int:
         (["--workers", "0"], "--workers: expected at least 1"),
         (["-o", "{root}/a_file"], "exists and is not a folder"),
         (["--scheduler", "tcp://127.0.0.1:{port}", "--connect-timeout", "2"], "--scheduler: cannot reach"),
+        (["--scheduler", "nonsense", "--connect-timeout", "2"], "missing port number"),
     ],
 )
 def test_batch_errors(setup: Path, args: list[str], message: str) -> None:

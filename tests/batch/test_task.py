@@ -4,8 +4,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -14,6 +12,7 @@ from _batch_fixtures import OUTPUTS, column, edge_contact, make_repo, write_outp
 
 from voxfab import io
 from voxfab.batch import BatchTask, build_task, load_outputs, parse_name_range, recipe_text, select_names
+from voxfab.cli import main
 from voxfab.errors import RecipeError, RepositoryError
 from voxfab.repo import Repository, encode_bits
 
@@ -38,9 +37,7 @@ def test_task_folder_equals_voxfab_build_of_the_same_recipe(tmp_path: Path) -> N
     hand.mkdir()
     io.write(grid, hand / "00027.001.npy")
     (hand / "00027.001.toml").write_text(OUTPUTS + '\n[source]\nfile = "00027.001.npy"\n')
-    r = subprocess.run([sys.executable, "-m", "voxfab", "build", str(hand / "00027.001.toml"), "-o",
-                        str(tmp_path / "built")], capture_output=True, text=True)
-    assert r.returncode == 0, r.stderr
+    assert main(["build", str(hand / "00027.001.toml"), "-o", str(tmp_path / "built")]) == 0
     assert _digest(tmp_path / "batch" / "00027.001") == _digest(tmp_path / "built" / "00027.001")
     manifest = json.loads((tmp_path / "batch" / "00027.001" / "manifest.json").read_text())
     assert manifest["shape"]["volume"] == 27 and manifest["pitch_mm"] == 2.0 and manifest["seed"] == 4

@@ -80,13 +80,16 @@ def test_trimesh_reads_the_same_split_mesh(tmp_path, split_pair, ext):
     assert n_vert == len(split_pair.vertices)  # split vertices were not merged
 
 
-def test_glb_scene_is_in_metres(tmp_path):
+def test_glb_scene_is_in_metres_and_y_up(tmp_path):
     trimesh = pytest.importorskip("trimesh")
     m = build_mesh(examples.box(2, 3, 4), pitch=10.0).mesh
     path = tmp_path / "box.glb"
     write_mesh(path, m, name="box")
     scene = trimesh.load(path, process=False, force="scene")
-    assert np.allclose(scene.bounds, [[0, 0, 0], [0.02, 0.03, 0.04]])
+    # glTF is Y-up: the 40 mm height is along +Y, the 30 mm depth along -Z (towards the back)
+    assert np.allclose(scene.bounds, [[0, 0, -0.03], [0.02, 0.04, 0]])
+    mesh = scene.to_geometry() if hasattr(scene, "to_geometry") else scene.dump(concatenate=True)
+    assert mesh.is_watertight and mesh.volume == pytest.approx(0.02 * 0.03 * 0.04)  # winding kept: outward
 
 
 def test_unknown_extension_and_bad_files(tmp_path, split_pair):

@@ -111,17 +111,17 @@ RECIPES = sorted((__import__("pathlib").Path(__file__).resolve().parents[2] / "r
 @needs_prusa
 @pytest.mark.parametrize("recipe", RECIPES, ids=[p.stem for p in RECIPES])
 def test_every_shipped_recipe_mesh_passes_prusa_slicer(tmp_path, recipe):
-    from voxfab.fabricate.mesh import recipe_output
+    from voxfab.fabricate.mesh import MeshOptions, fabricate_mesh
     from voxfab.recipe import load_recipe, make_shape
 
     r = load_recipe(recipe)
     shape = make_shape(r)
-    options = {}
+    options = MeshOptions()
     for out in r.outputs:
         if out.name == "mesh":
-            options = dict(out.options)
-    files = recipe_output(shape, tmp_path, name=r.name, seed=r.seed, **options)
-    mesh_file = tmp_path / files[0].path
+            options = out.settings
+    made = fabricate_mesh(shape, options, tmp_path / f"mesh.{options.format}", name=r.name)
+    mesh_file = tmp_path / made.files[0].path
     info = _info(mesh_file)
     assert info["manifold"] == "yes"
     assert info["number_of_parts"] == "1"

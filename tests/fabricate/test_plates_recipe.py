@@ -3,27 +3,44 @@
 from __future__ import annotations
 
 import json
-import typing
 
 import ezdxf
 import pytest
 
-from voxfab.fabricate import get_output
-from voxfab.fabricate.plates import PlatesReport, make_slices, recipe_output
+from voxfab._shared.options import OptionError
+from voxfab.fabricate.plates import PlateOptions, PlatesReport, fabricate_plates, make_slices
 from voxfab.shape import VoxelShape, examples
 
 
-def test_recipe_output_signature_resolves() -> None:
-    assert get_output("slices") is recipe_output
-    hints = typing.get_type_hints(recipe_output)
-    assert hints["axis"] is str and hints["thickness"] is float and hints["step"] is bool
-    assert hints["sheet"] is str and hints["dowel"] is float and hints["kerf"] is float
+def recipe_output(shape, outdir, *, name, **options):
+    made = fabricate_plates(shape, PlateOptions(**options), outdir / "slices", name=name)
+    return [f"slices/{f.path}" for f in made.files]
+
+
+def test_options_refuse_meaningless_values_before_any_work() -> None:
+    for bad in ({"thickness": 0.0001}, {"dowel": 1000}, {"sheet": "1x1"}, {"sheet": "1e9x1e9"},
+                {"sheet": "big"}, {"axis": "w"}, {"kerf": -1}, {"margin": float("nan")}):
+        with pytest.raises(OptionError):
+            PlateOptions(**bad)
+
+
+def test_pipeline_refuses_a_file_and_a_foreign_folder(tmp_path) -> None:
+    from voxfab.errors import InvalidShapeError
+
+    shape = VoxelShape(examples.box(2, 2, 2), 3.0)
+    (tmp_path / "file.vox").write_bytes(b"x")
+    with pytest.raises(InvalidShapeError, match="not a folder"):
+        fabricate_plates(shape, PlateOptions(), tmp_path / "file.vox", name="b")
+    (tmp_path / "docs").mkdir()
+    (tmp_path / "docs" / "thesis.txt").write_text("keep me")
+    with pytest.raises(InvalidShapeError, match="holds other files"):
+        fabricate_plates(shape, PlateOptions(), tmp_path / "docs", name="b")
+    assert (tmp_path / "file.vox").read_bytes() == b"x"
 
 
 def test_recipe_output_writes_sheets_pdf_and_report(tmp_path) -> None:
     shape = VoxelShape(examples.tunnel_cube(9), 2.0)
-    files = recipe_output(shape, tmp_path, name="tunnel", seed=0, thickness=2.1, sheet="100x80", kerf=0.1)
-    paths = [f.path for f in files]
+    paths = recipe_output(shape, tmp_path, name="tunnel", thickness=2.1, sheet="100x80", kerf=0.1)
     assert all(p.startswith("slices/") for p in paths)
     for p in paths:
         assert (tmp_path / p).is_file()
@@ -43,7 +60,7 @@ def test_recipe_output_writes_sheets_pdf_and_report(tmp_path) -> None:
     assert not doc.audit().has_errors
     # same inputs, same bytes
     again = tmp_path / "again"
-    recipe_output(shape, again, name="tunnel", seed=0, thickness=2.1, sheet="100x80", kerf=0.1)
+    recipe_output(shape, again, name="tunnel", thickness=2.1, sheet="100x80", kerf=0.1)
     for p in paths:
         assert (again / p).read_bytes() == (tmp_path / p).read_bytes()
 

@@ -75,20 +75,52 @@ def test_every_piece_that_has_room_gets_a_dowel(vase_stack) -> None:
     assert vase_stack.undowelled == ()
 
 
-def test_thin_plates_multiply_layers_and_report_drift() -> None:
+def test_thin_plates_multiply_layers_and_keep_the_stack_as_tall_as_the_object() -> None:
     g = examples.box(3, 3, 4)
+    exact = make_plates(g, pitch=3.0, thickness=1.0)
+    assert exact.plates_per_layer == 3 and exact.drift == pytest.approx(0.0) and not exact.resampled
+    assert [p.label.text for p in exact.plates[:3]] == ["1-1.1", "1-1.2", "1-1.3"]
     stack = make_plates(g, pitch=3.0, thickness=1.1)
-    assert stack.plates_per_layer == 3
-    assert len(stack.plates) == 4 * 3
-    assert stack.drift == pytest.approx(4 * 3 * 1.1 - 4 * 3.0)
-    assert [p.z for p in stack.plates] == pytest.approx([i * 1.1 for i in range(12)])
-    assert [p.label.text for p in stack.plates[:3]] == ["1-1.1", "1-1.2", "1-1.3"]
+    # 12 mm of object in 1.1 mm plates: round(10.9) = 11 plates, 12.1 mm; each plate takes the voxel
+    # layer at its mid-height (0.55, 1.65, 2.75 | 3.85, 4.95 | 6.05, ... mm).
+    assert stack.counts == (3, 2, 3, 3) and stack.plates_per_layer == 0 and stack.resampled
+    assert len(stack.plates) == 11
+    assert stack.drift == pytest.approx(11 * 1.1 - 12.0) and abs(stack.drift) < 1.1 / 2
+    assert [p.z for p in stack.plates] == pytest.approx([i * 1.1 for i in range(11)])
+    assert [p.label.text for p in stack.plates[3:5]] == ["2-1.1", "2-1.2"]
     for p in stack.plates:
         assert p.polygon().contains(shapely.MultiLineString(list(p.label.strokes)))
         # plates under the layer's top one are hidden by an identical plate
         assert p.label.hidden or p.layer == 4
     thick = make_plates(g, pitch=3.0, thickness=3.2)
     assert thick.plates_per_layer == 1 and thick.drift == pytest.approx(4 * 0.2)
+
+
+@pytest.mark.parametrize(("layers", "pitch", "thickness"), [(25, 2.0, 3.0), (25, 3.0, 3.1), (7, 1.0, 0.3),
+                                                            (25, 2.5, 2.0), (1, 2.0, 3.0)])
+def test_resampled_stack_takes_the_layer_at_each_plate_mid_height(layers, pitch, thickness) -> None:
+    from voxfab.fabricate.plates._stack import layer_runs
+
+    runs = layer_runs(layers, pitch, thickness)
+    n = sum(c for _, c in runs)
+    assert abs(n * thickness - layers * pitch) <= thickness / 2 + 1e-9
+    taken = [k for k, c in runs for _ in range(c)]
+    mids = [(i + 0.5) * thickness for i in range(n)]
+    assert taken == [min(int(m // pitch), layers - 1) for m in mids]
+
+
+def test_queen_scale_stack_is_17_plates_of_3_mm() -> None:
+    """A 25-voxel shape at 2 mm in 3 mm plates: 17 plates, 51 mm (issue: not 25 plates, 75 mm)."""
+    g = np.zeros((3, 3, 25), bool)
+    g[1, 1, :] = True
+    g[:, :, ::2] = True
+    stack = make_plates(g, pitch=2.0, thickness=3.0)
+    assert len(stack.plates) == 17 and stack.height == pytest.approx(51.0) and stack.drift == pytest.approx(1.0)
+    assert stack.sources == (1, 3, 4, 6, 7, 9, 10, 12, 13, 15, 16, 18, 19, 21, 22, 24, 25)
+    # a plate takes its voxel layer's outline: the odd voxel layers (index 0, 2, ...) are the full 3x3 square
+    areas = [p.outline.area for p in stack.plates]
+    assert areas == [36.0 if (s - 1) % 2 == 0 else 4.0 for s in stack.sources]
+    assert [p.z for p in stack.plates] == pytest.approx([3.0 * i for i in range(17)])
 
 
 def test_labels_are_on_the_plate_and_hidden_by_the_next_one(vase_stack) -> None:

@@ -6,12 +6,22 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy import ndimage
 
 from voxfab.digitize import get_maker
 from voxfab.errors import InvalidShapeError
-from voxfab.generate import GENERATORS, MAKER_GENERATORS, candidate, growth, parse_volume_range, volume_bins
-from voxfab.shape import GRID_SIDE, well_formed_reasons
+from voxfab.generate import (
+    GENERATORS,
+    MAKER_GENERATORS,
+    candidate,
+    growth,
+    parse_volume_range,
+    symmetric_key,
+    volume_bins,
+)
+from voxfab.shape import GRID_SIDE, canonical_key, crop, symmetries, well_formed_reasons
 
 
 @pytest.mark.parametrize("volume", [25, 26, 100, 625, 3000])
@@ -98,3 +108,26 @@ def test_volume_bins_count_every_volume_in_round_ranges() -> None:
         assert n == sum(lo <= v <= hi for v in volumes)
     assert volume_bins([]) == []
     assert volume_bins([40]) == [(40, 40, 1)]
+
+
+@settings(max_examples=80)
+@given(st.tuples(st.integers(1, 6), st.integers(1, 6), st.integers(1, 6)).flatmap(
+    lambda s: st.lists(st.booleans(), min_size=s[0] * s[1] * s[2], max_size=s[0] * s[1] * s[2]).map(
+        lambda bits: np.array(bits, dtype=bool).reshape(s))))
+def test_compiled_symmetric_key_is_the_canonical_key(grid: np.ndarray) -> None:
+    if not grid.any():
+        return
+    for h in symmetries(grid, reflections=True)[::7]:
+        assert symmetric_key(crop(h)) == canonical_key(grid, symmetric=True)
+
+
+def test_compiled_symmetric_key_on_grown_and_symmetric_shapes() -> None:
+    grids = [crop(growth(s, 40 + 37 * s)) for s in range(30)] + [np.ones((3, 3, 25), bool), np.ones((5, 5, 5), bool)]
+    for g in grids:
+        keys = {symmetric_key(crop(h)) for h in symmetries(g, reflections=True)}
+        assert keys == {canonical_key(g, symmetric=True)}
+
+
+def test_growth_candidate_outside_the_grid_volumes() -> None:
+    with pytest.raises(InvalidShapeError, match="volume"):
+        candidate("growth", 1, 0, volume=(1, 20))

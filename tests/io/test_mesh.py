@@ -12,7 +12,7 @@ from voxfab import io
 from voxfab._shared.progress import Meter
 from voxfab.errors import FormatError, InvalidShapeError
 from voxfab.io.mesh import _crossings, mesh_grid, voxelize
-from voxfab.shape import component_count
+from voxfab.shape import component_count, well_formed_reasons
 
 MESH_FORMATS = ["stl", "obj", "ply", "3mf"]
 
@@ -149,9 +149,23 @@ def test_separate_pieces_are_dropped_with_a_note(tmp_path):
     trimesh.util.concatenate([big, small]).export(tmp_path / "two.stl")
     for name in ("two.3mf", "two.stl"):
         result = io.read(tmp_path / name)
-        assert result.pitch == pytest.approx(1.0)
-        assert result.grid.shape == (16, 10, 10) and result.grid.all(), name
         assert "kept the largest 6-connected piece (1600 voxels); dropped 1 other piece (64 voxels)" in result.notes
+        # The kept box is voxelized again on its own: 16 mm over 25 voxels, a well-formed shape.
+        assert result.pitch == pytest.approx(16 / 25)
+        assert result.grid.shape == (25, 16, 16) and result.grid.all(), name
+        assert well_formed_reasons(result.grid) == []
+        assert any("voxelized the kept piece again at 25 voxels" in n for n in result.notes)
+
+
+def test_a_stray_piece_does_not_shrink_a_curved_shape(tmp_path):
+    ball = trimesh.creation.icosphere(subdivisions=3, radius=10.0)
+    speck = trimesh.creation.box(extents=(1, 1, 1))
+    speck.apply_translation((30, 0, 0))  # far off: alone it would make the ball 13 voxels wide
+    trimesh.util.concatenate([ball, speck]).export(tmp_path / "ball.stl")
+    ball.export(tmp_path / "alone.stl")
+    with_speck, alone = io.read(tmp_path / "ball.stl"), io.read(tmp_path / "alone.stl")
+    assert np.array_equal(with_speck.grid, alone.grid) and with_speck.pitch == pytest.approx(alone.pitch)
+    assert max(with_speck.grid.shape) == 25 and well_formed_reasons(with_speck.grid) == []
 
 
 def test_enclosed_cavity_is_filled_with_a_note(tmp_path):

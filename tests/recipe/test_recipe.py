@@ -1,9 +1,11 @@
+import dataclasses
 import json
 import textwrap
 
 import numpy as np
 import pytest
 
+from voxfab._shared.options import Options, option
 from voxfab.errors import RecipeError
 from voxfab.recipe import build, load_recipe, make_shape
 from voxfab.shape import examples
@@ -87,50 +89,106 @@ def test_errors_name_the_file_line_and_key(tmp_path, body, message):
         load_recipe(write(tmp_path, body))
 
 
-def test_output_options_are_checked_against_the_output_signature(tmp_path, monkeypatch):
-    from pathlib import Path
-    from typing import Literal
+@dataclasses.dataclass(frozen=True)
+class _DemoOptions(Options):
+    size: float = option(1.0, help="a size", unit="mm", low=0.0, low_open=True, high=10.0)
+    mode: str = option("a", help="a mode", choices=("a", "b"))
+    views: tuple[str, ...] = option(("iso",), help="views", choices=("iso", "x"))
 
-    import voxfab.fabricate._registry as reg
 
-    def fake_output(shape, outdir: Path, *, name: str, seed: int, size: float = 1.0,
-                    mode: Literal["a", "b"] = "a", views: list[str] | None = None):
-        (outdir / "x.txt").write_text(f"{name} {seed} {size} {mode} {views}")
-        return [reg.OutputFile("x.txt", "a test file")]
+def _demo_kind(run):
+    from voxfab._shared.options import from_mapping, option_specs
+    from voxfab.recipe._outputs import OutputKind
 
-    import types
+    keys = tuple(s.name for s in option_specs(_DemoOptions))
+    return OutputKind("demo", keys, lambda table: from_mapping(_DemoOptions, table), run)
 
-    module = types.ModuleType("voxfab_test_output")
-    module.out = fake_output
-    monkeypatch.setitem(__import__("sys").modules, "voxfab_test_output", module)
-    monkeypatch.setitem(reg.OUTPUTS, "demo", "voxfab_test_output:out")
+
+def test_output_options_are_checked_against_the_options_dataclass(tmp_path, monkeypatch):
+    from voxfab.fabricate import Artefact, OutputFile
+    from voxfab.recipe import _outputs
+
+    def run(shape, o, outdir, *, name, seed, recipe):
+        (outdir / "x.txt").write_text(f"{name} {seed} {o.size} {o.mode} {list(o.views)}")
+        return Artefact((OutputFile("x.txt", "a test file"),), ("demo warning",))
+
+    monkeypatch.setitem(_outputs.outputs(), "demo", _demo_kind(run))
     np.save(tmp_path / "x.npy", examples.random_shape(1))
     ok = load_recipe(write(tmp_path, '[source]\nfile = "x.npy"\n[outputs.demo]\nsize = 3\nmode = "b"\nviews = ["iso"]\n'))
     folder = build(ok, tmp_path / "out")
-    assert (folder / "x.txt").read_text() == "r 0 3 b ['iso']"
-    with pytest.raises(RecipeError, match=r"r\.toml:4: outputs\.demo\.mode: expected 'a' or 'b'"):
+    assert (folder / "x.txt").read_text() == "r 0 3.0 b ['iso']"
+    assert json.loads((folder / "manifest.json").read_text())["warnings"] == ["demo: demo warning"]
+    with pytest.raises(RecipeError, match=r"r\.toml:4: outputs\.demo\.mode: unknown choice 'c'; expected one of a, b"):
         load_recipe(write(tmp_path, '[source]\nfile = "x.npy"\n[outputs.demo]\nmode = "c"\n'))
     with pytest.raises(RecipeError, match=r"outputs\.demo\.colour: unknown key; outputs\.demo accepts: mode, size, views"):
         load_recipe(write(tmp_path, '[source]\nfile = "x.npy"\n[outputs.demo]\ncolour = 1\n'))
+    with pytest.raises(RecipeError, match=r"r\.toml:4: outputs\.demo\.size: expected a positive number of mm up to 10, got 1e\+300"):
+        load_recipe(write(tmp_path, '[source]\nfile = "x.npy"\n[outputs.demo]\nsize = 1e300\n'))
 
 
 def test_failed_build_leaves_no_partial_folder(tmp_path, monkeypatch):
-    import voxfab.fabricate._registry as reg
+    from voxfab.recipe import _outputs
 
-    def failing(shape, outdir, *, name: str, seed: int):
+    def failing(shape, o, outdir, *, name, seed, recipe):
         (outdir / "half.bin").write_bytes(b"x")
         raise RecipeError("boom")
 
-    import sys
-    import types
-
-    module = types.ModuleType("voxfab_test_failing")
-    module.out = failing
-    monkeypatch.setitem(sys.modules, "voxfab_test_failing", module)
-    monkeypatch.setitem(reg.OUTPUTS, "failing", "voxfab_test_failing:out")
+    monkeypatch.setitem(_outputs.outputs(), "demo", _demo_kind(failing))
     np.save(tmp_path / "x.npy", examples.random_shape(1))
-    r = load_recipe(write(tmp_path, '[source]\nfile = "x.npy"\n[outputs.failing]\n'))
+    r = load_recipe(write(tmp_path, '[source]\nfile = "x.npy"\n[outputs.demo]\n'))
     with pytest.raises(RecipeError):
         build(r, tmp_path / "out")
     assert not (tmp_path / "out" / "r").exists()
     assert list((tmp_path / "out").iterdir()) == []
+
+
+@pytest.mark.parametrize(
+    ("table", "message"),
+    [
+        ('[outputs.net]\nsheet = "1x1"', r"outputs\.net\.sheet: 1x1 leaves no room"),
+        ('[outputs.net]\nsheet = "1e9x1e9"', r"outputs\.net\.sheet: expected .*at most 5000 mm"),
+        ('[outputs.net]\ntab_width = -3', r"outputs\.net\.tab_width: expected a positive number"),
+        ('[outputs.net]\ntimeout = 0', r"outputs\.net\.timeout: expected a positive number of s"),
+        ('[outputs.slices]\nsheet = "1x1"', r"outputs\.slices\.sheet: 1x1 leaves no room"),
+        ('[outputs.slices]\nthickness = 0.0001', r"outputs\.slices\.thickness: expected a number of mm from 0\.1"),
+        ('[outputs.slices]\ndowel = 1000', r"outputs\.slices\.dowel: expected a number of mm from 0 to 100, got 1000"),
+        ('[outputs.mesh]\nsize = 1e300', r"outputs\.mesh\.size: expected a positive number of mm up to 10000, got 1e\+300"),
+        ('[outputs.mesh]\nsize = nan', r"outputs\.mesh\.size: expected a positive number of mm .*got nan"),
+        ('[outputs.mesh]\nmagnet = "big"', r"outputs\.mesh\.magnet: expected DIAMETERxDEPTH"),
+        ('[outputs.pictures]\nsize = 0', r"outputs\.pictures\.size: expected an integer number of px from 16"),
+        ('[outputs.pictures]\nviews = ["top"]', r"outputs\.pictures\.views: unknown choice 'top'"),
+        ('[outputs.pictures]\ncolor = "' + "x" * 500 + '"', r"outputs\.pictures\.color: expected a colour name .*502 characters"),
+        ('pitch = 1e300\n', r"pitch: expected a positive number of mm up to 1000"),
+    ],
+)
+def test_check_catches_what_the_build_would_reject(tmp_path, table, message):
+    """`voxfab build --check` (load_recipe) refuses every value the build would refuse."""
+    np.save(tmp_path / "x.npy", examples.random_shape(1))
+    top, _, rest = table.partition("[")
+    body = (top if not rest else "") + '[source]\nfile = "x.npy"\n' + ("[" + rest if rest else "") + "\n"
+    with pytest.raises(RecipeError, match=message):
+        load_recipe(write(tmp_path, body))
+
+
+def test_net_faces_default_to_the_shape_pitch(tmp_path):
+    """One scale: without face_size, the paper faces are the print's voxels."""
+    import ezdxf
+
+    np.save(tmp_path / "box.npy", examples.box(2, 3, 4))
+    # 8 mm: the smallest whole face size with 3 mm glue tabs (7.5 mm)
+    r = load_recipe(write(tmp_path, 'pitch = 8.0\n[source]\nfile = "box.npy"\n[outputs.net]\nformats = ["dxf"]\n'
+                                    'sheet = "A3"\n[outputs.mesh]\n'))
+    folder = build(r, tmp_path / "out")
+    folds = ezdxf.readfile(folder / "net.dxf").modelspace().query('LINE[layer=="MOUNTAIN" | layer=="VALLEY"]')
+    xs = sorted({round(e.dxf.start.x, 6) for e in folds if abs(e.dxf.end.x - e.dxf.start.x) < 1e-9})
+    assert min(np.diff(xs)) == pytest.approx(8.0)  # folds lie on the face lattice
+    assert json.loads((folder / "mesh.json").read_text())["size_mm"] == [16.0, 24.0, 32.0]
+
+
+def test_a_net_split_into_pieces_is_a_warning(tmp_path):
+    np.save(tmp_path / "box.npy", examples.box(3, 3, 3))
+    r = load_recipe(write(tmp_path, '[source]\nfile = "box.npy"\n[outputs.net]\nformats = ["svg"]\nface_size = 40.0\n'
+                                    'sheet = "A5"\npieces = "auto"\ntimeout = 10.0\n'))
+    manifest = json.loads((build(r, tmp_path / "out") / "manifest.json").read_text())
+    assert any(w.startswith("net: net split into") for w in manifest["warnings"]), manifest["warnings"]
+    assert any(f["path"] == "net.sheet-2.svg" for f in manifest["files"])

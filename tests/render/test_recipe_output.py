@@ -1,19 +1,14 @@
-import typing
-
 import numpy as np
 import pytest
 from PIL import Image
 
-from voxfab.errors import RecipeError
-from voxfab.fabricate import get_output
-from voxfab.render import png_bytes, recipe_output, render, view_filename
+from voxfab._shared.options import OptionError
+from voxfab.render import PictureOptions, png_bytes, render, render_pictures, view_filename
 from voxfab.shape import VoxelShape, examples
 
 
-def test_signature_types_resolve_for_the_recipe_loader():
-    hints = typing.get_type_hints(recipe_output)
-    assert hints["size"] is int and hints["views"] == list[str] and hints["triptych"] is bool
-    assert get_output("pictures") is recipe_output
+def recipe_output(shape, folder, *, name, seed, **options):
+    return render_pictures(shape, PictureOptions(**options), folder, name=name, seed=seed).files
 
 
 def test_writes_views_slices_triptych_and_turntable(tmp_path):
@@ -45,9 +40,9 @@ def test_defaults_write_iso_and_triptych(tmp_path):
 
 @pytest.mark.parametrize(("options", "text"), [({"views": ["top"]}, "top"), ({"size": 5}, "size"),
                                                 ({"color": "nope"}, "color")])
-def test_bad_options_are_recipe_errors(tmp_path, options, text):
-    with pytest.raises(RecipeError, match=text):
-        recipe_output(VoxelShape(examples.ball(2)), tmp_path, name="b", seed=0, **options)
+def test_bad_options_are_refused(options, text):
+    with pytest.raises(OptionError, match=text):
+        PictureOptions(**options)
 
 
 def test_view_filenames():

@@ -15,8 +15,9 @@ __all__ = ["draw_thumbnails", "write_index", "SHEET_SHAPES", "INDEX_NAME"]
 INDEX_NAME = "index.html"
 #: Shapes per contact sheet; a bigger batch gets ``contact_sheet_2.png`` and so on.
 SHEET_SHAPES = 400
-#: Unfolding budget for a net thumbnail when the batch builds no net.
-_NET_TIMEOUT_S = 10.0
+#: Unfolding budget for a net thumbnail when the batch builds no net (the first call in a fresh
+#: process may also compile the net engine, when its numba cache is cold).
+_NET_TIMEOUT_S = 60.0
 
 
 def draw_thumbnails(grid: BoolGrid, folder: Path, thumbs: Path, *, name: str, seed: int, size: int) -> list[str]:

@@ -6,6 +6,7 @@ import dataclasses
 import json
 import time
 import tomllib
+import uuid
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
@@ -175,7 +176,8 @@ def _connect(scheduler: str | None, workers: int, dashboard: str | None, timeout
     if scheduler is not None:
         try:
             client = Client(scheduler, timeout=timeout)
-        except (OSError, TimeoutError) as exc:
+        except (OSError, TimeoutError, ValueError) as exc:
+            # ValueError: an address distributed cannot parse (no port, unknown protocol).
             raise RepositoryError(f"--scheduler: cannot reach {scheduler}: {' '.join(str(exc).split())}") from None
         try:
             client.wait_for_workers(1, timeout=timeout)
@@ -275,13 +277,25 @@ def run_batch(
                     on_start(len(todo), skipped, link)
                 tasks = _tasks(repo, todo, out, outputs, thumbnails)
                 size = window or 4 * max(1, cl.workers)
+                # Task keys are unique per run: several batches may share one scheduler.
+                run_id = uuid.uuid4().hex[:12]
+                by_key: dict[str, str] = {}
+
+                def submit(t: BatchTask) -> Any:
+                    key = f"voxfab-batch-{run_id}-{t.name}"
+                    by_key[key] = t.name
+                    return cl.client.submit(build_task, t, key=key, pure=False)
+
                 # A sliding window: the scheduler holds only the tasks in flight.
-                first = [cl.client.submit(build_task, t, key=f"voxfab-batch-{t.name}", pure=False)
-                         for _, t in zip(range(size), tasks)]
-                pending = as_completed(first)
+                pending = as_completed([submit(t) for _, t in zip(range(size), tasks)])
                 saved = time.monotonic()
                 for future in pending:
-                    outcome: Outcome = future.result()
+                    try:
+                        outcome: Outcome = future.result()
+                    except Exception as exc:  # noqa: BLE001 - a lost worker (KilledWorker) fails one shape
+                        outcome = Outcome(by_key[future.key], "failed", 0.0, "lost",
+                                          f"{type(exc).__name__}: {' '.join(str(exc).split())}")
+                    by_key.pop(future.key, None)
                     future.release()
                     shapes[outcome.name] = outcome.to_json()
                     if outcome.status == "built":
@@ -292,7 +306,7 @@ def run_batch(
                         on_outcome(outcome)
                     nxt = next(tasks, None)
                     if nxt is not None:
-                        pending.add(cl.client.submit(build_task, nxt, key=f"voxfab-batch-{nxt.name}", pure=False))
+                        pending.add(submit(nxt))
                     if time.monotonic() - saved > _SAVE_EVERY_S:
                         _save(record_path, Path(outputs_path).name, sha, shapes)
                         saved = time.monotonic()

@@ -6,6 +6,7 @@ import argparse
 import json
 import re
 import sys
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -14,6 +15,8 @@ from voxfab.shape import VoxelShape
 #: A repository name: 5-digit volume, a dot, 3-digit rank.
 NAME_PATTERN = re.compile(r"^\d{5}\.\d{3}$")
 DEFAULT_REPOSITORY = Path("output") / "repository.sqlite"
+#: Exit status of a command run with ``--strict`` that ended with warnings.
+STRICT_EXIT = 11
 
 
 def add_shape_argument(parser: argparse.ArgumentParser) -> None:
@@ -30,6 +33,14 @@ def add_repository_option(parser: argparse.ArgumentParser) -> None:
     )
 
 
+def add_pitch_option(parser: argparse.ArgumentParser) -> None:
+    """Add ``--pitch MM``: the shape's scale, read by every artefact."""
+    from voxfab.cli._options import add_option_arguments
+    from voxfab.shape import ShapeOptions
+
+    add_option_arguments(parser, ShapeOptions)
+
+
 def load_shape(spec: str, repository: Path | None = None, **options: Any) -> tuple[VoxelShape, str | None, list[str]]:
     """Load SHAPE from a file or the repository.
 
@@ -38,16 +49,60 @@ def load_shape(spec: str, repository: Path | None = None, **options: Any) -> tup
     shape, name, notes
         ``name`` is the repository name when the shape was loaded by name.
     """
-    from voxfab import io
+    shape, name, notes, _ = load_scaled_shape(spec, repository, **options)
+    return shape, name, notes
 
+
+def load_scaled_shape(
+    spec: str, repository: Path | None = None, *, pitch: float | None = None, **options: Any
+) -> tuple[VoxelShape, str | None, list[str], bool]:
+    """Load SHAPE at the scale given by ``pitch`` (``--pitch``), the file's own, or 1 mm.
+
+    Returns
+    -------
+    shape, name, notes, scaled
+        ``scaled`` tells whether the pitch was given (by ``pitch`` or the file)
+        rather than the 1 mm default: a command that can choose a scale itself
+        (a net fitted to its sheet) does so only when it was not.
+    """
+    from voxfab import io
+    from voxfab._shared.options import OptionError
+    from voxfab.shape import ShapeOptions
+
+    try:
+        ShapeOptions(pitch=pitch)  # checked before reading
+    except OptionError as exc:
+        raise OptionError("--pitch", exc.reason) from None
     if NAME_PATTERN.match(spec) and not Path(spec).exists():
         from voxfab.repo import Repository
 
         with Repository(repository or DEFAULT_REPOSITORY, create=False) as repo:
             grid = repo.get(spec)
-        return VoxelShape(grid), spec, []
+        return VoxelShape(grid, pitch or 1.0), spec, [], pitch is not None
     result = io.read(spec, **options)
-    return VoxelShape(result.grid, result.pitch or 1.0), None, list(result.notes)
+    own = pitch if pitch is not None else result.pitch
+    return VoxelShape(result.grid, own or 1.0), None, list(result.notes), own is not None
+
+
+def print_warnings(warnings: Sequence[str], *, strict: bool = False) -> int:
+    """End a command with the warnings a maker must read, one line each.
+
+    Returns
+    -------
+    int
+        The exit status: 0, or 11 when ``strict`` and there are warnings.
+    """
+    if warnings:
+        print(f"voxfab: {len(warnings)} warning(s) to read before making this:", file=sys.stderr)
+    for w in warnings:
+        print(f"voxfab: warning: {w}", file=sys.stderr)
+    return STRICT_EXIT if strict and warnings else 0
+
+
+def add_strict_option(parser: argparse.ArgumentParser) -> None:
+    """Add ``--strict``: warnings make the command fail."""
+    parser.add_argument("--strict", action="store_true",
+                        help=f"exit with status {STRICT_EXIT} when there are warnings (for scripts and CI)")
 
 
 def print_notes(notes: list[str]) -> None:

@@ -58,6 +58,8 @@ def run(args: argparse.Namespace) -> int:
         bar = state.get("bar")
         if bar is not None:
             bar.update()  # type: ignore[attr-defined]
+        for note in getattr(o, "notes", ()):
+            print(f"voxfab: note: {o.name}: {note}", file=sys.stderr, flush=True)  # type: ignore[attr-defined]
         if getattr(o, "status", "") == "failed":
             print(f"voxfab: note: {o.name} failed: {o.error}", file=sys.stderr, flush=True)  # type: ignore[attr-defined]
 

@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from ._common import add_strict_option, print_warnings
+
 HELP = "build recipes (TOML) into DIR/<name>/ with the shape, its outputs and a manifest"
 
 
@@ -13,6 +15,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("-o", "--output", type=Path, default=Path("output"), metavar="DIR",
                         help="output folder (default: output)")
     parser.add_argument("--check", action="store_true", help="validate the recipes only, build nothing")
+    parser.add_argument("--allow-outside", action="store_true",
+                        help="let recipes read files outside their own folder (refused by default)")
+    add_strict_option(parser)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -21,7 +26,7 @@ def run(args: argparse.Namespace) -> int:
     from voxfab.recipe import build, load_recipe
 
     # Validate every recipe first, so a typo in the last one does not waste a long build.
-    recipes = [load_recipe(path) for path in args.recipes]
+    recipes = [load_recipe(path, allow_outside=args.allow_outside) for path in args.recipes]
     names = [r.name for r in recipes]
     duplicates = sorted({n for n in names if names.count(n) > 1})
     if duplicates:
@@ -32,8 +37,10 @@ def run(args: argparse.Namespace) -> int:
         for r in recipes:
             print(f"{r.path}: ok ({r.name})")
         return 0
+    warnings = []
     for recipe in recipes:
         folder = build(recipe, args.output)
         manifest = json.loads((folder / "manifest.json").read_text())
         print(f"{folder}: {len(manifest['files'])} files")
-    return 0
+        warnings += [f"{recipe.name}: {w}" for w in manifest["warnings"]]
+    return print_warnings(warnings, strict=args.strict)

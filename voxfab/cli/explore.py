@@ -18,7 +18,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="growth: random face-connected growth spanning the grid; revolution, tube, focal: "
                              "random parameters for that maker; mix: a blend (default growth)")
     parser.add_argument("--volume", metavar="MIN:MAX",
-                        help="keep volumes in MIN..MAX (inclusive); growth aims inside it (default 25:625)")
+                        help="keep volumes in MIN..MAX (inclusive); growth aims inside it (default: growth aims "
+                             "at 25..625, the makers' shapes keep any volume)")
     parser.add_argument("--max-attempts", type=int, metavar="N",
                         help="give up after N candidates (default max(2000, 50 x count))")
     add_repository_option(parser)

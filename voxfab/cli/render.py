@@ -15,6 +15,9 @@ _VIEWS = ("iso", "x", "-x", "y", "-y", "z", "-z")
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the ``render`` options."""
+    from voxfab.cli._options import add_option_arguments
+    from voxfab.render import PictureOptions
+
     parser.add_argument("shape", metavar="SHAPE", nargs="?",
                         help="a shape file, or a repository name such as 00797.001")
     add_repository_option(parser)
@@ -28,11 +31,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--net", type=Path, metavar="NET.json",
                         help="a voxfab-net/1 file: draw it (or use it in --triptych) instead of unfolding")
     parser.add_argument("--view", choices=_VIEWS, default="iso", help="3D view (default iso)")
-    parser.add_argument("--size", type=int, default=None, metavar="PX",
-                        help="picture side in pixels (default 800; 400 for GIF; 200 per contact-sheet tile)")
     parser.add_argument("--seed", type=int, default=0, metavar="N", help="seed of the triptych's net (default 0)")
-    parser.add_argument("--frames", type=int, default=36, metavar="N", help="turntable frames (default 36)")
-    parser.add_argument("--background", default="white", metavar="COLOR", help="background colour (default white)")
+    add_option_arguments(parser, PictureOptions)
 
 
 def _suffix(path: Path, allowed: tuple[str, ...], what: str) -> str:
@@ -45,14 +45,20 @@ def _suffix(path: Path, allowed: tuple[str, ...], what: str) -> str:
 def run(args: argparse.Namespace) -> int:
     """Draw the requested picture and print a JSON summary."""
     from voxfab import render
-    from voxfab._shared.atomic import write_bytes
+    from voxfab._shared.atomic import check_output, write_bytes
+    from voxfab.cli._options import options_from_args
 
     out: Path = args.output
+    check_output(out)  # an existing folder, before the drawing
+    # The default size depends on the picture: 200 px per contact-sheet tile, 400 for a GIF, else 800.
+    size = 200 if args.contact_sheet else 400 if out.suffix.lower() == ".gif" and not (args.triptych or args.slices) \
+        else 800
+    o = options_from_args(render.PictureOptions, args, size=args.size if args.size is not None else size)
     if args.contact_sheet:
         if args.shape is not None:
             raise InvalidShapeError("render --contact-sheet: takes no SHAPE, only --repo PATH")
         _suffix(out, (".png", ".pdf"), "a contact sheet")
-        image = render.repository_contact_sheet(args.repo, tile=args.size or 200, background=args.background)
+        image = render.repository_contact_sheet(args.repo, tile=o.size, background=o.background)
         render.save_picture(image, out, title=str(args.repo))
         print_json({"output": str(out), "kind": "contact-sheet", "width": image.width, "height": image.height})
         return 0
@@ -74,28 +80,28 @@ def run(args: argparse.Namespace) -> int:
     summary: dict[str, object] = {"output": str(out), "shape": title}
     if args.triptych:
         _suffix(out, (".png", ".pdf"), "a triptych")
-        image = render.triptych(shape, name=title, rng=args.seed, net=net, panel=args.size or 800,
-                                background=args.background)
+        image = render.triptych(shape, name=title, rng=args.seed, net=net, panel=o.size,
+                                background=o.background, color=o.color)
         render.save_picture(image, out, title=title)
         summary.update(kind="triptych", seed=args.seed)
     elif args.slices:
         _suffix(out, (".png", ".pdf"), "a slice sheet")
-        image = render.slice_sheet(shape, size=args.size or 800, background=args.background)
+        image = render.slice_sheet(shape, size=o.size, background=o.background, color=o.color)
         render.save_picture(image, out, title=title)
         summary.update(kind="slices")
     elif net is not None:
         _suffix(out, (".png", ".pdf"), "a net picture")
-        image = render.net_picture(net, shape, size=args.size or 800, background=args.background)
+        image = render.net_picture(net, shape, size=o.size, background=o.background)
         render.save_picture(image, out, title=title)
         summary.update(kind="net")
     elif _suffix(out, (".png", ".gif"), "a 3D picture") == ".gif":
-        frames = render.save_turntable(shape, out, frames=args.frames, size=args.size or 400,
-                                       background=args.background)
-        summary.update(kind="turntable", frames=frames, width=args.size or 400, height=args.size or 400)
+        frames = render.save_turntable(shape, out, frames=o.frames, size=o.size, background=o.background,
+                                       color=o.color)
+        summary.update(kind="turntable", frames=frames, width=o.size, height=o.size)
         print_json(summary)
         return 0
     else:
-        image = render.render(shape, view=args.view, size=args.size or 800, background=args.background)
+        image = render.render(shape, view=args.view, size=o.size, background=o.background, color=o.color)
         write_bytes(out, render.png_bytes(image))
         summary.update(kind="view", view=args.view)
     summary.update(width=image.width, height=image.height)

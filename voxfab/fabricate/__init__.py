@@ -1,10 +1,10 @@
-"""Fabrication outputs (print meshes, paper nets, slice plates, pictures), found by name.
+"""Fabrication outputs: print meshes (:mod:`.mesh`), paper nets (:mod:`.netdraw`), slice plates (:mod:`.plates`).
 
-Each output is a function ``recipe_output(shape, outdir, *, name, seed, **options)``
-returning the files it wrote as :class:`OutputFile` records.  Its keyword-only
-parameters, with their type hints, are the recipe keys it accepts.
+Each artefact has one options dataclass and one pipeline function that the CLI,
+recipes, the studio and batch runs all call; a pipeline returns an
+:class:`Artefact` (the files written, the warnings a maker must read, figures).
 """
 
-from ._registry import OUTPUTS, OutputFile, available_outputs, get_output
+from ._outputs import Artefact, OutputFile
 
-__all__ = ["OUTPUTS", "OutputFile", "available_outputs", "get_output"]
+__all__ = ["Artefact", "OutputFile"]

@@ -7,6 +7,7 @@ makers of :mod:`voxfab.digitize`) and :func:`explore` stores the new ones.
 """
 
 from ._explore import ExploreReport, explore, parse_volume_range, volume_bins
+from ._keys import symmetric_key
 from ._makers import GENERATORS, MAKER_GENERATORS, Candidate, candidate, growth
 
 __all__ = [
@@ -18,5 +19,6 @@ __all__ = [
     "explore",
     "growth",
     "parse_volume_range",
+    "symmetric_key",
     "volume_bins",
 ]

@@ -9,8 +9,9 @@ from collections.abc import Callable
 import numpy as np
 
 from voxfab.errors import InvalidShapeError, RepositoryError
-from voxfab.shape import GRID_SIDE, canonical_key, well_formed_reasons
+from voxfab.shape import GRID_SIDE, crop, well_formed_reasons
 
+from ._keys import symmetric_key
 from ._makers import GENERATORS, candidate
 
 __all__ = ["ExploreReport", "explore", "volume_bins", "parse_volume_range"]
@@ -151,25 +152,33 @@ def explore(
             if c is None:
                 rejected += 1
                 continue
-            v = int(np.count_nonzero(c.grid))
-            full = ranks.get(v, 0) + pending.get(v, 0) >= MAX_RANK
-            outside = volume is not None and not volume[0] <= v <= volume[1]
-            # Growth is well formed by construction; the repository checks again.
-            if full or outside or (c.generator != "growth" and well_formed_reasons(c.grid)):
+            if not c.grid.any():
                 rejected += 1
                 continue
-            key = canonical_key(c.grid, symmetric=True)
+            # Everything below works on the bounding box: a growth fills a few percent of the grid.
+            g = crop(c.grid)
+            v = int(np.count_nonzero(g))
+            full = ranks.get(v, 0) + pending.get(v, 0) >= MAX_RANK
+            outside = volume is not None and not volume[0] <= v <= volume[1]
+            # Growth is well formed by construction (one face-connected piece from the
+            # bottom layer to the top one): only the makers' shapes are checked.
+            if full or outside or (c.generator != "growth" and well_formed_reasons(g)):
+                rejected += 1
+                continue
+            key = symmetric_key(g)
             if key in seen:
                 duplicates += 1
                 continue
             seen.add(key)
             pending[v] = pending.get(v, 0) + 1
-            grids.append(c.grid)
+            grids.append(g)
             keys.append(key)
             metas.append({"generator": c.generator, "seed": seed, "index": i, "params": c.params})
         if not grids:
             continue
-        results = repo.add_many(grids, symmetric=True, metas=metas, keys=keys)  # type: ignore[attr-defined]
+        results = repo.add_many(  # type: ignore[attr-defined]
+            grids, symmetric=True, metas=metas, keys=keys, reasons=[()] * len(grids)
+        )
         new = 0
         for r, g in zip(results, grids):
             if not r.created:

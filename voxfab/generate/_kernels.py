@@ -126,3 +126,57 @@ def grow(seed: np.uint64, volume: int, side: int, wander: float) -> np.ndarray:
             size = k
         size = _push_neighbours(cell, side, filled, front, size)
     return filled
+
+
+@njit(cache=True, nogil=True)
+def smallest_orientation(flat: np.ndarray, shape: np.ndarray, moves: np.ndarray) -> np.ndarray:
+    """The lexicographically smallest C-order bit sequence of a grid over ``moves``.
+
+    ``flat`` is the grid raveled in C order, ``shape`` its shape.  ``moves[m]`` =
+    ``(p0, p1, p2, f0, f1, f2)``: output axis ``a`` reads input axis ``p_a``, reversed
+    when ``f_a`` is 1 (``np.transpose`` then ``np.flip``).  All moves must give the
+    same output shape.  A candidate is compared with the best so far while it is
+    walked (as a start offset and three signed strides), and dropped at its first
+    larger bit.
+    """
+    stride = np.empty(3, dtype=np.int64)
+    stride[2] = 1
+    stride[1] = shape[2]
+    stride[0] = shape[1] * shape[2]
+    n0, n1, n2 = shape[moves[0, 0]], shape[moves[0, 1]], shape[moves[0, 2]]
+    best = np.empty(n0 * n1 * n2, dtype=np.uint8)
+    have = False
+    for m in range(moves.shape[0]):
+        start = 0
+        steps = np.empty(3, dtype=np.int64)
+        for a in range(3):
+            s = stride[moves[m, a]]
+            if moves[m, 3 + a]:
+                start += (shape[moves[m, a]] - 1) * s
+                steps[a] = -s
+            else:
+                steps[a] = s
+        smaller = not have
+        k = 0
+        aborted = False
+        for a in range(n0):
+            oa = start + a * steps[0]
+            for b in range(n1):
+                ob = oa + b * steps[1]
+                for c in range(n2):
+                    bit = flat[ob + c * steps[2]]
+                    if not smaller:
+                        if bit > best[k]:
+                            aborted = True
+                            break
+                        if bit < best[k]:
+                            smaller = True
+                    if smaller:
+                        best[k] = bit
+                    k += 1
+                if aborted:
+                    break
+            if aborted:
+                break
+        have = True
+    return best

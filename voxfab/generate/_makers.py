@@ -84,7 +84,9 @@ def growth(seed: int, volume: int, *, wander: float = 0.3, side: int = GRID_SIDE
 
 def _growth(rng: np.random.Generator, volume: tuple[int, int] | None) -> Candidate:
     lo, hi = volume if volume is not None else DEFAULT_GROWTH_VOLUME
-    lo = max(lo, GRID_SIDE)
+    lo, hi = max(lo, GRID_SIDE), min(hi, GRID_SIDE**3)
+    if lo > hi:
+        raise InvalidShapeError(f"volume: a growth spanning the grid needs {GRID_SIDE}..{GRID_SIDE**3} voxels")
     target = int(rng.integers(lo, hi + 1))
     wander = _round(rng.uniform(0.0, 0.6))
     seed = int(rng.integers(0, 2**63))
@@ -97,7 +99,8 @@ def _revolution(rng: np.random.Generator) -> dict[str, Any]:
     if kind == 0:
         curve = "x^2 + y^2 - 1"
     elif kind == 1:
-        curve = f"abs(x)^{_round(rng.choice([1.0, 1.5, 3.0, 4.0]))} + abs(y)^{_round(rng.choice([1.0, 1.5, 3.0, 4.0]))} - 1"
+        p, q = (_round(v) for v in rng.choice([1.0, 1.5, 3.0, 4.0], size=2))
+        curve = f"abs(x)^{p} + abs(y)^{q} - 1"
     else:
         curve = f"sqrt(x^2 + y^2) - 1 - {_round(rng.uniform(0.1, 0.35))}*cos({int(rng.integers(3, 9))}*atan2(y, x))"
     r0 = _round(rng.uniform(0.35, 1.0))

@@ -8,9 +8,9 @@ from pathlib import Path
 
 import numpy as np
 
-from voxfab._shared.atomic import atomic_dir, write_text
+from voxfab._shared.atomic import atomic_dir, check_output, write_text
 from voxfab._shared.typing import BoolGrid, PathLike
-from voxfab._shared.validate import as_grid
+from voxfab._shared.validate import as_grid, confine_inputs
 from voxfab._version import __version__
 from voxfab.errors import RecipeError, VoxfabError
 from voxfab.shape import VoxelShape, canonical_key
@@ -58,24 +58,20 @@ def apply_operation(grid: BoolGrid, op: OperationSpec, base_dir: Path) -> BoolGr
 
 
 def make_shape(recipe: Recipe) -> VoxelShape:
-    """Make the recipe's shape: its source, then each operation in order."""
-    grid = make_source(recipe.source, recipe.base_dir)
-    for op in recipe.operations:
-        grid = apply_operation(grid, op, recipe.base_dir)
-        if not grid.any():
-            raise RecipeError(f"{recipe.path}: {op.keypath} ({op.op}) left an empty shape")
+    """Make the recipe's shape: its source, then each operation in order.
+
+    Files the recipe names must be inside its folder unless it was loaded with
+    ``allow_outside=True``.
+    """
+    with confine_inputs(None if recipe.allow_outside else recipe.base_dir):
+        grid = make_source(recipe.source, recipe.base_dir)
+        for op in recipe.operations:
+            grid = apply_operation(grid, op, recipe.base_dir)
+            if not grid.any():
+                raise RecipeError(f"{recipe.path}: {op.keypath} ({op.op}) left an empty shape")
     return VoxelShape(grid, recipe.pitch)
 
 
-#: Keys an output may declare to get the recipe's source (an animation re-runs the maker).
-SOURCE_KEYS = ("source", "base_dir")
-
-
-def _source_keys(func: object, recipe: Recipe) -> dict[str, object]:
-    import inspect
-
-    params = inspect.signature(func).parameters  # type: ignore[arg-type]
-    return {"source": recipe.source, "base_dir": recipe.base_dir} if "source" in params else {}
 
 
 def _sha256(path: Path) -> str:
@@ -93,21 +89,28 @@ def build(recipe: Recipe, outdir: PathLike) -> Path:
     """
     from voxfab import io
     from voxfab._shared.progress import progress
-    from voxfab.fabricate import OutputFile, get_output
+    from voxfab.fabricate import OutputFile
 
-    shape = make_shape(recipe)
+    from ._outputs import outputs as output_kinds
+
     target = Path(outdir) / recipe.name
-    with atomic_dir(target) as tmp:
+    check_output(target, folder=True, parents=True, marker="manifest.json")  # before the work
+    shape = make_shape(recipe)
+    with atomic_dir(target, marker="manifest.json") as tmp:
         io.write(shape.grid, tmp / "shape.npy")
         io.write(shape.grid, tmp / "shape.vox")
         files = [
             OutputFile("shape.npy", "the voxel shape as a NumPy bool array [x, y, z], z up"),
             OutputFile("shape.vox", "the voxel shape for MagicaVoxel and other voxel editors"),
         ]
+        warnings: list[str] = []
+        kinds = output_kinds()
         for spec in progress(recipe.outputs, desc="outputs"):
-            func = get_output(spec.name)
-            files += func(shape, tmp, name=recipe.name, seed=recipe.seed, **_source_keys(func, recipe),
-                          **dict(spec.options))
+            settings = spec.settings if spec.settings is not None else kinds[spec.name].parse(dict(spec.options))
+            made = kinds[spec.name].run(shape, settings, tmp, name=recipe.name, seed=recipe.seed,
+                                      recipe=recipe)
+            files += made.files
+            warnings += [f"{spec.name}: {w}" for w in made.warnings]
         manifest = {
             "format": MANIFEST_FORMAT,
             "voxfab": __version__,
@@ -124,6 +127,7 @@ def build(recipe: Recipe, outdir: PathLike) -> Path:
                 "key": canonical_key(shape.grid),
             },
             "outputs": [spec.name for spec in recipe.outputs],
+            "warnings": warnings,
             "files": [
                 {"path": f.path, "sha256": _sha256(tmp / f.path), "purpose": f.purpose}
                 for f in sorted(files, key=lambda f: f.path)

@@ -6,15 +6,14 @@
 * :func:`triptych` — net | slices | 3D under the shape's name (PNG and PDF).
 * :func:`save_turntable`, :func:`save_animation` — GIFs of a turning shape or a sequence of shapes.
 * :func:`contact_sheet`, :func:`repository_contact_sheet` — many shapes by volume with names.
-* :func:`recipe_output` — the recipe output ``pictures``.
+* :func:`render_pictures` — the pictures pipeline (recipe output ``pictures``), options :class:`PictureOptions`.
 """
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from voxfab.errors import RecipeError, VoxfabError
-from voxfab.fabricate import OutputFile
+from voxfab.fabricate import Artefact, OutputFile
 from voxfab.shape import VoxelShape
 from voxfab.unfold import Net
 
@@ -22,6 +21,7 @@ from ._animate import animation_frames, save_animation, save_turntable, turntabl
 from ._contact_sheet import contact_sheet, repository_contact_sheet, sheet_layout
 from ._image import gif_bytes, pdf_bytes, png_bytes, save_picture
 from ._net import DEFAULT_STYLES, LineStyle, net_picture
+from ._options import AnimationOptions, PictureOptions
 from ._raster import DEFAULT_COLOR, Raster, fit_frame, rasterize
 from ._render import render, render_raster, save_render, supersampling
 from ._slices import SliceAxis, layers, slice_layout, slice_sheet
@@ -63,7 +63,9 @@ __all__ = [
     "gif_bytes",
     "save_picture",
     "view_filename",
-    "recipe_output",
+    "AnimationOptions",
+    "PictureOptions",
+    "render_pictures",
 ]
 
 
@@ -73,90 +75,61 @@ def view_filename(view: str) -> str:
     return f"render_{'neg_' + v[1:] if v.startswith('-') else v}.png"
 
 
-def recipe_output(
+def render_pictures(
     shape: VoxelShape,
-    outdir: Path,
+    options: PictureOptions,
+    folder: Path,
     *,
     name: str,
     seed: int,
-    size: int = 800,
-    views: list[str] = ["iso"],  # noqa: B006 - read only; the recipe loader reads this default
-    triptych: bool = True,
-    turntable: bool = False,
-    frames: int = 36,
-    slices: bool = False,
-    background: str = "white",
-    color: str = "#eccc96",
-) -> list[OutputFile]:
-    """The recipe output ``pictures``: views, the triptych, a slice sheet and a turntable.
+    net: Net | None = None,
+) -> Artefact:
+    """The pictures pipeline: views, the triptych, a slice sheet and a turntable, as asked.
 
     Parameters
     ----------
     shape : VoxelShape
-        The recipe's shape.
-    outdir : Path
+        The shape.
+    options : PictureOptions
+        Checked options.
+    folder : Path
         Folder to write into.
     name : str
-        The recipe's name (the triptych's title).
+        The shape's name (the triptych's title).
     seed : int
-        Seed of the triptych's net (``voxfab.unfold.unfold(grid, rng=seed)``, as the ``net`` output).
-    size : int
-        Picture side in pixels (triptych panels too; the turntable uses half).
-    views : list of str
-        Views to write as ``render_<view>.png`` (``"iso"``, ``"x"``, ``"-x"``, ... ``"-z"``).
-    triptych, turntable, slices : bool
-        Also write ``triptych.png`` + ``triptych.pdf``, ``turntable.gif``, ``slices.png``.
-    frames : int
-        Turntable frames.
-    background, color : str
-        Paper and cube colours (names or ``#rrggbb``).
+        Seed of the triptych's net when ``net`` is not given
+        (``voxfab.unfold.unfold(grid, rng=seed)``, as the ``net`` output).
+    net : Net, optional
+        The net to draw in the triptych (the one the net output wrote).
 
     Returns
     -------
-    list of OutputFile
-        The files written, relative to ``outdir``.
+    Artefact
+        The files written, relative to ``folder``.
     """
     from voxfab._shared.atomic import write_bytes
 
-    from ._raster import parse_color
-    from ._render import check_size
-
-    out = Path(outdir)
-    try:
-        check_size(size)
-        parse_color(background, name="background")
-        parse_color(color, name="color")
-        names = [view_filename(View(v).value) if v in {m.value for m in View} else None for v in views]
-        bad = [v for v, n in zip(views, names) if n is None]
-        if bad:
-            choices = ", ".join(m.value for m in View)
-            raise RecipeError(f"unknown view {bad[0]!r}; expected one of {choices}")
-    except VoxfabError as exc:
-        raise RecipeError(f"outputs.pictures: {exc}") from None
+    out = Path(folder)
+    o = options
     files: list[OutputFile] = []
-    for v, fname in zip(dict.fromkeys(views), dict.fromkeys(names)):
-        write_bytes(out / fname, png_bytes(render(shape, view=v, size=size, background=background, color=color)))
+    for v in dict.fromkeys(o.views):
+        fname = view_filename(v)
+        write_bytes(out / fname, png_bytes(render(shape, view=v, size=o.size, background=o.background,
+                                                  color=o.color)))
         files.append(OutputFile(fname, f"3D picture of the voxels, view {v}"))
-    if slices:
-        write_bytes(out / "slices.png", png_bytes(slice_sheet(shape, size=size, background=background,
-                                                               color=color)))
+    if o.slices:
+        write_bytes(out / "slices.png", png_bytes(slice_sheet(shape, size=o.size, background=o.background,
+                                                               color=o.color)))
         files.append(OutputFile("slices.png", "the layers bottom up, each numbered"))
-    if triptych:
-        # The build runs the `net` output before this one: draw that very net
-        # instead of searching again (a search may take a while on large shapes).
-        net_file = out / "net.json"
-        net = Net.from_json(net_file.read_text()) if net_file.exists() else None
-        image = _triptych(shape, name=name, rng=seed, net=net, panel=size, background=background,
-                          color=color)
+    if o.triptych:
+        image = triptych(shape, name=name, rng=seed, net=net, panel=o.size, background=o.background,
+                         color=o.color)
         write_bytes(out / "triptych.png", png_bytes(image))
         write_bytes(out / "triptych.pdf", pdf_bytes(image, title=name))
         files.append(OutputFile("triptych.png", "net | slices | 3D, titled with the shape's name"))
         files.append(OutputFile("triptych.pdf", "net | slices | 3D as a one-page PDF"))
-    if turntable:
-        save_turntable(shape, out / "turntable.gif", frames=frames, size=max(64, size // 2),
-                       background=background, color=color)
+    if o.turntable:
+        save_turntable(shape, out / "turntable.gif", frames=o.frames, size=max(64, o.size // 2),
+                       background=o.background, color=o.color)
         files.append(OutputFile("turntable.gif", "the shape turning once around its vertical axis"))
-    return files
-
-
-_triptych = triptych
+    return Artefact(tuple(files))

@@ -20,7 +20,7 @@ from voxfab._shared.progress import progress
 from voxfab._shared.typing import PathLike
 from voxfab._shared.validate import as_grid
 from voxfab.errors import InvalidShapeError
-from voxfab.fabricate._registry import OutputFile
+from voxfab.fabricate._outputs import OutputFile
 from voxfab.shape import VoxelShape, bounding_box
 
 from ._image import gif_bytes

@@ -114,11 +114,13 @@ def prepare(
     meta: str | None = None,
     key: str | None = None,
     symmetric_key: str | None = None,
+    reasons: tuple[str, ...] | None = None,
 ) -> Record:
     """Compute everything stored for a grid checked by :func:`check_grid`.
 
-    ``meta`` is JSON text from :func:`encode_meta`; ``key`` and ``symmetric_key``
-    may be passed when already computed.
+    ``meta`` is JSON text from :func:`encode_meta`; ``key``, ``symmetric_key`` and
+    ``reasons`` (from :func:`voxfab.shape.well_formed_reasons`) may be passed when
+    already computed.
     """
     c = crop(grid)
     return Record(
@@ -127,7 +129,7 @@ def prepare(
         bits=encode_bits(c),
         key=key or canonical_key(c),
         symmetric_key=symmetric_key or canonical_key(c, symmetric=True),
-        reasons=tuple(well_formed_reasons(c)),
+        reasons=tuple(well_formed_reasons(c)) if reasons is None else tuple(reasons),
         meta=meta,
     )
 

@@ -204,6 +204,7 @@ class Repository:
         draft: bool = False,
         metas: Sequence[Mapping[str, Any] | None] | None = None,
         keys: Sequence[str] | None = None,
+        reasons: Sequence[Sequence[str]] | None = None,
     ) -> list[AddResult]:
         """Add several shapes in one transaction: all are stored, or none is.
 
@@ -220,6 +221,10 @@ class Repository:
         keys : sequence of str, optional
             The grids' :func:`voxfab.shape.canonical_key` (``symmetric`` as given),
             when the caller has computed them already.
+        reasons : sequence of sequences of str, optional
+            The grids' :func:`voxfab.shape.well_formed_reasons`, when the caller has
+            computed them already (``explore`` knows its growth is well formed by
+            construction); checking connectivity is most of the cost of an add.
 
         Returns
         -------
@@ -233,6 +238,8 @@ class Repository:
             raise RepositoryError(f"metas: expected {len(grids)} entries, got {len(metas)}")
         if keys is not None and len(keys) != len(grids):
             raise RepositoryError(f"keys: expected {len(grids)} entries, got {len(keys)}")
+        if reasons is not None and len(reasons) != len(grids):
+            raise RepositoryError(f"reasons: expected {len(grids)} entries, got {len(reasons)}")
         # Everything is computed before the write lock is taken, so the lock is held
         # only for the index lookups and the inserts.  A shape found by a first
         # lock-free lookup needs neither its other key nor its well-formedness
@@ -246,15 +253,16 @@ class Repository:
             key = keys[i] if keys is not None else canonical_key(g, symmetric=symmetric)
             found = self._lookup(key, symmetric=symmetric)
             if found is not None:
-                name, reasons = found
-                if reasons and not draft:
-                    raise _not_well_formed(label, reasons)
-                results.append(AddResult(name, False, reasons))
+                name, stored_reasons = found
+                if stored_reasons and not draft:
+                    raise _not_well_formed(label, stored_reasons)
+                results.append(AddResult(name, False, stored_reasons))
                 continue
+            known = None if reasons is None else tuple(reasons[i])
             if symmetric:
-                record = prepare(g, meta=meta, symmetric_key=key)
+                record = prepare(g, meta=meta, symmetric_key=key, reasons=known)
             else:
-                record = prepare(g, meta=meta, key=key)
+                record = prepare(g, meta=meta, key=key, reasons=known)
             if record.reasons and not draft:
                 raise _not_well_formed(label, record.reasons)
             results.append(None)
@@ -384,34 +392,45 @@ class Repository:
         RepositoryError
             For an unknown ``after`` name, an empty volume range or a limit below 1.
         """
-        where: list[str] = []
-        params: list[Any] = []
+        span: tuple[int, int] | None = None
         if volume is not None:
-            lo, hi = int(volume[0]), int(volume[1])
-            if lo > hi or hi < 1:
-                raise RepositoryError(f"volume: the range {lo}:{hi} is empty")
-            where.append("volume BETWEEN ? AND ?")
-            params += [lo, hi]
-        if not drafts:
-            where.append("draft = 0")
+            span = (int(volume[0]), int(volume[1]))
+            if span[0] > span[1] or span[1] < 1:
+                raise RepositoryError(f"volume: the range {span[0]}:{span[1]} is empty")
+        if limit is not None and int(limit) < 1:
+            raise RepositoryError(f"limit: expected at least 1, got {limit}")
+        start: tuple[int, int, int, int | None] | None = None
         if after is not None:
             row_id, d, v, r = self._row(after, "id, draft, volume, rank")
-            # Drafts have no rank (NULL), so the row-value comparison differs per part.
-            if d:
-                where.append("draft = 1 AND (volume, id) > (?, ?)")
-                params += [v, row_id]
-            else:
-                where.append("(draft = 1 OR (draft = 0 AND (volume, rank) > (?, ?)))")
-                params += [v, r]
-        sql = f"SELECT name, volume, nx, ny, nz, draft FROM shapes {'WHERE ' if where else ''}"
-        sql += " AND ".join(f"({w})" for w in where) + f" {_ORDER}"
-        if limit is not None:
-            if int(limit) < 1:
-                raise RepositoryError(f"limit: expected at least 1, got {limit}")
-            sql += " LIMIT ?"
-            params.append(int(limit))
+            start = (int(d), int(v), int(row_id), r)
+        # Named shapes, then drafts: two queries, each a range seek on the
+        # (draft, volume, rank, id) index, so a page deep in the listing costs no
+        # more than the first one.  Drafts have no rank: they page by (volume, id).
+        parts: list[tuple[str, list[Any]]] = []
+        if start is None or start[0] == 0:
+            where, params = ["draft = 0"], []
+            if start is not None:
+                where.append("(volume, rank) > (?, ?)")
+                params += [start[1], start[3]]
+            parts.append((" AND ".join(where), params))
+        if drafts:
+            where, params = ["draft = 1"], []
+            if start is not None and start[0] == 1:
+                where.append("(volume, id) > (?, ?)")
+                params += [start[1], start[2]]
+            parts.append((" AND ".join(where), params))
+        rows: list[tuple[Any, ...]] = []
         with sqlite_errors(self._path):
-            rows = self._db.execute(sql, params).fetchall()
+            for where, params in parts:
+                if span is not None:
+                    where += " AND volume BETWEEN ? AND ?"
+                    params = [*params, *span]
+                sql = f"SELECT name, volume, nx, ny, nz, draft FROM shapes WHERE {where} {_ORDER}"
+                if limit is not None:
+                    if len(rows) >= limit:
+                        break
+                    sql += f" LIMIT {int(limit) - len(rows)}"
+                rows += self._db.execute(sql, params).fetchall()
         return [Entry(name, v, (nx, ny, nz), bool(d)) for name, v, nx, ny, nz, d in rows]
 
     def stats(self, *, volume: tuple[int, int] | None = None) -> dict[str, Any]:

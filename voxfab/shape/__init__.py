@@ -27,6 +27,7 @@ from ._ops import (
     volume,
     well_formed_reasons,
 )
+from ._options import ShapeOptions
 from ._surface import (
     DIRECTIONS,
     FOLD_FLAT,
@@ -37,6 +38,7 @@ from ._surface import (
 )
 
 __all__ = [
+    "ShapeOptions",
     "VoxelShape",
     "examples",
     "canonical_key",

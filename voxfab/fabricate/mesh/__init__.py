@@ -10,10 +10,10 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
-from typing import Literal
 
 from voxfab._shared.atomic import write_text
-from voxfab.fabricate._registry import OutputFile
+from voxfab._shared.typing import PathLike
+from voxfab.fabricate._outputs import Artefact, OutputFile
 from voxfab.shape import VoxelShape
 
 from ._build import (
@@ -31,6 +31,7 @@ from ._check import MeshReport, check_mesh
 from ._contacts import Contacts, bridge_boxes, find_contacts
 from ._data import MeshData
 from ._faces import voxel_mesh
+from ._options import MeshOptions
 from .formats import format_for, mesh_extensions, read_mesh, write_mesh
 
 __all__ = [
@@ -41,10 +42,12 @@ __all__ = [
     "ContactMode",
     "Contacts",
     "MeshData",
+    "MeshOptions",
     "MeshReport",
     "MeshResult",
     "bridge_boxes",
     "build_mesh",
+    "fabricate_mesh",
     "check_mesh",
     "find_contacts",
     "format_for",
@@ -52,7 +55,6 @@ __all__ = [
     "mesh_extensions",
     "parse_magnet",
     "read_mesh",
-    "recipe_output",
     "report_dict",
     "voxel_mesh",
     "write_mesh",
@@ -78,58 +80,52 @@ def report_dict(result: MeshResult, *, name: str) -> dict[str, object]:
     }
 
 
-def recipe_output(
+def fabricate_mesh(
     shape: VoxelShape,
-    outdir: Path,
+    options: MeshOptions,
+    path: PathLike,
     *,
     name: str,
-    seed: int,
-    format: Literal["3mf", "stl", "obj", "glb"] = "3mf",
-    size: float | None = None,
-    contacts: Literal["bridge", "split", "error"] = "bridge",
-    bridge_width: float | None = None,
-    solid: bool = True,
-    hollow: int = 0,
-    label: str | None = None,
-    base: float = 0.0,
-    magnet: str | None = None,
-) -> list[OutputFile]:
-    """Recipe output ``mesh``: a checked print-ready mesh and its figures.
+    report_path: PathLike | None = None,
+) -> Artefact:
+    """The print pipeline: build, check and write the mesh (and its figures as JSON).
+
+    The CLI (``voxfab mesh``), recipes (output ``mesh``), the studio and batch runs
+    all call this.
 
     Parameters
     ----------
     shape : VoxelShape
-        The shape; ``shape.pitch`` is the mm per voxel unless ``size`` is given.
-    outdir : Path
-        Folder to write ``mesh.<format>`` and ``mesh.json`` into.
+        The shape; ``shape.pitch`` is the mm per voxel unless ``options.size`` is given.
+    options : MeshOptions
+        Checked options (the file format comes from ``path``'s extension).
+    path : path-like
+        The mesh file to write (.3mf, .stl, .obj or .glb).
     name : str
-        Recipe name, stored in the file's metadata; ``{name}`` in ``label`` is replaced by it.
-    seed : int
-        Unused (the mesh is deterministic); part of the output interface.
-    format, size, contacts, bridge_width, hollow, label, base, magnet
-        As :func:`build_mesh`; ``magnet`` is ``"DxH"`` in mm.
-    solid : bool
-        Fill enclosed cavities.
+        The shape's name: file metadata, and ``{name}`` in the label.
+    report_path : path-like, optional
+        Also write the figures there as JSON.
+
+    Returns
+    -------
+    Artefact
+        Files relative to ``path``'s folder, warnings (thin walls, a print in
+        several parts, an illegible label), and the figures of :func:`report_dict`.
     """
-    del seed
-    text = label.replace("{name}", name) if label else None
+    target = Path(path)
+    module = format_for(target)  # refuse an unknown extension before any work
+    label = options.label.replace("{name}", name) if options.label else None
     result = build_mesh(
-        shape,
-        size=size,
-        contacts=contacts,
-        bridge_width=bridge_width,
-        fill=solid,
-        hollow=hollow,
-        label=text,
-        base=base,
-        magnet=magnet,
-        name=name,
+        shape, size=options.size, contacts=options.contacts, bridge_width=options.bridge_width,
+        fill=options.solid, hollow=options.hollow, label=label, engrave_depth=options.engrave_depth,
+        base=options.base, magnet=options.magnet, merge=options.merge, name=name,
     )
-    ext = "." + str(format).lower().lstrip(".")
-    module = format_for(f"mesh{ext}")
-    write_mesh(Path(outdir) / f"mesh{ext}", result.mesh, name=name)
-    write_text(Path(outdir) / "mesh.json", json.dumps(report_dict(result, name=name), indent=2, sort_keys=True) + "\n")
-    return [
-        OutputFile(f"mesh{ext}", module.DESCRIPTION),
-        OutputFile("mesh.json", "size, volume, part count and printability warnings of the mesh (JSON)"),
-    ]
+    write_mesh(target, result.mesh, name=name)
+    report = report_dict(result, name=name)
+    files = [OutputFile(target.name, module.DESCRIPTION)]
+    if report_path is not None:
+        rp = Path(report_path)
+        write_text(rp, json.dumps(report, indent=2, sort_keys=True) + "\n")
+        files.append(OutputFile(rp.relative_to(target.parent).as_posix(),
+                                "size, volume, part count and printability warnings of the mesh (JSON)"))
+    return Artefact(tuple(files), tuple(report["warnings"]), report)  # type: ignore[arg-type]

@@ -283,6 +283,15 @@ def build_mesh(
 
     from scipy import ndimage
 
+    if mode is ContactMode.ERROR:
+        # A print in several pieces needs an explicit choice (bridge or split), not a silent success.
+        n_pieces = ndimage.label(g, structure=np.ones((3, 3, 3), bool))[1]
+        if n_pieces > 1:
+            raise FabricationError(
+                f"{name}: refused with --contacts error: the print would be {n_pieces} separate parts "
+                "(use split to print them apart)"
+            )
+
     do_bridge = mode is ContactMode.BRIDGE and found.count > 0
     bounds = np.stack([np.zeros(3), np.array(g.shape) * pitch_mm])
     boxes = np.zeros((0, 2, 3))
@@ -324,7 +333,7 @@ def build_mesh(
     n_boxes = len(boxes)
 
     if not ((do_bridge and not bridged_in_grid) or base or label or magnet_dh):
-        return MeshResult(mesh, report, pitch_mm, found.count, n_boxes, tuple(warnings))
+        return MeshResult(mesh, report, pitch_mm, found.count, n_boxes, tuple(warnings + _parts_warning(report)))
 
     from . import _cad
 
@@ -404,7 +413,14 @@ def build_mesh(
         raise FabricationError(
             f"{name}: mesh check failed: volume {checked.volume:.6g} mm³ differs from the CAD kernel's {solid.volume():.6g}"
         )
-    return MeshResult(out, checked, pitch_mm, found.count, n_boxes, tuple(warnings))
+    return MeshResult(out, checked, pitch_mm, found.count, n_boxes, tuple(warnings + _parts_warning(checked)))
+
+
+def _parts_warning(report: MeshReport) -> list[str]:
+    """A maker must know that the print comes off the bed in several pieces."""
+    if report.bodies <= 1:
+        return []
+    return [f"the print is {report.bodies} separate parts"]
 
 
 def _fill_cavities(g: npt.NDArray[np.bool_]) -> npt.NDArray[np.bool_]:

@@ -22,14 +22,16 @@ import numpy.typing as npt
 
 from voxfab._shared.atomic import write_text
 from voxfab._shared.typing import PathLike
-from voxfab.fabricate._registry import OutputFile
+from voxfab.errors import InvalidShapeError
+from voxfab.fabricate._outputs import Artefact, OutputFile
 from voxfab.shape import VoxelShape
 
 from ._dowels import Dowel, Joint, find_joints
 from ._labels import Label, text_strokes
 from ._nest import PlacedPart, Sheet, nest_plates, parse_sheet
+from ._options import PlateOptions
 from ._outline import Axis, Piece, slice_layers
-from ._report import PlatesReport, make_report
+from ._report import PlatesReport, make_report, plate_warnings
 from ._stack import Plate, PlateStack, make_plates
 from ._step import stack_compound, step_bytes, write_step, write_stl
 from .dxf import sheet_dxf, write_dxf
@@ -44,18 +46,20 @@ __all__ = [
     "Piece",
     "PlacedPart",
     "Plate",
+    "PlateOptions",
     "PlateStack",
     "PlatesReport",
     "Sheet",
     "Slices",
     "assembly_pdf",
+    "fabricate_plates",
     "find_joints",
     "make_plates",
     "make_report",
     "make_slices",
     "nest_plates",
     "parse_sheet",
-    "recipe_output",
+    "plate_warnings",
     "sheet_dxf",
     "sheet_svg",
     "slice_layers",
@@ -146,6 +150,7 @@ def plates_json(result: Slices, *, name: str = "") -> dict:
             "number": p.number,
             "label": p.label.text,
             "layer": p.layer,
+            "voxel_layer": result.stack.sources[p.layer - 1],
             "piece": p.piece,
             "copy": p.copy,
             "z": _r(p.z),
@@ -195,35 +200,52 @@ def write_slices(result: Slices, folder: PathLike, *, name: str = "", step: bool
     return files
 
 
-def recipe_output(
-    shape: VoxelShape,
-    outdir: Path,
-    *,
-    name: str,
-    seed: int,
-    axis: str = "z",
-    thickness: float = 3.0,
-    sheet: str = "600x400",
-    margin: float = 5.0,
-    spacing: float = 2.0,
-    dowel: float = 3.0,
-    dowel_margin: float = 1.0,
-    dowels_per_joint: int = 2,
-    score: bool = True,
-    step: bool = False,
-    kerf: float = 0.0,
-    min_width: float = 1.0,
-) -> list[OutputFile]:
-    """Recipe output ``slices``: plates nested on sheets, written under ``outdir/slices/``.
+def _check_folder(folder: Path) -> None:
+    """Refuse an output folder that is a file, or a folder of something else (it would be replaced)."""
+    if folder.exists() and not folder.is_dir():
+        raise InvalidShapeError(f"{folder}: exists and is not a folder; the plates need an output folder")
+    if folder.is_dir() and any(folder.iterdir()) and not (folder / "plates.json").exists():
+        raise InvalidShapeError(
+            f"{folder}: a folder that holds other files; give a new or empty folder (or an earlier plates output)"
+        )
 
-    The recipe's pitch (``shape.pitch``) is the voxel edge in mm; ``thickness``
-    is the measured plate thickness.  ``seed`` is unused: the result is
-    deterministic.
+
+def fabricate_plates(shape: VoxelShape, options: PlateOptions, folder: PathLike, *, name: str) -> Artefact:
+    """The plates pipeline: slice, nest and write the sheets, the assembly PDF and ``plates.json``.
+
+    The CLI (``voxfab slices``), recipes (output ``slices``), the studio and batch
+    runs all call this.  The folder is assembled under a temporary name and
+    replaces ``folder`` whole, so no stale sheet of an earlier run remains.
+
+    Parameters
+    ----------
+    shape : VoxelShape
+        The shape; ``shape.pitch`` is the mm per voxel.
+    options : PlateOptions
+        Checked options.
+    folder : path-like
+        Output folder: new, empty, or an earlier plates output (replaced).
+    name : str
+        The shape's name, in the assembly PDF and the report.
+
+    Returns
+    -------
+    Artefact
+        Files relative to ``folder``, the maker's warnings, and the report.
     """
+    from voxfab._shared.atomic import atomic_dir
+
+    folder = Path(folder)
+    _check_folder(folder)
+    if options.step:
+        from voxfab._shared.deps import require_extra  # refuse before any work
+
+        require_extra("cad", "step (STEP and STL of the plate stack)")
     result = make_slices(
-        shape, axis=axis, thickness=thickness, sheet=sheet, margin=margin, spacing=spacing,
-        kerf=kerf, dowel=dowel, dowel_margin=dowel_margin, dowels_per_joint=dowels_per_joint,
-        score=score, min_width=min_width,
+        shape, axis=options.axis, thickness=options.thickness, sheet=options.sheet, margin=options.margin,
+        spacing=options.spacing, kerf=options.kerf, dowel=options.dowel, dowel_margin=options.dowel_margin,
+        dowels_per_joint=options.dowels_per_joint, score=options.score, min_width=options.min_width,
     )
-    files = write_slices(result, Path(outdir) / "slices", name=name, step=step)
-    return [OutputFile(f"slices/{f.path}", f.purpose) for f in files]
+    with atomic_dir(folder) as tmp:
+        files = write_slices(result, tmp, name=name, step=options.step)
+    return Artefact(tuple(files), tuple(plate_warnings(result.report)), result.report.to_json())

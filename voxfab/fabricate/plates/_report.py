@@ -9,6 +9,8 @@ from ._nest import Sheet
 from ._stack import PlateStack
 
 FORMAT = "voxfab-plates/1"
+#: Stack height error, as a fraction of the object's height, that a maker is warned about.
+DRIFT_WARNING = 0.01
 
 
 @dataclasses.dataclass(frozen=True)
@@ -24,8 +26,13 @@ class PlatesReport:
     pitch, thickness : float
         Voxel pitch and measured plate thickness.
     plates_per_layer : int
+        Plates of every stack layer, or 0 when the layers take unequal numbers.
+    voxel_layers : int
+        Voxel layers of the shape along the axis.
+    resampled : bool
+        Whether the plate thickness resampled the layers (see :func:`layer_runs`).
     layers, pieces, plates, sheets, dowels : int
-        Counts.
+        Counts (``layers``: stack layers, each one voxel layer's outline).
     sheet_width, sheet_height : float
     material_area : float
         Area of all plates (dowel holes removed, no kerf).
@@ -34,8 +41,9 @@ class PlatesReport:
     material_fraction : float
         ``material_area / sheet_area``.
     shape_height, stack_height, drift : float
-        Voxel height ``layers × pitch``, plate stack height
-        ``layers × plates_per_layer × thickness`` and their difference.
+        Voxel height ``voxel_layers × pitch``, plate stack height
+        ``plates × thickness`` and their difference (the height error, under
+        ``thickness / 2``).
     dowel_diameter, kerf, min_width : float
     dowel_length : float
         Length of one dowel: it goes through the plates of two layers.
@@ -55,6 +63,8 @@ class PlatesReport:
     pitch: float
     thickness: float
     plates_per_layer: int
+    voxel_layers: int
+    resampled: bool
     layers: int
     pieces: int
     plates: int
@@ -90,6 +100,13 @@ def _r(v: float) -> float:
     return round(float(v), 6) + 0.0
 
 
+def _dowel_plates(counts: tuple[int, ...]) -> int:
+    """Most plates one dowel goes through: those of two consecutive stack layers."""
+    if len(counts) == 1:
+        return 2 * counts[0]
+    return max(a + b for a, b in zip(counts[:-1], counts[1:]))
+
+
 def make_report(stack: PlateStack, sheets: tuple[Sheet, ...], *, kerf: float = 0.0) -> PlatesReport:
     """Build the report of a plate stack nested on ``sheets``."""
     material = sum(p.area for p in stack.plates)
@@ -101,6 +118,8 @@ def make_report(stack: PlateStack, sheets: tuple[Sheet, ...], *, kerf: float = 0
         pitch=_r(stack.pitch),
         thickness=_r(stack.thickness),
         plates_per_layer=stack.plates_per_layer,
+        voxel_layers=stack.voxel_layers,
+        resampled=stack.resampled,
         layers=len(stack.layers),
         pieces=sum(len(pcs) for pcs in stack.layers),
         plates=len(stack.plates),
@@ -115,7 +134,7 @@ def make_report(stack: PlateStack, sheets: tuple[Sheet, ...], *, kerf: float = 0
         stack_height=_r(stack.height),
         drift=_r(stack.drift),
         dowel_diameter=_r(stack.dowel_diameter),
-        dowel_length=_r(2 * stack.plates_per_layer * stack.thickness),
+        dowel_length=_r(_dowel_plates(stack.counts) * stack.thickness),
         kerf=_r(kerf),
         min_width=_r(stack.min_width),
         labels_hidden=sum(p.label.hidden for p in stack.plates),
@@ -124,3 +143,30 @@ def make_report(stack: PlateStack, sheets: tuple[Sheet, ...], *, kerf: float = 0
         thin=stack.thin,
         undowelled=stack.undowelled,
     )
+
+
+def _ids(ids: tuple[str, ...], most: int = 6) -> str:
+    shown = ", ".join(ids[:most])
+    return shown + (f" and {len(ids) - most} more" if len(ids) > most else "")
+
+
+def plate_warnings(report: PlatesReport) -> list[str]:
+    """What a maker must know before cutting, one line each (empty when all is well)."""
+    out = []
+    if report.unsupported:
+        out.append(f"{len(report.unsupported)} loose island(s) touch no plate above or below: "
+                   f"{_ids(report.unsupported)}")
+    if report.dowel_diameter > 0 and report.undowelled:
+        out.append(f"{len(report.undowelled)} plate piece(s) without dowels (no room for a "
+                   f"{report.dowel_diameter:g} mm hole): {_ids(report.undowelled)}")
+    elif report.dowel_diameter == 0 and report.layers > 1:
+        out.append("plates without dowels (dowel = 0): align the stack by the scored outlines")
+    if abs(report.drift) > DRIFT_WARNING * report.shape_height:
+        out.append(f"the stack is {report.stack_height:g} mm tall ({report.plates} plates of {report.thickness:g} mm), "
+                   f"{report.drift:+g} mm from the object's {report.shape_height:g} mm")
+    if report.thin:
+        out.append(f"{len(report.thin)} piece(s) narrower than {report.min_width:g} mm somewhere: "
+                   f"{_ids(report.thin)}")
+    if report.labels_clipped:
+        out.append(f"{report.labels_clipped} plate label(s) clipped: the plate is too small for the text")
+    return out

@@ -92,10 +92,14 @@ class PlateStack:
         Slicing axis (``'x'``, ``'y'`` or ``'z'``).
     pitch, thickness : float
         Voxel pitch and measured plate thickness in mm.
-    plates_per_layer : int
-        ``round(pitch / thickness)``, at least 1.
+    counts : tuple of int
+        Plates of each stack layer (see :func:`layer_runs`).
+    sources : tuple of int
+        The voxel layer (1-based) each stack layer takes.
+    voxel_layers : int
+        Voxel layers of the shape along the axis.
     layers : tuple of tuple of Piece
-        Pieces per layer (outlines in cell units).
+        Pieces per stack layer (outlines in cell units); ``Piece.layer`` is the stack layer.
     plates : tuple of Plate
         In stack order.
     dowels : tuple of Dowel
@@ -113,7 +117,9 @@ class PlateStack:
     axis: str
     pitch: float
     thickness: float
-    plates_per_layer: int
+    counts: tuple[int, ...]
+    sources: tuple[int, ...]
+    voxel_layers: int
     layers: tuple[tuple[Piece, ...], ...]
     plates: tuple[Plate, ...]
     dowels: tuple[Dowel, ...]
@@ -124,18 +130,33 @@ class PlateStack:
     min_width: float
 
     @property
+    def plates_per_layer(self) -> int:
+        """Plates of every stack layer when they all take the same number, else 0."""
+        return self.counts[0] if len(set(self.counts)) == 1 else 0
+
+    @property
+    def resampled(self) -> bool:
+        """Whether some voxel layer is skipped or the layers take unequal numbers of plates."""
+        return self.plates_per_layer == 0 or len(self.counts) != self.voxel_layers
+
+    def plate_range(self, k: int) -> tuple[int, int]:
+        """First and last plate numbers (1-based) of stack layer ``k`` (0-based)."""
+        first = sum(self.counts[:k]) + 1
+        return first, first + self.counts[k] - 1
+
+    @property
     def height(self) -> float:
         """Height in mm of the plate stack as built."""
-        return len(self.layers) * self.plates_per_layer * self.thickness
+        return sum(self.counts) * self.thickness
 
     @property
     def nominal_height(self) -> float:
         """Height in mm of the voxel shape along the axis."""
-        return len(self.layers) * self.pitch
+        return self.voxel_layers * self.pitch
 
     @property
     def drift(self) -> float:
-        """Stack height minus shape height in mm (plates × thickness − voxels × pitch)."""
+        """Stack height minus shape height in mm (plates × thickness − voxels × pitch), under thickness / 2."""
         return self.height - self.nominal_height
 
 
@@ -195,9 +216,42 @@ def _is_thin(outline_mm: object, width: float) -> bool:
     return bool(outline_mm.difference(opened).area > 1e-9 * max(1.0, outline_mm.area))
 
 
-def plates_per_layer(pitch: float, thickness: float) -> int:
-    """Plates per voxel layer: ``pitch / thickness`` rounded half up, at least 1."""
-    return max(1, int(math.floor(pitch / thickness + 0.5)))
+#: Most plates a stack may have (a plate count is also a count of laser jobs and glue-ups).
+MAX_PLATES = 2000
+
+
+def plate_count(layers: int, pitch: float, thickness: float) -> int:
+    """Plates in a stack as tall as ``layers`` voxels of ``pitch``: height / thickness, rounded half up."""
+    return max(1, int(math.floor(layers * pitch / thickness + 0.5)))
+
+
+def layer_runs(layers: int, pitch: float, thickness: float) -> tuple[tuple[int, int], ...]:
+    """Resample voxel layers to plates of another thickness, as slicers do.
+
+    The stack has :func:`plate_count` plates, so its height is within
+    ``thickness / 2`` of the object's; each plate takes the voxel layer at its
+    mid-height.  A 25-voxel shape at 2 mm becomes 17 plates of 3 mm (51 mm); at
+    ``pitch = k × thickness`` every layer takes ``k`` plates.
+
+    Returns
+    -------
+    tuple of (int, int)
+        ``(voxel layer, plates)`` runs bottom up, the layer 0-based; a voxel
+        layer that no plate's mid-height falls in is left out.
+    """
+    n = plate_count(layers, pitch, thickness)
+    if n > MAX_PLATES:
+        raise InvalidShapeError(
+            f"thickness: {layers} layers of {pitch:g} mm in {thickness:g} mm plates make {n} plates, over the "
+            f"limit of {MAX_PLATES}; use thicker plates or a smaller pitch"
+        )
+    mid = (np.arange(n) + 0.5) * thickness
+    # The small tolerance keeps a mid-height that lands on a layer boundary in floating point
+    # (pitch = k × thickness) in the layer below, as exact arithmetic does.
+    source = np.minimum(np.floor(mid / pitch + 1e-9).astype(np.int64), layers - 1)
+    starts = np.flatnonzero(np.r_[True, source[1:] != source[:-1]])
+    counts = np.diff(np.r_[starts, n])
+    return tuple((int(source[a]), int(c)) for a, c in zip(starts, counts))
 
 
 def make_plates(
@@ -224,7 +278,8 @@ def make_plates(
     axis : {'x', 'y', 'z'}
         Slicing axis; plates stack along it.
     thickness : float
-        Measured plate thickness in mm (may differ from the pitch).
+        Measured plate thickness in mm.  When it differs from the pitch the layers
+        are resampled (:func:`layer_runs`): the stack stays as tall as the object.
     dowel : float
         Dowel hole diameter in mm; 0 for no dowels.
     dowel_margin : float
@@ -252,8 +307,15 @@ def make_plates(
     if int(dowels_per_joint) != dowels_per_joint or dowels_per_joint < 0:
         raise InvalidShapeError(f"dowels_per_joint: expected an integer >= 0, got {dowels_per_joint!r}")
     ax = axis_value(axis)
-    labels, layers = slice_stack(grid, axis=ax)
-    n = plates_per_layer(pitch, thickness)
+    voxel_labels, voxel_layers = slice_stack(grid, axis=ax)
+    runs = layer_runs(len(voxel_layers), pitch, thickness)
+    sources = [k for k, _ in runs]
+    counts = [c for _, c in runs]
+    # Consecutive stack layers are what touch in the stack: dowels, scores and labels follow them.
+    labels = voxel_labels[sources]
+    layers = tuple(
+        tuple(dataclasses.replace(p, layer=i + 1) for p in voxel_layers[k]) for i, k in enumerate(sources)
+    )
     if dowel > 0 and dowels_per_joint > 0:
         dowels, joints = place_dowels(labels, pitch=pitch, diameter=dowel, margin=dowel_margin, per_joint=int(dowels_per_joint))
     else:
@@ -273,6 +335,8 @@ def make_plates(
     plates: list[Plate] = []
     thin: list[str] = []
     for k, pieces in progress(enumerate(layers), total=len(layers), desc="plates"):
+        n = counts[k]
+        below = sum(counts[:k])
         above = layer_union[k + 1] if k + 1 < len(layers) else None
         above_mm = scaled(above, pitch) if above is not None else None
         # what the plates of one piece share, computed once for all its copies
@@ -316,7 +380,7 @@ def make_plates(
                         outline=outline,
                         holes=holes,
                         hole_diameter=float(dowel) if len(holes) else 0.0,
-                        z=(k * n + copy - 1) * thickness,
+                        z=(below + copy - 1) * thickness,
                         thickness=thickness,
                         label=label,
                         score=lines if top else (),
@@ -331,7 +395,9 @@ def make_plates(
         axis=ax.value,
         pitch=pitch,
         thickness=thickness,
-        plates_per_layer=n,
+        counts=tuple(counts),
+        sources=tuple(k + 1 for k in sources),
+        voxel_layers=len(voxel_layers),
         layers=layers,
         plates=tuple(plates),
         dowels=dowels,

@@ -52,11 +52,17 @@ def _text(lines: list[Polylines], text: str, x: float, y: float, height: float, 
     lines.append(text_polylines([text], [(x, y)], [(1.0, 0.0)], height, center=center))
 
 
+def _per_layer(stack: PlateStack) -> str:
+    """``"2 PLATE(S)"``, or ``"1-2 PLATE(S)"`` when the layers were resampled unevenly."""
+    lo, hi = min(stack.counts), max(stack.counts)
+    return f"{lo} PLATE(S)" if lo == hi else f"{lo}-{hi} PLATE(S)"
+
+
 def _heading(stack: PlateStack, title: str) -> list[str]:
     n = len(stack.layers)
     return [
         f"{title + ': ' if title else ''}STACK ORDER LAYER 1 (BOTTOM) TO {n} (TOP) - AXIS {stack.axis} - "
-        f"{stack.plates_per_layer} PLATE(S) OF {stack.thickness:g} MM PER LAYER",
+        f"{_per_layer(stack)} OF {stack.thickness:g} MM PER LAYER",
         "SHADED: THIS LAYER WITH ITS PIECE NUMBERS - DOTTED: THE LAYER BELOW - CIRCLES: DOWEL HOLES",
     ]
 
@@ -96,8 +102,7 @@ def _page(stack: PlateStack, start: int, unions: list, lo: np.ndarray, size: np.
             if int(d.lower.split("-")[0]) == layer + 1 or int(d.upper.split("-")[0]) == layer + 1:
                 x, y = np.array([d.x, d.y]) * k + shift
                 holes.append((float(x), float(y), stack.dowel_diameter / 2 * k))
-        first = layer * stack.plates_per_layer + 1
-        last = first + stack.plates_per_layer - 1
+        first, last = stack.plate_range(layer)
         plates = f"PLATE {first}" if first == last else f"PLATES {first}-{last}"
         _text(label, f"LAYER {layer + 1} ({plates})", ox + size[0] * k / 2, oy + (size[1] + 0.3 * gap) * k,
               CAPTION, center=True, width=0.9 * cell[0] * k)

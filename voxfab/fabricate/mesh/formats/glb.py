@@ -1,7 +1,9 @@
 """Binary glTF 2.0 (GLB): one mesh node per part.
 
 glTF measures in metres, so the positions stay in mm (exact float32 values) and
-a root node scales the scene by 0.001.
+a root node scales the scene by 0.001.  glTF is Y-up (+Z towards the viewer), so
+voxfab's ``(x, y, z)`` with z up is written as ``(x, z, -y)``: a rotation, which
+keeps the triangles' winding.
 """
 
 from __future__ import annotations
@@ -29,6 +31,16 @@ def _pad(b: bytes, fill: bytes) -> bytes:
     return b + fill * (-len(b) % 4)
 
 
+def to_y_up(v: np.ndarray) -> np.ndarray:
+    """``(x, y, z)`` z-up → glTF's ``(x, z, -y)`` y-up (a quarter turn about x)."""
+    return np.column_stack([v[:, 0], v[:, 2], -v[:, 1]])
+
+
+def from_y_up(v: np.ndarray) -> np.ndarray:
+    """glTF's ``(X, Y, Z)`` y-up → ``(X, -Z, Y)`` z-up, the inverse of :func:`to_y_up`."""
+    return np.column_stack([v[:, 0], -v[:, 2], v[:, 1]])
+
+
 def to_bytes(mesh: MeshData, *, name: str) -> bytes:
     """GLB bytes: a JSON chunk and a binary chunk."""
     blobs: list[bytes] = []
@@ -36,7 +48,7 @@ def to_bytes(mesh: MeshData, *, name: str) -> bytes:
     offset = 0
     for p in range(mesh.part_count):
         v, t = mesh.part_mesh(p)
-        pos = np.ascontiguousarray(v, dtype="<f4")
+        pos = np.ascontiguousarray(to_y_up(v), dtype="<f4")
         idx = np.ascontiguousarray(t, dtype="<u4")
         for data, target in ((pos.tobytes(), _ARRAY_BUFFER), (idx.tobytes(), _ELEMENT_ARRAY_BUFFER)):
             views.append({"buffer": 0, "byteOffset": offset, "byteLength": len(data), "target": target})
@@ -73,7 +85,7 @@ def to_bytes(mesh: MeshData, *, name: str) -> bytes:
 
 
 def read(path: PathLike) -> MeshData:
-    """Read a GLB written by :func:`to_bytes`; positions in mm (the root scale is not applied)."""
+    """Read a GLB written by :func:`to_bytes`; positions in mm, z up (the root scale is not applied)."""
     with open(path, "rb") as fh:
         data = fh.read()
     try:
@@ -100,7 +112,7 @@ def read(path: PathLike) -> MeshData:
     base = 0
     for p, m in enumerate(doc["meshes"]):
         prim = m["primitives"][0]
-        v = array(prim["attributes"]["POSITION"], "<f4", 3).astype(np.float64)
+        v = from_y_up(array(prim["attributes"]["POSITION"], "<f4", 3).astype(np.float64))
         t = array(prim["indices"], "<u4", 3).astype(np.int64)
         verts.append(v)
         tris.append(t + base)

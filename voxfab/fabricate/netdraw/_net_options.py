@@ -1,0 +1,42 @@
+"""The search options of a paper net, declared once (CLI flags, recipe keys, checks, README table).
+
+The drawing options (sheet, tabs, styles) are :class:`DrawingOptions`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+from voxfab._shared.options import Options, option
+
+#: Longest search budget accepted, seconds.
+MAX_TIMEOUT = 3600.0
+#: Most nets one command writes.
+MAX_COUNT = 1000
+
+
+@dataclasses.dataclass(frozen=True)
+class NetOptions(Options):
+    """How a net is searched for, and at what scale it is drawn.
+
+    ``face_size`` is the paper scale, explicit and separate from the shape's
+    pitch (mm per voxel of the printed object): paper needs larger faces than a
+    print.  ``None`` takes the shape's pitch; a shape that has no pitch gets the
+    largest face size at which a one-piece net fits the sheet.
+    """
+
+    face_size: float | None = option(None, help="edge of one paper face (default: the shape's pitch)",
+                                     unit="mm", low=0.0, low_open=True, high=1000.0)
+    strategy: str = option("default", help="search strategy: ruin-and-recreate with tab room, or paper",
+                           choices=("default", "paper"))
+    timeout: float = option(60.0, help="search budget per net", unit="s", low=0.0, low_open=True,
+                            high=MAX_TIMEOUT)
+    count: int = option(1, help="write N distinct nets as NAME-1.ext ... NAME-N.ext", low=1, high=MAX_COUNT,
+                        recipe=False, metavar="N")
+    pieces: str = option("one", help="auto: when no one-piece net fits the sheet, the fewest pieces, packed on as "
+                         "few sheets as possible", choices=("one", "auto"))
+    fill: bool = option(False, help="unfold the outer surface only, as if enclosed cavities were filled")
+    compact: bool = option(False, help="prefer a small bounding box (slower)")
+    fit: bool = option(True, help="kept for old recipes: drawn nets always fit their sheet", cli=False)
+    formats: tuple[str, ...] = option(("svg", "dxf", "pdf"), help="drawings written beside net.json (png: a "
+                                      "preview)", choices=("svg", "dxf", "pdf", "png"), cli=False)

@@ -1,0 +1,61 @@
+"""The options of slice plates, declared once (CLI flags, recipe keys, checks, README table)."""
+
+from __future__ import annotations
+
+import dataclasses
+
+from voxfab._shared.options import Options, option
+
+#: Largest sheet side accepted, mm (the largest laser beds and cutting services stay under 3 m).
+MAX_SHEET = 5000.0
+
+
+def sheet_problem(value: str) -> str | None:
+    """Why ``value`` is not a usable sheet ``"WxH"`` in mm, or None."""
+    from voxfab.errors import InvalidShapeError
+
+    from ._nest import parse_sheet
+
+    try:
+        w, h = parse_sheet(value)
+    except InvalidShapeError:
+        return "expected WIDTHxHEIGHT in mm such as 600x400"
+    if max(w, h) > MAX_SHEET:
+        return f"expected sides of at most {MAX_SHEET:g} mm"
+    return None
+
+
+@dataclasses.dataclass(frozen=True)
+class PlateOptions(Options):
+    """How a shape becomes laser-cut plates nested on sheets (see :func:`make_plates`, :func:`nest_plates`).
+
+    The stack is as tall as the object (the shape's pitch times its voxel layers);
+    a ``thickness`` other than the pitch resamples the layers.
+    """
+
+    axis: str = option("z", help="slicing axis; plates stack along it", choices=("x", "y", "z"))
+    thickness: float = option(3.0, help="measured plate thickness", unit="mm", low=0.1, high=100.0)
+    sheet: str = option("600x400", help="sheet (laser bed) size WIDTHxHEIGHT", unit="mm", check=sheet_problem,
+                        metavar="WxH")
+    margin: float = option(5.0, help="empty border of the sheet", unit="mm", low=0.0, high=1000.0)
+    spacing: float = option(2.0, help="gap between parts on a sheet", unit="mm", low=0.0, high=1000.0)
+    kerf: float = option(0.0, help="laser kerf; outlines grow and holes shrink by half of it", unit="mm",
+                         low=0.0, high=5.0)
+    dowel: float = option(3.0, help="dowel hole diameter (0: no dowels)", unit="mm", low=0.0, high=100.0)
+    dowel_margin: float = option(1.0, help="least material between a dowel hole and an edge", unit="mm",
+                                 low=0.0, high=100.0)
+    dowels_per_joint: int = option(2, help="most dowels between two overlapping pieces (0: none)", low=0, high=16)
+    score: bool = option(True, help="score the next layer's outline as a gluing guide")
+    min_width: float = option(1.0, help="narrowest cuttable feature; narrower parts are reported", unit="mm",
+                              low=0.0, high=1000.0)
+    step: bool = option(False, help="also write the plate stack as STEP and STL (needs voxfab[cad])")
+
+    def check(self) -> None:
+        """The margins must leave room on the sheet."""
+        from voxfab._shared.options import OptionError
+
+        from ._nest import parse_sheet
+
+        w, h = parse_sheet(self.sheet)
+        if min(w, h) <= 2 * self.margin:
+            raise OptionError("sheet", f"{self.sheet} leaves no room inside a {self.margin:g} mm margin")
