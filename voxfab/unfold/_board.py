@@ -136,6 +136,7 @@ def make_board(faces: npt.NDArray[np.int64], f: int, board: npt.NDArray[np.int64
     half[:, CP] = -1
     half[:, SP] = -1
     cnt = np.zeros(N_COUNTERS, dtype=np.int64)
+    cnt[C_ROOT] = -1  # not started
     cnt[C_WIDTH] = width
     cnt[C_CONSTRAINED] = int(constrained)
     cnt[C_RNG] = np.int64(np.uint64(seed) | np.uint64(1))

@@ -391,10 +391,13 @@ def _repair(link, gmem, face, half, board, cnt, gw, give_up):
 def grow(link, gmem, face, half, board, cnt, root_cells, gw, max_steps, sparse):
     """Grow until every face is placed or ``max_steps`` steps are spent.
 
-    Returns True when the net is complete, False when out of steps, or when a
+    A board whose root is -1 is started first (:func:`start`), so one call
+    both starts and grows.  Returns True when the net is complete, False when out of steps, or when a
     dead end found no repair and ``gw.restart`` is off, or a restart found no
     room for a root.
     """
+    if cnt[C_ROOT] < 0 and start(link, gmem, face, half, board, cnt, root_cells) < 0:
+        return False
     steps = 0
     since_best = 0
     f = face.shape[0]

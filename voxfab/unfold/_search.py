@@ -65,7 +65,7 @@ class Pieces(enum.StrEnum):
     AUTO = "auto"
 
 
-def _growth(strategy: Strategy, faces: int):
+def _settings(strategy: Strategy, faces: int):
     from ._growth import MODE_PAPER, MODE_RUIN, Growth
 
     if strategy is Strategy.PAPER:
@@ -114,7 +114,8 @@ class _Board:
                                    int(state), resolved is not None)
         self.cnt = self.b.cnt
         self.faces = faces
-        self.started = self.growth.start(*self.sf, *self.b) >= 0
+        self.growth.grow(*self.sf, *self.b, _settings(Strategy.DEFAULT, 1), 0, False)  # start only
+        self.started = int(self.cnt[_board.C_ROOT]) >= 0
 
     @property
     def pos(self) -> npt.NDArray[np.int64]:
@@ -183,17 +184,20 @@ class _Board:
         face, half, board, cnt, _ = self.b
         best = np.zeros((face.shape[0], 3), dtype=np.int64)
         kept: tuple[int, np.ndarray, int] | None = None
-        for _ in range(_ROUNDS):
+        left = -1
+        for r in range(_ROUNDS):
+            if r:
+                cnt[self.k.C_ROOT] = -1  # grow starts a fresh net
+                if not self.grow(gw, deadline, _FIT_STEPS_PER_FACE * int(self.faces.size)):
+                    break
             left = self._anneal_round(gw, deadline, best, bar)
             if kept is None or left < kept[0]:
                 kept = (left, best.copy(), int(cnt[self.k.C_ROOT]))
             if left == 0 or time.monotonic() > deadline:
                 break
-            self.growth.start(*self.sf, *self.b)
-            if not self.grow(gw, deadline, _FIT_STEPS_PER_FACE * int(self.faces.size)):
-                break
-        self.k.restore(face, half, board, cnt, kept[1])
-        cnt[self.k.C_ROOT] = kept[2]
+        if kept[0] < left or self.unplaced:
+            self.k.restore(face, half, board, cnt, kept[1])
+            cnt[self.k.C_ROOT] = kept[2]
         return kept[0]
 
     def _anneal_round(self, gw, deadline: float, best: np.ndarray, bar: Meter | None) -> int:
@@ -202,16 +206,20 @@ class _Board:
         total = _MOVES_PER_FACE * int(self.faces.size)
         sched = tr.Annealing(total, _T0, _T1, _REGROW_STEPS, _RUIN_CAP, _BIG_CAP, _P_BIG)
         gw = gw._replace(restart=False)  # a move that cannot regrow cheaply is undone instead
-        left = tr.begin(self.sf.link, face, half, board, cnt, best)
+        cnt[self.k.C_TRACK] = 0
         done = 0
-        while left > 0 and done < total and time.monotonic() < deadline:
+        while True:
             step = min(_ANNEAL_CHUNK, total - done)
             used = tr.anneal(*self.sf, *self.b, gw, sched, step, done, best)
             if bar is not None:
                 bar.update(used)
             done += step
-            left = int(cnt[self.k.C_NBAD])
-        return int(tr.finish(face, half, board, cnt, best))
+            if not cnt[self.k.C_TRACK]:
+                break  # the run ended: no seam left, or its last move done
+            if time.monotonic() > deadline:
+                tr.finish(face, half, board, cnt, best)
+                break
+        return int(cnt[self.k.C_BESTBAD])
 
     def net(self, sg: SurfaceGraph, *, faces: npt.NDArray[np.int64] | None = None,
             seed: int, strategy: str) -> Net:
@@ -222,23 +230,24 @@ class _Board:
 
 def _surface_parts(sg: SurfaceGraph, faces: npt.NDArray[np.int64] | None = None) -> list[npt.NDArray[np.int64]]:
     """Face indices of each connected part of the surface (or of ``faces``), in order of first face."""
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-
     f = sg.face_count
-    rows = np.repeat(np.arange(f), 4)
-    cols = sg.neighbor.ravel()
+    inside = np.ones(f, dtype=bool)
     if faces is not None:
-        inside = np.zeros(f, dtype=bool)
+        inside[:] = False
         inside[faces] = True
-        keep = inside[rows] & inside[cols]
-        rows, cols = rows[keep], cols[keep]
-    m = coo_matrix((np.ones(rows.size, dtype=np.int8), (rows, cols)), shape=(f, f))
-    _, labels = connected_components(m, directed=False)
-    if faces is not None:
-        labels = labels[faces]
-        return [faces[labels == lab] for lab in dict.fromkeys(labels.tolist())]
-    return [np.flatnonzero(labels == lab) for lab in dict.fromkeys(labels.tolist())]
+    nb = sg.neighbor
+    joined = inside[:, None] & inside[nb]
+    # Each face takes the smallest label among itself and its neighbours, with
+    # pointer jumping; plain numpy keeps scipy.sparse out of the start-up time.
+    label = np.arange(f)
+    while True:
+        new = np.minimum(label, np.where(joined, label[nb], f).min(axis=1))
+        new = new[new]
+        if np.array_equal(new, label):
+            break
+        label = new
+    chosen = np.flatnonzero(inside)
+    return [chosen[label[chosen] == lab] for lab in dict.fromkeys(label[chosen].tolist())]
 
 
 def _check_fit(fit: tuple[int, int] | None) -> tuple[int, int] | None:
@@ -313,7 +322,7 @@ class _Job:
     constraints: EdgeConstraints | None
 
     def growth(self, faces: int):
-        return _growth(self.strategy, faces)
+        return _settings(self.strategy, faces)
 
     def resolved(self, faces: npt.NDArray[np.int64]) -> Resolved | None:
         return resolve(self.constraints, self.sg, faces)

@@ -107,14 +107,21 @@ def begin(link, face, half, board, cnt, best):
 def anneal(link, gmem, face, half, board, cnt, root_cells, gw, sched, moves, mv0, best):
     """Drive the count of seams without tab room down by ruin-and-recreate moves.
 
-    Starts from a complete net after :func:`begin`; each move removes one or two
+    Starts from a complete net (tracking its seams first, :func:`begin`, unless
+    an earlier call of the same run did); each move removes one or two
     subtrees next to a seam without tab room and regrows them (preferring cells
     with few placed neighbours); a move whose regrowth does not complete is
     undone.  Metropolis acceptance with a geometric temperature from ``t0`` to
     ``t1`` over ``sched.total`` moves, of which this call runs ``moves``
     starting at move ``mv0``.  The best net goes to ``best`` (columns POS, ROT,
-    PAR).  Returns the moves used.
+    PAR); the run ends (:func:`finish`, the board then holds the best net and
+    ``cnt[C_BESTBAD]`` its count) when no seam is left or the last move is
+    done.  One compiled entry point for the whole run keeps start-up short:
+    each kernel called from Python loads its own code from numba's cache.
+    Returns the moves used.
     """
+    if cnt[C_TRACK] == 0:
+        begin(link, face, half, board, cnt, best)
     total = sched.total
     used = 0
     for mv in range(moves):
@@ -141,6 +148,8 @@ def anneal(link, gmem, face, half, board, cnt, root_cells, gw, sched, moves, mv0
         else:
             cnt[C_REGROW_FAILED] += 1
         undo(link, gmem, face, half, board, cnt)
+    if cnt[C_NBAD] == 0 or mv0 + moves >= total:
+        finish(face, half, board, cnt, best)
     return used
 
 
