@@ -227,3 +227,21 @@ def test_search_counts_its_progress(monkeypatch):
     assert all(m.done == m.total == faces for m in by_desc["net: faces placed"])
     # One net search per seed tried, each growing and then annealing for tab room.
     assert len(by_desc["net: tab room, moves (at most)"]) == len(by_desc["net: faces placed"]) >= len(nets)
+
+
+def test_small_surfaces_skip_the_compiler_and_give_the_same_nets(monkeypatch):
+    import subprocess
+    import sys
+
+    from voxfab.unfold import _search
+
+    grid = examples.ball(3)  # 174 faces: plain Python by default
+    plain = [unfold(grid, rng=s).to_json() for s in range(3)]
+    monkeypatch.setattr(_search, "_PURE_FACES", 0)
+    compiled = [unfold(grid, rng=s).to_json() for s in range(3)]
+    assert plain == compiled  # the same source, the same arithmetic
+    code = ("import sys; from voxfab.shape import examples; from voxfab.unfold import unfold, validate; "
+            "g = examples.ball(2); validate(g, unfold(g, rng=0)); print('numba' in sys.modules)")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == "False"

@@ -20,9 +20,9 @@ from typing import NamedTuple
 
 import numpy as np
 import numpy.typing as npt
-from numba import njit
 
 from ._constraints import CUT, KEEP
+from ._jit import njit
 
 # ``link[f, row, k]``: the surface graph and constraints per face and edge.
 NB = 0  # neighbour face across edge k
@@ -427,7 +427,7 @@ def remove_subtree(link, gmem, face, half, board, cnt, m):
         f = half[top, STACK]
         for k in range(4):
             g = link[f, NB, k]
-            if face[g, POS] >= 0 and face[g, PAR] == f:
+            if face[g, POS] >= 0 and face[g, PAR] == f and top < face.shape[0]:
                 half[top, STACK] = g
                 top += 1
         unplace(link, gmem, face, half, board, cnt, f)
@@ -452,7 +452,7 @@ def subtree_size(link, face, half, m, i, cap):
             return cap + 1
         for k in range(4):
             g = link[f, NB, k]
-            if face[g, POS] >= 0 and face[g, PAR] == f:
+            if face[g, POS] >= 0 and face[g, PAR] == f and top < face.shape[0]:
                 half[top, STACK] = g
                 top += 1
     return n
@@ -519,7 +519,8 @@ def undo(link, gmem, face, half, board, cnt):
             continue
         top = 0
         a = j
-        while a >= 0 and face[a, POS] < 0 and face[a, STAMP] == move and face[a, LPOS] >= 0:
+        while a >= 0 and face[a, POS] < 0 and face[a, STAMP] == move and face[a, LPOS] >= 0 \
+                and top < face.shape[0]:
             half[top, STACK] = a
             top += 1
             a = face[a, LPAR]

@@ -12,9 +12,7 @@ half, board, cnt`` (see :mod:`voxfab.unfold._board`).
 
 from __future__ import annotations
 
-from typing import NamedTuple
-
-from numba import njit
+from voxfab.unfold._params import MODE_PAPER, MODE_RUIN
 
 from ._board import (
     BLK,
@@ -55,28 +53,12 @@ from ._board import (
     update,
 )
 from ._constraints import CUT
+from ._jit import njit
 
-MODE_RUIN = 0  # ruin-and-recreate, never restart
-MODE_PAPER = 1  # published method: leaf swap, smallest subtree, restart
 #: Random roots tried before a start gives up (a kept group may not fit a small box).
 _ROOT_TRIES = 64
 #: Largest blocking subtree a repair weighs; past it any usable option will do.
 _CAP = 128
-
-
-class Growth(NamedTuple):
-    """How to grow: ``mode``, candidates per ``tour``nament, blocked options
-    ``samples``d per dead end, chance ``p_lift`` of ruining further up the tree,
-    repairs without progress before a paper-mode restart, and whether a dead
-    end with no cheap repair may ruin a large subtree or ``restart`` (else
-    growth stops there)."""
-
-    mode: int
-    tour: int
-    samples: int
-    p_lift: float
-    restart_after: int
-    restart: bool = True
 
 
 @njit(cache=True)

@@ -20,9 +20,12 @@ from ._constraints import EdgeConstraints, Resolved, resolve
 from ._layout import build_net, count_without_tab_room
 from ._net import Net
 from ._outline import outline_key
+from ._params import MODE_PAPER, MODE_RUIN, Annealing, Growth
 
 __all__ = ["NoFitError", "Strategy", "Pieces", "unfold", "unfold_many"]
 
+#: Surfaces up to this many faces are searched by the plain-Python kernels.
+_PURE_FACES = 150
 #: Largest board side for a free (unfitted) net; past it growth meets a wall.
 MAX_BOARD = 1021
 #: Growth steps per compiled call between two clock checks.
@@ -30,7 +33,7 @@ _CHUNK = 4000
 #: Tab-room rounds (each from a fresh net), moves per face in each, and moves
 #: per compiled call between two clock checks.
 _ROUNDS = 8
-_SPARSE = False
+
 _MOVES_PER_FACE = 15
 _ANNEAL_CHUNK = 20000
 #: Largest subtree one annealing move may remove.
@@ -65,24 +68,57 @@ class Pieces(enum.StrEnum):
     AUTO = "auto"
 
 
-def _settings(strategy: Strategy, faces: int):
-    from ._growth import MODE_PAPER, MODE_RUIN, Growth
+def _settings(strategy: Strategy, faces: int) -> Growth:
 
     if strategy is Strategy.PAPER:
         return Growth(MODE_PAPER, 1, 0, 0.0, max(50, faces // 4))
     return Growth(MODE_RUIN, 3, 3, 0.05, 0)
 
 
-def _surface(sg: SurfaceGraph, resolved: Resolved | None):
-    from ._board import make_surface
-
+def _surface(sg: SurfaceGraph, resolved: Resolved | None, kernels):  # noqa: ANN001, ANN202
     f = sg.face_count
     if resolved is None:
         none = np.zeros(0, dtype=np.int64)
         resolved = Resolved(np.zeros((f, 4), dtype=np.int8), np.full(f, -1, dtype=np.int64),
                             none, none, none, none, np.zeros(1, dtype=np.int64))
-    return make_surface(sg.neighbor, sg.neighbor_edge, resolved.edge, resolved.group, resolved.gx,
+    return kernels.make_surface(sg.neighbor, sg.neighbor_edge, resolved.edge, resolved.group, resolved.gx,
                         resolved.gy, resolved.grot, resolved.members, resolved.start)
+
+
+def _kernels(faces: int) -> tuple:
+    """The kernel modules: compiled, or their plain-Python copy for small surfaces.
+
+    Both run the same source with the same integer arithmetic, so a seed gives
+    the same net either way; the copy only saves numba's start-up.
+    """
+    if faces > _PURE_FACES:
+        from . import _board, _growth, _tabroom
+
+        return _board, _growth, _tabroom
+    import importlib
+    import sys
+    import types
+
+    name = f"{__package__}._pure"
+    if name not in sys.modules:
+        pkg = types.ModuleType(name)
+        pkg.__path__ = list(sys.modules[__package__].__path__)  # the same files, loaded again
+        sys.modules[name] = pkg
+    return tuple(importlib.import_module(f"{name}.{m}") for m in ("_board", "_growth", "_tabroom"))
+
+
+def _quiet() -> np.errstate:
+    # The plain-Python kernels' random numbers wrap around uint64 on purpose.
+    return np.errstate(over="ignore")
+
+
+def count_seams(board: _Board) -> int:
+    """Seams without tab room of a board's complete net (used after a fallback)."""
+    k = board.k
+    face, half, b, cnt, _ = board.b
+    n = int(k.track_seams(board.sf.link, face, half, b, cnt))
+    cnt[k.C_TRACK] = 0
+    return n
 
 
 class _Board:
@@ -90,8 +126,7 @@ class _Board:
 
     def __init__(self, sg: SurfaceGraph, faces: npt.NDArray[np.int64], seed: int | list[int],
                  fit: tuple[int, int] | None, resolved: Resolved | None = None) -> None:
-        from . import _board, _growth, _tabroom
-
+        _board, _growth, _tabroom = _kernels(faces.size)
         self.k = _board
         self.growth = _growth
         self.tabroom = _tabroom
@@ -109,12 +144,13 @@ class _Board:
             ys, xs = np.nonzero(board == -1)
             cells = (ys * self.width + xs).astype(np.int64)
         state = np.random.SeedSequence(seed).generate_state(1, dtype=np.uint64)[0]
-        self.sf = _surface(sg, resolved)
+        self.sf = _surface(sg, resolved, _board)
         self.b = _board.make_board(faces, sg.face_count, board.ravel(), self.width, cells,
                                    int(state), resolved is not None)
         self.cnt = self.b.cnt
         self.faces = faces
-        self.growth.grow(*self.sf, *self.b, _settings(Strategy.DEFAULT, 1), 0, False)  # start only
+        with _quiet():
+            self.growth.grow(*self.sf, *self.b, _settings(Strategy.DEFAULT, 1), 0, False)  # start only
         self.started = int(self.cnt[_board.C_ROOT]) >= 0
 
     @property
@@ -149,7 +185,8 @@ class _Board:
             if time.monotonic() > deadline or (max_steps is not None and spent >= max_steps):
                 return False
             chunk = _CHUNK if max_steps is None else min(_CHUNK, max_steps - spent)
-            done = self.growth.grow(*self.sf, *self.b, gw, chunk, _SPARSE)
+            with _quiet():
+                done = self.growth.grow(*self.sf, *self.b, gw, chunk, False)
             if not done and self.unplaced == self.faces.size:
                 return False  # a restart found no room for a root
             spent += chunk
@@ -169,7 +206,8 @@ class _Board:
 
     def exclude_unplaced(self) -> None:
         """Make the placed faces a whole piece: the others are left out for good."""
-        self.k.exclude_unplaced(*self.sf, *self.b[:4])
+        with _quiet():
+            self.k.exclude_unplaced(*self.sf, *self.b[:4])
         self.faces = np.flatnonzero(self.pos >= 0)
 
     def anneal(self, gw, deadline: float, bar: Meter | None = None) -> int:
@@ -185,32 +223,52 @@ class _Board:
         best = np.zeros((face.shape[0], 3), dtype=np.int64)
         kept: tuple[int, np.ndarray, int] | None = None
         left = -1
+        grown = (self.pos.copy(), self.rot.copy(), self.par.copy())
         for r in range(_ROUNDS):
             if r:
                 cnt[self.k.C_ROOT] = -1  # grow starts a fresh net
                 if not self.grow(gw, deadline, _FIT_STEPS_PER_FACE * int(self.faces.size)):
                     break
             left = self._anneal_round(gw, deadline, best, bar)
+            if not self._whole():
+                break  # never keep a broken tree (a safety net: should not happen)
             if kept is None or left < kept[0]:
                 kept = (left, best.copy(), int(cnt[self.k.C_ROOT]))
             if left == 0 or time.monotonic() > deadline:
                 break
-        if kept[0] < left or self.unplaced:
+        if kept is None:  # no round ended whole: back to the net as grown
+            self.k.restore(face, half, board, cnt, np.stack(grown, axis=1))
+            return count_seams(self)
+        if kept[0] < left or not self._whole():
             self.k.restore(face, half, board, cnt, kept[1])
             cnt[self.k.C_ROOT] = kept[2]
         return kept[0]
+
+    def _whole(self) -> bool:
+        """Whether the placed faces are all the faces and form one tree."""
+        pos, par = self.pos[self.faces], self.par
+        if (pos < 0).any():
+            return False
+        up = par[self.faces]
+        if np.count_nonzero(up < 0) != 1 or (self.pos[up[up >= 0]] < 0).any():
+            return False
+        anc = np.where(par >= 0, par, -1)
+        for _ in range(int(self.faces.size).bit_length() + 1):  # pointer doubling finds cycles
+            anc = np.where(anc >= 0, anc[np.maximum(anc, 0)], -1)
+        return bool((anc < 0).all())
 
     def _anneal_round(self, gw, deadline: float, best: np.ndarray, bar: Meter | None) -> int:
         tr = self.tabroom
         face, half, board, cnt, _ = self.b
         total = _MOVES_PER_FACE * int(self.faces.size)
-        sched = tr.Annealing(total, _T0, _T1, _REGROW_STEPS, _RUIN_CAP, _BIG_CAP, _P_BIG)
+        sched = Annealing(total, _T0, _T1, _REGROW_STEPS, _RUIN_CAP, _BIG_CAP, _P_BIG)
         gw = gw._replace(restart=False)  # a move that cannot regrow cheaply is undone instead
         cnt[self.k.C_TRACK] = 0
         done = 0
         while True:
             step = min(_ANNEAL_CHUNK, total - done)
-            used = tr.anneal(*self.sf, *self.b, gw, sched, step, done, best)
+            with _quiet():
+                used = tr.anneal(*self.sf, *self.b, gw, sched, step, done, best)
             if bar is not None:
                 bar.update(used)
             done += step

@@ -9,10 +9,7 @@ a move and its undo cost only the faces they move, not the whole net.
 
 from __future__ import annotations
 
-from typing import NamedTuple
-
 import numpy as np
-from numba import njit
 
 from ._board import (
     C_ACCEPTED,
@@ -42,21 +39,7 @@ from ._board import (
     undo,
 )
 from ._growth import grow
-
-
-class Annealing(NamedTuple):
-    """Move schedule: temperatures ``t0`` to ``t1`` (in seams) over ``total``
-    moves, growth steps a regrowth may spend, and the largest subtree a move
-    may remove: ``ruin_cap`` mostly, ``big_cap`` with chance ``p_big`` (a seam
-    whose faces and tab cells all lie on the trunk of the tree needs it)."""
-
-    total: int
-    t0: float
-    t1: float
-    regrow_steps: int
-    ruin_cap: int
-    big_cap: int = 0
-    p_big: float = 0.0
+from ._jit import njit
 
 
 @njit(cache=True)
