@@ -7,6 +7,8 @@ each class into a one-line message and its own exit code (see ``EXIT_CODES``).
 
 from __future__ import annotations
 
+import re
+
 __all__ = [
     "VoxfabError",
     "InvalidShapeError",
@@ -17,8 +19,52 @@ __all__ = [
     "RepositoryError",
     "MissingDependencyError",
     "FabricationError",
+    "LimitError",
+    "OutputError",
+    "VoxfabWarning",
     "EXIT_CODES",
+    "quote",
+    "one_line",
 ]
+
+#: Characters of user input quoted in a message: enough to recognise it, never a
+#: whole 10 KB expression.
+QUOTE_LIMIT = 80
+#: Longest error line the CLI prints.
+MESSAGE_LIMIT = 600
+
+
+def quote(value: object, limit: int = QUOTE_LIMIT) -> str:
+    """``repr(value)`` cut to about ``limit`` characters, saying how long the input was.
+
+    >>> quote("x" * 1000, 20)
+    "'xxxxxxxxxxxxxxx...' (1000 characters)"
+    """
+    text = repr(value)
+    if len(text) <= limit:
+        return text
+    size = f" ({len(value)} characters)" if isinstance(value, (str, bytes)) else ""
+    close = text[-1] if text[-1] in "'\"" else ""
+    return f"{text[: max(limit - 4, 1)]}...{close}{size}"
+
+
+# A quoted run of more than QUOTE_LIMIT characters, in single or double quotes.
+_QUOTED = re.compile(
+    rf"'(?:[^'\\\n]|\\.){{{QUOTE_LIMIT},}}'|\"(?:[^\"\\\n]|\\.){{{QUOTE_LIMIT},}}\""
+)
+
+
+def one_line(message: object, limit: int = MESSAGE_LIMIT) -> str:
+    """``message`` as one line: whitespace folded, long quoted input cut, at most ``limit`` characters.
+
+    The CLI passes every error and warning through this, so no message repeats a
+    huge input, whichever module wrote it.
+    """
+    text = " ".join(str(message).split())
+    text = _QUOTED.sub(lambda m: f"{m.group(0)[: QUOTE_LIMIT - 4]}...{m.group(0)[-1]}", text)
+    if len(text) > limit:
+        text = f"{text[: limit - 3]}..."
+    return text
 
 
 class VoxfabError(Exception):
@@ -53,6 +99,21 @@ class FabricationError(VoxfabError, RuntimeError):
     """A fabrication output cannot be made from valid input (e.g. a mesh check failed)."""
 
 
+class LimitError(VoxfabError, ValueError):
+    """Input over one of voxfab's documented size limits (see ``voxfab._shared.limits``)."""
+
+
+class OutputError(InvalidShapeError):
+    """An output that cannot be written where it was asked (no such folder, not a folder...).
+
+    An output path is a parameter: its exit status is that of :class:`InvalidShapeError`.
+    """
+
+
+class VoxfabWarning(UserWarning):
+    """Something the user should know that does not stop the run; the CLI prints it as one line."""
+
+
 class MissingDependencyError(VoxfabError, ImportError):
     """An optional package needed for this feature is not installed."""
 
@@ -73,4 +134,5 @@ EXIT_CODES: dict[type[VoxfabError], int] = {
     RepositoryError: 8,
     MissingDependencyError: 9,
     FabricationError: 10,
+    LimitError: 11,
 }

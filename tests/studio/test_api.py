@@ -72,6 +72,7 @@ def test_allowed_hosts_are_the_servers_own_address():
 
     assert allowed_hosts("127.0.0.1", 8765) == {"127.0.0.1:8765", "localhost:8765", "[::1]:8765"}
     assert allowed_hosts("192.168.1.5", 9000) == {"192.168.1.5:9000"}
+    assert "127.0.0.1:80" in allowed_hosts("0.0.0.0", 80) and "evil.example:80" not in allowed_hosts("0.0.0.0", 80)
 
 
 def test_request_size_is_limited(client):
@@ -426,6 +427,7 @@ def test_make_animation_and_errors(client):
         ({"grid": pack(g), "artefact": "mesh.stl", "title": "../x"}, "title"),
         ({"grid": pack(g), "artefact": "net.svg", "net": {"job": "0123456789abcdef", "index": 0}}, "no job"),
         ({"grid": pack(g), "artefact": "net.svg", "options": {"sheet": "huge"}}, "sheet"),
+        ({"grid": pack(g), "artefact": "net.svg", "options": {"timeout": 0}}, "timeout"),
         ({"grid": pack(g), "artefact": "animation.gif", "shape": rev(CIRCLE, WAVY)}, "tube"),
     ]:
         r = client.post("/api/make", json=body)
@@ -447,3 +449,60 @@ def test_jobs_and_files_errors(client):
     m = client.post("/api/make", json={"grid": pack(two), "artefact": "net.json"})
     s = wait_job(client, m.json()["job"])
     assert s["state"] == "error" and s["message"] and "\n" not in s["message"]
+
+
+def _folds(layout) -> set[tuple[int, int]]:
+    return {tuple(sorted(p)) for p in np.array(layout["folds"]).reshape(-1, 2).tolist()}
+
+
+def test_marked_edges_are_honoured(client):
+    g = small_shape()
+    first = wait_job(client, client.post("/api/nets", json={"grid": pack(g), "count": 1, "timeout": 3}).json()["job"])
+    lay = first["result"]["nets"][0]["layout"]
+    folds = _folds(lay)
+    nb = np.array(lay["neighbor"]).reshape(-1, 4)
+    fold = sorted(folds)[len(folds) // 2]
+    cut = next((i, int(j)) for i in range(len(nb)) for j in nb[i] if tuple(sorted((i, int(j)))) not in folds)
+    faces = lay["faces"]
+    constraints = {"cut": [[faces[fold[0]], faces[fold[1]]]], "keep": [[faces[cut[0]], faces[cut[1]]]]}
+    r = client.post("/api/nets", json={"grid": pack(g), "count": 2, "timeout": 3, "constraints": constraints})
+    s = wait_job(client, r.json()["job"])
+    assert s["state"] == "done", s
+    for net in s["result"]["nets"]:
+        got = _folds(net["layout"])
+        assert tuple(sorted(fold)) not in got  # marked cut: never a fold
+        assert tuple(sorted(cut)) in got  # marked keep: always a fold
+    # the same edge cut and kept, or a face that is not on the surface: one clear line
+    both = {"cut": constraints["cut"], "keep": constraints["cut"]}
+    r = client.post("/api/nets", json={"grid": pack(g), "constraints": both})
+    assert r.status_code == 400 and "both cut and kept" in r.json()["error"]
+    away = {"cut": [[[0, 0, 0, "+x"], [0, 0, 0, "+y"]]]}
+    r = client.post("/api/nets", json={"grid": pack(g), "count": 1, "timeout": 3, "constraints": away})
+    s = wait_job(client, r.json()["job"])
+    assert s["state"] == "error" and "\n" not in s["message"] and s["message"]
+
+
+def test_a_seed_that_runs_out_of_time_is_skipped(client, monkeypatch):
+    import voxfab.unfold as engine
+    from voxfab.errors import UnfoldError
+
+    real = engine.unfold
+    calls = []
+
+    def flaky(grid, *, rng, **options):
+        calls.append(rng)
+        if len(calls) == 2:
+            raise UnfoldError("no one-piece net in 1 s")
+        return real(grid, rng=rng, **options)
+
+    monkeypatch.setattr(engine, "unfold", flaky)
+    g = small_shape()
+    s = wait_job(client, client.post("/api/nets", json={"grid": pack(g), "count": 2, "timeout": 5}).json()["job"])
+    assert s["state"] == "done" and s["result"]["found"] == 2 and s["result"]["tries"] == 3
+
+    def never(grid, *, rng, **options):
+        raise UnfoldError("no one-piece net in 1 s")
+
+    monkeypatch.setattr(engine, "unfold", never)
+    s = wait_job(client, client.post("/api/nets", json={"grid": pack(g), "count": 2, "timeout": 5}).json()["job"])
+    assert s["state"] == "error" and s["message"] == "no one-piece net in 1 s"

@@ -114,6 +114,17 @@ def test_toggle_voxels_and_see_well_formedness_change(server, browser):
     click_cell(0, 0)  # remove it again
     wait(browser, lambda d: attr(d, "wf", "data-well-formed") == "true", what="well formed after removing")
     assert browser.find_element("id", "reasons").text == ""
+    # the 3D view orbits on a drag and zooms on the wheel
+    from selenium.webdriver import ActionChains
+
+    viewer = browser.find_element("id", "viewer")
+    picture = "return arguments[0].toDataURL();"
+    first = browser.execute_script(picture, viewer)
+    ActionChains(browser).move_to_element(viewer).click_and_hold().move_by_offset(60, 20).release().perform()
+    turned = browser.execute_script(picture, viewer)
+    assert turned != first
+    browser.execute_script("arguments[0].dispatchEvent(new WheelEvent('wheel', {deltaY: -400}));", viewer)
+    assert browser.execute_script(picture, viewer) != turned
 
 
 def test_save_to_the_repository_and_browse_it(server, browser):
@@ -157,7 +168,7 @@ def test_net_gallery_pick_and_download_svg(server, browser):
     count.send_keys("3")
     timeout = browser.find_element("id", "net-timeout")
     timeout.clear()
-    timeout.send_keys("5")
+    timeout.send_keys("10")  # a slim column's nets take far less once the kernels are compiled
     browser.find_element("id", "net-go").click()
     wait(browser, lambda d: len(d.find_elements("css selector", "#net-gallery figure")) == 3, timeout=90,
          what="three nets")
@@ -201,3 +212,122 @@ def test_net_gallery_pick_and_download_svg(server, browser):
     write_drawing(VoxelShape(grid, 2.0), net, again, argparse.Namespace(pitch=None, sheet="A4"), title=name)
     assert again.read_bytes() == svg.read_bytes()
     assert np.count_nonzero(grid) == int(name[:5])
+
+
+def _gallery(browser, count):
+    field = browser.find_element("id", "net-count")
+    field.clear()
+    field.send_keys(str(count))
+    field = browser.find_element("id", "net-timeout")
+    field.clear()
+    field.send_keys("10")
+
+
+def test_mark_an_edge_then_regenerate_honours_it(server, browser):
+    import json
+
+    from selenium.webdriver import ActionChains
+
+    from voxfab.unfold import Net
+
+    open_page(browser, server)
+    set_expression(browser, "src-generatrix", "x = 0.12")
+    wait(browser, lambda d: int(attr(d, "volume", "data-volume")) < 400, what="the slim column")
+    tab(browser, "net")
+    _gallery(browser, 2)
+    browser.find_element("id", "net-go").click()
+    wait(browser, lambda d: len(d.find_elements("css selector", "#net-gallery figure")) == 2, timeout=90,
+         what="two nets")
+    browser.find_elements("css selector", "#net-gallery figure")[0].click()
+    canvas = browser.find_element("id", "net-canvas")
+    for dx, dy in ((0, 0), (7, 3), (-5, 9), (3, -11), (12, 12)):
+        ActionChains(browser).move_to_element_with_offset(canvas, dx, dy).click().perform()
+        if attr(browser, "marks-count", "data-constraints"):
+            break
+    marks = json.loads(attr(browser, "marks-count", "data-constraints"))
+    assert len(marks["cut"]) == 1 and not marks["keep"]
+    assert browser.find_element("id", "marks-count").text == "1 cut, 0 kept"
+    browser.save_screenshot(str(SHOTS / "net-marked.png"))
+    browser.find_element("id", "net-regen").click()
+    wait(browser, lambda d: len(d.find_elements("css selector", "#net-gallery figure")) == 2
+         and not d.find_element("id", "net-regen").get_attribute("disabled")
+         and d.find_element("id", "net-chosen-label").text == "", timeout=90, what="the new gallery")
+    browser.find_elements("css selector", "#net-gallery figure")[1].click()
+    before = set(browser.downloads.glob("*.json"))
+    tab(browser, "make")
+    browser.find_element("css selector", '[data-make="net.json"]').click()
+    js = wait(browser, lambda d: next(iter(set(d.downloads.glob("*.json")) - before), None), timeout=60,
+              what="the net JSON")
+    time.sleep(0.3)
+    net = Net.from_json(js.read_text())
+    names = {"+x": (1, 0, 0), "-x": (-1, 0, 0), "+y": (0, 1, 0), "-y": (0, -1, 0), "+z": (0, 0, 1), "-z": (0, 0, -1)}
+    index = {(tuple(v), tuple(n)): i for i, (v, n) in enumerate(zip(net.voxel.tolist(), net.normal.tolist()))}
+    (a, b), = marks["cut"]
+    ia, ib = index[(tuple(a[:3]), names[a[3]])], index[(tuple(b[:3]), names[b[3]])]
+    folds = {tuple(sorted(p)) for p in net.folds.tolist()}
+    assert tuple(sorted((ia, ib))) not in folds  # the marked edge is cut in the new net
+
+
+def test_tube_animation_eggs_by_clicking_and_a_bitmap_upload(server, browser, tmp_path):
+    from PIL import Image, ImageDraw
+    from selenium.webdriver import ActionChains
+    from selenium.webdriver.support.ui import Select
+
+    open_page(browser, server)
+    # a bitmap curve of revolution, uploaded through the file input
+    im = Image.new("L", (80, 80), 255)
+    ImageDraw.Draw(im).rectangle((10, 10, 70, 70), fill=0)
+    im.save(tmp_path / "square.png")
+    before = attr(browser, "volume", "data-volume")
+    browser.find_element("css selector", '#src-curve input[value="bitmap"]').click()
+    browser.find_element("css selector", "#src-curve input.bitmap").send_keys(str(tmp_path / "square.png"))
+    wait(browser, lambda d: attr(d, "volume", "data-volume") != before, what="the square section")
+    assert attr(browser, "wf", "data-well-formed") == "true"
+    # a tube: Frenet frames, then the rotating profile plays
+    Select(browser.find_element("id", "maker")).select_by_value("tube")
+    wait(browser, lambda d: attr(d, "volume", "data-volume") != before, what="the tube")
+    Select(browser.find_element("id", "frame")).select_by_value("frenet")
+    version = int(attr(browser, "viewer", "data-version"))
+    browser.find_element("id", "play").click()
+    wait(browser, lambda d: attr(d, "anim-status", "data-frames") == "24", timeout=60, what="24 frames")
+    wait(browser, lambda d: int(attr(d, "viewer", "data-version")) > version + 5, what="the animation playing")
+    browser.save_screenshot(str(SHOTS / "tube.png"))
+    browser.find_element("id", "stop").click()
+    # an egg: a third focus placed by clicking, and a weight changed
+    Select(browser.find_element("id", "maker")).select_by_value("focal")
+    wait(browser, lambda d: len(d.find_elements("css selector", "#foci-list .row")) == 2, what="the two foci")
+    egg = int(wait(browser, lambda d: attr(d, "volume", "data-volume"), what="the egg"))
+    canvas = browser.find_element("id", "foci-canvas")
+    ActionChains(browser).move_to_element_with_offset(canvas, 40, 0).click().perform()
+    wait(browser, lambda d: len(d.find_elements("css selector", "#foci-list .row")) == 3, what="a third focus")
+    wait(browser, lambda d: int(attr(d, "volume", "data-volume")) != egg, what="the new egg")
+    from selenium.webdriver.common.keys import Keys
+
+    three = int(attr(browser, "volume", "data-volume"))
+    weight = browser.find_elements("css selector", "#foci-list input.weight")[2]
+    weight.send_keys(Keys.CONTROL, "a")
+    weight.send_keys("3", Keys.TAB)  # the change event on leaving the field
+    wait(browser, lambda d: int(attr(d, "volume", "data-volume")) != three, what="the heavier focus")
+    assert browser.find_elements("css selector", "#foci-list input.weight")[2].get_attribute("value") == "3"
+    browser.save_screenshot(str(SHOTS / "egg.png"))
+
+
+def test_polyline_closed_curve_of_revolution(server, browser):
+    from selenium.webdriver import ActionChains
+    from selenium.webdriver.support.ui import Select
+
+    open_page(browser, server)
+    before = attr(browser, "volume", "data-volume")
+    previews = int(attr(browser, "latency", "data-count"))
+    browser.find_element("css selector", '#src-curve input[value="drawn"]').click()
+    Select(browser.find_element("css selector", "#src-curve select.tool")).select_by_value("polyline")
+    browser.find_element("css selector", "#src-curve input.closed").click()
+    canvas = browser.find_element("css selector", "#src-curve canvas")
+    for x, y in ((-80, -80), (80, -80), (80, 80), (-80, 80)):  # a square, one click per corner
+        ActionChains(browser).move_to_element_with_offset(canvas, x, y).click().perform()
+    browser.find_element("css selector", "#src-curve button.finish").click()
+    wait(browser, lambda d: int(attr(d, "latency", "data-count")) > previews
+         and attr(d, "volume", "data-volume") != before, what="the square curve of revolution")
+    # a square section: the top layer is a filled square of the widest slice's side
+    assert attr(browser, "wf", "data-well-formed") == "true"
+    browser.save_screenshot(str(SHOTS / "polyline.png"))

@@ -2,13 +2,18 @@
 
 from __future__ import annotations
 
+import contextlib
+import os
+from collections.abc import Iterator
+from contextvars import ContextVar
 from enum import Enum
+from pathlib import Path
 from typing import TypeVar
 
 import numpy as np
 import numpy.typing as npt
 
-from voxfab.errors import InvalidShapeError
+from voxfab.errors import InvalidShapeError, RecipeError, quote
 
 from .typing import BoolGrid
 
@@ -98,3 +103,54 @@ def check_positive(value: float, *, name: str) -> float:
     if not np.isfinite(v) or v <= 0:
         raise InvalidShapeError(f"{name}: expected a positive number, got {value!r}")
     return v
+
+
+# The folder that input files named by a recipe must stay in (None: anywhere).
+_INPUT_ROOT: ContextVar[Path | None] = ContextVar("voxfab_input_root", default=None)
+
+
+@contextlib.contextmanager
+def confine_inputs(root: str | os.PathLike[str] | None) -> Iterator[None]:
+    """Within the block, :func:`resolve_input` refuses files outside ``root`` (``None``: no limit).
+
+    A recipe is a file someone may hand over; the files it names (``file =``,
+    drawings, profiles, spines) must not reach the rest of the disk, e.g.
+    ``../../../../etc/passwd``.  Symbolic links are followed before the check.
+    """
+    token = _INPUT_ROOT.set(None if root is None else Path(root).resolve())
+    try:
+        yield
+    finally:
+        _INPUT_ROOT.reset(token)
+
+
+def resolve_input(source: str | os.PathLike[str], base_dir: str | os.PathLike[str] | None = None, *,
+                  name: str) -> Path:
+    """The path of an input file named ``source``, relative to ``base_dir`` unless absolute.
+
+    Raises
+    ------
+    RecipeError
+        Inside :func:`confine_inputs`, when the file resolves outside its folder.
+    """
+    path = Path(source)
+    if not path.is_absolute() and base_dir is not None:
+        path = Path(base_dir) / path
+    root = _INPUT_ROOT.get()
+    if root is not None:
+        check_confined(path, root, name=name, shown=str(source))
+    return path
+
+
+def check_confined(path: str | os.PathLike[str], root: str | os.PathLike[str], *, name: str,
+                   shown: str | None = None) -> None:
+    """Refuse ``path`` unless it resolves (links followed) inside the folder ``root``.
+
+    ``shown`` is the file name as the user wrote it, for the message.
+    """
+    real = Path(path).resolve()
+    if not real.is_relative_to(Path(root).resolve()):
+        raise RecipeError(
+            f"{name}: {quote(shown or str(path))} is outside the recipe's folder {os.path.abspath(root)}; "
+            "pass --allow-outside to read files elsewhere"
+        )

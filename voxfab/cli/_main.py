@@ -8,13 +8,18 @@ level, so ``voxfab --version`` and ``voxfab info`` start fast.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib
+import signal
 import sys
+import threading
 import traceback
-from collections.abc import Sequence
+import warnings
+from collections.abc import Iterator, Sequence
+from pathlib import Path
 
 from voxfab._version import __version__
-from voxfab.errors import EXIT_CODES, VoxfabError
+from voxfab.errors import EXIT_CODES, VoxfabError, VoxfabWarning, one_line
 
 #: Subcommand name → module.
 COMMANDS: dict[str, str] = {
@@ -76,24 +81,83 @@ def _joined_negative_views(argv: list[str]) -> list[str]:
     return out
 
 
+_PACKAGE_DIR = str(Path(__file__).resolve().parent.parent)
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised as an exception so that temporary outputs are removed on the way out."""
+
+
+def _terminate(signum: int, frame: object) -> None:
+    raise Terminated
+
+
+@contextlib.contextmanager
+def _terminate_as_exception() -> Iterator[None]:
+    """Turn SIGTERM into :class:`Terminated` while a command runs (main thread only)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGTERM, _terminate)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def _show_warning(message: Warning | str, category: type[Warning], filename: str, lineno: int,
+                  file: object = None, line: str | None = None) -> None:
+    """voxfab's own warnings as one line each; library warnings (numpy, Pillow...) are not the user's business.
+
+    voxfab's own are :class:`VoxfabWarning` or a plain ``UserWarning`` raised in voxfab's code.
+    """
+    own = category is UserWarning and str(filename).startswith(_PACKAGE_DIR)
+    if issubclass(category, VoxfabWarning) or own:
+        print(f"voxfab: warning: {one_line(message)}", file=sys.stderr)
+
+
+@contextlib.contextmanager
+def _quiet_warnings(debug: bool) -> Iterator[None]:
+    """Show voxfab's warnings as one line; hide library warnings unless ``--debug``."""
+    with warnings.catch_warnings():
+        if not debug:
+            warnings.simplefilter("default")
+            warnings.showwarning = _show_warning
+        yield
+
+
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the CLI; return the exit status."""
+    """Run the CLI; return the exit status.
+
+    Every error caused by input ends here as one line ``voxfab: error: ...`` (at
+    most 600 characters, quoting at most 80 of any input) and the exit status of
+    its class; an interrupt (SIGINT, SIGTERM) removes temporary outputs and
+    exits with 130 or 143.
+    """
     from voxfab._shared import progress
 
     parser = build_parser()
-    args = parser.parse_args(_joined_negative_views(sys.argv[1:] if argv is None else list(argv)))
+    argv = _joined_negative_views(sys.argv[1:] if argv is None else list(argv))
+    for arg in argv:
+        # argparse (3.11) turns the value of "--opt=--" into [] and skips its type check.
+        if arg.startswith("-") and arg.endswith("=--"):
+            parser.error(f"argument {arg[:-3]}: expected a value, got '--'")
+    args = parser.parse_args(argv)
     if not getattr(args, "command", None):
         parser.print_help()
         return 2
     progress.ENABLED = True
     try:
-        return int(args._run(args) or 0)
+        with _terminate_as_exception(), _quiet_warnings(args.debug):
+            return int(args._run(args) or 0)
     except VoxfabError as exc:
         if args.debug:
             traceback.print_exc()
-        message = " ".join(str(exc).split("\n"))
-        print(f"voxfab: error: {message}", file=sys.stderr)
+        print(f"voxfab: error: {one_line(exc)}", file=sys.stderr)
         return _exit_code(exc)
+    except Terminated:
+        print("voxfab: terminated", file=sys.stderr)
+        return 143
     except KeyboardInterrupt:
         print("voxfab: interrupted", file=sys.stderr)
         return 130

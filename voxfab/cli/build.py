@@ -15,6 +15,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("-o", "--output", type=Path, default=Path("output"), metavar="DIR",
                         help="output folder (default: output)")
     parser.add_argument("--check", action="store_true", help="validate the recipes only, build nothing")
+    parser.add_argument("--allow-outside", action="store_true",
+                        help="let recipes read files outside their own folder (refused by default)")
     add_strict_option(parser)
 
 
@@ -24,7 +26,7 @@ def run(args: argparse.Namespace) -> int:
     from voxfab.recipe import build, load_recipe
 
     # Validate every recipe first, so a typo in the last one does not waste a long build.
-    recipes = [load_recipe(path) for path in args.recipes]
+    recipes = [load_recipe(path, allow_outside=args.allow_outside) for path in args.recipes]
     names = [r.name for r in recipes]
     duplicates = sorted({n for n in names if names.count(n) > 1})
     if duplicates:

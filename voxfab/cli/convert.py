@@ -33,6 +33,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """Convert ``args.input`` to ``args.output``; print the reader's notes; return 0."""
     from voxfab import io
+    from voxfab._shared.atomic import check_output
     from voxfab.errors import UnknownFormatError
 
     out_ext = args.output.suffix.lower()
@@ -42,6 +43,7 @@ def run(args: argparse.Namespace) -> int:
             f"{args.output}: cannot write {out_ext or '(no extension)'!r}; "
             f"writable: {', '.join(io.writable_formats())}"
         )
+    check_output(args.output)  # an existing folder, before the reading
     options: dict[str, Any] = {}
     if args.resolution is not None:
         options["resolution"] = args.resolution

@@ -35,12 +35,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from voxfab._shared.atomic import check_output
     from voxfab.errors import InvalidShapeError
     from voxfab.fabricate.mesh import MeshOptions, fabricate_mesh, format_for
 
     from ._options import options_from_args
 
     format_for(args.output)  # refuse an unknown extension before any work
+    check_output(args.output)  # and a folder that does not exist
     options = options_from_args(MeshOptions, args, label=args.label)
     if args.pitch is not None and options.size is not None:
         raise InvalidShapeError("--pitch and --size: give one of them, not both")

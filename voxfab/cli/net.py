@@ -85,12 +85,14 @@ def _named(path: Path, *tags: str) -> Path:
 
 def run(args: argparse.Namespace) -> int:
     """Search, validate and write the nets."""
-    from voxfab._shared.atomic import write_text
+    from voxfab._shared.atomic import atomic_files, check_output, write_text
     from voxfab.fabricate.netdraw import NetOptions
     from voxfab.unfold import unfold, unfold_many, validate
 
     search = options_from_args(NetOptions, args)
     outputs = [Path(p) for p in args.output]
+    for p in outputs:
+        check_output(p)  # before the search, which may take minutes
     drawings = [p for p in outputs if p.suffix.lower() != ".json"]
     netdraw = None
     if drawings:
@@ -129,21 +131,22 @@ def run(args: argparse.Namespace) -> int:
     grid = fill_cavities(shape.grid) if search.fill else shape.grid
     drawn = VoxelShape(grid, face_size if face_size is not None else shape.pitch)
     title = name or Path(args.shape).stem
-    written = []
     summary = []
-    for t, pieces in enumerate(results):
-        validate(grid, pieces if len(pieces) > 1 else pieces[0], constraints=constraints)
-        for q, net in enumerate(pieces):
-            tags = (str(t + 1) if len(results) > 1 else "", f"piece{q + 1}" if len(pieces) > 1 else "")
-            for path in outputs:
-                target = _named(path, *tags)
-                if path in drawings:
-                    for line in netdraw.write_drawing(drawn, net, target, args, title=title):
-                        print(f"voxfab: {target.name}: {line}", file=sys.stderr)
-                else:
-                    write_text(target, net.to_json())
-                written.append(str(target))
-            summary.append({"seed": net.seed, "faces": net.face_count,
-                            "seams_without_tab_room": net.seams_without_tab_room})
+    # Every file is published at the end, replacing the whole earlier set (no stale t-3.svg).
+    with atomic_files(*outputs) as fileset:
+        for t, pieces in enumerate(results):
+            validate(grid, pieces if len(pieces) > 1 else pieces[0], constraints=constraints)
+            for q, net in enumerate(pieces):
+                tags = (str(t + 1) if len(results) > 1 else "", f"piece{q + 1}" if len(pieces) > 1 else "")
+                for path in outputs:
+                    target = _named(path, *tags)
+                    if path in drawings:
+                        for line in netdraw.write_drawing(drawn, net, target, args, title=title):
+                            print(f"voxfab: {target.name}: {line}", file=sys.stderr)
+                    else:
+                        write_text(target, net.to_json())
+                summary.append({"seed": net.seed, "faces": net.face_count,
+                                "seams_without_tab_room": net.seams_without_tab_room})
+    written = [str(p) for p in fileset.written]
     print_json({"written": written, "nets": summary})
     return 0

@@ -45,10 +45,11 @@ def _suffix(path: Path, allowed: tuple[str, ...], what: str) -> str:
 def run(args: argparse.Namespace) -> int:
     """Draw the requested picture and print a JSON summary."""
     from voxfab import render
-    from voxfab._shared.atomic import write_bytes
+    from voxfab._shared.atomic import check_output, write_bytes
     from voxfab.cli._options import options_from_args
 
     out: Path = args.output
+    check_output(out)  # an existing folder, before the drawing
     # The default size depends on the picture: 200 px per contact-sheet tile, 400 for a GIF, else 800.
     size = 200 if args.contact_sheet else 400 if out.suffix.lower() == ".gif" and not (args.triptych or args.slices) \
         else 800

@@ -32,10 +32,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Slice, nest and write; print the report as JSON."""
+    from voxfab._shared.atomic import check_output
     from voxfab.cli._options import options_from_args
     from voxfab.fabricate.plates import PlateOptions, fabricate_plates
 
     options = options_from_args(PlateOptions, args)
+    check_output(args.output, folder=True, marker="plates.json")  # an existing folder, before the work
     shape, name, notes, _ = load_scaled_shape(args.shape, args.repo, pitch=args.pitch)
     print_notes(notes)
     title = name or Path(args.shape).stem

@@ -16,7 +16,6 @@ for drawings, the polylines it came from.
 from __future__ import annotations
 
 import csv
-import json
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -24,7 +23,9 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
-from voxfab.errors import FormatError, InvalidShapeError
+from voxfab._shared.limits import open_image, parse_json, read_input_bytes
+from voxfab._shared.validate import resolve_input
+from voxfab.errors import FormatError, InvalidShapeError, VoxfabError
 
 from ._expr import compile_expression
 
@@ -300,19 +301,23 @@ def polyline_curve(
 # --- files ------------------------------------------------------------------------------------
 
 def read_points(path: Path, *, name: str) -> tuple[list[np.ndarray], list[bool | None]]:
-    """Polylines and closed flags (``None``: detect) from a JSON, CSV or SVG file."""
+    """Polylines and closed flags (``None``: detect) from a JSON, CSV or SVG file.
+
+    The file must be a regular file of at most 16 MiB; JSON is read within the
+    nesting and integer-size limits of :mod:`voxfab._shared.limits`.
+    """
     suffix = path.suffix.lower()
-    if not path.is_file():
+    if not path.exists():
         raise InvalidShapeError(f"{name}: file not found: {path}")
+    data = read_input_bytes(path, what="a drawing")
     if suffix == ".svg":
-        return _read_svg(path, name=name)
-    text = path.read_text(encoding="utf-8")
+        return _read_svg(path, data, name=name)
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError:
+        raise FormatError(f"{name}: {path.name} is not UTF-8 text") from None
     if suffix == ".json":
-        try:
-            data = json.loads(text)
-        except json.JSONDecodeError as exc:
-            raise FormatError(f"{name}: {path.name} is not valid JSON: {exc}") from None
-        return _json_polylines(data, name=f"{name} ({path.name})")
+        return _json_polylines(parse_json(text, name=f"{name}: {path.name}"), name=f"{name} ({path.name})")
     if suffix == ".csv":
         polys: list[list[list[float]]] = [[]]
         for row in csv.reader(text.splitlines()):
@@ -361,12 +366,14 @@ def _json_polylines(data: object, *, name: str) -> tuple[list[np.ndarray], list[
     return [p for p, _ in items], [c for _, c in items]
 
 
-def _read_svg(path: Path, *, name: str) -> tuple[list[np.ndarray], list[bool | None]]:
+def _read_svg(path: Path, data: bytes, *, name: str) -> tuple[list[np.ndarray], list[bool | None]]:
+    from io import BytesIO
+
     from svgelements import SVG, Close, Line, Move, Shape
     from svgelements import Path as SvgPath
 
     try:
-        svg = SVG.parse(str(path))
+        svg = SVG.parse(BytesIO(data))
     except Exception as exc:  # noqa: BLE001 - svgelements raises many kinds
         raise FormatError(f"{name}: cannot parse SVG {path.name}: {exc}") from None
     polys: list[np.ndarray] = []
@@ -403,22 +410,25 @@ def bitmap_curve(path: Path, *, threshold: float = 0.5, name: str = "bitmap") ->
 
     One pixel is one unit; x grows to the right, y upwards.
     """
-    from PIL import Image, UnidentifiedImageError
+    from PIL import Image
 
     if not 0.0 < threshold < 1.0:
         raise InvalidShapeError(f"{name}: threshold must be in (0, 1), got {threshold}")
-    if not path.is_file():
+    if not path.exists():
         raise InvalidShapeError(f"{name}: file not found: {path}")
     try:
-        with Image.open(path) as im:
+        # open_image checks the pixel count from the header, before decoding.
+        with open_image(path, name=name) as im:
             im.load()
             if im.mode in ("RGBA", "LA", "PA") or (im.mode == "P" and "transparency" in im.info):
                 im = im.convert("RGBA")
                 bg = Image.new("RGBA", im.size, (255, 255, 255, 255))
                 im = Image.alpha_composite(bg, im)
             gray = np.asarray(im.convert("L"), dtype=np.float64) / 255.0
-    except (UnidentifiedImageError, OSError) as exc:
-        raise FormatError(f"{name}: cannot read image {path.name}: {exc}") from None
+    except VoxfabError:
+        raise
+    except Exception as exc:  # noqa: BLE001 - Pillow reports corrupt pixel data in many ways
+        raise FormatError(f"{name}: cannot read image {path.name}: {type(exc).__name__}") from None
     dark = gray < threshold
     if not dark.any():
         raise InvalidShapeError(f"{name}: empty bitmap: no pixel of {path.name} is darker than {threshold}")
@@ -461,15 +471,28 @@ def load_curve(
     ``source`` is a callable, a point list, a file name (``.svg``, ``.json``,
     ``.csv``: drawing; ``.png``, ``.gif``, ``.bmp``: bitmap; relative names are
     resolved in ``base_dir``), or else an expression in ``x, y``.
+
+    Inputs are bounded (:mod:`voxfab._shared.limits`): only regular files of at
+    most 16 MiB, JSON nested at most 64 levels with integers of at most 30
+    digits, bitmaps of at most 4096 x 4096 pixels, expressions of at most 1,000
+    characters.  While a recipe is built, files must be inside its folder
+    (:func:`voxfab._shared.validate.confine_inputs`).
+
+    Raises
+    ------
+    LimitError
+        An input over one of those limits.
+    RecipeError
+        A file outside the recipe's folder.
+    FormatError, InvalidShapeError
+        An unreadable or empty drawing or bitmap, or a bad expression.
     """
     if callable(source):
         return implicit_curve(source, name=name, half_plane=half_plane)
     if isinstance(source, str):
         suffix = Path(source).suffix.lower()
         if suffix in DRAWING_SUFFIXES + BITMAP_SUFFIXES:
-            path = Path(source)
-            if not path.is_absolute() and base_dir is not None:
-                path = Path(base_dir) / path
+            path = resolve_input(source, base_dir, name=name)
             label = f"{name} ({Path(source).name})"
             if suffix in BITMAP_SUFFIXES:
                 return bitmap_curve(path, threshold=threshold, name=label)

@@ -14,7 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from voxfab.errors import InvalidShapeError
+from voxfab._shared.limits import MAX_EXPRESSION_CHARS, MAX_EXPRESSION_DEPTH
+from voxfab.errors import InvalidShapeError, LimitError, quote
 
 __all__ = ["Expression", "compile_expression", "FUNCTIONS", "CONSTANTS"]
 
@@ -80,7 +81,7 @@ class Expression:
     def __call__(self, *coords: np.ndarray) -> np.ndarray:
         if len(coords) != len(self.variables):
             raise InvalidShapeError(
-                f"expression {self.text!r}: expected {len(self.variables)} coordinate arrays, got {len(coords)}"
+                f"expression {quote(self.text)}: expected {len(self.variables)} coordinate arrays, got {len(coords)}"
             )
         args = [np.asarray(c, dtype=np.float64) for c in coords]
         with np.errstate(all="ignore"):
@@ -119,6 +120,17 @@ def _prepare(text: str) -> tuple[str, list[int]]:
     return "".join(out), cols
 
 
+def _depth(tree: ast.AST) -> int:
+    """Depth of a syntax tree, counted without recursion."""
+    deepest = 0
+    stack = [(tree, 1)]
+    while stack:
+        node, depth = stack.pop()
+        deepest = max(deepest, depth)
+        stack.extend((child, depth + 1) for child in ast.iter_child_nodes(node))
+    return deepest
+
+
 def compile_expression(text: str, variables: Sequence[str], *, name: str = "expression") -> Expression:
     """Compile ``text`` into a vectorized function of ``variables``.
 
@@ -135,9 +147,19 @@ def compile_expression(text: str, variables: Sequence[str], *, name: str = "expr
     ------
     InvalidShapeError
         On a syntax error (with its column) or an unknown name or function.
+    LimitError
+        On a text over :data:`~voxfab._shared.limits.MAX_EXPRESSION_CHARS`
+        characters (1000) or nested over
+        :data:`~voxfab._shared.limits.MAX_EXPRESSION_DEPTH` levels (100): CPython's
+        parser and the compiler below recurse once per level.
     """
     if not isinstance(text, str) or not text.strip():
-        raise InvalidShapeError(f"{name}: expected a non-empty expression string, got {text!r}")
+        raise InvalidShapeError(f"{name}: expected a non-empty expression string, got {quote(text)}")
+    if len(text) > MAX_EXPRESSION_CHARS:
+        raise LimitError(
+            f"{name}: expression of {len(text):,} characters is over the limit of "
+            f"{MAX_EXPRESSION_CHARS:,}: {quote(text)}"
+        )
     prepared, cols = _prepare(text)
     try:
         tree = ast.parse(prepared.strip(), mode="eval")
@@ -145,8 +167,15 @@ def compile_expression(text: str, variables: Sequence[str], *, name: str = "expr
         lead = len(prepared) - len(prepared.lstrip())
         off = max(0, min((exc.offset or 1) - 1 + lead, len(cols) - 1))
         raise InvalidShapeError(
-            f"{name}: syntax error at column {cols[off] + 1} of {text!r}: {exc.msg}"
+            f"{name}: syntax error at column {cols[off] + 1} of {quote(text)}: {exc.msg}"
         ) from None
+    except (RecursionError, MemoryError):  # pragma: no cover - the length limit keeps the parser safe
+        raise LimitError(f"{name}: expression nested too deeply to parse: {quote(text)}") from None
+    depth = _depth(tree)
+    if depth > MAX_EXPRESSION_DEPTH:
+        raise LimitError(
+            f"{name}: expression nested {depth} levels deep, over the limit of {MAX_EXPRESSION_DEPTH}: {quote(text)}"
+        )
     used: set[str] = set()
     var_index = {v: i for i, v in enumerate(variables)}
 
@@ -154,14 +183,14 @@ def compile_expression(text: str, variables: Sequence[str], *, name: str = "expr
         col = getattr(node, "col_offset", 0)
         lead = len(prepared) - len(prepared.lstrip())
         col = cols[min(col + lead, len(cols) - 1)] + 1
-        return InvalidShapeError(f"{name}: {what} at column {col} of {text!r}")
+        return InvalidShapeError(f"{name}: {what} at column {col} of {quote(text)}")
 
     def build(node: ast.AST) -> Node:
         if isinstance(node, ast.Expression):
             return build(node.body)
         if isinstance(node, ast.Constant):
             if isinstance(node.value, bool) or not isinstance(node.value, (int, float)):
-                raise bad(node, f"unsupported constant {node.value!r}")
+                raise bad(node, f"unsupported constant {quote(node.value)}")
             value = float(node.value)
             return lambda a: value
         if isinstance(node, ast.Name):

@@ -12,7 +12,8 @@ from collections.abc import Sequence
 import numpy as np
 import numpy.typing as npt
 
-from voxfab.errors import InvalidShapeError
+from voxfab._shared.limits import MAX_FOCI
+from voxfab.errors import InvalidShapeError, LimitError
 
 from ._fit import Field, Mode, fit
 
@@ -20,10 +21,18 @@ __all__ = ["focal_field", "focal", "fermat_weber"]
 
 
 def _check(foci: npt.ArrayLike, weights: npt.ArrayLike | None) -> tuple[np.ndarray, np.ndarray]:
-    f = np.asarray(foci, dtype=np.float64)
+    try:
+        f = np.asarray(foci, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise InvalidShapeError("foci: expected a list of 3D (or 4D) points of numbers") from None
+    if f.ndim == 2 and len(f) > MAX_FOCI:
+        raise LimitError(f"foci: {len(f):,} foci is over the limit of {MAX_FOCI}")
     if f.ndim != 2 or len(f) == 0 or f.shape[1] not in (3, 4) or not np.all(np.isfinite(f)):
         raise InvalidShapeError(f"foci: expected a list of 3D (or 4D) points, got shape {f.shape}")
-    w = np.ones(len(f)) if weights is None else np.asarray(weights, dtype=np.float64).reshape(-1)
+    try:
+        w = np.ones(len(f)) if weights is None else np.asarray(weights, dtype=np.float64).reshape(-1)
+    except (TypeError, ValueError):
+        raise InvalidShapeError("weights: expected a list of numbers") from None
     if w.shape != (len(f),):
         raise InvalidShapeError(f"weights: expected {len(f)} weights (one per focus), got {w.size}")
     if not np.all(np.isfinite(w)) or np.any(w <= 0):
@@ -85,5 +94,14 @@ def focal(
     """Weighted focal shape fitted in a ``size``³ grid: a k-separating surface or a solid.
 
     See :func:`voxfab.digitize.fit` for ``k``, ``mode``, ``size``, ``scale``, ``at``.
+    At most 256 foci (:data:`voxfab._shared.limits.MAX_FOCI`): each adds a
+    distance to every evaluation of the field.
+
+    Raises
+    ------
+    LimitError
+        For more than 256 foci.
+    InvalidShapeError
+        For foci that are not 3D or 4D points, or weights that are not positive.
     """
     return fit(focal_field(foci, weights, radius), k=k, mode=mode, size=size, scale=scale, at=at)

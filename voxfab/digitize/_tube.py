@@ -21,8 +21,9 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
-from voxfab._shared.validate import check_choice
-from voxfab.errors import InvalidShapeError
+from voxfab._shared.limits import MAX_SAMPLES, check_count, parse_json, read_input_bytes
+from voxfab._shared.validate import check_choice, resolve_input
+from voxfab.errors import InvalidShapeError, VoxfabError
 
 from ._curves import Curve2D, load_curve
 from ._expr import compile_expression
@@ -90,30 +91,43 @@ def load_spine(
     samples: int = 1024,
     closed: bool | None = None,
 ) -> tuple[np.ndarray, bool]:
-    """Spine points from three expressions in ``t``, a JSON/CSV file of 3D points, or a (P, 3) array."""
+    """Spine points from three expressions in ``t``, a JSON/CSV file of 3D points, or a (P, 3) array.
+
+    Expressions are sampled at ``samples + 1`` values of ``t``; ``samples`` is at
+    most 100,000 (:data:`voxfab._shared.limits.MAX_SAMPLES`).  A file name is
+    resolved in ``base_dir``, and must stay in it while a recipe is built (see
+    :func:`voxfab._shared.validate.confine_inputs`).
+
+    Raises
+    ------
+    LimitError
+        ``samples`` over 100,000, or a JSON file over the nesting or integer limits.
+    """
     if isinstance(spine, (list, tuple)) and len(spine) == 3 and all(isinstance(e, str) for e in spine):
         if not t_max > t_min:
             raise InvalidShapeError(f"t_max: expected > t_min = {t_min}, got {t_max}")
-        t = np.linspace(t_min, t_max, int(samples) + 1)
+        n = check_count(samples, MAX_SAMPLES, name="samples", least=2)
+        t = np.linspace(t_min, t_max, n + 1)
         cols = []
         for name, text in zip("xyz", spine):
             e = compile_expression(text, ("t",), name=f"spine {name}(t)")
             cols.append(np.broadcast_to(e(t), t.shape))
         pts = np.stack(cols, axis=1)
     elif isinstance(spine, str):
-        import json
+        import io
 
-        path = Path(spine)
-        if not path.is_absolute() and base_dir is not None:
-            path = Path(base_dir) / path
-        if not path.is_file():
+        path = resolve_input(spine, base_dir, name="spine")
+        if not path.exists():
             raise InvalidShapeError(f"spine: file not found: {path}")
+        raw = read_input_bytes(path, what="a spine")
         try:
             if path.suffix.lower() == ".json":
-                data = json.loads(path.read_text(encoding="utf-8"))
+                data = parse_json(raw.decode("utf-8"), name=f"spine: {path.name}")
                 pts = np.asarray(data["points"] if isinstance(data, dict) else data, dtype=np.float64)
             else:
-                pts = np.loadtxt(path, delimiter=",", ndmin=2)
+                pts = np.loadtxt(io.BytesIO(raw), delimiter=",", ndmin=2)
+        except VoxfabError:
+            raise
         except (ValueError, KeyError, TypeError) as exc:
             raise InvalidShapeError(f"spine: cannot read 3D points from {path.name}: {exc}") from None
     elif isinstance(spine, (list, tuple)) and spine and all(isinstance(e, str) for e in spine):

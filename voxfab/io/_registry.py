@@ -13,6 +13,7 @@ from typing import Any
 
 import numpy as np
 
+from voxfab._shared.limits import check_regular_file
 from voxfab._shared.typing import BoolGrid, PathLike
 from voxfab._shared.validate import as_grid
 from voxfab.errors import FormatError, InvalidShapeError, UnknownFormatError, VoxfabError
@@ -134,15 +135,18 @@ def read(path: PathLike, **options: Any) -> ReadResult:
         )
     if not Path(path).exists():
         raise FormatError(f"{path}: no such file")
+    if ext != "/":
+        # A FIFO would block the reader forever, a device never end.
+        check_regular_file(path, what=f"a {ext} file")
     _check_options(_READERS[ext], options, path, ext)
     try:
         result = _READERS[ext](path, **options)
     except VoxfabError:
         raise
-    except (OSError, ValueError, KeyError, IndexError, EOFError, struct.error, zlib.error) as exc:
+    except (OSError, ValueError, KeyError, IndexError, EOFError, StopIteration, struct.error, zlib.error) as exc:
         # Third-party parsers raise many kinds of errors on corrupt data; the user
         # only needs to know that this file could not be read.
-        raise FormatError(f"{path}: cannot read as {ext}: {exc}") from exc
+        raise FormatError(f"{path}: cannot read as {ext}: {exc or type(exc).__name__}") from exc
     grid = as_grid(result.grid, name=str(path))
     return dataclasses.replace(result, grid=grid)
 

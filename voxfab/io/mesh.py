@@ -25,10 +25,11 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
+from voxfab._shared.limits import MAX_MESH_BYTES, MAX_RAY_TESTS, MAX_TRIANGLES, check_regular_file
 from voxfab._shared.progress import Meter, meter
 from voxfab._shared.typing import BoolGrid, PathLike
 from voxfab._shared.validate import MAX_SIDE
-from voxfab.errors import FormatError, InvalidShapeError, VoxfabError
+from voxfab.errors import FormatError, InvalidShapeError, LimitError, VoxfabError
 
 from ._registry import ReadResult, register
 
@@ -271,6 +272,64 @@ def _faces_within(
     return tri[chosen]
 
 
+def check_mesh_size(path: PathLike, file_type: str) -> None:
+    """Refuse, before parsing, a mesh file over the size limits of :mod:`voxfab._shared.limits`.
+
+    A binary STL states its triangle count in its header; a 3MF package is a zip
+    whose parts are checked for their unpacked size; any mesh file is at most
+    ``MAX_MESH_BYTES``.  Parsing and voxelizing take time and memory in
+    proportion to these sizes.
+
+    Raises
+    ------
+    LimitError
+        A file over ``MAX_MESH_BYTES`` bytes (64 MiB), a 3MF unpacking to more,
+        or a binary STL of more than ``MAX_TRIANGLES`` triangles (1,000,000).
+    """
+    size = check_regular_file(path, what="a mesh").st_size
+    if size > MAX_MESH_BYTES:
+        raise LimitError(f"{path}: {size:,} bytes is over the limit of {MAX_MESH_BYTES:,} bytes for a mesh file")
+    with open(path, "rb") as fh:
+        head = fh.read(84)
+    if file_type == "stl" and len(head) == 84 and not head.lstrip().lower().startswith(b"solid"):
+        count = int.from_bytes(head[80:84], "little")
+        # A header whose count does not match the size is corrupt: the parser says so.
+        if count > MAX_TRIANGLES and size == 84 + 50 * count:
+            raise LimitError(
+                f"{path}: the STL header states {count:,} triangles, over the limit of {MAX_TRIANGLES:,}"
+            )
+    if file_type == "3mf":
+        import zipfile
+
+        try:
+            with zipfile.ZipFile(path) as zf:
+                unpacked = sum(info.file_size for info in zf.infolist())
+        except (zipfile.BadZipFile, OSError, ValueError, EOFError) as exc:
+            raise FormatError(f"{path}: not a 3MF package (a zip archive): {exc}") from None
+        if unpacked > MAX_MESH_BYTES:
+            raise LimitError(
+                f"{path}: the 3MF package unpacks to {unpacked:,} bytes, over the limit of {MAX_MESH_BYTES:,}"
+            )
+
+
+def ray_tests(vertices: npt.ArrayLike, faces: npt.ArrayLike, *, resolution: int) -> int:
+    """Number of (triangle, voxel column) pairs :func:`voxelize` tests, over its three ray directions.
+
+    Each triangle is tested against every column its bounding box covers, so long
+    thin triangles lying across the grid cost far more than their count suggests.
+    """
+    tri = np.asarray(vertices, dtype=np.float64)[np.asarray(faces, dtype=np.int64)]
+    lo, hi = tri.reshape(-1, 3).min(axis=0), tri.reshape(-1, 3).max(axis=0)
+    longest = float((hi - lo).max())
+    if not longest > 0:
+        return 0
+    g = (tri - lo) * (resolution / longest)
+    span = np.floor(g.max(axis=1)) - np.ceil(g.min(axis=1)) + 1  # (F, 3) columns per axis
+    span = np.clip(span, 0, resolution + 1)
+    total = span[:, 0] * span[:, 1] + span[:, 1] * span[:, 2] + span[:, 0] * span[:, 2]
+    return int(total.sum())
+
+
 def _load(path: PathLike, file_type: str) -> tuple[np.ndarray, np.ndarray, bool]:
     """Load vertices, faces and watertightness with trimesh; any parser failure is a FormatError."""
     try:
@@ -292,9 +351,15 @@ def _load(path: PathLike, file_type: str) -> tuple[np.ndarray, np.ndarray, bool]
     except Exception as exc:  # noqa: BLE001
         # trimesh's parsers fail on corrupt input with whatever the underlying library
         # raises (zip, XML, struct, numpy, Unicode errors...): all mean "unreadable".
-        raise FormatError(f"{path}: cannot read as a .{file_type} mesh ({type(exc).__name__}: {exc})") from None
+        if isinstance(exc, StopIteration) and file_type == "3mf":
+            # trimesh looks for the package's model part with next(): none there.
+            raise FormatError(f"{path}: the 3MF package holds no 3D model (no 3D/*.model part)") from None
+        why = f"{type(exc).__name__}: {exc}" if str(exc) else type(exc).__name__
+        raise FormatError(f"{path}: cannot read as a .{file_type} mesh ({why})") from None
     if faces.ndim != 2 or faces.shape[1] != 3 or len(faces) == 0:
         raise FormatError(f"{path}: the file holds no triangle (empty, truncated or not a .{file_type} mesh)")
+    if len(faces) > MAX_TRIANGLES:
+        raise LimitError(f"{path}: {len(faces):,} triangles is over the limit of {MAX_TRIANGLES:,}")
     if vertices.ndim != 2 or vertices.shape[1] != 3 or not np.isfinite(vertices).all():
         raise FormatError(f"{path}: the mesh has missing or non-finite vertex coordinates (corrupt file)")
     if faces.min() < 0 or faces.max() >= len(vertices):
@@ -328,10 +393,21 @@ def read_mesh(path: PathLike, *, resolution: int = DEFAULT_RESOLUTION) -> ReadRe
         When the file is not a readable mesh or holds no triangle.
     InvalidShapeError
         For a bad ``resolution``, a flat mesh, or one with nothing inside.
+    LimitError
+        For a file over 64 MiB, a mesh of more than 1,000,000 triangles (see
+        :func:`check_mesh_size`), or one whose voxelizing takes more than
+        ``MAX_RAY_TESTS`` (60 million) triangle-column tests (see :func:`ray_tests`).
     """
     n = _check_resolution(resolution)
     file_type = Path(path).suffix.lower().lstrip(".")
+    check_mesh_size(path, file_type)
     vertices, faces, watertight = _load(path, file_type)
+    work = ray_tests(vertices, faces, resolution=n)
+    if work > MAX_RAY_TESTS:
+        raise LimitError(
+            f"{path}: voxelizing at resolution {n} takes {work:,} triangle-column tests, over the limit of "
+            f"{MAX_RAY_TESTS:,} (long thin triangles across the grid; try a lower --resolution)"
+        )
     try:
         grid, pitch, notes = mesh_grid(vertices, faces, resolution=n, name=str(path))
     except InvalidShapeError as exc:

@@ -19,11 +19,16 @@ from ._registry import ReadResult, register
 def _check_header(fh: io.BufferedIOBase | zipfile.ZipExtFile, path: PathLike) -> None:
     """Check the array header before loading: a corrupt or hostile header must not
     make numpy allocate terabytes."""
-    version = np.lib.format.read_magic(fh)
-    if version == (1, 0):
-        shape, _, dtype = np.lib.format.read_array_header_1_0(fh)
-    else:
-        shape, _, dtype = np.lib.format.read_array_header_2_0(fh)
+    try:
+        version = np.lib.format.read_magic(fh)
+        if version == (1, 0):
+            shape, _, dtype = np.lib.format.read_array_header_1_0(fh)
+        else:
+            shape, _, dtype = np.lib.format.read_array_header_2_0(fh)
+    except Exception as exc:  # noqa: BLE001
+        # numpy parses the header text as a Python literal: a corrupt one raises
+        # ValueError, SyntaxError, tokenize.TokenError... all mean "not an .npy".
+        raise FormatError(f"{path}: not a valid .npy header ({type(exc).__name__})") from None
     if len(shape) == 3 and max(shape) > MAX_SIDE:
         raise InvalidShapeError(
             f"{path}: grid {'x'.join(map(str, shape))} is over the limit of {MAX_SIDE} voxels per side"

@@ -10,6 +10,7 @@ as a map is drawn.  A single ``.png`` file reads as a one-layer grid.
 from __future__ import annotations
 
 import re
+import struct
 from io import BytesIO
 from pathlib import Path
 
@@ -58,6 +59,11 @@ def _layer(path: Path, threshold: int) -> BoolGrid:
     if _IEND not in data[-64:]:
         # Pillow decodes an image whose end is cut off without complaint.
         raise FormatError(f"{path}: truncated PNG image (no IEND chunk at its end)")
+    if data[12:16] == b"IHDR":
+        # The size from the header, before Pillow's own bomb check raises on it.
+        w, h = struct.unpack(">II", data[16:24])
+        if w > MAX_SIDE or h > MAX_SIDE:
+            raise InvalidShapeError(f"{path}: image {w}x{h} is over the limit of {MAX_SIDE} voxels per side")
     try:
         with Image.open(BytesIO(data)) as im:
             if im.format != "PNG":

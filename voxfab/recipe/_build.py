@@ -8,9 +8,9 @@ from pathlib import Path
 
 import numpy as np
 
-from voxfab._shared.atomic import atomic_dir, write_text
+from voxfab._shared.atomic import atomic_dir, check_output, write_text
 from voxfab._shared.typing import BoolGrid, PathLike
-from voxfab._shared.validate import as_grid
+from voxfab._shared.validate import as_grid, confine_inputs
 from voxfab._version import __version__
 from voxfab.errors import RecipeError, VoxfabError
 from voxfab.shape import VoxelShape, canonical_key
@@ -58,12 +58,17 @@ def apply_operation(grid: BoolGrid, op: OperationSpec, base_dir: Path) -> BoolGr
 
 
 def make_shape(recipe: Recipe) -> VoxelShape:
-    """Make the recipe's shape: its source, then each operation in order."""
-    grid = make_source(recipe.source, recipe.base_dir)
-    for op in recipe.operations:
-        grid = apply_operation(grid, op, recipe.base_dir)
-        if not grid.any():
-            raise RecipeError(f"{recipe.path}: {op.keypath} ({op.op}) left an empty shape")
+    """Make the recipe's shape: its source, then each operation in order.
+
+    Files the recipe names must be inside its folder unless it was loaded with
+    ``allow_outside=True``.
+    """
+    with confine_inputs(None if recipe.allow_outside else recipe.base_dir):
+        grid = make_source(recipe.source, recipe.base_dir)
+        for op in recipe.operations:
+            grid = apply_operation(grid, op, recipe.base_dir)
+            if not grid.any():
+                raise RecipeError(f"{recipe.path}: {op.keypath} ({op.op}) left an empty shape")
     return VoxelShape(grid, recipe.pitch)
 
 
@@ -88,9 +93,10 @@ def build(recipe: Recipe, outdir: PathLike) -> Path:
 
     from ._outputs import outputs as output_kinds
 
-    shape = make_shape(recipe)
     target = Path(outdir) / recipe.name
-    with atomic_dir(target) as tmp:
+    check_output(target, folder=True, parents=True, marker="manifest.json")  # before the work
+    shape = make_shape(recipe)
+    with atomic_dir(target, marker="manifest.json") as tmp:
         io.write(shape.grid, tmp / "shape.npy")
         io.write(shape.grid, tmp / "shape.vox")
         files = [

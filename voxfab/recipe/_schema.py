@@ -12,16 +12,17 @@ import dataclasses
 import hashlib
 import inspect
 import re
-import tomllib
 import types
 import typing
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any, Literal, Union
 
+from voxfab._shared.limits import parse_toml, read_input_bytes
 from voxfab._shared.options import OptionError
 from voxfab._shared.typing import PathLike
-from voxfab.errors import RecipeError, UnknownFormatError
+from voxfab._shared.validate import check_confined
+from voxfab.errors import RecipeError, UnknownFormatError, VoxfabError
 
 _TOP_KEYS = {"name", "seed", "pitch", "description", "source", "operations", "outputs"}
 _OPERATIONS: dict[str, dict[str, type | tuple]] = {
@@ -34,6 +35,8 @@ _OPERATIONS: dict[str, dict[str, type | tuple]] = {
     "intersection": {"source": dict},
     "difference": {"source": dict},
 }
+# Suffixes of the files a maker option may name (drawings, bitmaps, point lists).
+_FILE_SUFFIXES = {".svg", ".json", ".csv", ".png", ".gif", ".bmp", ".jpg", ".jpeg", ".txt"}
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]*$")
 
 
@@ -94,6 +97,8 @@ class Recipe:
         The recipe file.
     sha256 : str
         Hash of the recipe file's bytes.
+    allow_outside : bool
+        Whether the files it names may lie outside its folder.
     """
 
     name: str
@@ -105,6 +110,7 @@ class Recipe:
     outputs: tuple[OutputSpec, ...]
     path: Path
     sha256: str
+    allow_outside: bool = False
 
     @property
     def base_dir(self) -> Path:
@@ -228,7 +234,17 @@ def _check_options(
             raise err(f"{where}.{key}", "missing required key")
 
 
-def _parse_source(data: Any, keypath: str, base: Path, err: Callable[[str, str], RecipeError]) -> SourceSpec:
+def _check_inside(name: str, base: Path, keypath: str, err: Callable[[str, str], RecipeError]) -> None:
+    """Refuse a file name that resolves outside the recipe's folder ``base``."""
+    try:
+        check_confined(base / name, base, name=keypath, shown=name)
+    except RecipeError as exc:
+        raise err(keypath, str(exc).removeprefix(f"{keypath}: ")) from None
+
+
+def _parse_source(
+    data: Any, keypath: str, base: Path, err: Callable[[str, str], RecipeError], confine: bool = True
+) -> SourceSpec:
     from voxfab.digitize import get_maker
 
     if not isinstance(data, dict):
@@ -245,6 +261,8 @@ def _parse_source(data: Any, keypath: str, base: Path, err: Callable[[str, str],
         if "resolution" in data and not check_type(data["resolution"], int):
             raise err(f"{keypath}.resolution", "expected int")
         params = tuple(sorted((k, v) for k, v in data.items() if k == "resolution"))
+        if confine:
+            _check_inside(data["file"], base, f"{keypath}.file", err)
         return SourceSpec(None, base / data["file"], params, keypath)
     maker_name = data["maker"]
     if not isinstance(maker_name, str):
@@ -255,34 +273,46 @@ def _parse_source(data: Any, keypath: str, base: Path, err: Callable[[str, str],
         raise err(f"{keypath}.maker", str(exc)) from None
     params = {k: v for k, v in data.items() if k != "maker"}
     _check_options(maker, params, skip={"base_dir"}, where=keypath, err=err)
+    if confine:
+        for key, value in params.items():
+            if isinstance(value, str) and Path(value).suffix.lower() in _FILE_SUFFIXES:
+                _check_inside(value, base, f"{keypath}.{key}", err)
     return SourceSpec(maker_name, None, tuple(sorted(params.items())), keypath)
 
 
-def load_recipe(path: PathLike) -> Recipe:
+def load_recipe(path: PathLike, *, allow_outside: bool = False) -> Recipe:
     """Read and fully validate a recipe file.
+
+    Parameters
+    ----------
+    path : path
+        The recipe (TOML, at most 16 MiB, nested at most 64 levels).
+    allow_outside : bool
+        Let the recipe name files outside its own folder (``file =``, drawings,
+        profiles, spines).  By default such a file is refused, so a recipe from
+        someone else cannot read the rest of the disk.
 
     Raises
     ------
     RecipeError
         Naming the file, line and key path of the first problem.
     """
-    from voxfab.errors import VoxfabError
     from voxfab.shape import ShapeOptions
 
     from ._outputs import outputs as output_kinds
 
     p = Path(path)
     try:
-        raw = p.read_bytes()
-    except OSError as exc:
-        raise RecipeError(f"{p}: cannot read recipe: {exc.strerror or exc}") from None
+        raw = read_input_bytes(p, what="a recipe")
+    except VoxfabError as exc:
+        raise RecipeError(f"cannot read recipe: {exc}") from None
     try:
         text = raw.decode("utf-8")
-        data = tomllib.loads(text)
+        data = parse_toml(text, name=str(p))
     except UnicodeDecodeError:
         raise RecipeError(f"{p}: not UTF-8 text") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise RecipeError(f"{p}: invalid TOML: {exc}") from None
+    except VoxfabError as exc:
+        raise RecipeError(str(exc)) from None
     loc = _Locator(text)
 
     def err(keypath: str, message: str) -> RecipeError:
@@ -307,7 +337,7 @@ def load_recipe(path: PathLike) -> Recipe:
         raise err("description", "expected a string")
     if "source" not in data:
         raise RecipeError(f"{p}: missing the [source] table")
-    source = _parse_source(data["source"], "source", p.parent, err)
+    source = _parse_source(data["source"], "source", p.parent, err, not allow_outside)
 
     ops = []
     raw_ops = data.get("operations", [])
@@ -330,7 +360,7 @@ def load_recipe(path: PathLike) -> Recipe:
                 known = ", ".join(allowed) or "(no keys)"
                 raise err(f"{kp}.{key}", f"unknown key for op {kind!r}; accepts: {known}")
             if key == "source":
-                sub = _parse_source(value, f"{kp}.source", p.parent, err)
+                sub = _parse_source(value, f"{kp}.source", p.parent, err, not allow_outside)
                 continue
             if not check_type(value, allowed[key]):
                 raise err(f"{kp}.{key}", f"expected {_type_name(allowed[key])}, got {value!r}")
@@ -375,4 +405,5 @@ def load_recipe(path: PathLike) -> Recipe:
         outputs=tuple(outputs),
         path=p,
         sha256=hashlib.sha256(raw).hexdigest(),
+        allow_outside=allow_outside,
     )

@@ -42,6 +42,9 @@ from voxfab.errors import InvalidShapeError, VoxfabError
 from . import _grid, _specs, _work
 from ._jobs import Jobs
 
+#: Thumbnails kept in memory (oldest dropped first).
+MAX_THUMBS = 2000
+
 #: Largest request body in bytes (an uploaded bitmap is at most 4 MB, as base64 in JSON).
 MAX_BODY = 6 * 1024 * 1024
 
@@ -72,16 +75,24 @@ class Settings:
         Accepted ``Host`` values (``host:port``); ``Origin`` must be ``http://`` one of them.
     work : Path or None
         The session's work folder (a fresh temporary folder when None, removed at shutdown).
+    warm_up : bool
+        Compile the numba kernels in the background at start (see :func:`_work.warm_up`).
     """
 
     repo: Path
     hosts: frozenset[str]
     work: Path | None = None
+    warm_up: bool = True
 
 
 def allowed_hosts(host: str, port: int) -> frozenset[str]:
-    """The ``Host`` values of a server bound to ``host:port``: its own name, and the loopback names."""
-    names = {host, "127.0.0.1", "localhost", "[::1]"} if host in ("127.0.0.1", "localhost", "::1") else {host}
+    """The ``Host`` values of a server bound to ``host:port``: its own name, and the loopback names.
+
+    A loopback or wildcard address (``0.0.0.0``, ``::``) also answers to ``127.0.0.1``,
+    ``localhost`` and ``[::1]``; any other address only to itself.
+    """
+    local = ("127.0.0.1", "localhost", "::1", "0.0.0.0", "::")
+    names = {host, "127.0.0.1", "localhost", "[::1]"} if host in local else {host}
     names = {f"[{n}]" if ":" in n and not n.startswith("[") else n for n in names}
     return frozenset(f"{n}:{port}" for n in names)
 
@@ -344,6 +355,8 @@ def create_app(settings: Settings) -> Starlette:
             if name not in thumbs:
                 with repository() as repo:
                     grid = repo.get(name)
+                if len(thumbs) >= MAX_THUMBS:
+                    thumbs.pop(next(iter(thumbs)))
                 thumbs[name] = png_bytes(render(grid, size=120))
             return thumbs[name]
 
@@ -375,7 +388,7 @@ def create_app(settings: Settings) -> Starlette:
         grid = _grid.unpack(data.get("grid"))
         count = _work.check_number(data.get("count", 8), name="count", lo=1, hi=_work.MAX_NETS, integer=True)
         seed = _work.check_number(data.get("seed", 0), name="seed", lo=0, hi=2**31 - 1, integer=True)
-        timeout = _work.check_number(data.get("timeout", 20.0), name="timeout", lo=0.5, hi=_work.MAX_NET_SECONDS)
+        timeout = _work.check_number(data.get("timeout", 5.0), name="timeout", lo=0.5, hi=_work.MAX_NET_SECONDS)
         sheet = data.get("sheet", "A4")
         if not isinstance(sheet, str):
             raise InvalidShapeError("sheet: expected A4, A3, Letter or WxH in mm")
@@ -429,6 +442,8 @@ def create_app(settings: Settings) -> Starlette:
             options["sheet"] = opts["sheet"]
         if opts.get("thickness") is not None:
             options["thickness"] = _work.check_number(opts["thickness"], name="thickness", lo=0.1, hi=100.0)
+        if opts.get("timeout") is not None:
+            options["timeout"] = _work.check_number(opts["timeout"], name="timeout", lo=0.5, hi=_work.MAX_NET_SECONDS)
         if opts.get("steps") is not None:
             options["steps"] = _work.check_number(opts["steps"], name="steps", lo=2, hi=72, integer=True)
         net = None
@@ -483,6 +498,10 @@ def create_app(settings: Settings) -> Starlette:
     @asynccontextmanager
     async def lifespan(app: Starlette):  # noqa: ANN202 - Starlette's protocol
         work()
+        if settings.warm_up:
+            import threading
+
+            threading.Thread(target=_work.warm_up, name="studio-warm-up", daemon=True).start()
         try:
             yield
         finally:

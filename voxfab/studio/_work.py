@@ -118,7 +118,8 @@ def net_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, timeout: f
 
     Nets are ``unfold(grid, rng=s)`` for seeds ``s`` drawn from ``seed``, as
     ``voxfab net --count``; a net whose outline repeats an earlier one (up to
-    turning or flipping the sheet) is skipped.  Stops at ``budget`` seconds.
+    turning or flipping the sheet) is skipped, and so is a seed whose search runs
+    out of time (three in a row end the search).  Stops at ``budget`` seconds.
     """
     from voxfab.unfold import unfold, validate
 
@@ -127,14 +128,26 @@ def net_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, timeout: f
         if "constraints" not in inspect.signature(unfold).parameters:
             raise InvalidShapeError("constraints: this voxfab's net engine does not take marked edges")
         options["constraints"] = constraints
+    from voxfab.errors import UnfoldError
+
     gen = np.random.default_rng(seed)
     start = time.monotonic()
-    nets, seen, tries = [], set(), 0
+    nets, seen, tries, failed = [], set(), 0, 0
     job.step(0, count, "searching nets")
     while len(nets) < count and tries < 4 * count + 8 and time.monotonic() - start < budget:
         tries += 1
         s = int(gen.integers(0, 2**31 - 1))
-        net = unfold(grid, rng=s, **options)
+        try:
+            net = unfold(grid, rng=s, **options)
+        except UnfoldError:
+            # a seed whose search ran out of time: the next seed may do; three in a row end the gallery
+            failed += 1
+            if failed >= 3 or (failed == tries and tries >= count):
+                if nets:
+                    break
+                raise
+            continue
+        failed = 0
         key = outline_key(net)
         if key in seen:
             continue
@@ -161,6 +174,24 @@ def net_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, timeout: f
             for i, n in enumerate(nets)
         ],
     }
+
+
+def warm_up() -> None:
+    """Compile the numba kernels of drawings, tubes and nets once, so the first real request is not slowed.
+
+    numba compiles (or loads from its cache) on the first call, and that time would
+    otherwise count against the artist's first preview or the first net's budget.
+    """
+    from voxfab.digitize import revolution, tube
+    from voxfab.errors import VoxfabError
+    from voxfab.unfold import unfold
+
+    try:
+        revolution("x^2 + y^2 - 1", np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 2.0], [0.0, 2.0]]), size=9)
+        tube(["cos(2*pi*t)", "sin(2*pi*t)", "0"], radius=0.3, size=9)
+        unfold(np.ones((2, 1, 1), dtype=bool), rng=0, timeout=120.0)
+    except VoxfabError:  # pragma: no cover - the warm-up shapes are fixed and valid
+        pass
 
 
 # --- fabrication files ------------------------------------------------------------------------
@@ -208,7 +239,7 @@ def make_files(job: Job, grid: np.ndarray, *, artefact: str, title: str, pitch: 
             from voxfab.unfold import unfold
 
             job.step(0, 2, "searching a net (pick one in Net to choose)")
-            net = unfold(grid, rng=0, timeout=60.0)
+            net = unfold(grid, rng=0, timeout=float(options.get("timeout", 5.0)))
         from voxfab.unfold import validate
 
         drawn_grid = fill_cavities(grid) if net.filled else grid
@@ -239,12 +270,13 @@ def make_files(job: Job, grid: np.ndarray, *, artefact: str, title: str, pitch: 
         files = [p for p in sorted((out / "slices").rglob("*")) if p.is_file()]
         job.files.append((f"{stem}-plates.zip", _zip(out, files, out / f"{stem}-plates.zip")))
     elif artefact in ("triptych.png", "triptych.pdf"):
-        from voxfab._shared.atomic import write_bytes
-        from voxfab.render import pdf_bytes, png_bytes, triptych
+        from voxfab.render import PictureOptions, render_pictures
 
-        image = triptych(shape, name=title, rng=0, net=net, panel=int(options.get("panel", 600)))
-        target = out / f"{stem}-triptych.{artefact.split('.')[1]}"
-        write_bytes(target, png_bytes(image) if artefact.endswith("png") else pdf_bytes(image, title=title))
+        # the pictures pipeline of `voxfab build`, asked for the triptych only, with the chosen net
+        render_pictures(shape, PictureOptions(size=600, views=(), triptych=True), out, name=title, seed=0, net=net)
+        ext = artefact.split(".")[1]
+        target = out / f"{stem}-triptych.{ext}"
+        (out / f"triptych.{ext}").rename(target)
         _one(job, target.name, [target])
     elif artefact == "animation.gif":
         from voxfab.render._animate import save_tube_animation

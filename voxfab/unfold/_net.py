@@ -147,8 +147,6 @@ class Net:
     @classmethod
     def from_json(cls, text: str) -> Net:
         """Parse ``voxfab-net/1`` JSON text."""
-        try:
-            data = json.loads(text)
-        except json.JSONDecodeError as exc:
-            raise FormatError(f"net JSON: {exc}") from None
-        return cls.from_dict(data)
+        from voxfab._shared.limits import parse_json
+
+        return cls.from_dict(parse_json(text, name="net JSON"))

@@ -288,6 +288,7 @@ async function openShape(name) {
 const marker = new NetMarker($('#net-canvas'), {onChange: () => {
   const c = marker.constraints();
   $('#marks-count').textContent = `${c.cut.length} cut, ${c.keep.length} kept`;
+  $('#marks-count').dataset.constraints = JSON.stringify(c);
 }});
 
 function netNote() {
@@ -311,6 +312,9 @@ async function gallery(withMarks) {
     const s = await waitJob(job, progress);
     const r = s.result;
     state.gallery = {job, nets: r.nets}; state.chosen = null;
+    // a new gallery: nothing chosen yet; the marks stay (they name faces, not a net)
+    $('#net-chosen-label').textContent = ''; delete $('#net-chosen-label').dataset.index;
+    marker.setLayout(null);
     const secs = ((performance.now() - t0) / 1000).toFixed(1);
     $('#net-summary').textContent = `${r.found} of ${r.asked} nets in ${secs} s (search ${r.seconds} s), each different once cut out.`;
     $('#net-summary').dataset.found = String(r.found); $('#net-summary').dataset.seconds = secs;
@@ -355,7 +359,8 @@ async function make(artefact) {
   const face = $('#net-face').value;
   const body = {grid: state.shape.pack(), artefact, pitch: Number($('#pitch').value),
     title: state.name || $('#recipe-name').value || 'studio',
-    options: {face_mm: face ? Number(face) : null, sheet: $('#net-sheet').value, thickness: Number($('#thickness').value)},
+    options: {face_mm: face ? Number(face) : null, sheet: $('#net-sheet').value, thickness: Number($('#thickness').value),
+      timeout: Number($('#net-timeout').value)},
     net: state.gallery && state.chosen !== null ? {job: state.gallery.job, index: state.chosen} : null,
     shape: artefact === 'animation.gif' ? state.drawn : undefined};
   try {

@@ -93,7 +93,11 @@ export class NetMarker {
 
   setLayout(layout) { this.layout = layout; this.draw(); }
 
-  draw() { if (this.layout) drawNet(this.canvas, this.layout, this.marks); }
+  draw() {
+    if (this.layout) { drawNet(this.canvas, this.layout, this.marks); return; }
+    const ctx = this.canvas.getContext('2d');
+    ctx.fillStyle = '#fff'; ctx.fillRect(0, 0, this.canvas.width, this.canvas.height);
+  }
 
   // The nearest edge (face indices i, j) within a third of a face of the pixel, or null.
   edgeAt(px, py) {
