@@ -149,9 +149,14 @@ class _Board:
                                    int(state), resolved is not None)
         self.cnt = self.b.cnt
         self.faces = faces
+        self.started = self.restart()
+
+    def restart(self) -> bool:
+        """Empty the board and lay a random root; False when no root fits."""
+        self.cnt[self.k.C_ROOT] = -1  # grow starts a board without a root
         with _quiet():
-            self.growth.grow(*self.sf, *self.b, _settings(Strategy.DEFAULT, 1), 0, False)  # start only
-        self.started = int(self.cnt[_board.C_ROOT]) >= 0
+            self.growth.grow(*self.sf, *self.b, _settings(Strategy.DEFAULT, 1), 0, False)
+        return int(self.cnt[self.k.C_ROOT]) >= 0
 
     @property
     def pos(self) -> npt.NDArray[np.int64]:
@@ -226,7 +231,7 @@ class _Board:
         grown = (self.pos.copy(), self.rot.copy(), self.par.copy())
         for r in range(_ROUNDS):
             if r:
-                cnt[self.k.C_ROOT] = -1  # grow starts a fresh net
+                self.restart()
                 if not self.grow(gw, deadline, _FIT_STEPS_PER_FACE * int(self.faces.size)):
                     break
             left = self._anneal_round(gw, deadline, best, bar)
