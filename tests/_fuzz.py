@@ -443,6 +443,8 @@ OUTPUT_NAMES = {
     "render": ["r.png", "r.pdf", "r.gif", "missing/r.png", "folder", "r.bmp"],
     "convert": ["c.npy", "c.npz", "c.txt", "c.vox", "c.binvox", "c.stl", "missing/c.npy", "folder"],
 }
+#: Hostile files given to options that read a side input (--net, --constraints).
+SIDE_INPUTS = ["missing.json", "binary.json", "deep.json", "bigint.json", "fifo.json", "folder", "bar.npy"]
 #: Options added to every command line: net searches are bounded by time.
 CLI_FIXED = {"net": ("--timeout", "2")}
 #: Commands fuzzed through their options.
@@ -463,6 +465,14 @@ def cli_corpus(folder: _Path) -> None:
     (folder / "file.txt").write_text("not a folder")
     (folder / "bad.npy").write_bytes(b"\x93NUMPY garbage")
     (folder / "out").mkdir(exist_ok=True)
+    # Hostile side inputs (--net, --constraints, --repo): binary, deep, huge numbers, a FIFO.
+    (folder / "binary.json").write_bytes(bytes(range(256)))
+    (folder / "deep.json").write_text("[" * 100000)
+    (folder / "bigint.json").write_text('{"cut": [[[0, 0, ' + "9" * 5000 + ', "+z"]]]}')
+    if not (folder / "fifo.json").exists():
+        import os
+
+        os.mkfifo(folder / "fifo.json")
 
 
 def cli_positionals(folder: _Path, command: str) -> dict[str, st.SearchStrategy[str]]:
@@ -473,12 +483,13 @@ def cli_positionals(folder: _Path, command: str) -> dict[str, st.SearchStrategy[
     positionals = {
         "shape": st.one_of(good, good, bad),
         "input": st.one_of(good, good, bad),
-        "repo": st.just(str(folder / "repo.sqlite")),
+        "repo": st.sampled_from([str(folder / "repo.sqlite"), str(folder / "file.txt"), str(folder / "fifo.json")]),
         "recipes": st.just(str(folder / "none.toml")),
+        "constraints": st.sampled_from([str(folder / n) for n in SIDE_INPUTS]),
     }
     if command in OUTPUT_NAMES:
         names = [str(folder / "out" / n) if not n.startswith(("folder", "file")) else str(folder / n)
                  for n in OUTPUT_NAMES[command]]
         positionals["output"] = st.one_of(st.sampled_from(names[:2]), st.sampled_from(names))
-        positionals["net"] = st.sampled_from([str(folder / "out" / "n.json"), str(folder / "missing.json")])
+        positionals["net"] = st.sampled_from([str(folder / "out" / "n.json"), *(str(folder / n) for n in SIDE_INPUTS)])
     return positionals
