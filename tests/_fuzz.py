@@ -16,6 +16,7 @@ import time
 from collections.abc import Iterator, Sequence
 
 from voxfab.cli import main
+from voxfab.cli._common import STRICT_EXIT
 
 #: Seconds one CLI run may take in the fuzz tests (shared 2-core machine: generous).
 RUN_SECONDS = 30.0
@@ -81,6 +82,10 @@ def check_outcome(o: Outcome, *, seconds: float = RUN_SECONDS) -> Outcome:
     assert o.seconds < seconds, (o.argv, o.seconds)
     if o.code == 0:
         return o
+    if o.code == STRICT_EXIT and "--strict" in o.argv:
+        # The output is made; --strict fails the run because of its warnings, one line each.
+        assert o.err.count("voxfab: warning:") >= 1 and not o.error_lines, (o.argv, o.err)
+        return o
     if o.usage:
         # argparse's own refusal: usage lines and one "error:" line.
         assert o.code == 2 and len([x for x in o.err.splitlines() if ": error: " in x]) == 1, (o.argv, o.err)
@@ -115,11 +120,14 @@ NASTY_TEXT = ["", " ", "x", "1x1", "0x0", "600x400", "1e9x1e9", "-3x4", "nanxnan
 
 def number_text(kind: type) -> st.SearchStrategy[str]:
     """An option value for an int or float option: usual, extreme or not a number at all."""
+    # Mostly values argparse takes, so runs reach voxfab's own checks; now and then not a number.
     if kind is int:
         usual = st.integers(0, 40).map(str)
-        return st.one_of(usual, usual, st.sampled_from(NASTY_INTS), st.sampled_from(["1.5", "x", "1e3"]))
+        return st.one_of(usual, usual, usual, st.sampled_from(NASTY_INTS), st.sampled_from(NASTY_INTS),
+                         st.sampled_from(["1.5", "x", "1e3"]))
     usual = st.floats(0.1, 100, allow_nan=False).map(lambda f: f"{f:.4g}")
-    return st.one_of(usual, usual, st.sampled_from(NASTY_FLOATS), st.sampled_from(["x", "1,5", ""]))
+    return st.one_of(usual, usual, usual, st.sampled_from(NASTY_FLOATS), st.sampled_from(NASTY_FLOATS),
+                     st.sampled_from(["x", "1,5", ""]))
 
 
 def toml_text(data: dict) -> str:
@@ -395,6 +403,24 @@ def command_parser(command: str):  # noqa: ANN201 - argparse type
     return sub.choices[command]
 
 
+def _numeric(action: object) -> type | None:
+    """``float`` or ``int`` for an option whose argparse type takes numbers (builtin or voxfab's own)."""
+    kind = getattr(action, "type", None)
+    if kind in (int, float) or kind is None or kind in (str, _Path):
+        return kind if kind in (int, float) else None
+    for sample, result in (("2.5", float), ("3", int)):
+        try:
+            kind(sample)
+        except Exception:  # noqa: BLE001, S112 - probing an unknown converter
+            continue
+        try:
+            kind("not a number")
+        except Exception:  # noqa: BLE001 - refuses text: a number option
+            return result
+        return None
+    return None
+
+
 @st.composite
 def argv_for(draw: st.DrawFn, command: str, positionals: dict[str, st.SearchStrategy[str]],
              fixed: tuple[str, ...] = ()) -> list[str]:
@@ -416,7 +442,7 @@ def argv_for(draw: st.DrawFn, command: str, positionals: dict[str, st.SearchStra
     for action in actions:
         if not action.option_strings:
             continue
-        if not action.required and (draw(st.integers(0, 3)) > 0 or exclusive.get(id(action), -1) in taken):
+        if not action.required and (draw(st.integers(0, 4)) > 0 or exclusive.get(id(action), -1) in taken):
             continue
         if id(action) in exclusive:
             taken.add(exclusive[id(action)])
@@ -427,9 +453,9 @@ def argv_for(draw: st.DrawFn, command: str, positionals: dict[str, st.SearchStra
             argv.append(flag)
         elif action.choices:
             good = st.sampled_from(list(action.choices))
-            argv += [flag, draw(st.one_of(good, good, good, st.sampled_from(NASTY_TEXT)))]
-        elif action.type in (int, float):
-            argv.append(f"{flag}={draw(number_text(action.type))}")
+            argv += [flag, draw(st.one_of(good, good, good, good, good, st.sampled_from(NASTY_TEXT)))]
+        elif _numeric(action) is not None:
+            argv.append(f"{flag}={draw(number_text(_numeric(action)))}")
         else:
             argv.append(f"{flag}={draw(st.sampled_from(NASTY_TEXT))}")
     return argv + list(fixed)

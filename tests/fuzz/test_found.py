@@ -44,3 +44,29 @@ def test_render_net_file_that_is_binary_or_a_fifo(ball, tmp_path, content):
     line = refused(["render", ball, "-o", tmp_path / "r.png", "--net", net], seconds=20)
     assert "is a FIFO" in line if content is None else "not UTF-8" in line
     assert not (tmp_path / "r.png").exists()
+
+
+def test_library_log_records_do_not_reach_the_terminal(tmp_path):
+    # trimesh logs a traceback when an ASCII STL's normals do not parse, then reads the mesh;
+    # Python printed that record on stderr, a traceback on a run that succeeded.
+    import subprocess
+    import sys
+
+    import trimesh
+
+    text = trimesh.exchange.stl.export_stl_ascii(trimesh.creation.icosphere(subdivisions=1, radius=2.0))
+    bad = text.replace("facet normal", "facet normal x y z", 1)
+    (tmp_path / "normals.stl").write_text(bad)
+    r = subprocess.run([sys.executable, "-m", "voxfab", "info", str(tmp_path / "normals.stl")],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0 and "Traceback" not in r.stderr and "failed to extract" not in r.stderr, r.stderr
+
+
+def test_tube_whose_spine_dwarfs_its_profile(tmp_path):
+    # The tube's search grid was sized from the spine's box over the profile radius:
+    # numpy refused a negative or gigantic array with a ValueError.
+    (tmp_path / "spine.json").write_text("[[0, 0, 0], [1e300, 0, 0], [0, 1e300, 0]]")
+    r = tmp_path / "r.toml"
+    r.write_text('[source]\nmaker = "tube"\nspine = "spine.json"\nprofile = "x^2 + y^2 - 1"\nsize = 8\n')
+    line = refused(["build", r, "-o", tmp_path / "out"], seconds=20)
+    assert "search grid would need countless cells, over the limit of 16,777,216" in line

@@ -69,9 +69,8 @@ def run(args: argparse.Namespace) -> int:
     title = name or Path(args.shape).stem
     net = None
     if args.net is not None:
-        from voxfab.unfold import Net
-
         from voxfab._shared.limits import read_input_bytes
+        from voxfab.unfold import Net
 
         try:  # a regular file only: a FIFO would block
             text = read_input_bytes(args.net, what="a net").decode("utf-8")
