@@ -185,6 +185,16 @@ EXPRESSIONS = ["x^2 + y^2 + z^2 - 1", "x^2 + y^2 - 1", "sin(x) + cos(y)", "x^", 
                "__import__('os')", "x" * 1200, "-" * 500 + "x", "max(x, y, z) - 0.5", "atan2(y, x) - t", "abs(x)+abs(y)-1"]
 
 
+#: Sources that build, one per maker (files as :func:`hostile_recipe_folder` makes them).
+GOOD_SOURCES = [
+    {"maker": "implicit", "expression": "x^2 + y^2 + z^2 - 1"},
+    {"maker": "focal", "foci": [[0.0, 0.0, -1.0], [0.0, 0.0, 1.0]], "weights": [1.0, 2.0], "radius": 5.0},
+    {"maker": "revolution", "curve": "x^2 + y^2 - 1", "generatrix": "drawing.json"},
+    {"maker": "revolution", "curve": "drawing.svg", "generatrix": "bitmap.png"},
+    {"maker": "tube", "spine": ["cos(2*pi*t)", "sin(2*pi*t)", "0"], "profile": "x^2 + y^2 - 1", "radius": 0.3},
+]
+
+
 def value_for(tp: object, strict: bool = False) -> st.SearchStrategy[object]:
     """A recipe value for a type hint: mostly of that type (often extreme), sometimes any TOML value.
 
@@ -230,6 +240,14 @@ def recipe_trees(draw: st.DrawFn, *, with_outputs: bool = True, strict: bool = F
     from voxfab.recipe._schema import _OPERATIONS, keyword_options
 
     def source() -> dict:
+        if strict and draw(st.booleans()):
+            # A working source with one key changed: the build reaches deep into the maker.
+            src = dict(draw(st.sampled_from(GOOD_SOURCES)))
+            src["size"] = draw(st.integers(4, 10))
+            options = keyword_options(get_maker(src["maker"]), skip={"base_dir"})
+            key = draw(st.sampled_from(sorted(options)))
+            src[key] = draw(value_for(options[key][0], strict))
+            return src
         if draw(st.integers(0, 4)) == 0:
             src: dict = {"file": draw(st.sampled_from(RECIPE_FILES))}
             if draw(st.booleans()):
@@ -294,7 +312,7 @@ def hostile_recipe_folder(folder: _Path) -> None:
     from voxfab.shape import examples
 
     folder.mkdir(parents=True, exist_ok=True)
-    (folder / "drawing.json").write_text("[[0, 0], [2, 0], [2, 3], [0, 3], [0, 0]]")
+    (folder / "drawing.json").write_text("[[0.5, 0], [2, 0], [2, 3], [0.5, 3], [0.5, 0]]")
     (folder / "drawing.csv").write_text("0,0\n1,0\n1,2\n0,2\n0,0\n")
     (folder / "drawing.svg").write_text(
         '<svg xmlns="http://www.w3.org/2000/svg"><path d="M0 0 L10 0 L10 10 Z"/></svg>')
