@@ -1,12 +1,15 @@
-"""Benchmark: drawing large nets with tabs and numbers, and writing SVG, DXF and PDF.
+"""Benchmark: drawing large nets, writing SVG, DXF and PDF, and the bundled recipes' paper nets.
 
-Run: python bench/bench_netdraw.py
+Run: python bench/bench_netdraw.py [--recipes]
 Goal: drawing a 3000-face net with tabs and numbers under 2 s (draw + SVG + DXF R12 + PDF).
-Nets come from the net engine (voxfab.unfold.unfold); finding them is not timed.
+Nets come from the net engine (voxfab.unfold.unfold); finding them is not timed in the first table.
+With ``--recipes``, each bundled recipe's net output runs as a build would (search included), and
+the text height and tab depth are measured back from the DXF file it wrote.
 """
 
 from __future__ import annotations
 
+import functools
 import statistics
 import sys
 import tempfile
@@ -35,8 +38,9 @@ def shapes() -> list[tuple[str, np.ndarray]]:
 
 
 def bench_one(name: str, grid: np.ndarray, net, tmp: Path) -> None:
-    opts = DrawingOptions(pitch=5.0, sheet="1500x1500")
-    opts2k = DrawingOptions(pitch=5.0, sheet="1500x1500", dxf_version="R2000")
+    # 11 mm faces carry 2 mm four-digit numbers; the sheet is a large laser bed.
+    opts = DrawingOptions(pitch=11.0, sheet="2500x2500")
+    opts2k = DrawingOptions(pitch=11.0, sheet="2500x2500", dxf_version="R2000")
     d = draw_net(grid, net, options=opts, name=name)
     t_draw = timed(draw_net, grid, net, options=opts, name=name)
     t = {ext: timed(write, d, tmp / f"n.{ext}", opts) for ext in ("svg", "dxf", "pdf")}
@@ -46,12 +50,71 @@ def bench_one(name: str, grid: np.ndarray, net, tmp: Path) -> None:
           f"{net.seams_without_tab_room:>7}{len(d.sheets):>7}"
           f"{t_draw[0]:>9.3f}{t['svg'][0]:>8.3f}{t['dxf'][0]:>9.3f}{t['dxf2k'][0]:>9.3f}"
           f"{t['pdf'][0]:>8.3f}{total:>9.3f}")
-    # The A4 case: automatic pitch, split over sheets, as a user would run it.
-    a4 = DrawingOptions()
-    t_a4 = timed(draw_net, grid, net, options=a4, name=name, runs=3)
-    da4 = draw_net(grid, net, options=a4, name=name)
-    print(f"{'  on A4':<14}{'':>7}{da4.seams:>7}{int(da4.tab_seams.sum()):>6}{'':>7}{len(da4.sheets):>7}"
-          f"{t_a4[0]:>9.3f}   (pitch {da4.pitch:g} mm)")
+
+
+def _layers(path: Path) -> dict[str, list[np.ndarray]]:
+    import ezdxf
+
+    out: dict[str, list[np.ndarray]] = {}
+    for e in ezdxf.readfile(path).modelspace():
+        if e.dxftype() == "LINE":
+            pts = np.array([tuple(e.dxf.start)[:2], tuple(e.dxf.end)[:2]])
+        else:
+            pts = np.array([tuple(v.dxf.location)[:2] for v in e.vertices])
+            pts = np.vstack([pts, pts[:1]]) if e.is_closed else pts
+        out.setdefault(e.dxf.layer, []).append(pts)
+    return out
+
+
+def measured(path: Path, face: float) -> tuple[float, float]:
+    """Median digit height and smallest tab depth in mm, read from a net's R12 DXF."""
+    import shapely
+
+    layers = _layers(path)
+    glyphs = shapely.union_all([shapely.LineString(p).buffer(0.01) for p in layers["LABEL"]])
+    heights = [max(g.bounds[2] - g.bounds[0], g.bounds[3] - g.bounds[1]) - 0.02 for g in glyphs.geoms]
+    rings = [shapely.Polygon(p) for p in layers["CUT"] if len(p) > 3 and np.allclose(p[0], p[-1])]
+    # Even-odd: holes are rings inside rings.
+    paper = functools.reduce(shapely.symmetric_difference, rings)
+    depths = []
+    for p in layers.get("MOUNTAIN", []) + layers.get("VALLEY", []):
+        a, b = p[0], p[-1]
+        n = np.linalg.norm(b - a) / face
+        if abs(n - round(n)) < 1e-3:
+            continue  # a fold between faces, not a tab's
+        mid, d = (a + b) / 2, (b - a) / np.linalg.norm(b - a)
+        ray = np.array([-d[1], d[0]]) * 2 * face
+        hits = [paper.boundary.intersection(shapely.LineString([mid, mid + s * ray])) for s in (1, -1)]
+        depths.append(min(shapely.Point(mid).distance(h) for h in hits if not h.is_empty))
+    return float(np.median(heights)), float(min(depths)) if depths else 0.0
+
+
+def bench_recipes(tmp: Path) -> None:
+    from voxfab.recipe import load_recipe
+    from voxfab.recipe._build import make_shape
+    from voxfab.recipe._outputs import outputs
+
+    kind = outputs()["net"]
+    print(f"\n{'recipe':<16}{'faces':>7}{'face mm':>9}{'sheet':>7}{'pieces':>7}{'sheets':>7}{'fill %':>14}"
+          f"{'text mm':>9}{'tab mm':>8}{'time s':>8}")
+    for path in sorted((Path(__file__).parents[1] / "recipes").rglob("*.toml")):
+        recipe = load_recipe(path)
+        spec = next((o for o in recipe.outputs if o.name == "net"), None)
+        if spec is None:
+            continue
+        settings = kind.parse(dict(spec.options))
+        settings = type(settings)(settings.net.replace(formats=("dxf",)), settings.drawing)
+        shape = make_shape(recipe)
+        out = tmp / recipe.name
+        out.mkdir()
+        t = time.perf_counter()
+        made = kind.run(shape, settings, out, name=recipe.name, seed=recipe.seed, recipe=recipe)
+        elapsed = time.perf_counter() - t
+        r = made.report
+        text, tab = measured(out / made.files[-1].path, r["face_size_mm"])
+        fill = " ".join(f"{100 * f:.0f}" for f in r["sheet_fill"])
+        print(f"{recipe.name:<16}{r['faces']:>7}{r['face_size_mm']:>9g}{settings.drawing.sheet:>7}{r['pieces']:>7}"
+              f"{r['sheets']:>7}{fill:>14}{text:>9.2f}{tab:>8.2f}{elapsed:>8.1f}")
 
 
 def main() -> None:
@@ -64,8 +127,12 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         for name, grid in shapes():
             bench_one(name, grid, unfold(grid, rng=1), Path(tmp))
-    print("noroom: seams the engine left without tab room (they get a printed mark instead of a tab)")
-    print("medians of 5 runs (R2000: 1 run); 2-core machine shared with other jobs, figures are noisy")
+        print("noroom: seams the engine left without tab room (they get a printed mark instead of a tab)")
+        print("medians of 5 runs (R2000: 1 run); 2-core machine shared with other jobs, figures are noisy")
+        if "--recipes" in sys.argv[1:]:
+            bench_recipes(Path(tmp))
+            print("text: median digit height, tab: smallest tab depth, both measured in the DXF; time: one "
+                  "run of the net output (search, draw, write)")
 
 
 if __name__ == "__main__":

@@ -118,13 +118,14 @@ def test_specs_and_table():
 def readme_tables() -> dict[str, str]:
     """The README's option tables as the code declares them, by marker name."""
     from voxfab.fabricate.mesh import MeshOptions
-    from voxfab.fabricate.netdraw import NetOptions
+    from voxfab.fabricate.netdraw import DrawingOptions, NetOptions
     from voxfab.fabricate.plates import PlateOptions
     from voxfab.render import AnimationOptions, PictureOptions
     from voxfab.shape import ShapeOptions
 
     return {"shape": markdown_table(ShapeOptions), "mesh": markdown_table(MeshOptions),
-            "net": markdown_table(NetOptions), "slices": markdown_table(PlateOptions),
+            "net": markdown_table(NetOptions),
+            "net-drawing": markdown_table(DrawingOptions, exclude=("pitch", "title_height", "heading")), "slices": markdown_table(PlateOptions),
             "pictures": markdown_table(PictureOptions),
             "animation": markdown_table(AnimationOptions)}
 

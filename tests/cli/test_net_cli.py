@@ -80,3 +80,41 @@ def test_net_bad_fit_is_an_error(tmp_path):
     np.save(tmp_path / "b.npy", examples.ball(2))
     r = _run("b.npy", "-o", "n.json", "--fit", "big", cwd=tmp_path)
     assert r.returncode != 0 and "--fit" in r.stderr
+
+
+def test_net_drawings_name_net_and_sheet_apart_and_report_warnings(tmp_path):
+    np.save(tmp_path / "box.npy", np.ones((3, 3, 3), dtype=bool))
+    # Two nets, each split into pieces on several A5 sheets at 40 mm faces.
+    r = _run("box.npy", "-o", "net.svg", "--face-size", "40", "--sheet", "A5", "--pieces", "auto",
+             "--timeout", "10", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    summary = json.loads(r.stdout)
+    (record,) = summary["nets"]
+    sheets = len(record["fill"])
+    assert sheets > 1 and record["pieces"] > 1 and record["face_size"] == 40.0
+    assert summary["written"] == [f"net.sheet-{i}.svg" for i in range(1, sheets + 1)]
+    assert all(0 < f < 1 for f in record["fill"]) and "filled" in r.stderr
+    assert any("net split into" in w for w in summary["warnings"])
+    assert "voxfab: warning: net split into" in r.stderr
+    # --strict turns the warnings into a failure
+    r = _run("box.npy", "-o", "net.svg", "--face-size", "40", "--sheet", "A5", "--pieces", "auto",
+             "--timeout", "10", "--strict", cwd=tmp_path)
+    assert r.returncode != 0
+    r = _run("box.npy", "-o", "n.svg", "--face-size", "20", "--sheet", "A3", "--count", "2", "--timeout", "10",
+             cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert json.loads(r.stdout)["written"] == ["n-1.svg", "n-2.svg"]
+    np.save(tmp_path / "big.npy", examples.ball(3))
+    r = _run("big.npy", "-o", "n.svg", "--face-size", "20", "--sheet", "A4", "--timeout", "10", cwd=tmp_path)
+    assert r.returncode != 0 and r.stderr.count("\n") == 1
+    assert "does not fit sheet A4 at 20 mm faces" in r.stderr and "it needs" in r.stderr
+
+
+def test_net_refuses_faces_too_small_for_the_marks(tmp_path):
+    np.save(tmp_path / "box.npy", np.ones((2, 2, 2), dtype=bool))
+    r = _run("box.npy", "-o", "n.svg", "--face-size", "5", cwd=tmp_path)
+    assert r.returncode != 0 and r.stderr.count("\n") == 1
+    assert "smallest face size that works is 7.5 mm" in r.stderr and "--no-tabs" in r.stderr
+    assert not (tmp_path / "n.svg").exists()
+    r = _run("box.npy", "-o", "n.svg", "--face-size", "5", "--no-numbers", "--no-tabs", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr

@@ -145,9 +145,9 @@ def test_failed_build_leaves_no_partial_folder(tmp_path, monkeypatch):
 @pytest.mark.parametrize(
     ("table", "message"),
     [
-        ('[outputs.net]\nsheet = "1x1"', r"outputs\.net: sheet: A?1x1 leaves no room"),
-        ('[outputs.net]\nsheet = "1e9x1e9"', r"outputs\.net: sheet: expected"),
-        ('[outputs.net]\ntab_width = -3', r"outputs\.net: tab-width: expected a positive number"),
+        ('[outputs.net]\nsheet = "1x1"', r"outputs\.net\.sheet: 1x1 leaves no room"),
+        ('[outputs.net]\nsheet = "1e9x1e9"', r"outputs\.net\.sheet: expected .*at most 5000 mm"),
+        ('[outputs.net]\ntab_width = -3', r"outputs\.net\.tab_width: expected a positive number"),
         ('[outputs.net]\ntimeout = 0', r"outputs\.net\.timeout: expected a positive number of s"),
         ('[outputs.slices]\nsheet = "1x1"', r"outputs\.slices\.sheet: 1x1 leaves no room"),
         ('[outputs.slices]\nthickness = 0.0001', r"outputs\.slices\.thickness: expected a number of mm from 0\.1"),
@@ -175,20 +175,20 @@ def test_net_faces_default_to_the_shape_pitch(tmp_path):
     import ezdxf
 
     np.save(tmp_path / "box.npy", examples.box(2, 3, 4))
-    r = load_recipe(write(tmp_path, 'pitch = 7.0\n[source]\nfile = "box.npy"\n[outputs.net]\nformats = ["dxf"]\n'
+    # 8 mm: the smallest whole face size with 3 mm glue tabs (7.5 mm)
+    r = load_recipe(write(tmp_path, 'pitch = 8.0\n[source]\nfile = "box.npy"\n[outputs.net]\nformats = ["dxf"]\n'
                                     'sheet = "A3"\n[outputs.mesh]\n'))
     folder = build(r, tmp_path / "out")
     folds = ezdxf.readfile(folder / "net.dxf").modelspace().query('LINE[layer=="MOUNTAIN" | layer=="VALLEY"]')
     xs = sorted({round(e.dxf.start.x, 6) for e in folds if abs(e.dxf.end.x - e.dxf.start.x) < 1e-9})
-    assert min(np.diff(xs)) == pytest.approx(7.0)  # folds lie on the face lattice
-    assert json.loads((folder / "mesh.json").read_text())["size_mm"] == [14.0, 21.0, 28.0]
+    assert min(np.diff(xs)) == pytest.approx(8.0)  # folds lie on the face lattice
+    assert json.loads((folder / "mesh.json").read_text())["size_mm"] == [16.0, 24.0, 32.0]
 
 
-def test_a_net_split_over_sheets_is_a_warning():
-    from voxfab.fabricate import OutputFile
-    from voxfab.recipe._outputs import _net_warnings
-
-    one = [OutputFile("net.json", "x"), OutputFile("net.svg", "x"), OutputFile("net.dxf", "x")]
-    two = [OutputFile(f"net-{i}.{e}", "x") for i in (1, 2) for e in ("svg", "dxf")]
-    assert _net_warnings(one) == [] and _net_warnings(two) == [
-        "the net is split over 2 sheets; glue them along the numbered seams"]
+def test_a_net_split_into_pieces_is_a_warning(tmp_path):
+    np.save(tmp_path / "box.npy", examples.box(3, 3, 3))
+    r = load_recipe(write(tmp_path, '[source]\nfile = "box.npy"\n[outputs.net]\nformats = ["svg"]\nface_size = 40.0\n'
+                                    'sheet = "A5"\npieces = "auto"\ntimeout = 10.0\n'))
+    manifest = json.loads((build(r, tmp_path / "out") / "manifest.json").read_text())
+    assert any(w.startswith("net: net split into") for w in manifest["warnings"]), manifest["warnings"]
+    assert any(f["path"] == "net.sheet-2.svg" for f in manifest["files"])

@@ -427,6 +427,7 @@ def test_make_animation_and_errors(client):
         ({"grid": pack(g), "artefact": "mesh.stl", "title": "../x"}, "title"),
         ({"grid": pack(g), "artefact": "net.svg", "net": {"job": "0123456789abcdef", "index": 0}}, "no job"),
         ({"grid": pack(g), "artefact": "net.svg", "options": {"sheet": "huge"}}, "sheet"),
+        ({"grid": pack(g), "artefact": "net.svg", "options": {"timeout": 0}}, "timeout"),
         ({"grid": pack(g), "artefact": "animation.gif", "shape": rev(CIRCLE, WAVY)}, "tube"),
     ]:
         r = client.post("/api/make", json=body)

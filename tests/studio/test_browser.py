@@ -310,3 +310,24 @@ def test_tube_animation_eggs_by_clicking_and_a_bitmap_upload(server, browser, tm
     wait(browser, lambda d: int(attr(d, "volume", "data-volume")) != three, what="the heavier focus")
     assert browser.find_elements("css selector", "#foci-list input.weight")[2].get_attribute("value") == "3"
     browser.save_screenshot(str(SHOTS / "egg.png"))
+
+
+def test_polyline_closed_curve_of_revolution(server, browser):
+    from selenium.webdriver import ActionChains
+    from selenium.webdriver.support.ui import Select
+
+    open_page(browser, server)
+    before = attr(browser, "volume", "data-volume")
+    previews = int(attr(browser, "latency", "data-count"))
+    browser.find_element("css selector", '#src-curve input[value="drawn"]').click()
+    Select(browser.find_element("css selector", "#src-curve select.tool")).select_by_value("polyline")
+    browser.find_element("css selector", "#src-curve input.closed").click()
+    canvas = browser.find_element("css selector", "#src-curve canvas")
+    for x, y in ((-80, -80), (80, -80), (80, 80), (-80, 80)):  # a square, one click per corner
+        ActionChains(browser).move_to_element_with_offset(canvas, x, y).click().perform()
+    browser.find_element("css selector", "#src-curve button.finish").click()
+    wait(browser, lambda d: int(attr(d, "latency", "data-count")) > previews
+         and attr(d, "volume", "data-volume") != before, what="the square curve of revolution")
+    # a square section: the top layer is a filled square of the widest slice's side
+    assert attr(browser, "wf", "data-well-formed") == "true"
+    browser.save_screenshot(str(SHOTS / "polyline.png"))

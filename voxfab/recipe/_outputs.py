@@ -88,7 +88,7 @@ def _run_pictures(shape: VoxelShape, options: Any, outdir: Path, *, name: str, s
 # ---- net ----------------------------------------------------------------------------------------
 
 #: Drawing options that are not recipe keys: the face size is ``face_size``; the rest are internal.
-_DRAWING_HIDDEN = ("pitch", "title_height", "min_auto_pitch")
+_DRAWING_HIDDEN = ("pitch", "title_height", "heading")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -114,31 +114,15 @@ def _parse_net(table: Mapping[str, Any]) -> NetSettings:
 
 def _run_net(shape: VoxelShape, settings: NetSettings, outdir: Path, *, name: str, seed: int,
              recipe: Any) -> Artefact:
-    from voxfab.fabricate.netdraw import recipe_output
+    from voxfab.fabricate.netdraw import fabricate_net
 
     del recipe
-    n, d = settings.net, settings.drawing
-    if n.face_size is None:
+    drawing = settings.drawing
+    if settings.net.face_size is None:
         # One scale for the whole object: the paper faces are the print's voxels unless the
         # recipe gives another face size.
-        d = dataclasses.replace(d, pitch=shape.pitch)
-    files = recipe_output(
-        shape, outdir, name=name, seed=seed, formats=list(n.formats), sheet=d.sheet, pitch=d.pitch, fit=n.fit,
-        margin=d.margin, tab_width=d.tab_width, tab_angle=d.tab_angle, label_height=d.label_height,
-        grid_lines=d.grid_lines, perforate=d.perforate, dxf_version=d.dxf_version, colors=d.colors,
-        fill=n.fill, timeout=n.timeout,
-    )
-    return Artefact(tuple(files), tuple(_net_warnings(files)))
-
-
-def _net_warnings(files: list[OutputFile]) -> list[str]:
-    """A net drawn over several sheets is a split a maker must know about."""
-    import re
-
-    sheets = {m.group(1) for f in files if (m := re.fullmatch(r"net-(\d+)\.(svg|dxf)", f.path))}
-    if len(sheets) > 1:
-        return [f"the net is split over {len(sheets)} sheets; glue them along the numbered seams"]
-    return []
+        drawing = dataclasses.replace(drawing, pitch=shape.pitch)
+    return fabricate_net(shape, settings.net, drawing, outdir, name=name, seed=seed)
 
 
 # ---- animation ----------------------------------------------------------------------------------

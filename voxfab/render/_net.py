@@ -141,7 +141,9 @@ def net_picture(
     options = DrawingOptions(
         pitch=_PICTURE_PITCH, sheet=f"{width / scale:.6f}x{(h_total - strip) / scale:.6f}",
         margin=_MARGIN * _PICTURE_PITCH, tab_width=_TAB * _PICTURE_PITCH, grid_lines=style["flat"] != HIDDEN,
-        colors=colors, numbers=numbers, tabs=tabs, heading=False, min_auto_pitch=_PICTURE_PITCH,
+        colors=colors, numbers=numbers, tabs=tabs, heading=False,
+        # A picture shows the net however small its marks come out on screen.
+        min_label_height=0.01, min_tab_depth=0.01,
     )
     drawing = draw_net(grid, net, options=options)
     sheet = drawing.sheets[0]

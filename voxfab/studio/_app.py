@@ -442,6 +442,8 @@ def create_app(settings: Settings) -> Starlette:
             options["sheet"] = opts["sheet"]
         if opts.get("thickness") is not None:
             options["thickness"] = _work.check_number(opts["thickness"], name="thickness", lo=0.1, hi=100.0)
+        if opts.get("timeout") is not None:
+            options["timeout"] = _work.check_number(opts["timeout"], name="timeout", lo=0.5, hi=_work.MAX_NET_SECONDS)
         if opts.get("steps") is not None:
             options["steps"] = _work.check_number(opts["steps"], name="steps", lo=2, hi=72, integer=True)
         net = None

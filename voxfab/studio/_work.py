@@ -239,7 +239,7 @@ def make_files(job: Job, grid: np.ndarray, *, artefact: str, title: str, pitch: 
             from voxfab.unfold import unfold
 
             job.step(0, 2, "searching a net (pick one in Net to choose)")
-            net = unfold(grid, rng=0, timeout=60.0)
+            net = unfold(grid, rng=0, timeout=float(options.get("timeout", 5.0)))
         from voxfab.unfold import validate
 
         drawn_grid = fill_cavities(grid) if net.filled else grid

@@ -10,20 +10,19 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from _handnets import tree_net
 
+from voxfab.cli._options import add_option_arguments, options_from_args
 from voxfab.errors import UnknownFormatError
-from voxfab.fabricate.netdraw import DrawingOptions, add_drawing_arguments, draw_net, write_drawing
+from voxfab.fabricate.netdraw import DrawingOptions, draw_net, write_drawing
 from voxfab.shape import VoxelShape, examples, surface_graph
 from voxfab.unfold import Net
 
 
-def drawing_args(*argv: str, pitch: float | None = None) -> argparse.Namespace:
+def drawing_args(*argv: str, pitch: float | None = None) -> DrawingOptions:
+    """The drawing options of ``voxfab net`` parsed from ``argv``."""
     parser = argparse.ArgumentParser()
-    add_drawing_arguments(parser)
-    args = parser.parse_args(list(argv))
-    args.pitch = pitch
-    return args
+    add_option_arguments(parser, DrawingOptions)
+    return options_from_args(DrawingOptions, parser.parse_args(list(argv)), pitch=pitch)
 
 
 BALL = examples.ball(3)
@@ -39,10 +38,11 @@ def ball_net() -> Net:
 
 def test_drawing_arguments_leave_command_options_alone() -> None:
     parser = argparse.ArgumentParser()
-    add_drawing_arguments(parser)
+    add_option_arguments(parser, DrawingOptions)
     options = {s for a in parser._actions for s in a.option_strings}
     assert {"--sheet", "--margin", "--tab-width", "--tab-angle", "--dxf-version", "--grid-lines",
-            "--perforate", "--colors"} <= options
+            "--perforate", "--colors", "--no-numbers", "--no-tabs", "--min-label-height", "--min-tab-depth",
+            "--svg-lines"} <= options
     assert not options & {"--pitch", "-o", "--seed", "--count", "--strategy", "--timeout", "--fit",
                           "--pieces", "--fill", "--repo", "--debug"}
 
@@ -51,13 +51,13 @@ def test_svg_reads_back_in_mm(tmp_path: Path, ball_net: Net) -> None:
     from lxml import etree
 
     out = tmp_path / "ball.svg"
-    lines = write_drawing(VoxelShape(BALL), ball_net, out, drawing_args("--sheet", "A3", "--grid-lines"),
+    lines = write_drawing(VoxelShape(BALL), ball_net, out, drawing_args("--sheet", "A2", "--grid-lines"),
                           title="ball")
     assert lines[-1] == f"wrote {out}"
     root = etree.parse(str(out)).getroot()
     ns = {"s": "http://www.w3.org/2000/svg"}
-    assert root.get("width") == "297mm" and root.get("height") == "420mm"
-    assert root.get("viewBox") == "0 0 297 420"
+    assert root.get("width") == "420mm" and root.get("height") == "594mm"
+    assert root.get("viewBox") == "0 0 420 594"
     groups = root.findall("s:g", ns)
     assert [g.get("id") for g in groups] == ["LABEL", "GRID", "VALLEY", "MOUNTAIN", "CUT"]
     style = {g.get("id"): (g.get("stroke"), g.get("stroke-dasharray"), g.get("stroke-width")) for g in groups}
@@ -70,7 +70,7 @@ def test_svg_reads_back_in_mm(tmp_path: Path, ball_net: Net) -> None:
     cut = groups[-1].find("s:path", ns).get("d")
     path = svgpathtools.parse_path(cut)
     xmin, xmax, ymin, ymax = path.bbox()
-    assert 10 <= xmin < xmax <= 287 and 10 <= ymin < ymax <= 410
+    assert 10 <= xmin < xmax <= 410 and 10 <= ymin < ymax <= 584
     assert path.isclosed()
 
 
@@ -125,7 +125,8 @@ def test_dxf_passes_audit_and_reads_back(tmp_path: Path, version: str, ball_net:
 
 def test_pdf_renders_non_blank(tmp_path: Path, ball_net: Net) -> None:
     out = tmp_path / "ball.pdf"
-    write_drawing(VoxelShape(BALL), ball_net, out, drawing_args(), title="ball")
+    # A4 takes this net at 9.4 mm faces only: too small for numbers, so they are left out explicitly.
+    write_drawing(VoxelShape(BALL), ball_net, out, drawing_args("--no-numbers"), title="ball")
     data = out.read_bytes()
     assert data.startswith(b"%PDF-1.4") and b"CreationDate" not in data
     if shutil.which("pdftoppm") is None:
@@ -141,25 +142,29 @@ def test_pdf_renders_non_blank(tmp_path: Path, ball_net: Net) -> None:
     assert red.sum() > 100 and blue.sum() > 20
 
 
-def test_split_sheets_write_numbered_files(tmp_path: Path) -> None:
+def test_pieces_packed_on_sheets_write_numbered_files(tmp_path: Path) -> None:
+    from voxfab.fabricate.netdraw import DrawingOptions, draw_pieces, write_net_drawing
+    from voxfab.unfold import unfold
+
     g = np.ones((3, 3, 3), dtype=bool)
-    net = tree_net(g)
-    args = drawing_args(pitch=40.0)
-    d = draw_net(g, net, options=DrawingOptions(pitch=40.0))
+    pieces = unfold(g, rng=1, fit=(3, 4), pieces="auto", timeout=20.0)
+    assert len(pieces) > 1
+    options = DrawingOptions(pitch=40.0)
+    d = draw_pieces(g, pieces, options=options)
     n = len(d.sheets)
-    assert n > 1
+    assert n > 1 and d.pieces == len(pieces)
     for ext in ("svg", "dxf"):
-        lines = write_drawing(VoxelShape(g), net, tmp_path / f"box.{ext}", args, title="box")
-        assert [ln for ln in lines if ln.startswith("wrote")] == [
-            f"wrote {tmp_path / f'box.sheet-{i}.{ext}'}" for i in range(1, n + 1)]
-    write_drawing(VoxelShape(g), net, tmp_path / "box.pdf", args, title="box")
+        result = write_net_drawing(g, pieces, tmp_path / f"box.{ext}", options, title="box")
+        assert result.files == [str(tmp_path / f"box.sheet-{i}.{ext}") for i in range(1, n + 1)]
+        assert any(w.startswith(f"net split into {len(pieces)} pieces") for w in result.warnings)
+    write_net_drawing(g, pieces, tmp_path / "box.pdf", options, title="box")
     assert (tmp_path / "box.pdf").read_bytes().count(b"/Type /Page ") == n
     assert not (tmp_path / "box.svg").exists()
 
 
 def test_same_input_same_bytes(tmp_path: Path, ball_net: Net) -> None:
     net = ball_net
-    for argv in ((), ("--dxf-version", "R2000")):
+    for argv in (("--sheet", "A2"), ("--sheet", "A2", "--dxf-version", "R2000")):
         for ext in ("svg", "dxf", "pdf"):
             a, b = tmp_path / f"a.{ext}", tmp_path / f"b.{ext}"
             write_drawing(VoxelShape(BALL), net, a, drawing_args(*argv), title="ball")
@@ -171,7 +176,7 @@ def test_colors_reach_the_files(tmp_path: Path, ball_net: Net) -> None:
     import ezdxf
     from lxml import etree
 
-    args = drawing_args("--colors", "cut=blue,mountain=#ff0000:dotted", "--dxf-version", "R2000")
+    args = drawing_args("--colors", "cut=blue,mountain=#ff0000:dotted", "--dxf-version", "R2000", "--sheet", "A2")
     write_drawing(VoxelShape(BALL), ball_net, tmp_path / "c.svg", args)
     write_drawing(VoxelShape(BALL), ball_net, tmp_path / "c.dxf", args)
     root = etree.parse(str(tmp_path / "c.svg")).getroot()
@@ -216,14 +221,14 @@ def test_recipe_builds_net_json_and_drawings(tmp_path: Path) -> None:
         pytest.skip("the net engine (voxfab.unfold.unfold) is not available yet")
     from voxfab.recipe import build, load_recipe
 
-    recipe = load_recipe(_recipe(tmp_path, 'formats = ["svg", "dxf", "pdf"]\nsheet = "A3"\nperforate = "valley"'))
+    recipe = load_recipe(_recipe(tmp_path, 'formats = ["svg", "dxf", "pdf"]\nsheet = "A3"\nperforate = "valley"\nface_size = 12.0'))
     folder = build(recipe, tmp_path / "out")
     manifest = (folder / "manifest.json").read_text()
     for name in ("net.json", "net.svg", "net.dxf", "net.pdf"):
         assert (folder / name).is_file() and name in manifest
     net = Net.from_json((folder / "net.json").read_text())
     assert net.seed == 4 and net.face_count == surface_graph(examples.ball(2)).face_count
-    assert "<title>ball  PITCH" in (folder / "net.svg").read_text()
+    assert "<title>ball  FACES" in (folder / "net.svg").read_text()
     outputs = json.dumps(json.loads(manifest))
     assert "laser" in outputs and "print at 100 %" in outputs
 
@@ -250,24 +255,190 @@ def test_voxfab_net_writes_all_drawings_of_one_net(tmp_path: Path) -> None:
     # The drawings show the JSON's net: drawn again from it, the SVG is the same.
     again = tmp_path / "again.svg"
     args = drawing_args("--sheet", "A3", "--tab-width", "4", "--grid-lines", pitch=12.0)
-    title = root.find("{http://www.w3.org/2000/svg}title").text.split("  PITCH")[0]
+    title = root.find("{http://www.w3.org/2000/svg}title").text.split("  FACES")[0]
     write_drawing(VoxelShape(examples.ball(2)), net, again, args, title=title)
     assert again.read_bytes() == outs[1].read_bytes()
 
 
-def test_recipe_output_asks_the_engine_for_a_net_that_fits(tmp_path: Path) -> None:
-    from voxfab.errors import RecipeError
-    from voxfab.fabricate.netdraw import recipe_output
+def test_net_pipeline_asks_the_engine_for_a_net_that_fits(tmp_path: Path) -> None:
+    from voxfab.fabricate.netdraw import NetOptions, fabricate_net
 
-    shape = VoxelShape(examples.ball(3))
-    files = recipe_output(shape, tmp_path, name="ball", seed=1, formats=["svg"], sheet="200x150",
-                          margin=5.0, pitch=6.0, fit=True, timeout=30.0)
-    assert [f.path for f in files] == ["net.json", "net.svg"]
+    shape = VoxelShape(examples.ball(2))
+    made = fabricate_net(shape, NetOptions(formats=("svg", "png"), timeout=30.0),
+                         DrawingOptions(sheet="300x260", margin=5.0, pitch=11.0), tmp_path, name="ball", seed=1)
+    assert [f.path for f in made.files] == ["net.json", "net.svg", "net.png"]
+    assert made.report["face_size_mm"] == 11.0 and made.report["sheets"] == 1
     net = Net.from_json((tmp_path / "net.json").read_text())
     x0, y0, x1, y1 = net.bounds()
-    # 200 x 150 mm less margins, title band and tab room, in 6 mm cells.
-    assert (x1 - x0) <= (200 - 10 - 10) // 6 and (y1 - y0) <= (150 - 10 - 5 - 10) // 6
-    with pytest.raises(RecipeError, match="fit"):
-        recipe_output(shape, tmp_path, name="ball", seed=1, fit=True)
-    with pytest.raises(RecipeError, match="formats"):
-        recipe_output(shape, tmp_path, name="ball", seed=1, formats=["png"])
+    # 300 x 260 mm less margins, title band and tab room, in 11 mm cells, either way round.
+    cells = sorted([(300 - 10 - 10) // 11, (260 - 10 - 5 - 10) // 11])
+    extent = sorted([x1 - x0, y1 - y0])
+    assert extent[0] <= cells[0] and extent[1] <= cells[1]
+
+
+def _dxf_segments(path: Path) -> dict[str, np.ndarray]:
+    """Every straight piece per layer of a DXF file as ``(n, 2, 2)`` arrays, read with ezdxf."""
+    import ezdxf
+
+    out: dict[str, list] = {}
+    for e in ezdxf.readfile(path).modelspace():
+        if e.dxftype() == "LINE":
+            pts = np.array([tuple(e.dxf.start)[:2], tuple(e.dxf.end)[:2]])
+            closed = False
+        elif e.dxftype() == "LWPOLYLINE":
+            pts, closed = np.array([p[:2] for p in e.get_points("xy")]), e.closed
+        else:
+            pts, closed = np.array([tuple(v.dxf.location)[:2] for v in e.vertices]), e.is_closed
+        if closed:
+            pts = np.vstack([pts, pts[:1]])
+        out.setdefault(e.dxf.layer, []).append(np.stack([pts[:-1], pts[1:]], axis=1))
+    return {k: np.concatenate(v) for k, v in out.items()}
+
+
+def _paper(cut: np.ndarray):
+    """The paper the CUT segments outline: inside an odd number of their closed rings (holes stay empty)."""
+    import functools
+
+    import shapely
+
+    faces = shapely.polygonize(shapely.linestrings(cut)).geoms
+    return functools.reduce(shapely.symmetric_difference, [shapely.Polygon(f.exterior) for f in faces])
+
+
+@pytest.fixture(scope="module")
+def engine_dxf(tmp_path_factory, ball_net: Net):
+    """The ball's net at the smallest legible face size on A2, as R12 DXF."""
+    folder = tmp_path_factory.mktemp("dxf")
+    options = DrawingOptions(pitch=8.6, sheet="A2", grid_lines=True)
+    from voxfab.fabricate.netdraw import write_net_drawing
+
+    result = write_net_drawing(BALL, ball_net, folder / "ball.dxf", options, title="ball")
+    return Path(result.files[0]), options, result
+
+
+def test_dxf_cut_layer_polygonizes_inside_the_sheet_with_the_paper_area(engine_dxf, ball_net: Net) -> None:
+    import ezdxf
+    import shapely
+
+    path, options, _ = engine_dxf
+    paper = _paper(_dxf_segments(path)["CUT"])
+    w, h = options.sheet_size
+    margin = shapely.box(options.margin, options.margin, w - options.margin, h - options.margin)
+    assert paper.within(margin)
+    # Faces and tabs: the face area plus at least one 3 mm deep tab per seam with a tab.
+    faces_area = ball_net.face_count * options.pitch**2
+    assert faces_area < paper.area < faces_area + ball_net.face_count * options.pitch * 3.0
+    doc = ezdxf.readfile(path)
+    lo, hi = tuple(doc.header["$EXTMIN"])[:2], tuple(doc.header["$EXTMAX"])[:2]
+    x0, y0, x1, y1 = paper.bounds
+    assert lo[0] <= x0 and lo[1] <= y0 and hi[0] >= x1 and hi[1] >= y1
+
+
+def test_tab_depth_and_text_height_measured_in_the_dxf(engine_dxf) -> None:
+    import shapely
+
+    path, options, result = engine_dxf
+    seg = _dxf_segments(path)
+    boundary = _paper(seg["CUT"]).boundary
+    folds = np.concatenate([seg["MOUNTAIN"], seg["VALLEY"]])
+    length = np.linalg.norm(folds[:, 1] - folds[:, 0], axis=1)
+    # Folds between faces run whole face edges; tab folds are inset from the corners, so not a
+    # whole number of face edges long.  A tab's depth is the distance from its fold's middle to
+    # the outline on its short side.
+    units = length / options.pitch
+    tab_folds = folds[np.abs(units - np.round(units)) > 1e-3]
+    assert len(tab_folds)
+    depths = []
+    for a, b in tab_folds:
+        mid, d = (a + b) / 2, (b - a) / np.linalg.norm(b - a)
+        n = np.array([-d[1], d[0]])
+        hits = [shapely.intersection(boundary, shapely.LineString([mid, mid + s * n * 2 * options.pitch]))
+                for s in (1, -1)]
+        depths.append(min(shapely.distance(shapely.Point(mid), x) for x in hits if not x.is_empty))
+    assert min(depths) >= options.min_tab_depth - 1e-3
+    # Digits read along the face edges: a digit's extent across its baseline is the cap height.
+    label = shapely.union_all([x.buffer(0.01) for x in shapely.linestrings(seg["LABEL"])])
+    heights = []
+    for blob in label.geoms:
+        x0, y0, x1, y1 = blob.bounds
+        heights.append(max(x1 - x0, y1 - y0) - 0.02)
+    assert np.median(heights) >= options.min_label_height - 1e-3
+    assert "numbers 2.0 mm high" in result.report[1]
+
+
+def test_the_drawing_refolds_onto_the_shape(engine_dxf, ball_net: Net) -> None:
+    """Faces and folds read back from the DXF alone make a net that refolds onto the ball."""
+    import dataclasses
+
+    from voxfab.unfold import validate
+
+    path, options, _ = engine_dxf
+    seg = _dxf_segments(path)
+    p = options.pitch
+    # Face squares: the cells the full-length folds and cut edges bound; every face edge of the
+    # drawing is a full-length segment of CUT, MOUNTAIN, VALLEY or GRID, split at the lattice.
+    def unit_edges(s: np.ndarray) -> set:
+        out = set()
+        for a, b in s:
+            n = int(round(np.linalg.norm(b - a) / p))
+            if n == 0 or abs(np.linalg.norm(b - a) - n * p) > 1e-3:
+                continue
+            for i in range(n):
+                q0, q1 = a + (b - a) * i / n, a + (b - a) * (i + 1) / n
+                out.add(tuple(sorted([tuple(np.round(q0, 3)), tuple(np.round(q1, 3))])))
+        return out
+
+    folds = unit_edges(np.concatenate([seg["MOUNTAIN"], seg["VALLEY"], seg["GRID"]]))
+    # Map the JSON net's layout onto the drawing: the drawing is the layout moved (and maybe turned).
+    c = ball_net.corners2d.astype(float)
+    fold_pts = np.array([pt for e in folds for pt in e])
+    for turned in (False, True):
+        cc = np.stack([-c[..., 1], c[..., 0]], axis=-1) if turned else c
+        mm = (cc - cc.reshape(-1, 2).min(axis=0)) * p
+        # the shift that puts the layout's shared edges onto the drawing's folds
+        for shift in fold_pts[0] - mm.reshape(-1, 2):
+            pos = np.round(mm + shift, 3)
+            edges = {tuple(sorted([tuple(pos[f, k]), tuple(pos[f, (k + 1) % 4])])): f
+                     for f in range(len(pos)) for k in range(4)}
+            if all(e in edges for e in folds):
+                break
+        else:
+            continue
+        break
+    else:
+        raise AssertionError("the drawing's folds do not match the net's layout")
+    # Folds read from the drawing: pairs of faces whose edges coincide on a drawn fold line.
+    owners: dict = {}
+    for f in range(len(pos)):
+        for k in range(4):
+            owners.setdefault(tuple(sorted([tuple(pos[f, k]), tuple(pos[f, (k + 1) % 4])])), []).append(f)
+    drawn = np.array(sorted(tuple(sorted(owners[e])) for e in folds if len(owners.get(e, [])) == 2))
+    assert len(drawn) == len(folds)
+    rebuilt = dataclasses.replace(ball_net, folds=drawn)
+    assert validate(BALL, rebuilt).ok
+
+
+def test_a_preview_svg_shows_its_lines_in_a_browser_and_a_laser_svg_keeps_hairlines(tmp_path: Path) -> None:
+    """Chromium draws both files: the laser file's 0.01 mm strokes vanish, the preview's do not."""
+    browser = shutil.which("chromium") or shutil.which("chromium-browser")
+    if browser is None:
+        pytest.skip("chromium is not installed")
+    from PIL import Image
+
+    from voxfab.fabricate.netdraw import write_net_drawing
+    from voxfab.unfold import unfold
+
+    g = np.ones((2, 2, 2), dtype=bool)
+    net = unfold(g, rng=0)
+    dark = {}
+    for lines in ("laser", "preview"):
+        svg = tmp_path / f"{lines}.svg"
+        write_net_drawing(g, net, svg, DrawingOptions(pitch=20.0, svg_lines=lines))
+        shot = tmp_path / f"{lines}.png"
+        # A4 at 96 px per inch, as a browser shows a page of the file.
+        subprocess.run([browser, "--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars",
+                        "--window-size=794,1123", f"--screenshot={shot}", svg.as_uri()],
+                       capture_output=True, timeout=120, check=False)
+        img = np.asarray(Image.open(shot).convert("RGB")).astype(int)
+        dark[lines] = int((img.sum(axis=-1) < 600).sum())
+    assert dark["laser"] < 50 < 2000 < dark["preview"]

@@ -9,12 +9,14 @@ import numpy.typing as npt
 
 from voxfab.drawing import LAYERS, Fill, Page, Polylines, text_polylines, text_width
 from voxfab.drawing import Drawing as Document
-from voxfab.shape import surface_graph
+from voxfab.errors import InvalidShapeError
+from voxfab.shape import SurfaceGraph, surface_graph
 from voxfab.unfold import Net
 
 from ._geometry import NetEdges, check_net, classify_edges, merge_unit_segments, trace_outlines
+from ._legible import NUMBER_INSET, digits_of, legibility_problem, number_height, number_start
 from ._options import DrawingOptions, Perforate
-from ._sheets import SheetPlan, plan_sheets
+from ._sheets import SheetPlan, pack_pieces, plan_sheets
 from ._tabs import TabPlan, place_tabs, tab_heights
 
 _NEXT = np.array([1, 2, 3, 0])
@@ -43,6 +45,8 @@ class Sheet:
         The glue tabs on this sheet, mm.
     pieces : int
         Number of separate paper pieces (closed outlines) on this sheet.
+    fill : float
+        Share of the sheet's area covered by paper (faces and tabs), 0 to 1.
     """
 
     number: int
@@ -53,6 +57,7 @@ class Sheet:
     face_index: npt.NDArray[np.int64]
     tabs: npt.NDArray[np.float64]
     pieces: int
+    fill: float
 
     def page(self, title: str = "") -> Page:
         """This sheet as a drawing page; glue tabs are shaded in previews and prints."""
@@ -89,10 +94,13 @@ class Drawing:
         Folds drawn per type (``mountain``, ``valley``, ``flat``), tabs excluded.
     closed_in_plane : int
         Seams of the net left uncut because their two sides meet in the plane.
-    split_seams : int
-        Folds of the net cut because their faces went to different sheets.
+    pieces : int
+        Separate pieces of paper the net was split into (1 for a one-piece net).
     label_height, tab_height : float
         Cap height of the edge numbers and full tab height, mm.
+    label_wanted : float
+        The largest number height asked for, mm (``label_height`` is smaller when
+        the faces could not carry it).
     title : str
         The title printed on the sheets (without sheet numbers).
     """
@@ -108,9 +116,11 @@ class Drawing:
     tab_fold_length: npt.NDArray[np.float64]
     fold_counts: dict[str, int]
     closed_in_plane: int
-    split_seams: int
+    pieces: int
     label_height: float
     tab_height: float
+    label_wanted: float
+    numbers: bool
     title: str
 
     def document(self) -> Document:
@@ -122,31 +132,42 @@ class Drawing:
         """Numbers of the seams without room for a tab (marked for tape instead)."""
         return self.seam_numbers[~self.tab_seams & ~self.tab_elsewhere].tolist()
 
+    def warnings(self) -> list[str]:
+        """The lines a maker must not miss: a net split into pieces, numbers shrunk, seams without tabs."""
+        out = []
+        if self.pieces > 1:
+            n = len(self.sheets)
+            out.append(f"net split into {self.pieces} pieces on {n} sheet{'s' if n > 1 else ''}: "
+                       "glue the seams between pieces by their numbers")
+        if self.numbers and self.seams and self.label_height < self.label_wanted - 1e-9:
+            out.append(f"edge numbers shrunk to {self.label_height:.1f} mm (asked {self.label_wanted:g} mm) "
+                       f"to fit {self.pitch:g} mm faces")
+        marked = self.marked_seams
+        if marked:
+            shown = ", ".join(map(str, marked[:20])) + (" ..." if len(marked) > 20 else "")
+            out.append(f"{len(marked)} seams without room for a tab, marked for tape: {shown}")
+        return out
+
     def report(self) -> list[str]:
-        """Human-readable lines about fitting, tabs and folds."""
+        """Human-readable lines about fitting, fill, tabs and folds (the warnings included)."""
         n = len(self.sheets)
         w, h = self.sheets[0].width, self.sheets[0].height
+        fills = ", ".join(f"{100 * s.fill:.0f} %" for s in self.sheets)
         lines = [
-            f"pitch {self.pitch:g} mm, {n} sheet{'s' if n > 1 else ''} of {w:g} x {h:g} mm"
-            + (", net turned a quarter turn" if self.rotated else "")
+            f"faces {self.pitch:g} mm, {n} sheet{'s' if n > 1 else ''} of {w:g} x {h:g} mm, "
+            f"filled {fills}" + (", net turned a quarter turn" if self.rotated else "")
         ]
-        if self.split_seams:
-            lines.append(f"split over {n} sheets: {self.split_seams} folds became numbered seams")
-        marked = self.marked_seams
+        numbers = f", numbers {self.label_height:.1f} mm high" if self.numbers else ", no numbers"
         lines.append(
-            f"{self.seams} glued seams numbered on both edges; {int(self.tab_seams.sum())} tabs "
-            f"({self.tab_height:.1f} mm), numbers {self.label_height:.1f} mm high"
+            f"{self.seams} glued seams; {int(self.tab_seams.sum())} tabs ({self.tab_height:.1f} mm deep){numbers}"
         )
         if self.tab_elsewhere.any():
             lines.append(f"{int(self.tab_elsewhere.sum())} seams to other pieces take their tabs there")
-        if marked:
-            shown = ", ".join(map(str, marked[:20])) + (" ..." if len(marked) > 20 else "")
-            lines.append(f"{len(marked)} seams without room for a tab, marked for tape: {shown}")
         fc = self.fold_counts
         lines.append(f"folds: {fc['mountain']} mountain, {fc['valley']} valley, {fc['flat']} coplanar")
         if self.closed_in_plane:
             lines.append(f"{self.closed_in_plane} seams meet in the plane and are left uncut")
-        return lines
+        return lines + self.warnings()
 
 
 def _seam_sides(edges: NetEdges, joined: npt.NDArray[np.bool_]) -> npt.NDArray[np.int64]:
@@ -213,19 +234,67 @@ def draw_net(grid: npt.ArrayLike, net: Net, *, options: DrawingOptions | None = 
     ------
     FormatError
         When ``net`` is not a net of ``grid``.
+    SheetFitError
+        When the net does not fit the sheet at the face size asked for.
     InvalidShapeError
-        When the pitch is too large for the sheet.
+        When the faces are too small for the edge numbers or glue tabs; the
+        message gives the smallest face size that works.
     """
     opts = options or DrawingOptions()
     graph = surface_graph(grid)
     check_net(graph, net)
-    plan = plan_sheets(net.corners2d, opts)
+    return _draw(graph, net, plan_sheets(net.corners2d, opts), opts, name=name, pieces=1)
+
+
+def draw_pieces(grid: npt.ArrayLike, pieces: list[Net], *, options: DrawingOptions | None = None,
+                name: str = "") -> Drawing:
+    """Pack the pieces of a several-piece unfolding on as few sheets as possible and draw them.
+
+    Seams between pieces are numbered on both edges and get a tab on one side,
+    like every other seam; the report gives the fill of each sheet.
+
+    Parameters
+    ----------
+    grid : (X, Y, Z) bool array_like
+        The shape the pieces unfold.
+    pieces : list of Net
+        Pieces covering its surface (faces identified by voxel and normal).
+    options : DrawingOptions, optional
+    name : str
+        The shape's name for the title.
+
+    Returns
+    -------
+    Drawing
+
+    Raises
+    ------
+    FormatError
+        When a piece is not part of a net of ``grid``, or two pieces share a face.
+    SheetFitError
+        When a piece alone does not fit the sheet.
+    """
+    opts = options or DrawingOptions()
+    graph = surface_graph(grid)
+    for piece in pieces:
+        check_net(graph, piece)
+    plan, placed = pack_pieces([p.corners2d for p in pieces], opts)
+    counts = np.cumsum([0] + [p.face_count for p in pieces])
+    combined = Net(
+        voxel=np.concatenate([p.voxel for p in pieces]), normal=np.concatenate([p.normal for p in pieces]),
+        corners3d=np.concatenate([p.corners3d for p in pieces]), corners2d=np.concatenate(placed),
+        folds=np.concatenate([p.folds.reshape(-1, 2) + c for p, c in zip(pieces, counts[:-1])]),
+        seed=pieces[0].seed, strategy=pieces[0].strategy, filled=pieces[0].filled,
+    )
+    return _draw(graph, combined, plan, opts, name=name, pieces=len(pieces))
+
+
+def _draw(graph: SurfaceGraph, net: Net, plan: SheetPlan, opts: DrawingOptions, *, name: str,
+          pieces: int) -> Drawing:
+    """Draw ``net`` (a whole net, a piece, or pieces side by side) on the sheets of ``plan``."""
     edges = classify_edges(graph, net, plan.corners2d)
     fs = plan.face_sheet
-    partner = edges.partner_face
-    same_sheet = (partner >= 0) & (fs[:, None] == fs[np.maximum(partner, 0)])
-    joined = edges.joined & same_sheet
-    split = int(np.count_nonzero(edges.joined & ~same_sheet & edges.canonical()))
+    joined = edges.joined
     sides = _seam_sides(edges, joined)
     seam_type = edges.fold_type[sides[:, 0, 0], sides[:, 0, 1]].astype(np.int64)
     external = sides[:, 1, 0] < 0
@@ -236,34 +305,38 @@ def draw_net(grid: npt.ArrayLike, net: Net, *, options: DrawingOptions | None = 
         numbers = edges.seam_id[sides[:, 0, 0], sides[:, 0, 1]] + 1
     else:
         numbers = np.arange(1, sides.shape[0] + 1)
+    p = plan.pitch
+    digits = digits_of(int(numbers.max(initial=1)))
+    problem = legibility_problem(opts, p, digits)
+    if problem:
+        raise InvalidShapeError(problem)
     pos = plan.face_positions()
     shared = _shared_in_plane(plan)
     w, h = plan.size
     if not opts.tabs:
         allowed = np.zeros_like(allowed)
-    tabs = place_tabs(pos, fs, sides, pitch=plan.pitch, area=plan.area, sheet_width=w,
-                      tab_width=opts.tab_width, tab_angle=opts.tab_angle, allowed=allowed)
-    inset, tab_h = tab_heights(plan.pitch, opts.tab_width, opts.tab_angle)
-    n_digits = len(str(int(numbers.max(initial=1))))
-    p = plan.pitch
-    label_h = min(opts.label_height, 0.15 * p, 0.6 * p * 6.0 / ((n_digits - 1) * 6.0 + 4.0))
+    tabs = place_tabs(pos, fs, sides, pitch=p, area=plan.area, sheet_width=w, tab_width=opts.tab_width,
+                      tab_angle=opts.tab_angle, allowed=allowed, min_height=opts.min_tab_depth)
+    inset, tab_h = tab_heights(p, opts.tab_width, opts.tab_angle)
+    label_h = number_height(opts, p, digits)
     fold_mask = joined & edges.canonical()
     fold_counts = {
-        name: int(np.count_nonzero(fold_mask & (edges.fold_type == t)))
-        for name, t in (("mountain", 1), ("valley", -1), ("flat", 0))
+        kind: int(np.count_nonzero(fold_mask & (edges.fold_type == t)))
+        for kind, t in (("mountain", 1), ("valley", -1), ("flat", 0))
     }
-    title = f"{name}  PITCH {p:g} MM  SEED {net.seed}".strip()
+    title = f"{name}  FACES {p:g} MM  SEED {net.seed}".strip()
     sheets = tuple(
         _draw_sheet(s, plan, edges, joined, sides, seam_type, tabs, opts, label_h, title, pos, shared,
                     numbers, elsewhere)
         for s in range(plan.count)
     )
-    tab_fold = np.where(tabs.placed, p - 2 * inset, 0.0)
     return Drawing(
         sheets=sheets, pitch=p, rotated=plan.rotated, seams=int(sides.shape[0]),
-        tab_seams=tabs.placed, tab_elsewhere=elsewhere, seam_numbers=numbers, seam_type=seam_type, tab_fold_length=tab_fold, fold_counts=fold_counts,
+        tab_seams=tabs.placed, tab_elsewhere=elsewhere, seam_numbers=numbers, seam_type=seam_type,
+        tab_fold_length=np.where(tabs.placed, p - 2 * inset, 0.0), fold_counts=fold_counts,
         closed_in_plane=int(np.count_nonzero(edges.closed_in_plane & edges.canonical())),
-        split_seams=split, label_height=float(label_h), tab_height=float(tab_h), title=title,
+        pieces=pieces, label_height=float(label_h), tab_height=float(tab_h) if opts.tabs else 0.0,
+        label_wanted=float(opts.label_height), numbers=bool(opts.numbers), title=title,
     )
 
 
@@ -331,9 +404,12 @@ def _draw_sheet(
         p0, p1 = _edge_points(pos, fe[here])
         d = (p1 - p0) / p
         inward = np.stack([-d[:, 1], d[:, 0]], axis=1)
-        mid = (p0 + p1) / 2
-        texts += [str(i) for i in numbers[here].tolist()]
-        org.append(mid + inward * (0.06 * p))
+        here_texts = [str(i) for i in numbers[here].tolist()]
+        texts += here_texts
+        # Centred on the edge, or pushed along it just clear of the number on the previous edge.
+        width = np.array([text_width(t, label_h) for t in here_texts]).reshape(-1)
+        along = np.maximum((p - width) / 2, number_start(p, label_h))
+        org.append(p0 + d * along[:, None] + inward * (NUMBER_INSET * p))
         dirs.append(d)
         no_tab = ~tabs.placed[here] & ~elsewhere[here]
         # A seam without a tab gets a bar along both its edges: tape or glue it edge to edge.
@@ -341,7 +417,7 @@ def _draw_sheet(
         marks.append((p0[no_tab] + d[no_tab] * 0.2 * p + off, p1[no_tab] - d[no_tab] * 0.2 * p + off))
     if texts and opts.numbers:
         layers["LABEL"].append(text_polylines(texts, np.concatenate(org), np.concatenate(dirs), label_h,
-                                                  center=True, mark_ambiguous=True))
+                                                  mark_ambiguous=True))
     layers["LABEL"].append(Polylines.from_segments(np.concatenate([m[0] for m in marks]),
                                                    np.concatenate([m[1] for m in marks])))
     heading = title + (f"  SHEET {s + 1}/{plan.count}" if plan.count > 1 else "")
@@ -356,4 +432,11 @@ def _draw_sheet(
         number=s + 1, width=plan.size[0], height=plan.size[1],
         layers={k: Polylines.concat(v) for k, v in layers.items()},
         faces=pos[on], face_index=np.flatnonzero(on), tabs=tab_poly, pieces=pieces,
+        fill=(int(on.sum()) * p * p + _polygon_area(tab_poly)) / (plan.size[0] * plan.size[1]),
     )
+
+
+def _polygon_area(polys: npt.NDArray[np.float64]) -> float:
+    """Total area of ``(n, k, 2)`` simple polygons, mm²."""
+    x, y = polys[..., 0], polys[..., 1]
+    return float(np.abs((x * np.roll(y, -1, axis=1) - np.roll(x, -1, axis=1) * y).sum(axis=1)).sum() / 2)

@@ -33,10 +33,10 @@ class NetOptions(Options):
                             high=MAX_TIMEOUT)
     count: int = option(1, help="write N distinct nets as NAME-1.ext ... NAME-N.ext", low=1, high=MAX_COUNT,
                         recipe=False, metavar="N")
-    pieces: str = option("one", help="auto: accept the fewest pieces found (one file per piece)",
-                         choices=("one", "auto"))
+    pieces: str = option("one", help="auto: when no one-piece net fits the sheet, the fewest pieces, packed on as "
+                         "few sheets as possible", choices=("one", "auto"))
     fill: bool = option(False, help="unfold the outer surface only, as if enclosed cavities were filled")
     compact: bool = option(False, help="prefer a small bounding box (slower)")
-    fit: bool = option(False, help="ask the search for a net that fits the sheet at face_size", cli=False)
-    formats: tuple[str, ...] = option(("svg", "dxf", "pdf"), help="drawings written beside net.json",
-                                      choices=("svg", "dxf", "pdf"), cli=False)
+    fit: bool = option(True, help="kept for old recipes: drawn nets always fit their sheet", cli=False)
+    formats: tuple[str, ...] = option(("svg", "dxf", "pdf"), help="drawings written beside net.json (png: a "
+                                      "preview)", choices=("svg", "dxf", "pdf", "png"), cli=False)

@@ -1,4 +1,4 @@
-"""Net drawing options: sheet sizes, tab shape, perforation and the colour map."""
+"""Net drawing options, declared once: sheet sizes, face size, tabs, marks, perforation and the colour map."""
 
 from __future__ import annotations
 
@@ -6,16 +6,22 @@ import dataclasses
 import re
 from enum import Enum
 
-from voxfab._shared.validate import check_choice, check_positive
-from voxfab.drawing import LayerStyle, parse_colors
+from voxfab._shared.options import OptionError, Options, option
+from voxfab.drawing import LayerStyle, Lines, parse_colors
 from voxfab.drawing.dxf import DxfVersion
 from voxfab.errors import InvalidShapeError
 
-#: Paper sizes in mm (portrait).
+#: Paper sizes in mm (portrait), smallest first: a net that does not fit is told the smallest that does.
 SHEETS: dict[str, tuple[float, float]] = {
+    "A5": (148.0, 210.0),
     "A4": (210.0, 297.0),
-    "A3": (297.0, 420.0),
     "Letter": (215.9, 279.4),
+    "Legal": (215.9, 355.6),
+    "A3": (297.0, 420.0),
+    "Tabloid": (279.4, 431.8),
+    "A2": (420.0, 594.0),
+    "A1": (594.0, 841.0),
+    "A0": (841.0, 1189.0),
 }
 
 #: Largest sheet side accepted, mm (the largest laser beds and cutting services stay under 3 m).
@@ -31,13 +37,13 @@ class Perforate(Enum):
 
 
 def parse_sheet(spec: str) -> tuple[float, float]:
-    """Sheet size in mm from ``A4``, ``A3``, ``Letter`` or ``WxH`` (mm)."""
+    """Sheet size in mm from a name of :data:`SHEETS` (``A4``, ``A3``, ``Letter``, ...) or ``WxH`` (mm)."""
     for name, size in SHEETS.items():
         if spec.lower() == name.lower():
             return size
     m = re.fullmatch(r"\s*([0-9]*\.?[0-9]+)\s*[xX×]\s*([0-9]*\.?[0-9]+)\s*(mm)?\s*", spec)
     if not m:
-        raise InvalidShapeError(f"sheet: expected A4, A3, Letter or WxH in mm, got {spec!r}")
+        raise InvalidShapeError(f"sheet: expected {', '.join(SHEETS)} or WxH in mm, got {spec!r}")
     w, h = float(m.group(1)), float(m.group(2))
     if w <= 0 or h <= 0:
         raise InvalidShapeError(f"sheet: sides must be positive, got {spec!r}")
@@ -46,81 +52,79 @@ def parse_sheet(spec: str) -> tuple[float, float]:
     return w, h
 
 
-@dataclasses.dataclass(frozen=True)
-class DrawingOptions:
-    """How a net is drawn.
+def _sheet_problem(value: str) -> str | None:
+    try:
+        parse_sheet(value)
+    except InvalidShapeError:
+        return f"expected {', '.join(SHEETS)} or WxH in mm with sides of at most {MAX_SHEET:g} mm"
+    return None
 
-    Parameters
-    ----------
-    pitch : float or None
-        Face edge length in mm; ``None`` picks the largest pitch (rounded down to
-        0.1 mm, at least ``min_auto_pitch``) that puts the net on one sheet.
-    sheet : str
-        ``A4``, ``A3``, ``Letter`` or ``WxH`` in mm.
-    margin : float
-        Empty border of the sheet, mm.
-    tab_width : float
-        Glue tab height (distance from its fold to its free edge), mm.
-    tab_angle : float
-        Angle of the tab's slanted sides to its fold, degrees in [15, 75].
-    label_height : float
-        Largest cap height of edge numbers, mm (they shrink to fit the faces).
-    title_height : float
-        Cap height of the title, mm.
-    grid_lines : bool
-        Draw coplanar folds as a faint score on the GRID layer.
-    perforate : str
-        ``none``, ``mountain`` or ``valley``: that fold type is drawn as short cuts.
-    perf_cut, perf_bridge : float
-        Perforation cut and bridge lengths, mm.
-    dxf_version : str
-        ``R12`` or ``R2000``.
-    colors : str
-        Overrides of the colour map, see :func:`parse_colors`.
-    min_auto_pitch : float
-        Smallest pitch picked automatically; larger nets are split over sheets.
-    numbers : bool
-        Print the edge numbers (``False``: an explicit opt-out for faces too small
-        to carry them).
-    tabs : bool
-        Add glue tabs (``False``: every seam is marked for tape instead).
-    heading : bool
-        Print the title line (name, face size, seed, sheet) in a band at the bottom.
+
+def _colors_problem(value: str) -> str | None:
+    try:
+        parse_colors(value)
+    except InvalidShapeError as exc:
+        return str(exc).removeprefix("colors: ")
+    return None
+
+
+@dataclasses.dataclass(frozen=True)
+class DrawingOptions(Options):
+    """How a net is drawn: sheet, face size, glue tabs, marks and line styles.
+
+    ``pitch`` is the face size in mm (set from ``face_size`` by the front
+    ends); ``None`` picks the largest, in 0.1 mm steps, at which the net fits
+    one sheet.  Numbers shrink from ``label_height`` to fit the faces but never
+    below ``min_label_height``, and tabs never below ``min_tab_depth``: smaller
+    faces are refused with the smallest face size that works, unless numbers or
+    tabs are switched off.
     """
 
-    pitch: float | None = None
-    sheet: str = "A4"
-    margin: float = 10.0
-    tab_width: float = 5.0
-    tab_angle: float = 45.0
-    label_height: float = 5.0
-    title_height: float = 3.0
-    grid_lines: bool = False
-    perforate: str = "none"
-    perf_cut: float = 1.5
-    perf_bridge: float = 1.0
-    dxf_version: str = "R12"
-    colors: str = ""
-    min_auto_pitch: float = 5.0
-    numbers: bool = True
-    tabs: bool = True
-    heading: bool = True
+    pitch: float | None = option(None, help="face edge (set from face_size)", unit="mm", low=0.0, low_open=True,
+                                 high=1000.0, cli=False, recipe=False)
+    sheet: str = option("A4", help=f"sheet: {', '.join(SHEETS)}, or WxH in mm for a laser bed",
+                        check=_sheet_problem, metavar="A4|A3|...|WxH")
+    margin: float = option(10.0, help="empty border of the sheet", unit="mm", low=0.0, high=1000.0)
+    tab_width: float = option(5.0, help="largest glue tab height", unit="mm", low=0.0, low_open=True, high=100.0)
+    tab_angle: float = option(45.0, help="angle of the tab sides to their fold", unit="degrees", low=15.0,
+                              high=75.0)
+    label_height: float = option(5.0, help="largest height of the edge numbers; they shrink to fit the faces",
+                                 unit="mm", low=0.0, low_open=True, high=100.0)
+    min_label_height: float = option(2.0, help="smallest height of the edge numbers: smaller faces are refused "
+                                     "with the face size that works", unit="mm", low=0.0, low_open=True,
+                                     high=100.0)
+    min_tab_depth: float = option(3.0, help="smallest glue tab: smaller faces are refused likewise", unit="mm",
+                                  low=0.0, low_open=True, high=100.0)
+    title_height: float = option(3.0, help="height of the title line", unit="mm", low=0.0, low_open=True,
+                                 high=100.0, cli=False, recipe=False)
+    grid_lines: bool = option(False, help="draw coplanar folds as a faint score (the voxel grid as part of the art)")
+    perforate: str = option("none", help="cut this fold type as short perforations (a laser scores one side only)",
+                            choices=tuple(p.value for p in Perforate))
+    perf_cut: float = option(1.5, help="perforation cut length", unit="mm", low=0.0, low_open=True, high=100.0)
+    perf_bridge: float = option(1.0, help="perforation bridge length", unit="mm", low=0.0, low_open=True,
+                                high=100.0)
+    svg_lines: str = option("laser", help="SVG line widths: laser hairlines, or visible lines to look at",
+                            choices=tuple(v.value for v in Lines))
+    dxf_version: str = option("R12", help="DXF version: R12 (widest laser support) or R2000 ($INSUNITS = mm)",
+                              choices=tuple(v.value for v in DxfVersion))
+    colors: str = option("", help="colour map, e.g. 'cut=#ff0000,mountain=blue:dashed'; layers CUT SCORE "
+                         "MOUNTAIN VALLEY GRID LABEL, styles solid dashed dashdot dotted", check=_colors_problem,
+                         metavar="LAYER=COLOR[:STYLE],...")
+    numbers: bool = option(True, help="draw the edge numbers (--no-numbers for faces too small to carry them)")
+    tabs: bool = option(True, help="draw glue tabs (--no-tabs: seams are marked for tape)")
+    heading: bool = option(True, help="print the title line", cli=False, recipe=False)
 
-    def __post_init__(self) -> None:
-        if self.pitch is not None:
-            check_positive(self.pitch, name="pitch")
-        for name in ("tab_width", "label_height", "title_height", "perf_cut", "perf_bridge", "min_auto_pitch"):
-            check_positive(getattr(self, name), name=name.replace("_", "-"))
-        if not 0 <= float(self.margin) < 1e4:
-            raise InvalidShapeError(f"margin: expected a number >= 0 mm, got {self.margin!r}")
-        if not 15.0 <= float(self.tab_angle) <= 75.0:
-            raise InvalidShapeError(f"tab-angle: expected 15 to 75 degrees, got {self.tab_angle!r}")
-        check_choice(self.perforate, Perforate, name="perforate")
-        check_choice(self.dxf_version, DxfVersion, name="dxf-version")
+    def check(self) -> None:
+        """Rules between options: tabs and numbers at least their minimum, room inside the margin."""
+        if self.tabs and self.tab_width < self.min_tab_depth:
+            raise OptionError("tab_width", f"{self.tab_width:g} mm is under the {self.min_tab_depth:g} mm "
+                              "smallest tab (min_tab_depth)")
+        if self.numbers and self.label_height < self.min_label_height:
+            raise OptionError("label_height", f"{self.label_height:g} mm is under the {self.min_label_height:g} "
+                              "mm smallest number (min_label_height)")
         w, h = self.sheet_size
         if min(w, h) <= 2 * self.margin + self.title_height + 4:
-            raise InvalidShapeError(f"sheet: {self.sheet} leaves no room inside a {self.margin} mm margin")
-        parse_colors(self.colors)
+            raise OptionError("sheet", f"{self.sheet} leaves no room inside a {self.margin:g} mm margin")
 
     @property
     def sheet_size(self) -> tuple[float, float]:

@@ -1,4 +1,11 @@
-"""Fitting a net on sheets: automatic pitch, a quarter turn, or a split over several sheets."""
+"""Fitting a net on a sheet: automatic face size, a quarter turn, pieces packed on sheets.
+
+A net goes on one sheet, turned a quarter turn when that fits better; when it
+does not fit, :class:`SheetFitError` says the largest face size at which it
+fits this sheet and the smallest standard sheet that takes it at this face
+size.  Several pieces (``--pieces auto``) are packed by their bounding boxes
+on as few sheets as possible.
+"""
 
 from __future__ import annotations
 
@@ -8,9 +15,34 @@ import math
 import numpy as np
 import numpy.typing as npt
 
-from voxfab.errors import InvalidShapeError
+from voxfab.errors import InvalidShapeError, UnfoldError
 
-from ._options import DrawingOptions
+from ._legible import tab_depth
+from ._options import SHEETS, DrawingOptions
+
+#: Empty cells between packed pieces: their tabs (under half a face high) never meet.
+PIECE_GAP = 1
+
+
+class SheetFitError(UnfoldError):
+    """No net found fits the sheet at the face size asked for.
+
+    Attributes
+    ----------
+    extent : (int, int)
+        Bounding box in faces of the most compact net found.
+    largest_face_size : float
+        Largest face size (mm, 0.1 mm steps) at which that net fits the sheet.
+    smallest_sheet : str or None
+        Smallest sheet of :data:`SHEETS` that takes it at the face size asked for.
+    """
+
+    def __init__(self, message: str, *, extent: tuple[int, int], largest_face_size: float,
+                 smallest_sheet: str | None) -> None:
+        super().__init__(message)
+        self.extent = extent
+        self.largest_face_size = largest_face_size
+        self.smallest_sheet = smallest_sheet
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -22,15 +54,14 @@ class SheetPlan:
     pitch : float
         Face edge length, mm.
     rotated : bool
-        The net is turned a quarter turn counter-clockwise to fit better.
+        The net (a single piece) is turned a quarter turn counter-clockwise to fit better.
     corners2d : (F, 4, 2) int ndarray
-        Face corners in cells after the turn, with the net's lower-left cell at 0.
+        Face corners in cells: sheet ``s`` holds cells ``origin[s] / pitch`` onwards,
+        and no two sheets share a cell, so faces of different sheets never touch.
     face_sheet : (F,) int ndarray
         Sheet index of each face.
     origin : (S, 2) float ndarray
         Position in mm of cell (0, 0) on each sheet.
-    windows : (S, 2) int ndarray
-        Column and row of each sheet's window over the net (0, 0 on one sheet).
     area : tuple of 4 floats
         ``(x0, y0, x1, y1)`` drawable rectangle of every sheet, mm.
     size : tuple of 2 floats
@@ -42,7 +73,6 @@ class SheetPlan:
     corners2d: npt.NDArray[np.int64]
     face_sheet: npt.NDArray[np.int64]
     origin: npt.NDArray[np.float64]
-    windows: npt.NDArray[np.int64]
     area: tuple[float, float, float, float]
     size: tuple[float, float]
 
@@ -56,12 +86,77 @@ class SheetPlan:
         return self.origin[self.face_sheet][:, None, :] + self.corners2d * self.pitch
 
 
-def drawable_area(options: DrawingOptions) -> tuple[float, float, float, float]:
+def drawable_area(options: DrawingOptions, size: tuple[float, float] | None = None) -> tuple[float, float, float, float]:
     """``(x0, y0, x1, y1)`` of the sheet inside the margin, above the title band, mm."""
-    w, h = options.sheet_size
+    w, h = options.sheet_size if size is None else size
     m = float(options.margin)
     band = options.title_height + 2.0 if options.heading else 0.0
     return (m, m + band, w - m, h - m)
+
+
+def _room(options: DrawingOptions, pitch: float, size: tuple[float, float] | None = None) -> tuple[float, float]:
+    """Width and height in mm that faces may take: the drawable area less a tab all round."""
+    x0, y0, x1, y1 = drawable_area(options, size)
+    pad = tab_depth(options, pitch)
+    return x1 - x0 - 2 * pad, y1 - y0 - 2 * pad
+
+
+def sheet_cells(options: DrawingOptions, pitch: float, size: tuple[float, float] | None = None) -> tuple[int, int]:
+    """Faces across and down a sheet at face size ``pitch`` (the ``fit`` of the net search)."""
+    w, h = _room(options, pitch, size)
+    return max(int(math.floor(w / pitch + 1e-9)), 0), max(int(math.floor(h / pitch + 1e-9)), 0)
+
+
+def fits(extent: tuple[int, int], options: DrawingOptions, pitch: float,
+         size: tuple[float, float] | None = None) -> bool | None:
+    """Whether a net of ``extent`` faces fits the sheet: False as is, True turned, None not at all."""
+    cw, ch = sheet_cells(options, pitch, size)
+    ex, ey = extent
+    if ex <= cw and ey <= ch:
+        return False
+    if ey <= cw and ex <= ch:
+        return True
+    return None
+
+
+def largest_face_size(extent: tuple[int, int], options: DrawingOptions) -> float:
+    """Largest face size in 0.1 mm steps at which a net of ``extent`` faces fits the sheet (0 if none)."""
+    x0, y0, x1, y1 = drawable_area(options)
+    aw, ah = x1 - x0, y1 - y0
+    ex, ey = max(extent[0], 1), max(extent[1], 1)
+    # Tabs grow with the face up to tab_width: start from the bound without them and step down.
+    p = math.floor(max(min(aw / ex, ah / ey), min(aw / ey, ah / ex)) * 10.0) / 10.0
+    while p > 0 and fits(extent, options, p) is None:
+        p = round(p - 0.1, 1)
+    return max(p, 0.0)
+
+
+def smallest_sheet(extent: tuple[int, int], options: DrawingOptions, pitch: float) -> str | None:
+    """Name of the smallest sheet of :data:`SHEETS` that takes a net of ``extent`` faces at ``pitch``."""
+    for name, size in sorted(SHEETS.items(), key=lambda kv: (kv[1][0] * kv[1][1], kv[0])):
+        if fits(extent, options, pitch, size) is not None:
+            return name
+    return None
+
+
+def extent_of(corners2d: npt.NDArray[np.int64]) -> tuple[int, int]:
+    """Bounding box of a layout in faces."""
+    c = corners2d.reshape(-1, 2)
+    ex, ey = (c.max(axis=0) - c.min(axis=0)).tolist()
+    return int(ex), int(ey)
+
+
+def fit_error(extent: tuple[int, int], options: DrawingOptions, pitch: float, *, what: str) -> SheetFitError:
+    """The error for a net of ``extent`` faces that does not fit the sheet at ``pitch``."""
+    best = largest_face_size(extent, options)
+    sheet = smallest_sheet(extent, options, pitch)
+    needs = f"at {pitch:g} mm it needs {sheet}" if sheet else f"at {pitch:g} mm it is larger than every standard sheet"
+    return SheetFitError(
+        f"{what} spans {extent[0]} x {extent[1]} faces and does not fit sheet {options.sheet} at {pitch:g} mm "
+        f"faces: it fits {options.sheet} at faces up to {best:g} mm, and {needs} (--sheet); or split it "
+        "into pieces (--pieces auto)",
+        extent=extent, largest_face_size=best, smallest_sheet=sheet,
+    )
 
 
 def _turned(c: npt.NDArray[np.int64], rotated: bool) -> npt.NDArray[np.int64]:
@@ -70,85 +165,85 @@ def _turned(c: npt.NDArray[np.int64], rotated: bool) -> npt.NDArray[np.int64]:
     return c - c.reshape(-1, 2).min(axis=0)
 
 
-def plan_sheets(corners2d: npt.NDArray[np.int64], options: DrawingOptions) -> SheetPlan:
-    """Choose pitch, turn and sheets for a net laid out at ``corners2d`` (F, 4, 2) cells.
+def auto_face_size(extent: tuple[int, int], options: DrawingOptions) -> float:
+    """The face size of ``options`` or, when unset, the largest that fits a net of ``extent`` on one sheet."""
+    if options.pitch is not None:
+        return float(options.pitch)
+    p = largest_face_size(extent, options)
+    if p <= 0:
+        raise InvalidShapeError(f"sheet: {options.sheet} has no room for a net inside a {options.margin:g} mm margin")
+    return p
 
-    With ``options.pitch`` set, the net goes on one sheet when it fits either way
-    round, else on the fewest sheets of a regular split.  Without a pitch, the
-    largest pitch that fits one sheet is used, unless it is below
-    ``options.min_auto_pitch``: then that minimum is used and the net is split.
+
+def plan_sheets(corners2d: npt.NDArray[np.int64], options: DrawingOptions, *, what: str = "the net") -> SheetPlan:
+    """Put a net laid out at ``corners2d`` (F, 4, 2) cells on one sheet, turned if that fits better.
 
     Raises
     ------
-    InvalidShapeError
-        When one face with its tabs is larger than the drawable area.
+    SheetFitError
+        When it does not fit at the face size of ``options``.
     """
-    x0, y0, x1, y1 = drawable_area(options)
-    aw, ah = x1 - x0, y1 - y0
-    pad = float(options.tab_width)
-    ext = corners2d.reshape(-1, 2).max(axis=0) - corners2d.reshape(-1, 2).min(axis=0)
-    orient = [(False, int(ext[0]), int(ext[1])), (True, int(ext[1]), int(ext[0]))]
-    pitch = options.pitch
-    if pitch is None:
-        best = max(orient, key=lambda o: (min((aw - 2 * pad) / o[1], (ah - 2 * pad) / o[2]), not o[0]))
-        p = math.floor(min((aw - 2 * pad) / best[1], (ah - 2 * pad) / best[2]) * 10.0 + 1e-9) / 10.0
-        if p >= options.min_auto_pitch:
-            return _single(corners2d, best[0], p, options)
-        pitch = float(options.min_auto_pitch)
-    pitch = float(pitch)
-    eps = 1e-9
-    for rotated, ex, ey in orient:
-        if ex * pitch + 2 * pad <= aw + eps and ey * pitch + 2 * pad <= ah + eps:
-            return _single(corners2d, rotated, pitch, options)
-    cw = int(math.floor((aw - 2 * pad) / pitch + eps))
-    ch = int(math.floor((ah - 2 * pad) / pitch + eps))
-    if cw < 1 or ch < 1:
-        raise InvalidShapeError(
-            f"pitch: {pitch:g} mm faces with {pad:g} mm tabs do not fit on sheet {options.sheet} "
-            f"inside a {options.margin:g} mm margin"
-        )
-    rotated = min(orient, key=lambda o: (math.ceil(o[1] / cw) * math.ceil(o[2] / ch), o[0]))[0]
-    c = _turned(corners2d, rotated)
-    cell = c.min(axis=1)
-    size = np.array([cw, ch])
-    win, phase = _windows(cell, size)
-    # Reading order: top row of windows first, left to right.
-    keys = np.unique(np.stack([-win[:, 1], win[:, 0]], axis=1), axis=0)
-    windows = np.stack([keys[:, 1], -keys[:, 0]], axis=1)
-    lookup = {(int(a), int(b)): i for i, (a, b) in enumerate(windows)}
-    face_sheet = np.array([lookup[(int(a), int(b))] for a, b in win], dtype=np.int64)
-    left = x0 + pad + (aw - 2 * pad - cw * pitch) / 2
-    bottom = y0 + pad + (ah - 2 * pad - ch * pitch) / 2
-    origin = np.stack([left - windows[:, 0] * cw * pitch, bottom - windows[:, 1] * ch * pitch], axis=1)
-    origin = origin + phase * pitch
-    return SheetPlan(pitch, rotated, c, face_sheet, origin.astype(np.float64), windows, (x0, y0, x1, y1),
-                     options.sheet_size)
-
-
-def _windows(
-    cell: npt.NDArray[np.int64], size: npt.NDArray[np.int64]
-) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64]]:
-    """Window (column, row) of each face cell, and the shift of the window grid that needs the fewest sheets.
-
-    Cell ``c`` falls in window ``(c + shift) // size``.
-    """
-    best: tuple[int, int, int] | None = None
-    steps = [np.unique(np.linspace(0, n - 1, min(n, 8)).astype(np.int64)) for n in size.tolist()]
-    for ox in steps[0].tolist():
-        for oy in steps[1].tolist():
-            w = (cell + (ox, oy)) // size
-            count = np.unique(w[:, 0] * (int(w[:, 1].max()) + 1) + w[:, 1]).size
-            if best is None or count < best[0]:
-                best = (count, ox, oy)
-    assert best is not None
-    shift = np.array(best[1:], dtype=np.int64)
-    return (cell + shift) // size, shift
-
-
-def _single(corners2d: npt.NDArray[np.int64], rotated: bool, pitch: float, options: DrawingOptions) -> SheetPlan:
+    extent = extent_of(corners2d)
+    pitch = auto_face_size(extent, options)
+    rotated = fits(extent, options, pitch)
+    if rotated is None:
+        raise fit_error(extent, options, pitch, what=what)
     x0, y0, x1, y1 = drawable_area(options)
     c = _turned(corners2d, rotated)
     ex, ey = c.reshape(-1, 2).max(axis=0)
     origin = np.array([[x0 + (x1 - x0 - ex * pitch) / 2, y0 + (y1 - y0 - ey * pitch) / 2]])
-    return SheetPlan(pitch, rotated, c, np.zeros(c.shape[0], dtype=np.int64), origin,
-                     np.zeros((1, 2), dtype=np.int64), (x0, y0, x1, y1), options.sheet_size)
+    return SheetPlan(pitch, rotated, c, np.zeros(c.shape[0], dtype=np.int64), origin, (x0, y0, x1, y1),
+                     options.sheet_size)
+
+
+def pack_pieces(pieces: list[npt.NDArray[np.int64]], options: DrawingOptions) -> tuple[SheetPlan, list[npt.NDArray[np.int64]]]:
+    """Pack several pieces (their ``(n_i, 4, 2)`` corners in cells) on as few sheets as possible.
+
+    Bounding boxes, a quarter turn allowed, go into sheets of :func:`sheet_cells`
+    with :data:`PIECE_GAP` empty cells between pieces (rectpack, largest first).
+
+    Returns
+    -------
+    plan : SheetPlan
+        For the faces of all pieces in order.
+    placed : list of (n_i, 4, 2) int ndarray
+        Each piece's corners in the plan's cells.
+
+    Raises
+    ------
+    SheetFitError
+        When a piece alone does not fit a sheet.
+    """
+    import rectpack
+
+    extents = [extent_of(c) for c in pieces]
+    pitch = auto_face_size(max(extents, key=lambda e: e[0] * e[1]), options)
+    cw, ch = sheet_cells(options, pitch)
+    for e in extents:
+        if fits(e, options, pitch) is None:
+            raise fit_error(e, options, pitch, what="a piece")
+    packer = rectpack.newPacker(mode=rectpack.PackingMode.Offline, bin_algo=rectpack.PackingBin.BFF,
+                                pack_algo=rectpack.MaxRectsBssf, sort_algo=rectpack.SORT_AREA, rotation=True)
+    for i, (ex, ey) in enumerate(extents):
+        packer.add_rect(ex + PIECE_GAP, ey + PIECE_GAP, rid=i)
+    packer.add_bin(cw + PIECE_GAP, ch + PIECE_GAP, count=len(pieces))
+    packer.pack()
+    where = {rid: (b, x, y, w, h) for b, x, y, w, h, rid in packer.rect_list()}
+    # Sheets renumbered in order of first use; sheet s holds columns from s * stride on.
+    used = sorted({b for b, *_ in where.values()})
+    stride = cw + 2 * PIECE_GAP + 1
+    placed, sheets = [], []
+    for i, c in enumerate(pieces):
+        b, x, y, w, _ = where[i]
+        s = used.index(b)
+        turned = _turned(c, (w - PIECE_GAP) != extents[i][0] or (extents[i][0] == extents[i][1] and False))
+        placed.append(turned + (s * stride + x, y))
+        sheets.append(np.full(c.shape[0], s, dtype=np.int64))
+    x0, y0, x1, y1 = drawable_area(options)
+    pad = tab_depth(options, pitch)
+    left = x0 + pad + (x1 - x0 - 2 * pad - cw * pitch) / 2
+    bottom = y0 + pad + (y1 - y0 - 2 * pad - ch * pitch) / 2
+    origin = np.array([[left - s * stride * pitch, bottom] for s in range(len(used))], dtype=np.float64)
+    plan = SheetPlan(pitch, False, np.concatenate(placed), np.concatenate(sheets), origin, (x0, y0, x1, y1),
+                     options.sheet_size)
+    return plan, placed

@@ -4,7 +4,8 @@ A tab hangs off a cut edge of a face, outside the face.  Its fold is inset by a
 small margin from both edge ends, so two tabs in one free cell (from two sides
 of it) never touch, and its slanted sides lean inwards at ``tab_angle``.
 For every seam the candidates are tried in order: full size on either side,
-then half size on either side; a seam with none left gets a printed mark.
+then a lower tab (half size, but not under the smallest tab asked for) on either
+side; a seam with none left gets a printed mark.
 """
 
 from __future__ import annotations
@@ -78,6 +79,7 @@ def place_tabs(
     tab_width: float,
     tab_angle: float,
     allowed: npt.NDArray[np.bool_] | None = None,
+    min_height: float = MIN_TAB_HEIGHT,
 ) -> TabPlan:
     """Choose a tab for every seam.
 
@@ -100,6 +102,9 @@ def place_tabs(
         Largest tab height (mm) and side angle (degrees).
     allowed : (S, 2) bool ndarray, optional
         Which sides may take a tab (default: every side with a face).
+    min_height : float
+        Lowest tab worth gluing, mm: a seam whose full tab finds no room on
+        either side tries a lower one, down to this height.
 
     Returns
     -------
@@ -109,7 +114,7 @@ def place_tabs(
 
     s_count = sides.shape[0]
     inset, h0 = tab_heights(pitch, tab_width, tab_angle)
-    levels = [h for h in (h0, h0 / 2) if h >= MIN_TAB_HEIGHT]
+    levels = [h for h in dict.fromkeys((h0, max(h0 / 2, min_height))) if h >= min_height - 1e-9]
     if s_count == 0 or not levels:
         return TabPlan(np.full(s_count, -1), np.zeros(s_count), np.full((s_count, 4, 2), np.nan))
     n_lv = len(levels)

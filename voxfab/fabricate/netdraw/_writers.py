@@ -18,9 +18,10 @@ def drawing_formats() -> list[str]:
 def write(drawing: Drawing, path: Path, options: DrawingOptions) -> list[str]:
     """Write ``drawing`` in the format named by the extension of ``path``.
 
-    SVG and DXF pages are laser files (hairlines); PDF and PNG are for people,
-    with visible lines, shaded tabs and a legend.
+    SVG and DXF pages are laser files (hairlines; SVG with visible lines when
+    ``options.svg_lines`` is ``preview``); PDF and PNG are for people, with
+    visible lines, shaded tabs and a legend.
     """
-    opts = WriteOptions(styles=options.styles, lines=Lines.LASER, dxf_version=options.dxf_version,
+    opts = WriteOptions(styles=options.styles, lines=Lines(options.svg_lines), dxf_version=options.dxf_version,
                         legend=Legend(y=float(options.margin) + 1.0), creator="voxfab net")
     return write_drawing(drawing.document(), path, opts)

@@ -359,7 +359,8 @@ async function make(artefact) {
   const face = $('#net-face').value;
   const body = {grid: state.shape.pack(), artefact, pitch: Number($('#pitch').value),
     title: state.name || $('#recipe-name').value || 'studio',
-    options: {face_mm: face ? Number(face) : null, sheet: $('#net-sheet').value, thickness: Number($('#thickness').value)},
+    options: {face_mm: face ? Number(face) : null, sheet: $('#net-sheet').value, thickness: Number($('#thickness').value),
+      timeout: Number($('#net-timeout').value)},
     net: state.gallery && state.chosen !== null ? {job: state.gallery.job, index: state.chosen} : null,
     shape: artefact === 'animation.gif' ? state.drawn : undefined};
   try {
