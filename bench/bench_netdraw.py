@@ -95,7 +95,7 @@ def bench_recipes(tmp: Path) -> None:
     from voxfab.recipe._outputs import outputs
 
     kind = outputs()["net"]
-    print(f"\n{'recipe':<16}{'faces':>7}{'face mm':>9}{'sheet':>7}{'pieces':>7}{'sheets':>7}{'fill %':>14}"
+    print(f"\n{'recipe':<18}{'faces':>7}{'face mm':>9}{'sheet':>10}{'pieces':>7}{'sheets':>7}{'fill %':>10}"
           f"{'text mm':>9}{'tab mm':>8}{'time s':>8}")
     for path in sorted((Path(__file__).parents[1] / "recipes").rglob("*.toml")):
         recipe = load_recipe(path)
@@ -112,9 +112,10 @@ def bench_recipes(tmp: Path) -> None:
         elapsed = time.perf_counter() - t
         r = made.report
         text, tab = measured(out / made.files[-1].path, r["face_size_mm"])
+        text_col = f"{text:.2f}" if settings.drawing.numbers else "off"
         fill = " ".join(f"{100 * f:.0f}" for f in r["sheet_fill"])
-        print(f"{recipe.name:<16}{r['faces']:>7}{r['face_size_mm']:>9g}{settings.drawing.sheet:>7}{r['pieces']:>7}"
-              f"{r['sheets']:>7}{fill:>14}{text:>9.2f}{tab:>8.2f}{elapsed:>8.1f}")
+        print(f"{recipe.name:<18}{r['faces']:>7}{r['face_size_mm']:>9g}{settings.drawing.sheet:>10}{r['pieces']:>7}"
+              f"{r['sheets']:>7}{fill:>10}{text_col:>9}{tab:>8.2f}{elapsed:>8.1f}")
 
 
 def main() -> None:

@@ -53,3 +53,29 @@ def test_bad_expressions_name_the_problem(text, pattern):
 def test_error_names_the_input():
     with pytest.raises(InvalidShapeError, match=r"^generatrix: unknown name 'z'"):
         compile_expression("x + z", ("x", "y"), name="generatrix")
+
+
+@pytest.mark.parametrize(
+    ("implicit", "explicit"),
+    [
+        ("0.6 + 0.3 sin(3y)", "0.6 + 0.3*sin(3*y)"),
+        ("2pi x", "2*pi*x"),
+        ("(x+1)(x-1)", "(x+1)*(x-1)"),
+        ("2e-3x + 3e", "2e-3*x + 3*e"),
+        ("x y^2", "x*y^2"),
+        ("max(x, y)2", "max(x, y)*2"),
+        ("3(x + y)", "3*(x + y)"),
+    ],
+)
+def test_products_written_side_by_side(implicit, explicit):
+    x, y = np.linspace(-2, 2, 7), np.linspace(-1, 3, 7)
+    a = compile_expression(implicit, ("x", "y"))(x, y)
+    b = compile_expression(explicit, ("x", "y"))(x, y)
+    assert np.array_equal(a, b)
+
+
+def test_implied_products_keep_their_error_columns():
+    with pytest.raises(InvalidShapeError, match=r"unknown name 'q' \(.*\) at column 7 of '0\.3 x q'"):
+        compile_expression("0.3 x q", ("x", "y"))
+    with pytest.raises(InvalidShapeError, match=r"unknown function 'sinn'"):
+        compile_expression("0.3 sinn(3y)", ("x", "y"))

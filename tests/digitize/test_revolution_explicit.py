@@ -82,3 +82,8 @@ def test_explicit_generatrix_from_a_recipe_and_the_cli(tmp_path, capsys):
     assert main(["build", str(recipe), "-o", str(tmp_path / "out")]) == 0
     built = np.load(tmp_path / "out" / "wavy" / "shape.npy")
     assert np.array_equal(built, shape.grid)
+
+
+def test_explicit_generatrix_written_as_on_paper():
+    # The issue's own spelling, with products side by side, gives the same solid.
+    assert np.array_equal(revolution("x^2 + y^2 = 1", "x = 0.6 + 0.3 sin(3y)"), revolution("x^2 + y^2 - 1", WAVY))

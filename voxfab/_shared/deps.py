@@ -33,5 +33,7 @@ def require_extra(extra: str, feature: str) -> None:
     module, requirement = EXTRAS[extra]
     error = MissingDependencyError(module, feature)
     # The install hint names the extra, which pins a build123d that voxfab was tested with.
-    error.args = (f"{feature} needs {module}, an optional part of voxfab: pip install '{requirement}'",)
+    message = f"{feature} needs {module}, an optional part of voxfab: pip install '{requirement}'"
+    error.args = (message,)
+    error.msg = message  # ImportError's str() reads msg
     raise error

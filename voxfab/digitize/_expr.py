@@ -2,13 +2,16 @@
 
 The text is parsed with :mod:`ast` and only a whitelist of node types is turned
 into a tree of numpy closures: no ``eval``/``exec`` of user text ever happens.
-``^`` means power (``x^2``) and ``lhs = rhs`` means ``lhs - (rhs)``.
+``^`` means power (``x^2``), ``lhs = rhs`` means ``lhs - (rhs)``, and a product
+may be written without ``*`` as on paper: ``0.3 sin(3y)``, ``2pi x``, ``(x+1)(x-1)``.
 """
 
 from __future__ import annotations
 
 import ast
+import keyword
 import math
+import re
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
@@ -120,6 +123,52 @@ def _prepare(text: str) -> tuple[str, list[int]]:
     return "".join(out), cols
 
 
+#: Numbers (with exponents), names, and any other single character.
+_TOKEN = re.compile(r"(?P<num>(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)|(?P<name>[A-Za-z_]\w*)|(?P<other>\S)")
+
+
+def _implicit_products(text: str, cols: list[int], values: set[str]) -> tuple[str, list[int]]:
+    """Insert the ``*`` of products written side by side (``3y``, ``2 sin(x)``, ``)(``).
+
+    A product is implied between a number, a variable, a constant or a closing
+    bracket and a following number, name or opening bracket.  Any other name
+    followed by ``(`` stays a call, and Python keywords are left alone, so the
+    compiler still reports unknown functions and unsupported syntax as such.
+    The inserted ``*`` takes the column of the factor after it, so error
+    messages still point into the user's text.
+    """
+    out: list[str] = []
+    out_cols: list[int] = []
+    # Kind of the last token: "num", "value" (a variable or constant), "name" (any other
+    # name: a function when "(" follows), ")" or "" (nothing that ends a factor).
+    previous = ""
+    pos = 0
+    for m in _TOKEN.finditer(text):
+        out.append(text[pos:m.start()])
+        out_cols.extend(cols[pos:m.start()])
+        kind = m.lastgroup
+        token = m.group()
+        is_keyword = kind == "name" and keyword.iskeyword(token)
+        starts_factor = (kind in ("num", "name") and not is_keyword) or token == "("
+        if token == "(" and previous == "name":
+            starts_factor = False  # a call
+        if starts_factor and previous in ("num", "value", "name", ")"):
+            out.append("*")
+            out_cols.append(cols[m.start()])
+        out.append(token)
+        out_cols.extend(cols[m.start():m.end()])
+        pos = m.end()
+        if kind == "num":
+            previous = "num"
+        elif kind == "name":
+            previous = "" if is_keyword else ("value" if token in values else "name")
+        else:
+            previous = ")" if token == ")" else ""
+    out.append(text[pos:])
+    out_cols.extend(cols[pos:])
+    return "".join(out), out_cols
+
+
 def _depth(tree: ast.AST) -> int:
     """Depth of a syntax tree, counted without recursion."""
     deepest = 0
@@ -160,7 +209,7 @@ def compile_expression(text: str, variables: Sequence[str], *, name: str = "expr
             f"{name}: expression of {len(text):,} characters is over the limit of "
             f"{MAX_EXPRESSION_CHARS:,}: {quote(text)}"
         )
-    prepared, cols = _prepare(text)
+    prepared, cols = _implicit_products(*_prepare(text), {*variables, *CONSTANTS})
     try:
         tree = ast.parse(prepared.strip(), mode="eval")
     except SyntaxError as exc:

@@ -37,6 +37,8 @@ FOLD_LAYERS: dict[str, str] = {"mountain": "MOUNTAIN", "valley": "VALLEY", "flat
 DEFAULT_STYLES: dict[str, str] = {kind: LAYERS[layer].style.value for kind, layer in FOLD_LAYERS.items()}
 #: Face edge in mm of the picture's drawing: tabs, numbers and line widths follow the sheets' defaults at this size.
 _PICTURE_PITCH = 12.0
+#: Smallest digit height drawn, pixels.
+_MIN_DIGIT_PX = 7.0
 #: Margin and tab height of the picture's drawing, in face edges.
 _MARGIN = 0.1
 _TAB = 0.4
@@ -113,7 +115,8 @@ def net_picture(
         Line style per fold kind (``"mountain"``, ``"valley"``, ``"flat"``), each one of
         ``"solid"``, ``"dashed"``, ``"dashdot"``, ``"dotted"``, ``"none"``.
     tabs, numbers, legend : bool
-        Draw glue tabs, edge numbers and a legend of the line styles.
+        Draw glue tabs, edge numbers (when they come out at least 7 pixels tall)
+        and a legend of the line styles.
 
     Returns
     -------
@@ -134,8 +137,13 @@ def net_picture(
     fg = np.asarray(parse_color(color, name="color"), dtype=np.float64)
     style = _fold_styles(styles)
     grid = shape_grid(shape)
+    from voxfab.fabricate.netdraw._legible import digits_of, number_ratio
+
     strip = max(18, h_total // 22) if legend else 0
     scale = _scale(net, width, h_total - strip)
+    # Numbers under a few pixels are specks, not digits: leave them out of small pictures.
+    seams_max = 2 * net.face_count
+    numbers = numbers and number_ratio(digits_of(seams_max)) * _PICTURE_PITCH * scale >= _MIN_DIGIT_PX
     colors = ",".join(f"{FOLD_LAYERS[k]}={LAYERS[FOLD_LAYERS[k]].color}:{v}"
                       for k, v in style.items() if v != HIDDEN)
     options = DrawingOptions(

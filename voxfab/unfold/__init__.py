@@ -9,16 +9,19 @@ or keep folded.
 from ._constraints import EdgeConstraints
 from ._layout import seam_pairs, tab_room
 from ._net import NET_FORMAT, Net
-from ._search import Pieces, Strategy, unfold, unfold_many
+from ._outline import outline_key
+from ._search import NoFitError, Pieces, Strategy, unfold, unfold_many
 from ._validate import ValidationReport, validate
 
 __all__ = [
     "NET_FORMAT",
     "EdgeConstraints",
     "Net",
+    "NoFitError",
     "Pieces",
     "Strategy",
     "ValidationReport",
+    "outline_key",
     "seam_pairs",
     "tab_room",
     "unfold",

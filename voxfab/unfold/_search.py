@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import enum
+import math
 import time
 
 import numpy as np
@@ -18,28 +19,33 @@ from voxfab.shape import SurfaceGraph, cavity_count, component_count, fill_cavit
 from ._constraints import EdgeConstraints, Resolved, resolve
 from ._layout import build_net, count_without_tab_room
 from ._net import Net
+from ._outline import outline_key
 
-__all__ = ["Strategy", "Pieces", "unfold", "unfold_many"]
+__all__ = ["NoFitError", "Strategy", "Pieces", "unfold", "unfold_many"]
 
 #: Largest board side for a free (unfitted) net; past it growth meets a wall.
 MAX_BOARD = 1021
 #: Growth steps per compiled call between two clock checks.
 _CHUNK = 4000
-#: Annealing rounds (each from a fresh net) and moves per face in each round.
+#: Tab-room rounds (each from a fresh net), moves per face in each, and moves
+#: per compiled call between two clock checks.
 _ROUNDS = 8
-_MOVES_PER_ROUND = 20
-#: Past this many faces a round costs seconds (mostly regrowing a fresh net), so
-#: the budget shrinks to keep the whole search well inside the default timeout:
-#: a search that the clock cuts short would depend on the machine, not the seed.
-_LARGE = 3000
-_LARGE_ROUNDS = 2
-_LARGE_MOVES_PER_ROUND = 5
+_SPARSE = False
+_MOVES_PER_FACE = 15
+_ANNEAL_CHUNK = 20000
 #: Largest subtree one annealing move may remove.
-_RUIN_CAP = 60
+_RUIN_CAP = 20  # most moves
+_BIG_CAP = 200
+_P_BIG = 0.1
 #: Growth steps an annealing move may spend regrowing before it is undone.
 _REGROW_STEPS = 2000
 #: Annealing temperatures (in seams without tab room) at the start and the end.
 _T0, _T1 = 1.0, 0.05
+#: Fitting a box: tries (alternating the two orientations) and growth steps per face each.
+_FIT_TRIES = 6
+_FIT_STEPS_PER_FACE = 200
+#: Default overall budget of ``unfold_many`` in seconds.
+DEFAULT_BUDGET = 60.0
 #: Compactness: box-shrinking trials, and growth steps per face each trial may use.
 _COMPACT_TRIES = 24
 _COMPACT_STEPS_PER_FACE = 100
@@ -68,17 +74,15 @@ def _growth(strategy: Strategy, faces: int):
 
 
 def _surface(sg: SurfaceGraph, resolved: Resolved | None):
-    from ._board import Surface
+    from ._board import make_surface
 
-    nb = np.ascontiguousarray(sg.neighbor, dtype=np.int64)
-    ne = np.ascontiguousarray(sg.neighbor_edge, dtype=np.int64)
+    f = sg.face_count
     if resolved is None:
-        f = sg.face_count
         none = np.zeros(0, dtype=np.int64)
         resolved = Resolved(np.zeros((f, 4), dtype=np.int8), np.full(f, -1, dtype=np.int64),
                             none, none, none, none, np.zeros(1, dtype=np.int64))
-        return Surface(nb, ne, *resolved)
-    return Surface(nb, ne, *resolved)
+    return make_surface(sg.neighbor, sg.neighbor_edge, resolved.edge, resolved.group, resolved.gx,
+                        resolved.gy, resolved.grot, resolved.members, resolved.start)
 
 
 class _Board:
@@ -91,38 +95,38 @@ class _Board:
         self.k = _board
         self.growth = _growth
         self.tabroom = _tabroom
-        f = sg.face_count
         if fit is None:
             side = min(2 * faces.size + 1, MAX_BOARD)
             w, h = side, side
         else:
             w, h = fit
         self.width = w + 2
-        board = np.full((h + 2, w + 2), -2, dtype=np.int32)
+        board = np.full((h + 2, w + 2), -2, dtype=np.int64)
         board[1:-1, 1:-1] = -1
         if fit is None:
             cells = np.array([(h // 2 + 1) * self.width + w // 2 + 1], dtype=np.int64)
         else:
             ys, xs = np.nonzero(board == -1)
             cells = (ys * self.width + xs).astype(np.int64)
-        pos = np.full(f, -3, dtype=np.int64)
-        pos[faces] = -1
-        cnt = np.zeros(_board.N_COUNTERS, dtype=np.int64)
-        cnt[_board.C_WIDTH] = self.width
-        cnt[_board.C_CONSTRAINED] = int(resolved is not None)
-        state = np.random.SeedSequence(seed).generate_state(1, dtype=np.uint64)
+        state = np.random.SeedSequence(seed).generate_state(1, dtype=np.uint64)[0]
         self.sf = _surface(sg, resolved)
-        self.b = _board.Board(
-            pos=pos, rot=np.zeros(f, dtype=np.int64), par=np.full(f, -2, dtype=np.int64),
-            board=board.ravel(), off=np.array([-self.width, 1, self.width, -1], dtype=np.int64),
-            cl=np.zeros(5 * f, dtype=np.int64), cp=np.full(5 * f, -1, dtype=np.int64), cnt=cnt,
-            st=np.array([state[0] | np.uint64(1)], dtype=np.uint64),
-            stack=np.zeros(f + 1, dtype=np.int64), opt=np.zeros(4 * f, dtype=np.int64),
-            bad=np.zeros(8 * f, dtype=np.int64), blk=np.zeros(5 * f + 4, dtype=np.int64),
-            root_cells=cells)
-        self.pos, self.rot, self.par, self.cnt = self.b.pos, self.b.rot, self.b.par, cnt
+        self.b = _board.make_board(faces, sg.face_count, board.ravel(), self.width, cells,
+                                   int(state), resolved is not None)
+        self.cnt = self.b.cnt
         self.faces = faces
-        self.started = self.growth.start(self.sf, self.b) >= 0
+        self.started = self.growth.start(*self.sf, *self.b) >= 0
+
+    @property
+    def pos(self) -> npt.NDArray[np.int64]:
+        return self.b.face[:, self.k.POS]
+
+    @property
+    def rot(self) -> npt.NDArray[np.int64]:
+        return self.b.face[:, self.k.ROT]
+
+    @property
+    def par(self) -> npt.NDArray[np.int64]:
+        return self.b.face[:, self.k.PAR]
 
     @property
     def unplaced(self) -> int:
@@ -144,7 +148,8 @@ class _Board:
             if time.monotonic() > deadline or (max_steps is not None and spent >= max_steps):
                 return False
             chunk = _CHUNK if max_steps is None else min(_CHUNK, max_steps - spent)
-            if not self.growth.grow(self.sf, self.b, gw, chunk, False) and self.unplaced == self.faces.size:
+            done = self.growth.grow(*self.sf, *self.b, gw, chunk, _SPARSE)
+            if not done and self.unplaced == self.faces.size:
                 return False  # a restart found no room for a root
             spent += chunk
             if bar is not None:
@@ -157,52 +162,56 @@ class _Board:
         x, y = placed % self.width, placed // self.width
         return int(x.max() - x.min() + 1), int(y.max() - y.min() + 1)
 
-    def anneal_budget(self) -> tuple[int, int]:
-        """Rounds of annealing and moves per round, for this many faces."""
-        n = int(self.faces.size)
-        if n > _LARGE:
-            return _LARGE_ROUNDS, _LARGE_MOVES_PER_ROUND * n
-        return _ROUNDS, _MOVES_PER_ROUND * n
+    def anneal_budget(self) -> int:
+        """Moves of tab-room repair allowed for this many faces (over all rounds)."""
+        return _ROUNDS * _MOVES_PER_FACE * int(self.faces.size)
+
+    def exclude_unplaced(self) -> None:
+        """Make the placed faces a whole piece: the others are left out for good."""
+        self.k.exclude_unplaced(*self.sf, *self.b[:4])
+        self.faces = np.flatnonzero(self.pos >= 0)
 
     def anneal(self, gw, deadline: float, bar: Meter | None = None) -> int:
         """Drive seams without tab room to zero; return the count reached.
 
-        Rounds of annealing, each from a freshly grown net (a stuck net is rarely
-        worth more moves than a new one), within a budget of moves proportional to
-        the face count, so the outcome depends on the seed alone unless the clock
-        runs out first.  The state ends at the best net seen.  ``bar`` counts the
-        moves tried.
+        Rounds of annealing, each from a freshly grown net when the one before
+        got stuck (the last few seams are often cheaper to fix in a new net than
+        in an old one), each within a fixed number of moves, so the outcome
+        depends on the seed alone unless the clock runs out first.  The state
+        ends at the best net seen.  ``bar`` counts the moves tried.
         """
-        k = self.k
-        n = int(self.faces.size)
-        rounds, per_round = self.anneal_budget()
-        sched = self.tabroom.Annealing(per_round, _T0, _T1, _REGROW_STEPS, _RUIN_CAP)
-        chunk = max(200, 20000 // max(1, n // 100))
-        best = None
-        for _ in range(rounds):
-            done = 0
-            score = -1
-            while done < per_round and time.monotonic() < deadline:
-                score, _used = self.tabroom.anneal(self.sf, self.b, gw, sched,
-                                                   min(chunk, per_round - done), done)
-                if score == 0:
-                    break
-                if bar is not None:
-                    bar.update(min(chunk, per_round - done))
-                done += chunk
-            if score >= 0 and (best is None or score < best[0]):
-                best = (score, self.pos.copy(), self.rot.copy(), self.par.copy(),
-                        int(self.cnt[k.C_ROOT]))
-            if score == 0 or time.monotonic() >= deadline:
+        face, half, board, cnt, _ = self.b
+        best = np.zeros((face.shape[0], 3), dtype=np.int64)
+        kept: tuple[int, np.ndarray, int] | None = None
+        for _ in range(_ROUNDS):
+            left = self._anneal_round(gw, deadline, best, bar)
+            if kept is None or left < kept[0]:
+                kept = (left, best.copy(), int(cnt[self.k.C_ROOT]))
+            if left == 0 or time.monotonic() > deadline:
                 break
-            self.growth.start(self.sf, self.b)
-            if not self.grow(gw, deadline):
+            self.growth.start(*self.sf, *self.b)
+            if not self.grow(gw, deadline, _FIT_STEPS_PER_FACE * int(self.faces.size)):
                 break
-        if best is None:
-            return -1
-        k.restore(self.sf, self.b, best[1], best[2], best[3])
-        self.cnt[k.C_ROOT] = best[4]
-        return int(best[0])
+        self.k.restore(face, half, board, cnt, kept[1])
+        cnt[self.k.C_ROOT] = kept[2]
+        return kept[0]
+
+    def _anneal_round(self, gw, deadline: float, best: np.ndarray, bar: Meter | None) -> int:
+        tr = self.tabroom
+        face, half, board, cnt, _ = self.b
+        total = _MOVES_PER_FACE * int(self.faces.size)
+        sched = tr.Annealing(total, _T0, _T1, _REGROW_STEPS, _RUIN_CAP, _BIG_CAP, _P_BIG)
+        gw = gw._replace(restart=False)  # a move that cannot regrow cheaply is undone instead
+        left = tr.begin(self.sf.link, face, half, board, cnt, best)
+        done = 0
+        while left > 0 and done < total and time.monotonic() < deadline:
+            step = min(_ANNEAL_CHUNK, total - done)
+            used = tr.anneal(*self.sf, *self.b, gw, sched, step, done, best)
+            if bar is not None:
+                bar.update(used)
+            done += step
+            left = int(cnt[self.k.C_NBAD])
+        return int(tr.finish(face, half, board, cnt, best))
 
     def net(self, sg: SurfaceGraph, *, faces: npt.NDArray[np.int64] | None = None,
             seed: int, strategy: str) -> Net:
@@ -211,15 +220,24 @@ class _Board:
         return build_net(sg, chosen, cell, self.rot, self.par, seed=seed, strategy=strategy)
 
 
-def _surface_parts(sg: SurfaceGraph) -> list[npt.NDArray[np.int64]]:
-    """Face indices of each connected part of the surface, in order of first face."""
+def _surface_parts(sg: SurfaceGraph, faces: npt.NDArray[np.int64] | None = None) -> list[npt.NDArray[np.int64]]:
+    """Face indices of each connected part of the surface (or of ``faces``), in order of first face."""
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components
 
     f = sg.face_count
     rows = np.repeat(np.arange(f), 4)
-    m = coo_matrix((np.ones(4 * f, dtype=np.int8), (rows, sg.neighbor.ravel())), shape=(f, f))
+    cols = sg.neighbor.ravel()
+    if faces is not None:
+        inside = np.zeros(f, dtype=bool)
+        inside[faces] = True
+        keep = inside[rows] & inside[cols]
+        rows, cols = rows[keep], cols[keep]
+    m = coo_matrix((np.ones(rows.size, dtype=np.int8), (rows, cols)), shape=(f, f))
     _, labels = connected_components(m, directed=False)
+    if faces is not None:
+        labels = labels[faces]
+        return [faces[labels == lab] for lab in dict.fromkeys(labels.tolist())]
     return [np.flatnonzero(labels == lab) for lab in dict.fromkeys(labels.tolist())]
 
 
@@ -265,6 +283,46 @@ def _seed_of(rng: np.random.Generator | int) -> int:
     return int(as_rng(rng).integers(0, 2**31 - 1))
 
 
+class NoFitError(UnfoldError):
+    """No one-piece net fits the requested box within the budget.
+
+    Attributes
+    ----------
+    best_extent : (int, int)
+        Sides in cells of the most compact net layout found, the shorter first.
+    """
+
+    def __init__(self, message: str, best_extent: tuple[int, int]) -> None:
+        super().__init__(message)
+        self.best_extent = best_extent
+
+
+@dataclasses.dataclass(frozen=True)
+class _Job:
+    """One search: the shape, its surface and the options every step reads."""
+
+    grid: npt.NDArray[np.bool_]
+    sg: SurfaceGraph
+    seed: int
+    strategy: Strategy
+    fit: tuple[int, int] | None
+    tab_aware: bool
+    compact: bool
+    deadline: float
+    timeout: float
+    constraints: EdgeConstraints | None
+
+    def growth(self, faces: int):
+        return _growth(self.strategy, faces)
+
+    def resolved(self, faces: npt.NDArray[np.int64]) -> Resolved | None:
+        return resolve(self.constraints, self.sg, faces)
+
+    def net(self, board: _Board, faces: npt.NDArray[np.int64]) -> Net:
+        net = board.net(self.sg, faces=faces, seed=self.seed, strategy=self.strategy.value)
+        return dataclasses.replace(net, seams_without_tab_room=count_without_tab_room(self.grid, net))
+
+
 def unfold(
     grid: npt.ArrayLike,
     *,
@@ -290,29 +348,33 @@ def unfold(
     strategy : {"default", "paper"}
         ``"default"``: ruin-and-recreate growth (a dead end removes the subtree on
         the blocking cell and lays the blocked face there), then tab-room
-        annealing.  ``"paper"``: the published random growth with leaf swaps,
+        repair.  ``"paper"``: the published random growth with leaf swaps,
         subtree drops and restarts, for comparison.
     timeout : float
         Budget in seconds for the whole call.
     fit : (int, int) or None
-        Keep the net inside ``width × height`` cells (voxel units).
+        A box of ``width × height`` cells (face units) the net must lie in,
+        turned by 90 degrees if that fits better.  The search grows the net
+        inside the box (its walls steer growth towards a compact layout) and
+        keeps it there while making tab room.
     tab_aware : bool
         Drive the seams without tab room towards zero (default strategy only);
         the final count is in ``Net.seams_without_tab_room``.
     fill : bool
         Fill enclosed cavities first (their surfaces cannot join the outer one).
+    pieces : {"one", "auto"}
+        ``"one"``: return one Net or raise UnfoldError.  ``"auto"``: always return a
+        list of Nets, as few pieces as the budget allows: one per separate
+        surface part (cavity walls, separate components), and when no one-piece
+        net fits ``fit`` the fewest large pieces that each fit it, none under a
+        tenth of the largest when it can help it.  Face ``i`` of a piece is then
+        *not* face ``i`` of the surface graph: faces are identified by
+        ``(voxel, normal)``.
     compact : bool
         Shrink the net's bounding box: new nets are grown inside ever smaller
         boxes (the longer side first) while one is found within a fixed growth
-        budget; tab-room annealing then stays inside the final box.  One-piece
+        budget; tab-room repair then stays inside the final box.  One-piece
         results only.
-    pieces : {"one", "auto"}
-        ``"one"``: return one Net or raise UnfoldError.  ``"auto"``: always return a
-        list of Nets, one per piece, as few as were found: one per separate
-        surface part (cavity walls, separate components), and when the budget
-        runs out the largest partial net plus pieces grown from the rest.  Face
-        ``i`` of a piece is then *not* face ``i`` of the surface graph: faces are
-        identified by ``(voxel, normal)``.
     constraints : EdgeConstraints, optional
         Edges to cut (never folds) and edges to keep (always folds: the faces
         they join move as one rigid group during the search).
@@ -324,10 +386,13 @@ def unfold(
 
     Raises
     ------
+    NoFitError
+        No one-piece net fits ``fit`` within the budget; ``best_extent`` gives
+        the most compact layout found.
     UnfoldError
-        The shape has cavities or several components (with ``pieces="one"``), the
-        faces cannot fit ``fit``, kept edges cannot all be folds, or the budget
-        ran out; the message says what was tried.
+        The shape has cavities or several components (with ``pieces="one"``),
+        kept edges cannot all be folds, or the budget ran out; the message says
+        what was tried.
     InvalidShapeError
         A bad option, or a constrained edge that is not an edge of the surface.
     """
@@ -343,25 +408,19 @@ def unfold(
     g = _prepare(grid, fill, mode)
     deadline = time.monotonic() + float(timeout)
     sg = surface_graph(g)
-    if fit is not None and fit[0] * fit[1] < sg.face_count and mode is Pieces.ONE:
-        raise UnfoldError(
-            f"the surface has {sg.face_count} faces, more than the {fit[0]}x{fit[1]} = "
-            f"{fit[0] * fit[1]} cells of fit, so no net fits"
-        )
     _check_groups_fit(resolve(constraints, sg), fit)  # every named edge must be on this surface
+    job = _Job(g, sg, seed, strat, fit, tab_aware, compact, deadline, float(timeout), constraints)
     parts = _surface_parts(sg)
     if mode is Pieces.ONE:
         if len(parts) > 1:
             _refuse_parts(g, len(parts))
-        net = _one_piece(g, sg, parts[0], seed, strat, fit, tab_aware, deadline, timeout, compact,
-                         resolve(constraints, sg, parts[0]))
-        return dataclasses.replace(net, filled=fill)
+        return dataclasses.replace(_one_piece(job, parts[0]), filled=fill)
     nets: list[Net] = []
     for t, part in enumerate(parts):
         remaining = max(deadline - time.monotonic(), 0.0)
-        part_deadline = time.monotonic() + remaining / (len(parts) - t)
-        nets.extend(_pieces(g, sg, part, seed + t, strat, fit, tab_aware, part_deadline,
-                            constraints))
+        part_job = dataclasses.replace(job, seed=seed + t,
+                                       deadline=time.monotonic() + remaining / (len(parts) - t))
+        nets.extend(_pieces(part_job, part))
     return [dataclasses.replace(n, filled=fill) for n in nets]
 
 
@@ -379,37 +438,78 @@ def _check_groups_fit(resolved: Resolved | None, fit: tuple[int, int] | None) ->
                 f"flat, so they do not fit inside {fit[0]}x{fit[1]}")
 
 
-def _one_piece(g: npt.NDArray[np.bool_], sg: SurfaceGraph, faces: npt.NDArray[np.int64],
-               seed: int, strat: Strategy, fit: tuple[int, int] | None, tab_aware: bool,
-               deadline: float, timeout: float, compact: bool, resolved: Resolved | None) -> Net:
-    p = _growth(strat, faces.size)
-    b = _Board(sg, faces, seed, fit, resolved)
-    with meter(int(faces.size), desc="net: faces placed") as bar:
-        grown = b.grow(p, deadline, bar=bar)
-    if not grown and not b.started:
-        raise UnfoldError(
-            f"the faces kept together by the constraints do not fit inside {fit[0]}x{fit[1]}")
-    if not grown:
-        raise UnfoldError(
-            f"no one-piece net of the {faces.size}-face surface in {timeout:g} s with strategy "
-            f"{strat.value!r}{'' if fit is None else f' inside {fit[0]}x{fit[1]}'}: "
-            f"{int(b.cnt[b.k.C_DEADENDS])} dead ends repaired, "
-            f"{int(b.cnt[b.k.C_RESTARTS])} restarts, best partial net {b.best} of "
-            f"{faces.size} faces; raise the timeout, try another seed, or allow several "
-            "pieces (pieces='auto', CLI --pieces auto)"
-        )
-    if compact:
-        b = _compact(sg, faces, seed, p, b, deadline, resolved)
-    if tab_aware and strat is Strategy.DEFAULT:
-        rounds, per_round = b.anneal_budget()
-        with meter(rounds * per_round, desc="net: tab room, moves (at most)") as bar:
-            b.anneal(p, deadline, bar=bar)
-    net = b.net(sg, faces=faces, seed=seed, strategy=strat.value)
-    return _with_tab_count(g, net)
+def _one_piece(job: _Job, faces: npt.NDArray[np.int64]) -> Net:
+    p = job.growth(faces.size)
+    resolved = job.resolved(faces)
+    if job.fit is not None:
+        b = _grow_to_fit(job, faces, resolved)
+    else:
+        b = _Board(job.sg, faces, job.seed, None, resolved)
+        with meter(int(faces.size), desc="net: faces placed") as bar:
+            grown = b.grow(p, job.deadline, bar=bar)
+        if not grown:
+            raise UnfoldError(
+                f"no one-piece net of the {faces.size}-face surface in {job.timeout:g} s with "
+                f"strategy {job.strategy.value!r}: {int(b.cnt[b.k.C_DEADENDS])} dead ends repaired, "
+                f"{int(b.cnt[b.k.C_RESTARTS])} restarts, best partial net {b.best} of "
+                f"{faces.size} faces; raise the timeout, try another seed, or allow several "
+                "pieces (pieces='auto', CLI --pieces auto)"
+            )
+    if job.compact:
+        b = _compact(job, faces, b, resolved)
+    if job.tab_aware and job.strategy is Strategy.DEFAULT:
+        with meter(b.anneal_budget(), desc="net: tab room, moves (at most)") as bar:
+            b.anneal(p, job.deadline, bar=bar)
+    return job.net(b, faces)
 
 
-def _compact(sg: SurfaceGraph, faces: npt.NDArray[np.int64], seed: int, p,
-             board: _Board, deadline: float, resolved: Resolved | None) -> _Board:
+def _orientations(fit: tuple[int, int]) -> list[tuple[int, int]]:
+    w, h = fit
+    return [(w, h)] if w == h else [(w, h), (h, w)]
+
+
+def _grow_to_fit(job: _Job, faces: npt.NDArray[np.int64], resolved: Resolved | None) -> _Board:
+    """Grow a net inside the fit box (either way round); NoFitError when none fits.
+
+    The box's walls steer growth: ruin-and-recreate packs the faces into it.
+    Each try has a fixed budget of growth steps, so the outcome depends on the
+    seed alone unless the clock runs out first.
+    """
+    n = int(faces.size)
+    p = job.growth(n)
+    fit = job.fit
+    if fit[0] * fit[1] >= n:
+        with meter(_FIT_TRIES, desc="net: tries to fit the box") as bar:
+            for t in range(_FIT_TRIES):
+                box = _orientations(fit)[t % len(_orientations(fit))]
+                trial = _Board(job.sg, faces, job.seed if t == 0 else [job.seed, 1000 + t], box, resolved)
+                if trial.grow(p, job.deadline, _FIT_STEPS_PER_FACE * n):
+                    return trial
+                bar.update()
+                if time.monotonic() > job.deadline:
+                    break
+    extent = _best_extent(job, faces, resolved)
+    why = (f"the surface has {n} faces, more than the {fit[0]}x{fit[1]} = {fit[0] * fit[1]} cells "
+           "of the box" if fit[0] * fit[1] < n else
+           f"no one-piece net of the {n}-face surface fits {fit[0]}x{fit[1]} cells (either way "
+           "round) within the budget")
+    raise NoFitError(
+        f"{why}; the most compact net found spans {extent[0]}x{extent[1]} cells: use a larger "
+        "sheet, smaller faces, or several pieces (pieces='auto')", extent)
+
+
+def _best_extent(job: _Job, faces: npt.NDArray[np.int64], resolved: Resolved | None) -> tuple[int, int]:
+    """Sides (shorter first) of the most compact net found within the budget."""
+    free = _Board(job.sg, faces, job.seed, None, resolved)
+    if not free.grow(job.growth(faces.size), job.deadline):
+        raise UnfoldError(
+            f"no one-piece net of the {faces.size}-face surface in {job.timeout:g} s, so none "
+            f"that fits {job.fit[0]}x{job.fit[1]}; raise the timeout or try another seed")
+    w, h = _compact(job, faces, free, resolved).extent()
+    return (min(w, h), max(w, h))
+
+
+def _compact(job: _Job, faces: npt.NDArray[np.int64], board: _Board, resolved: Resolved | None) -> _Board:
     """Shrink the net's bounding box while a fixed growth budget still fits it.
 
     Each trial grows a new net inside the current box with its longer side cut
@@ -417,6 +517,7 @@ def _compact(sg: SurfaceGraph, faces: npt.NDArray[np.int64], seed: int, p,
     in growth steps, so the result depends on the seed alone (unless the clock
     runs out first).
     """
+    p = job.growth(faces.size)
     best = board
     failures = 0
     for t in range(_COMPACT_TRIES):
@@ -425,10 +526,10 @@ def _compact(sg: SurfaceGraph, faces: npt.NDArray[np.int64], seed: int, p,
             w = min(w - 1, int(w * 0.9))
         else:
             h = min(h - 1, int(h * 0.9))
-        if w < 1 or h < 1 or w * h < faces.size or time.monotonic() > deadline:
+        if w < 1 or h < 1 or w * h < faces.size or time.monotonic() > job.deadline:
             break
-        trial = _Board(sg, faces, [seed, t + 1], (w, h), resolved)
-        if trial.grow(p, deadline, _COMPACT_STEPS_PER_FACE * int(faces.size)):
+        trial = _Board(job.sg, faces, [job.seed, t + 1], (w, h), resolved)
+        if trial.grow(p, job.deadline, _COMPACT_STEPS_PER_FACE * int(faces.size)):
             best, failures = trial, 0
         else:
             failures += 1
@@ -437,36 +538,89 @@ def _compact(sg: SurfaceGraph, faces: npt.NDArray[np.int64], seed: int, p,
     return best
 
 
-def _with_tab_count(grid: npt.NDArray[np.bool_], net: Net) -> Net:
-    return dataclasses.replace(net, seams_without_tab_room=count_without_tab_room(grid, net))
-
-
-def _pieces(g: npt.NDArray[np.bool_], sg: SurfaceGraph, faces: npt.NDArray[np.int64],
-            seed: int, strat: Strategy, fit: tuple[int, int] | None, tab_aware: bool,
-            deadline: float, constraints: EdgeConstraints | None) -> list[Net]:
+def _pieces(job: _Job, faces: npt.NDArray[np.int64]) -> list[Net]:
     """One surface part as few pieces as the budget allows."""
-    p = _growth(strat, faces.size)
-    b = _Board(sg, faces, seed, fit, resolve(constraints, sg, faces))
-    if b.grow(p, deadline):
-        if tab_aware and strat is Strategy.DEFAULT:
-            b.anneal(p, deadline)
-        return [_with_tab_count(g, b.net(sg, faces=faces, seed=seed, strategy=strat.value))]
+    try:
+        return [_one_piece(job, faces)]
+    except UnfoldError:
+        pass
+    boards = _partition(job, faces)
     nets = []
-    rest = faces
-    while rest.size:
-        placed = rest[b.pos[rest] >= 0]
-        nets.append(_with_tab_count(g, b.net(sg, faces=placed, seed=seed, strategy=strat.value)))
-        rest = rest[b.pos[rest] < 0]
-        if not rest.size:
-            break
-        # Grow the rest greedily on a fresh board, one piece per dead end.
-        b = _Board(sg, rest, seed + len(nets), fit, resolve(constraints, sg, rest))
-        if b.started:
-            b.growth.grow(b.sf, b.b, b.growth.Growth(b.growth.MODE_PAPER, 1, 0, 0.0, 0),
-                          4 * rest.size, False)
-        if b.unplaced == rest.size:
-            raise UnfoldError("no piece could be placed: fit is too small for a single face")
+    for b, placed in boards:
+        b.exclude_unplaced()
+        if job.tab_aware and job.strategy is Strategy.DEFAULT:
+            b.anneal(job.growth(placed.size), job.deadline)
+        nets.append(job.net(b, placed))
     return nets
+
+
+def _partition(job: _Job, faces: npt.NDArray[np.int64]) -> list[tuple[_Board, npt.NDArray[np.int64]]]:
+    """Cut the faces into pieces that each fit the box: the largest first, then merge small ones.
+
+    Each piece is the largest net ruin-and-recreate packs into the box from the
+    faces left over within a growth budget.  A piece under a tenth of the
+    largest is then merged into a neighbouring piece when the two still fit
+    together.
+    """
+    n = int(faces.size)
+    p = job.growth(n)
+    pieces: list[tuple[_Board, npt.NDArray[np.int64]]] = []
+    left = np.zeros(job.sg.face_count, dtype=bool)
+    left[faces] = True
+    t = 0
+    while left.any():
+        for part in _surface_parts(job.sg, np.flatnonzero(left)):
+            t += 1
+            b = _Board(job.sg, part, [job.seed, 2000 + t], job.fit, job.resolved(part))
+            if b.started:
+                b.grow(p, math.inf, _steps_left(job, part.size))
+            placed = part[b.pos[part] >= 0]
+            if placed.size == 0:
+                raise UnfoldError(
+                    f"no piece fits {job.fit[0]}x{job.fit[1]} cells: the box is too small for the "
+                    "faces kept together, or for a single face")
+            pieces.append((b, placed))
+            left[placed] = False
+    return _merge_small(job, pieces)
+
+
+def _steps_left(job: _Job, faces: int) -> int:
+    # Growth steps for one piece: a full budget while the clock allows, and a
+    # short greedy one after it, so that pieces="auto" always returns pieces.
+    return (_FIT_STEPS_PER_FACE if time.monotonic() < job.deadline else 4) * int(faces)
+
+
+def _merge_small(job: _Job, pieces: list) -> list:
+    """Merge each piece under a tenth of the largest into a neighbour, when they fit together."""
+    p = job.growth(job.sg.face_count)
+    owner = np.full(job.sg.face_count, -1, dtype=np.int64)
+    tried: set[tuple[int, int]] = set()
+    while True:
+        pieces.sort(key=lambda bp: -bp[1].size)
+        for q, (_, placed) in enumerate(pieces):
+            owner[placed] = q
+        large = pieces[0][1].size
+        merge = None
+        for q in range(len(pieces) - 1, 0, -1):
+            placed = pieces[q][1]
+            if placed.size * 10 >= large:
+                break
+            near = owner[job.sg.neighbor[placed].ravel()]
+            for r in np.unique(near[(near >= 0) & (near != q)])[::-1].tolist():
+                key = (int(pieces[q][1][0]), int(pieces[r][1][0]))
+                if key not in tried:
+                    merge = (q, r)
+                    tried.add(key)
+                    break
+            if merge:
+                break
+        if merge is None or time.monotonic() > job.deadline:
+            return pieces
+        q, r = merge
+        both = np.sort(np.concatenate([pieces[q][1], pieces[r][1]]))
+        b = _Board(job.sg, both, [job.seed, 3000 + len(tried)], job.fit, job.resolved(both))
+        if b.started and b.grow(p, math.inf, _steps_left(job, both.size)):
+            pieces = [bp for t, bp in enumerate(pieces) if t not in (q, r)] + [(b, both)]
 
 
 def unfold_many(
@@ -474,42 +628,74 @@ def unfold_many(
     *,
     count: int,
     rng: np.random.Generator | int,
+    budget: float = DEFAULT_BUDGET,
     **options: object,
 ) -> list[Net]:
-    """Find ``count`` distinct nets.
+    """Find up to ``count`` nets that look different on the sheet.
 
     Net ``t`` is ``unfold(grid, rng=seed_t, **options)`` for seeds drawn from
-    ``rng``; a seed whose net repeats an earlier one is skipped.  ``timeout`` (in
-    ``options``) is the budget per net.  ``pieces="auto"`` is not accepted here.
+    ``rng``; a net whose outline (the cells it covers and where it is folded or
+    cut, see :func:`outline_key`) matches an earlier one's under the 8 rotations
+    and mirrors of the sheet is skipped.  ``timeout`` (in ``options``) bounds
+    each net, ``budget`` the whole call.
+
+    Parameters
+    ----------
+    count : int
+        Nets wanted.
+    budget : float
+        Seconds for the whole call.  The search also stops after ``4 * count +
+        8`` seeds, so a surface with few nets ends early.
 
     Returns
     -------
     list of Net
-        ``count`` nets, pairwise different in layout or folds.
+        Between 1 and ``count`` nets with pairwise different outlines; its
+        length says how many were found.
+
+    Raises
+    ------
+    UnfoldError
+        Not a single net was found within the budget.
     """
-    n = int(count)
-    if n < 1:
-        raise InvalidShapeError(f"count: expected an integer >= 1, got {count!r}")
+    n = _check_count(count)
+    if not float(budget) > 0:
+        raise InvalidShapeError(f"budget: expected a positive number of seconds, got {budget!r}")
     if options.get("pieces", "one") != "one":
         raise InvalidShapeError("unfold_many: pieces must be 'one'")
     gen = np.random.default_rng(_seed_of(rng))
+    end = time.monotonic() + float(budget)
+    timeout = float(options.pop("timeout", 60.0))  # type: ignore[arg-type]
     nets: list[Net] = []
     seen: set[bytes] = set()
     tries = 0
+    last_error: UnfoldError | None = None
     with meter(n, desc="nets") as bar:
-        while len(nets) < n:
+        while len(nets) < n and tries < 4 * n + 8:
+            left = end - time.monotonic()
+            if left <= 0:
+                break
             tries += 1
-            if tries > 4 * n + 8:
-                raise UnfoldError(
-                    f"only {len(nets)} distinct nets of {n} after {tries - 1} seeds: the surface "
-                    "has few nets"
-                )
             seed = int(gen.integers(0, 2**31 - 1))
-            net = unfold(grid, rng=seed, **options)  # type: ignore[arg-type]
-            key = net.corners2d.tobytes() + net.folds.tobytes()
+            try:
+                net = unfold(grid, rng=seed, timeout=min(timeout, left), **options)  # type: ignore[arg-type]
+            except NoFitError:
+                raise
+            except UnfoldError as exc:
+                last_error = exc
+                continue
+            key = outline_key(net)
             if key in seen:
                 continue
             seen.add(key)
             nets.append(net)
             bar.update()
+    if not nets:
+        raise last_error or UnfoldError(f"no net found within the budget of {budget:g} s")
     return nets
+
+
+def _check_count(count: object) -> int:
+    if not isinstance(count, (int, np.integer)) or isinstance(count, bool) or count < 1:
+        raise InvalidShapeError(f"count: expected an integer >= 1, got {count!r}")
+    return int(count)

@@ -1,7 +1,10 @@
-"""Tab room: count the seams with no free cell for a glue tab, and drive them to zero (compiled).
+"""Tab room: drive the seams with no free cell for a glue tab to zero (compiled).
 
 A seam is a cut edge of the net whose two sides do not meet in the plane.  It
-has tab room when the cell beyond its edge is free on at least one side.
+has tab room when the cell beyond its edge is free on at least one side.  The
+board keeps the list of seams without tab room up to date as faces come and go
+(:func:`voxfab.unfold._board.seam_update`) and logs what each move touches, so
+a move and its undo cost only the faces they move, not the whole net.
 """
 
 from __future__ import annotations
@@ -13,139 +16,138 @@ from numba import njit
 
 from ._board import (
     C_ACCEPTED,
+    C_BESTBAD,
+    C_LOGGING,
+    C_MOVE,
+    C_NBAD,
+    C_NLOG,
+    C_OFF,
     C_REGROW_FAILED,
     C_ROOT,
+    C_TRACK,
     C_UNPLACED,
+    NB,
+    NE,
+    PAR,
+    POS,
+    ROT,
+    SL,
     entry,
+    randint,
+    random,
     remove_subtree,
     restore,
     subtree_size,
+    track_seams,
+    undo,
 )
 from ._growth import grow
-from ._random import randint, random
 
 
 class Annealing(NamedTuple):
     """Move schedule: temperatures ``t0`` to ``t1`` (in seams) over ``total``
     moves, growth steps a regrowth may spend, and the largest subtree a move
-    may remove."""
+    may remove: ``ruin_cap`` mostly, ``big_cap`` with chance ``p_big`` (a seam
+    whose faces and tab cells all lie on the trunk of the tree needs it)."""
 
     total: int
     t0: float
     t1: float
     regrow_steps: int
     ruin_cap: int
+    big_cap: int = 0
+    p_big: float = 0.0
 
 
 @njit(cache=True)
-def seam_score(sf, b):
-    """Count seams without tab room; their (face, edge) go to ``b.bad`` (2 per seam).
-
-    Edges of the fold tree and cut edges whose two sides meet in the plane (slits,
-    which are left uncut) are not seams.
-    """
-    nb, ne, pos, rot, par, board, off, bad = sf.nb, sf.ne, b.pos, b.rot, b.par, b.board, b.off, b.bad
-    n = 0
-    for a in range(pos.shape[0]):
-        if pos[a] < 0:
-            continue
-        for k in range(4):
-            c = nb[a, k]
-            if c < a or pos[c] < 0 or par[c] == a or par[a] == c:
-                continue
-            s = (k + rot[a]) & 3
-            ca = pos[a] + off[s]
-            if ca == pos[c] and rot[c] == ((s + 2 - ne[a, k]) & 3):
-                continue
-            kc = ne[a, k]
-            cc = pos[c] + off[(kc + rot[c]) & 3]
-            if board[ca] != -1 and board[cc] != -1:
-                bad[2 * n] = 4 * a + k
-                bad[2 * n + 1] = 4 * c + kc
-                n += 1
-    return n
-
-
-@njit(cache=True)
-def _ruin_near_seams(sf, b, cur, ruin_cap):
+def _ruin_near_seams(link, gmem, face, half, board, cnt, sched):
     # Remove one or two subtrees, mostly next to a seam without tab room: one of
     # its faces, or the face on one of its tab cells.
-    f = b.pos.shape[0]
-    root = b.cnt[C_ROOT]
-    for _ in range(1 + randint(b.st, 2)):
-        if cur > 0 and random(b.st) < 0.9:
-            hh = b.bad[randint(b.st, 2 * cur)]
-            a = hh >> 2
-            ka = hh & 3
-            if b.pos[a] < 0:
+    f = face.shape[0]
+    root = cnt[C_ROOT]
+    for _ in range(1 + randint(cnt, 2)):
+        n = cnt[C_NBAD]
+        if n > 0 and random(cnt) < 0.9:
+            e = half[randint(cnt, n), SL]
+            a = e >> 2
+            ka = e & 3
+            if randint(cnt, 2) == 1:
+                a, ka = link[a, NB, ka], link[a, NE, ka]
+            if face[a, POS] < 0:
                 continue
-            choice = randint(b.st, 3)
-            if choice == 0:
-                m = a
-            elif choice == 1:
-                m = b.board[b.pos[a] + b.off[(ka + b.rot[a]) & 3]]
-            else:
-                m = sf.nb[a, ka]
+            m = a if randint(cnt, 2) == 0 else board[face[a, POS] + cnt[C_OFF + ((ka + face[a, ROT]) & 3)]]
         else:
-            m = randint(b.st, f)
-        if m < 0 or b.pos[m] < 0:
+            m = randint(cnt, f)
+        if m < 0 or face[m, POS] < 0:
             continue
-        m = entry(sf, b, m)
-        if m == root or subtree_size(sf, b, m, ruin_cap) > ruin_cap:
+        m = entry(link, face, cnt, m)
+        cap = sched.big_cap if random(cnt) < sched.p_big else sched.ruin_cap
+        if m == root or subtree_size(link, face, half, m, -1, cap) > cap:
             continue
-        remove_subtree(sf, b, m)
+        remove_subtree(link, gmem, face, half, board, cnt, m)
 
 
 @njit(cache=True)
-def anneal(sf, b, gw, sched, moves, mv0):
+def _save(face, cnt, best):
+    best[:, 0] = face[:, POS]
+    best[:, 1] = face[:, ROT]
+    best[:, 2] = face[:, PAR]
+    cnt[C_BESTBAD] = cnt[C_NBAD]
+
+
+@njit(cache=True)
+def begin(link, face, half, board, cnt, best):
+    """Start tracking a complete net's seams and save it as the best; returns their count."""
+    track_seams(link, face, half, board, cnt)
+    _save(face, cnt, best)
+    return cnt[C_NBAD]
+
+
+@njit(cache=True)
+def anneal(link, gmem, face, half, board, cnt, root_cells, gw, sched, moves, mv0, best):
     """Drive the count of seams without tab room down by ruin-and-recreate moves.
 
-    Starts from a complete net; each move removes one or two subtrees next to a
-    seam without tab room and regrows.  Metropolis acceptance with a geometric
-    temperature from ``t0`` to ``t1`` over ``sched.total`` moves, of which this
-    call runs ``moves`` starting at move ``mv0``.  The state ends at the best net
-    found.  Returns ``(best score, moves used)``.
+    Starts from a complete net after :func:`begin`; each move removes one or two
+    subtrees next to a seam without tab room and regrows them (preferring cells
+    with few placed neighbours); a move whose regrowth does not complete is
+    undone.  Metropolis acceptance with a geometric temperature from ``t0`` to
+    ``t1`` over ``sched.total`` moves, of which this call runs ``moves``
+    starting at move ``mv0``.  The best net goes to ``best`` (columns POS, ROT,
+    PAR).  Returns the moves used.
     """
-    cur = seam_score(sf, b)
-    best = cur
-    save_pos = b.pos.copy()
-    save_rot = b.rot.copy()
-    save_par = b.par.copy()
-    best_pos = b.pos.copy()
-    best_rot = b.rot.copy()
-    best_par = b.par.copy()
-    root = b.cnt[C_ROOT]
-    used = 0
     total = sched.total
+    used = 0
     for mv in range(moves):
+        cur = cnt[C_NBAD]
         if cur == 0:
             break
         used = mv + 1
         temp = sched.t0 * (sched.t1 / sched.t0) ** (min(mv0 + mv, total) / max(total, 1))
-        _ruin_near_seams(sf, b, cur, sched.ruin_cap)
+        cnt[C_MOVE] += 1
+        cnt[C_NLOG] = 0
+        cnt[C_LOGGING] = 1
+        _ruin_near_seams(link, gmem, face, half, board, cnt, sched)
         ok = True
-        if b.cnt[C_UNPLACED] > 0:
-            ok = grow(sf, b, gw, sched.regrow_steps, True)
-        if not ok:
-            b.cnt[C_REGROW_FAILED] += 1
-        if ok and b.cnt[C_ROOT] == root:
-            new = seam_score(sf, b)
-            if new <= cur or random(b.st) < np.exp(-(new - cur) / temp):
-                b.cnt[C_ACCEPTED] += 1
-                cur = new
-                save_pos[:] = b.pos
-                save_rot[:] = b.rot
-                save_par[:] = b.par
-                if new < best:
-                    best = new
-                    best_pos[:] = b.pos
-                    best_rot[:] = b.rot
-                    best_par[:] = b.par
+        if cnt[C_UNPLACED] > 0:
+            ok = grow(link, gmem, face, half, board, cnt, root_cells, gw, sched.regrow_steps, True)
+        cnt[C_LOGGING] = 0
+        if ok:
+            new = cnt[C_NBAD]
+            if new <= cur or random(cnt) < np.exp(-(new - cur) / temp):
+                cnt[C_ACCEPTED] += 1
+                if new < cnt[C_BESTBAD]:
+                    _save(face, cnt, best)
                 continue
-        b.cnt[C_ROOT] = root
-        restore(sf, b, save_pos, save_rot, save_par)
-        cur = seam_score(sf, b)
-    if best < cur:
-        restore(sf, b, best_pos, best_rot, best_par)
-        cur = seam_score(sf, b)
-    return cur, used
+        else:
+            cnt[C_REGROW_FAILED] += 1
+        undo(link, gmem, face, half, board, cnt)
+    return used
+
+
+@njit(cache=True)
+def finish(face, half, board, cnt, best):
+    """End tracking and lay out the best net seen; returns its seams without tab room."""
+    if cnt[C_BESTBAD] < cnt[C_NBAD]:
+        restore(face, half, board, cnt, best)
+    cnt[C_TRACK] = 0
+    return cnt[C_BESTBAD]

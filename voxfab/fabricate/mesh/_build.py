@@ -14,7 +14,7 @@ from voxfab.errors import FabricationError, InvalidShapeError
 from voxfab.shape import VoxelShape, crop, exposed_faces, fill_cavities
 
 from ._check import MeshReport, check_mesh
-from ._contacts import NO_CONTACTS, bridge_boxes, bridged_grid, find_contacts
+from ._contacts import NO_CONTACTS, Contacts, bridge_boxes, bridged_grid, find_contacts
 from ._data import MeshData
 from ._faces import voxel_mesh
 
@@ -244,6 +244,54 @@ def build_mesh(
     FabricationError
         When the mesh would be too large, contacts are refused, or a check fails.
     """
+    inputs = _check_inputs(
+        shape, pitch=pitch, size=size, contacts=contacts, hollow=hollow, base=base, magnet=magnet,
+        label=label, engrave_depth=engrave_depth, name=name,
+    )
+    warnings: list[str] = []
+    g = _solid_grid(inputs.grid, inputs, fill=fill, warnings=warnings)
+    found = _checked_contacts(g, inputs)
+    surface = _voxel_surface(g, found, inputs, bridge_width=bridge_width, merge=merge, warnings=warnings)
+    if not (surface.boxes_left or inputs.base or inputs.label or inputs.magnet):
+        return MeshResult(surface.mesh, surface.report, inputs.pitch, found.count, len(surface.boxes),
+                          tuple(warnings + _parts_warning(surface.report)))
+    out, checked = _cad_features(g, surface, inputs, warnings=warnings)
+    return MeshResult(out, checked, inputs.pitch, found.count, len(surface.boxes),
+                      tuple(warnings + _parts_warning(checked)))
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class _Inputs:
+    """The checked parameters of :func:`build_mesh` (lengths in mm)."""
+
+    grid: npt.NDArray[np.bool_]
+    pitch: float
+    mode: ContactMode
+    hollow: int
+    base: float
+    magnet: tuple[float, float] | None
+    label: str | None
+    depth: float
+    name: str
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class _Surface:
+    """The checked voxel surface, and the contact bridges still to add as CAD boxes."""
+
+    mesh: MeshData
+    report: MeshReport
+    boxes: npt.NDArray[np.float64]
+    boxes_left: bool
+    volume: float
+
+
+def _check_inputs(
+    shape: VoxelShape | npt.ArrayLike, *, pitch: float | None, size: float | None, contacts: str | ContactMode,
+    hollow: int, base: float, magnet: tuple[float, float] | str | None, label: str | None,
+    engrave_depth: float, name: str,
+) -> _Inputs:
+    """Check every parameter before any work; crop the grid and resolve the pitch."""
     default_pitch = shape.pitch if isinstance(shape, VoxelShape) else 1.0
     g0 = as_grid(shape.grid if isinstance(shape, VoxelShape) else shape, name=name)
     mode = check_choice(contacts, ContactMode, name="contacts")
@@ -261,42 +309,57 @@ def build_mesh(
     if label is not None and not label.strip():
         raise InvalidShapeError("label: expected some text, got an empty string")
     depth = check_positive(engrave_depth, name="engrave_depth")
-
     faces = exposed_faces(g)
     if faces > MAX_FACES:
         raise FabricationError(
             f"{name}: {faces} exposed voxel faces, over the limit of {MAX_FACES} for a mesh "
             f"(a noisy grid?); smooth or crop the shape first"
         )
-    warnings: list[str] = []
-    if hollow:
-        g = hollow_out(g, hollow)
+    return _Inputs(g, pitch_mm, mode, hollow, base, magnet_dh, label, depth, name)
+
+
+def _solid_grid(g: npt.NDArray[np.bool_], inputs: _Inputs, *, fill: bool, warnings: list[str]) -> npt.NDArray[np.bool_]:
+    """The voxels to print: hollowed, or with enclosed cavities filled; warn about thin walls."""
+    if inputs.hollow:
+        g = hollow_out(g, inputs.hollow)
     elif fill:
         g = _fill_cavities(g)
-    w = thin_wall_warning(g, pitch_mm)
+    w = thin_wall_warning(g, inputs.pitch)
     if w:
         warnings.append(w)
+    return g
 
+
+def _checked_contacts(g: npt.NDArray[np.bool_], inputs: _Inputs) -> Contacts:
+    """Edge and corner contacts; with ``contacts="error"`` refuse them, and a print in several parts."""
     found = find_contacts(g)
-    if mode is ContactMode.ERROR and found.count:
-        raise FabricationError(f"{name}: refused with --contacts error: {found.describe()}")
-
+    if inputs.mode is not ContactMode.ERROR:
+        return found
+    if found.count:
+        raise FabricationError(f"{inputs.name}: refused with --contacts error: {found.describe()}")
     from scipy import ndimage
 
-    if mode is ContactMode.ERROR:
-        # A print in several pieces needs an explicit choice (bridge or split), not a silent success.
-        n_pieces = ndimage.label(g, structure=np.ones((3, 3, 3), bool))[1]
-        if n_pieces > 1:
-            raise FabricationError(
-                f"{name}: refused with --contacts error: the print would be {n_pieces} separate parts "
-                "(use split to print them apart)"
-            )
+    # A print in several pieces needs an explicit choice (bridge or split), not a silent success.
+    n_pieces = ndimage.label(g, structure=np.ones((3, 3, 3), bool))[1]
+    if n_pieces > 1:
+        raise FabricationError(
+            f"{inputs.name}: refused with --contacts error: the print would be {n_pieces} separate parts "
+            "(use split to print them apart)"
+        )
+    return found
 
-    do_bridge = mode is ContactMode.BRIDGE and found.count > 0
+
+def _voxel_surface(
+    g: npt.NDArray[np.bool_], found: Contacts, inputs: _Inputs, *, bridge_width: float | None, merge: bool,
+    warnings: list[str],
+) -> _Surface:
+    """Mesh and check the voxels' surface, with contact bridges as grid cells where they fit."""
+    from scipy import ndimage
+
+    pitch_mm, name = inputs.pitch, inputs.name
+    do_bridge = inputs.mode is ContactMode.BRIDGE and found.count > 0
     bounds = np.stack([np.zeros(3), np.array(g.shape) * pitch_mm])
     boxes = np.zeros((0, 2, 3))
-    mesh = None
-    bridged_in_grid = False
     if do_bridge:
         width = _bridge_width(bridge_width, pitch_mm, warnings)
         boxes = bridge_boxes(found, pitch=pitch_mm, width=width)
@@ -322,82 +385,105 @@ def build_mesh(
                 # An edge contact left between bridges: mesh again with its midpoints.
                 mesh = voxel_mesh(cells, pitch=pitch_mm, merge=merge, part_labels=labels_r, coords=coords)
                 report = check_mesh(mesh, **expect)
-            bridged_in_grid = True
+            return _Surface(mesh, report, boxes, False, exact_volume)
     elif bridge_width is not None:
         check_positive(bridge_width, name="bridge_width")
-    if mesh is None:
-        labels6 = ndimage.label(g, structure=ndimage.generate_binary_structure(3, 1))[0]
-        mesh = voxel_mesh(g, pitch=pitch_mm, merge=merge, part_labels=labels6, contacts=found)
-        exact_volume = float(g.sum()) * pitch_mm**3
-        report = check_mesh(mesh, what=name, expected_volume=exact_volume, expected_bounds=bounds)
-    n_boxes = len(boxes)
+    labels6 = ndimage.label(g, structure=ndimage.generate_binary_structure(3, 1))[0]
+    mesh = voxel_mesh(g, pitch=pitch_mm, merge=merge, part_labels=labels6, contacts=found)
+    exact_volume = float(g.sum()) * pitch_mm**3
+    report = check_mesh(mesh, what=name, expected_volume=exact_volume, expected_bounds=bounds)
+    return _Surface(mesh, report, boxes, do_bridge, exact_volume)
 
-    if not ((do_bridge and not bridged_in_grid) or base or label or magnet_dh):
-        return MeshResult(mesh, report, pitch_mm, found.count, n_boxes, tuple(warnings + _parts_warning(report)))
 
+def _cad_features(
+    g: npt.NDArray[np.bool_], surface: _Surface, inputs: _Inputs, *, warnings: list[str]
+) -> tuple[MeshData, MeshReport]:
+    """Add bridges and the base, cut the magnet pocket and the label with the CAD kernel; check again."""
     from . import _cad
 
-    solid = _cad.to_manifold(mesh)
+    pitch_mm, base = inputs.pitch, inputs.base
+    solid = _cad.to_manifold(surface.mesh)
     added: list[Any] = []
     added_volume = 0.0
-    if do_bridge and not bridged_in_grid:
+    boxes = surface.boxes
+    if surface.boxes_left:
         added += _cad.box_solids(boxes)
         added_volume += float(np.prod(boxes[:, 1] - boxes[:, 0], axis=1).sum())
-    z_bottom = 0.0
     if base:
         plate = np.array([[0.0, 0.0, -base], [g.shape[0] * pitch_mm, g.shape[1] * pitch_mm, 0.0]])
         added += _cad.box_solids(plate[None])
         added_volume += float(np.prod(plate[1] - plate[0]))
-        z_bottom = -base
     if added:
         solid = _cad.union([solid, *added])
-    cutters: list[Any] = []
     removed_volume = 0.0
-    if label or magnet_dh:
-        if base:
-            rect_mm = (0.0, 0.0, g.shape[0] * pitch_mm, g.shape[1] * pitch_mm)
-        else:
-            x0, y0, x1, y1 = largest_rectangle(g[:, :, 0])
-            rect_mm = (x0 * pitch_mm, y0 * pitch_mm, x1 * pitch_mm, y1 * pitch_mm)
-        floor = base if base else _floor_thickness(g) * pitch_mm
-        magnet_rect, label_rect = _bottom_regions(rect_mm, magnet=magnet_dh, label=label)
-        if magnet_dh is not None and magnet_rect is not None:
-            d, h = magnet_dh
-            mx0, my0, mx1, my1 = magnet_rect
-            side = min(mx1 - mx0, my1 - my0)
-            if d > side:
-                raise FabricationError(
-                    f"{name}: a magnet pocket of {d:g} mm does not fit the flat bottom "
-                    f"({side:g} mm across); add --base or use a smaller magnet"
-                )
-            if d + 2 * MIN_WALL > side:
-                warnings.append(f"the magnet pocket leaves side walls under {MIN_WALL:g} mm")
-            total_height = g.shape[2] * pitch_mm + base
-            if h >= total_height:
-                raise FabricationError(f"{name}: a magnet pocket {h:g} mm deep is as tall as the print ({total_height:g} mm)")
-            cutters.append(_cad.cylinder(((mx0 + mx1) / 2, (my0 + my1) / 2), z_bottom - 1.0, z_bottom + h, d))
-            removed_volume += np.pi * d * d / 4 * (h + 1.0)
-        if label and label_rect is not None:
-            lx0, ly0, lx1, ly1 = label_rect
-            margin = max(1.0, 0.1 * min(lx1 - lx0, ly1 - ly0))
-            box = (lx1 - lx0 - 2 * margin, ly1 - ly0 - 2 * margin)
-            if min(box) <= 0:
-                raise FabricationError(f"{name}: no room for the label on the bottom; add --base")
-            cutter, letter = _cad.label_cutter(
-                label, centre=((lx0 + lx1) / 2, (ly0 + ly1) / 2), box=box, z_bottom=z_bottom, depth=depth
-            )
-            cutters.append(cutter)
-            removed_volume += box[0] * box[1] * (depth + 1.0)
-            if letter < MIN_LETTER:
-                warnings.append(f"the label is {letter:.1f} mm tall, under {MIN_LETTER:g} mm it may not be legible")
-            if depth >= floor:
-                warnings.append(f"the label ({depth:g} mm deep) cuts through the {floor:g} mm thick bottom")
+    if inputs.label or inputs.magnet:
+        cutters, removed_volume = _bottom_cutters(g, inputs, warnings=warnings)
         solid = _cad.subtract(solid, cutters)
     out = _cad.from_manifold(solid)
     shift = -out.vertices.min(axis=0)
     out = MeshData(vertices=out.vertices + shift, triangles=out.triangles, part=out.part)
+    return out, _final_check(out, solid, g, inputs, surface.volume, added_volume, removed_volume)
+
+
+def _bottom_cutters(g: npt.NDArray[np.bool_], inputs: _Inputs, *, warnings: list[str]) -> tuple[list[Any], float]:
+    """The magnet pocket and the engraved label under the print, and the volume they may remove."""
+    from . import _cad
+
+    pitch_mm, base, name, magnet_dh, label = inputs.pitch, inputs.base, inputs.name, inputs.magnet, inputs.label
+    z_bottom = -base if base else 0.0
+    cutters: list[Any] = []
+    removed_volume = 0.0
+    if base:
+        rect_mm = (0.0, 0.0, g.shape[0] * pitch_mm, g.shape[1] * pitch_mm)
+    else:
+        x0, y0, x1, y1 = largest_rectangle(g[:, :, 0])
+        rect_mm = (x0 * pitch_mm, y0 * pitch_mm, x1 * pitch_mm, y1 * pitch_mm)
+    floor = base if base else _floor_thickness(g) * pitch_mm
+    magnet_rect, label_rect = _bottom_regions(rect_mm, magnet=magnet_dh, label=label)
+    if magnet_dh is not None and magnet_rect is not None:
+        d, h = magnet_dh
+        mx0, my0, mx1, my1 = magnet_rect
+        side = min(mx1 - mx0, my1 - my0)
+        if d > side:
+            raise FabricationError(
+                f"{name}: a magnet pocket of {d:g} mm does not fit the flat bottom "
+                f"({side:g} mm across); add --base or use a smaller magnet"
+            )
+        if d + 2 * MIN_WALL > side:
+            warnings.append(f"the magnet pocket leaves side walls under {MIN_WALL:g} mm")
+        total_height = g.shape[2] * pitch_mm + base
+        if h >= total_height:
+            raise FabricationError(f"{name}: a magnet pocket {h:g} mm deep is as tall as the print ({total_height:g} mm)")
+        cutters.append(_cad.cylinder(((mx0 + mx1) / 2, (my0 + my1) / 2), z_bottom - 1.0, z_bottom + h, d))
+        removed_volume += np.pi * d * d / 4 * (h + 1.0)
+    if label and label_rect is not None:
+        lx0, ly0, lx1, ly1 = label_rect
+        margin = max(1.0, 0.1 * min(lx1 - lx0, ly1 - ly0))
+        box = (lx1 - lx0 - 2 * margin, ly1 - ly0 - 2 * margin)
+        if min(box) <= 0:
+            raise FabricationError(f"{name}: no room for the label on the bottom; add --base")
+        cutter, letter = _cad.label_cutter(
+            label, centre=((lx0 + lx1) / 2, (ly0 + ly1) / 2), box=box, z_bottom=z_bottom, depth=inputs.depth
+        )
+        cutters.append(cutter)
+        removed_volume += box[0] * box[1] * (inputs.depth + 1.0)
+        if letter < MIN_LETTER:
+            warnings.append(f"the label is {letter:.1f} mm tall, under {MIN_LETTER:g} mm it may not be legible")
+        if inputs.depth >= floor:
+            warnings.append(f"the label ({inputs.depth:g} mm deep) cuts through the {floor:g} mm thick bottom")
+    return cutters, removed_volume
+
+
+def _final_check(
+    out: MeshData, solid: Any, g: npt.NDArray[np.bool_], inputs: _Inputs, exact_volume: float,
+    added_volume: float, removed_volume: float,
+) -> MeshReport:
+    """Check the CAD kernel's mesh: edges, volume bounds, bodies and the bounding box."""
+    from scipy import ndimage
+
+    pitch_mm, base, name = inputs.pitch, inputs.base, inputs.name
     expected_bodies = None
-    if mode is ContactMode.BRIDGE:
+    if inputs.mode is ContactMode.BRIDGE:
         gb = np.concatenate([np.ones(g.shape[:2] + (1,), bool), g], axis=2) if base else g
         expected_bodies = ndimage.label(gb, structure=np.ones((3, 3, 3), bool))[1]
     ext = np.array(g.shape, dtype=np.float64) * pitch_mm + np.array([0.0, 0.0, base])
@@ -413,7 +499,7 @@ def build_mesh(
         raise FabricationError(
             f"{name}: mesh check failed: volume {checked.volume:.6g} mm³ differs from the CAD kernel's {solid.volume():.6g}"
         )
-    return MeshResult(out, checked, pitch_mm, found.count, n_boxes, tuple(warnings + _parts_warning(checked)))
+    return checked
 
 
 def _parts_warning(report: MeshReport) -> list[str]:

@@ -98,10 +98,10 @@ def text_outlines(text: str, *, height: float) -> list[npt.NDArray[np.float64]]:
     list of (N, 2) float64 ndarray
         Outer and inner loops; fill them with the even-odd rule.
     """
-    try:
-        import build123d as bd  # lazy: ~4 s to import
-    except ImportError as exc:
-        raise MissingDependencyError("build123d", "engraved labels") from exc
+    from voxfab._shared.deps import require_extra
+
+    require_extra("cad", "an engraved label (--label)")
+    import build123d as bd  # lazy: ~4 s to import
     sketch = bd.Text(text, font_size=height, align=(bd.Align.CENTER, bd.Align.CENTER))
     loops: list[npt.NDArray[np.float64]] = []
     tol = _GLYPH_TOLERANCE * height

@@ -98,7 +98,7 @@ def check_mesh(
         raise _fail(what, "non-finite vertex coordinates")
     if mesh.part.shape != (nt,):
         raise _fail(what, f"part labels have shape {mesh.part.shape}, expected ({nt},)")
-    from ._kernels import edge_fan_shells, index_problems, triangle_measures, vertex_bounds
+    from ._edges import edge_fan_shells, index_problems, triangle_measures, vertex_bounds
 
     t = np.ascontiguousarray(t, dtype=np.int64)
     outside, unused, repeats = index_problems(t, nv)

@@ -85,7 +85,7 @@ def find_contacts(grid: npt.ArrayLike) -> Contacts:
     Contacts
         Sorted by voxel, so the result is deterministic.
     """
-    from ._kernels import contact_scan
+    from ._contact_scan import contact_scan
 
     g = as_grid(grid, allow_empty=True)
     p = np.pad(g, 1)
@@ -228,7 +228,7 @@ def bridged_grid(
     parts : int64 ndarray, only with ``labels``
         Part of each cell, 0 where empty.
     """
-    from ._kernels import fill_boxes
+    from ._contact_scan import fill_boxes
 
     box_v = boxes / pitch
     coords = []

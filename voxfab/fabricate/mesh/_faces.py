@@ -116,7 +116,7 @@ def face_rectangles(grid: npt.NDArray[np.bool_], *, merge: bool = True) -> npt.N
         axis ``a = d // 2``, and the cell ranges (exclusive ends) along
         ``(a + 1) % 3`` and ``(a + 2) % 3``.  Ordered by ``(d, plane, v0, u0)``.
     """
-    from ._kernels import stack_runs
+    from ._rectangles import stack_runs
 
     out = []
     for a in range(3):
@@ -209,7 +209,7 @@ def voxel_mesh(
     MeshData
         Manifold by index, counter-clockwise from outside, in mm.
     """
-    from ._kernels import first_appearance, rectangle_mesh
+    from ._rectangles import first_appearance, rectangle_mesh
 
     global _FAN
     if _FAN is None:
@@ -220,10 +220,9 @@ def voxel_mesh(
         contacts = find_contacts(g)
     rects = face_rectangles(g, merge=merge)
     padded = np.pad(g, 1)
-    triangles, tri_rect, vertices = rectangle_mesh(
-        padded, point_configs(padded), rects, contact_keys(contacts, g.shape), _half_steps(g.shape, coords, pitch), fan, fan_count,
-        CORNER_OFFSETS, EDGE_OUT, DIRECTIONS, _ALONG_U, _ASCENDING, _AT_MAX,
-    )
+    lattice = (padded, point_configs(padded), fan, fan_count, _half_steps(g.shape, coords, pitch))
+    tables = (CORNER_OFFSETS, EDGE_OUT, DIRECTIONS, _ALONG_U, _ASCENDING, _AT_MAX)
+    triangles, tri_rect, vertices = rectangle_mesh(lattice, rects, contact_keys(contacts, g.shape), tables)
 
     if part_labels is None:
         from voxfab.shape import label_components

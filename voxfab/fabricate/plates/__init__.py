@@ -22,7 +22,6 @@ import numpy.typing as npt
 
 from voxfab._shared.atomic import write_text
 from voxfab._shared.typing import PathLike
-from voxfab.errors import InvalidShapeError
 from voxfab.fabricate._outputs import Artefact, OutputFile
 from voxfab.shape import VoxelShape
 
@@ -200,16 +199,6 @@ def write_slices(result: Slices, folder: PathLike, *, name: str = "", step: bool
     return files
 
 
-def _check_folder(folder: Path) -> None:
-    """Refuse an output folder that is a file, or a folder of something else (it would be replaced)."""
-    if folder.exists() and not folder.is_dir():
-        raise InvalidShapeError(f"{folder}: exists and is not a folder; the plates need an output folder")
-    if folder.is_dir() and any(folder.iterdir()) and not (folder / "plates.json").exists():
-        raise InvalidShapeError(
-            f"{folder}: a folder that holds other files; give a new or empty folder (or an earlier plates output)"
-        )
-
-
 def fabricate_plates(shape: VoxelShape, options: PlateOptions, folder: PathLike, *, name: str) -> Artefact:
     """The plates pipeline: slice, nest and write the sheets, the assembly PDF and ``plates.json``.
 
@@ -233,10 +222,10 @@ def fabricate_plates(shape: VoxelShape, options: PlateOptions, folder: PathLike,
     Artefact
         Files relative to ``folder``, the maker's warnings, and the report.
     """
-    from voxfab._shared.atomic import atomic_dir
+    from voxfab._shared.atomic import atomic_dir, check_output
 
     folder = Path(folder)
-    _check_folder(folder)
+    check_output(folder, folder=True, parents=True, marker="plates.json")  # before any work
     if options.step:
         from voxfab._shared.deps import require_extra  # refuse before any work
 
@@ -246,6 +235,6 @@ def fabricate_plates(shape: VoxelShape, options: PlateOptions, folder: PathLike,
         spacing=options.spacing, kerf=options.kerf, dowel=options.dowel, dowel_margin=options.dowel_margin,
         dowels_per_joint=options.dowels_per_joint, score=options.score, min_width=options.min_width,
     )
-    with atomic_dir(folder) as tmp:
+    with atomic_dir(folder, marker="plates.json") as tmp:
         files = write_slices(result, tmp, name=name, step=options.step)
     return Artefact(tuple(files), tuple(plate_warnings(result.report)), result.report.to_json())

@@ -16,7 +16,7 @@ from pathlib import Path
 from voxfab._shared.atomic import write_bytes
 from voxfab._shared.progress import progress
 from voxfab._shared.typing import PathLike
-from voxfab.errors import FabricationError, MissingDependencyError
+from voxfab.errors import FabricationError
 
 from ._stack import Plate, PlateStack
 
@@ -27,10 +27,11 @@ STEP_TIMESTAMP = "2000-01-01T00:00:00"
 
 
 def _bd():
-    try:
-        import build123d
-    except ImportError as exc:  # pragma: no cover - build123d is a dependency
-        raise MissingDependencyError("build123d", "STEP/STL plates") from exc
+    from voxfab._shared.deps import require_extra
+
+    require_extra("cad", "STEP and STL plates (--step)")
+    import build123d
+
     return build123d
 
 

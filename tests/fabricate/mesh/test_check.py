@@ -117,7 +117,7 @@ def test_compiled_pass_agrees_with_the_numpy_pass(seed, how):
     # exactly the meshes the numpy pass refuses, and count the same shells.
     from voxfab.fabricate.mesh._check import _edge_and_fan_problems
     from voxfab.fabricate.mesh._data import shell_labels
-    from voxfab.fabricate.mesh._kernels import edge_fan_shells
+    from voxfab.fabricate.mesh._edges import edge_fan_shells
 
     rng = np.random.default_rng(seed)
     g = rng.random((3, 3, 3)) < 0.5

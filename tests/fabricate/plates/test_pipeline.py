@@ -25,15 +25,15 @@ def test_options_refuse_meaningless_values_before_any_work() -> None:
 
 
 def test_pipeline_refuses_a_file_and_a_foreign_folder(tmp_path) -> None:
-    from voxfab.errors import InvalidShapeError
+    from voxfab.errors import VoxfabError
 
     shape = VoxelShape(examples.box(2, 2, 2), 3.0)
     (tmp_path / "file.vox").write_bytes(b"x")
-    with pytest.raises(InvalidShapeError, match="not a folder"):
+    with pytest.raises(VoxfabError, match="not a folder"):
         fabricate_plates(shape, PlateOptions(), tmp_path / "file.vox", name="b")
     (tmp_path / "docs").mkdir()
     (tmp_path / "docs" / "thesis.txt").write_text("keep me")
-    with pytest.raises(InvalidShapeError, match="holds other files"):
+    with pytest.raises(VoxfabError, match="holds files that are not an earlier output"):
         fabricate_plates(shape, PlateOptions(), tmp_path / "docs", name="b")
     assert (tmp_path / "file.vox").read_bytes() == b"x"
 

@@ -105,7 +105,7 @@ def test_admesh_finds_a_closed_single_part(meshes, name):
     assert vol == pytest.approx(r.report.volume, rel=1e-4)
 
 
-RECIPES = sorted((__import__("pathlib").Path(__file__).resolve().parents[2] / "recipes").rglob("*.toml"))
+RECIPES = sorted((__import__("pathlib").Path(__file__).resolve().parents[3] / "recipes").rglob("*.toml"))
 
 
 @needs_prusa

@@ -1,0 +1,118 @@
+"""Sheet fit, pieces that fit the sheet, and visibly distinct nets, on real shapes."""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import pytest
+
+from voxfab.errors import InvalidShapeError, UnfoldError
+from voxfab.shape import examples, surface_graph
+from voxfab.unfold import NoFitError, unfold, unfold_many, validate
+
+
+def _extent(net) -> tuple[int, int]:
+    """Sides in cells of a net, measured from its 2D corners."""
+    c = net.corners2d.reshape(-1, 2)
+    w, h = (c.max(axis=0) - c.min(axis=0)).tolist()
+    return w, h
+
+
+def _fits(net, box: tuple[int, int]) -> bool:
+    w, h = _extent(net)
+    return (w <= box[0] and h <= box[1]) or (h <= box[0] and w <= box[1])
+
+
+@pytest.mark.parametrize("box", [(40, 12), (12, 40), (21, 21)])
+def test_net_grows_inside_the_box_either_way_round(box):
+    grid = examples.ball(4)
+    net = unfold(grid, rng=1, fit=box)
+    assert _fits(net, box)
+    report = validate(grid, net)
+    assert report.ok and report.seams_without_tab_room == net.seams_without_tab_room
+    # Tab room is made inside the box too.
+    plain = unfold(grid, rng=1, fit=box, tab_aware=False)
+    assert _fits(plain, box)
+    assert net.seams_without_tab_room < plain.seams_without_tab_room / 4
+
+
+def test_no_fit_says_how_compact_a_net_was_found():
+    grid = examples.ball(4)
+    faces = surface_graph(grid).face_count
+    with pytest.raises(NoFitError) as err:
+        unfold(grid, rng=0, fit=(17, 17))  # 289 cells for 294 faces
+    assert isinstance(err.value, UnfoldError)
+    w, h = err.value.best_extent
+    assert w <= h and w * h >= faces and h < 40
+    assert "17x17" in str(err.value) and f"{w}x{h}" in str(err.value)
+    # The extent reported is one the search can reach.
+    assert _fits(unfold(grid, rng=0, fit=(w, h), tab_aware=False), (w, h))
+
+
+def test_pieces_auto_splits_into_pieces_that_each_fit():
+    grid = examples.ball(6)
+    faces = surface_graph(grid).face_count
+    nets = unfold(grid, rng=0, fit=(18, 18), pieces="auto", timeout=20)
+    assert len(nets) >= 3  # 678 faces cannot fit 324 cells in fewer
+    assert all(_fits(n, (18, 18)) for n in nets)
+    assert sum(n.face_count for n in nets) == faces
+    sizes = sorted((n.face_count for n in nets), reverse=True)
+    assert sum(sizes[:4]) >= 0.75 * faces  # most of the surface in a few large pieces
+    assert validate(grid, nets).ok
+
+
+def _picture(net) -> np.ndarray:
+    """A raster of the sheet: cells covered, and folds between cells (3 pixels per cell)."""
+    cells = net.corners2d.min(axis=1)
+    cells = cells - cells.min(axis=0)
+    size = 3 * (cells.max(axis=0) + 1)
+    img = np.zeros((size[0], size[1]), dtype=np.uint8)
+    for x, y in cells.tolist():
+        img[3 * x:3 * x + 3, 3 * y:3 * y + 3] = 1
+    for i, j in net.folds.tolist():
+        (xi, yi), (xj, yj) = cells[i].tolist(), cells[j].tolist()
+        # The middle pixel of each cell's side along the fold.
+        img[3 * xi + 1 + (xj - xi), 3 * yi + 1 + (yj - yi)] = 2
+        img[3 * xj + 1 + (xi - xj), 3 * yj + 1 + (yi - yj)] = 2
+    return img
+
+
+def _symmetric_forms(img: np.ndarray) -> list[bytes]:
+    forms = []
+    for flip in (img, img[::-1]):
+        for k in range(4):
+            r = np.rot90(flip, k)
+            forms.append(np.int64(r.shape).tobytes() + r.tobytes())
+    return forms
+
+
+def test_unfold_many_outlines_differ_up_to_rotations_and_mirrors():
+    grid = examples.ball(3)
+    nets = unfold_many(grid, count=12, rng=5, budget=30, tab_aware=False)
+    assert len(nets) == 12
+    seen: set[bytes] = set()
+    for net in nets:
+        assert validate(grid, net).ok
+        forms = _symmetric_forms(_picture(net))
+        assert not seen & set(forms)
+        seen.update(forms)
+
+
+def test_the_unit_cube_has_eleven_nets():
+    nets = unfold_many(np.ones((1, 1, 1), bool), count=20, rng=0, budget=30)
+    assert len(nets) == 11  # the classic count, up to rotations and mirrors
+    pictures = {min(_symmetric_forms(_picture(n))) for n in nets}
+    assert len(pictures) == 11
+
+
+def test_unfold_many_stops_at_its_budget():
+    grid = examples.ball(3)
+    t = time.monotonic()
+    nets = unfold_many(grid, count=10**9, rng=1, budget=1.5, timeout=20, tab_aware=False)
+    assert time.monotonic() - t < 6
+    assert 1 <= len(nets) < 10**9
+    with pytest.raises(InvalidShapeError, match="budget"):
+        unfold_many(grid, count=2, rng=1, budget=0)
+    with pytest.raises(InvalidShapeError, match="count"):
+        unfold_many(grid, count=True, rng=1)
