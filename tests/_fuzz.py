@@ -16,6 +16,7 @@ import time
 from collections.abc import Iterator, Sequence
 
 from voxfab.cli import main
+from voxfab.cli._common import STRICT_EXIT
 
 #: Seconds one CLI run may take in the fuzz tests (shared 2-core machine: generous).
 RUN_SECONDS = 30.0
@@ -81,6 +82,10 @@ def check_outcome(o: Outcome, *, seconds: float = RUN_SECONDS) -> Outcome:
     assert o.seconds < seconds, (o.argv, o.seconds)
     if o.code == 0:
         return o
+    if o.code == STRICT_EXIT and "--strict" in o.argv:
+        # The output is made; --strict fails the run because of its warnings, one line each.
+        assert o.err.count("voxfab: warning:") >= 1 and not o.error_lines, (o.argv, o.err)
+        return o
     if o.usage:
         # argparse's own refusal: usage lines and one "error:" line.
         assert o.code == 2 and len([x for x in o.err.splitlines() if ": error: " in x]) == 1, (o.argv, o.err)
@@ -115,11 +120,14 @@ NASTY_TEXT = ["", " ", "x", "1x1", "0x0", "600x400", "1e9x1e9", "-3x4", "nanxnan
 
 def number_text(kind: type) -> st.SearchStrategy[str]:
     """An option value for an int or float option: usual, extreme or not a number at all."""
+    # Mostly values argparse takes, so runs reach voxfab's own checks; now and then not a number.
     if kind is int:
         usual = st.integers(0, 40).map(str)
-        return st.one_of(usual, usual, st.sampled_from(NASTY_INTS), st.sampled_from(["1.5", "x", "1e3"]))
+        return st.one_of(usual, usual, usual, st.sampled_from(NASTY_INTS), st.sampled_from(NASTY_INTS),
+                         st.sampled_from(["1.5", "x", "1e3"]))
     usual = st.floats(0.1, 100, allow_nan=False).map(lambda f: f"{f:.4g}")
-    return st.one_of(usual, usual, st.sampled_from(NASTY_FLOATS), st.sampled_from(["x", "1,5", ""]))
+    return st.one_of(usual, usual, usual, st.sampled_from(NASTY_FLOATS), st.sampled_from(NASTY_FLOATS),
+                     st.sampled_from(["x", "1,5", ""]))
 
 
 def toml_text(data: dict) -> str:
@@ -177,6 +185,16 @@ EXPRESSIONS = ["x^2 + y^2 + z^2 - 1", "x^2 + y^2 - 1", "sin(x) + cos(y)", "x^", 
                "__import__('os')", "x" * 1200, "-" * 500 + "x", "max(x, y, z) - 0.5", "atan2(y, x) - t", "abs(x)+abs(y)-1"]
 
 
+#: Sources that build, one per maker (files as :func:`hostile_recipe_folder` makes them).
+GOOD_SOURCES = [
+    {"maker": "implicit", "expression": "x^2 + y^2 + z^2 - 1"},
+    {"maker": "focal", "foci": [[0.0, 0.0, -1.0], [0.0, 0.0, 1.0]], "weights": [1.0, 2.0], "radius": 5.0},
+    {"maker": "revolution", "curve": "x^2 + y^2 - 1", "generatrix": "drawing.json"},
+    {"maker": "revolution", "curve": "drawing.svg", "generatrix": "bitmap.png"},
+    {"maker": "tube", "spine": ["cos(2*pi*t)", "sin(2*pi*t)", "0"], "profile": "x^2 + y^2 - 1", "radius": 0.3},
+]
+
+
 def value_for(tp: object, strict: bool = False) -> st.SearchStrategy[object]:
     """A recipe value for a type hint: mostly of that type (often extreme), sometimes any TOML value.
 
@@ -222,6 +240,14 @@ def recipe_trees(draw: st.DrawFn, *, with_outputs: bool = True, strict: bool = F
     from voxfab.recipe._schema import _OPERATIONS, keyword_options
 
     def source() -> dict:
+        if strict and draw(st.booleans()):
+            # A working source with one key changed: the build reaches deep into the maker.
+            src = dict(draw(st.sampled_from(GOOD_SOURCES)))
+            src["size"] = draw(st.integers(4, 10))
+            options = keyword_options(get_maker(src["maker"]), skip={"base_dir"})
+            key = draw(st.sampled_from(sorted(options)))
+            src[key] = draw(value_for(options[key][0], strict))
+            return src
         if draw(st.integers(0, 4)) == 0:
             src: dict = {"file": draw(st.sampled_from(RECIPE_FILES))}
             if draw(st.booleans()):
@@ -286,7 +312,7 @@ def hostile_recipe_folder(folder: _Path) -> None:
     from voxfab.shape import examples
 
     folder.mkdir(parents=True, exist_ok=True)
-    (folder / "drawing.json").write_text("[[0, 0], [2, 0], [2, 3], [0, 3], [0, 0]]")
+    (folder / "drawing.json").write_text("[[0.5, 0], [2, 0], [2, 3], [0.5, 3], [0.5, 0]]")
     (folder / "drawing.csv").write_text("0,0\n1,0\n1,2\n0,2\n0,0\n")
     (folder / "drawing.svg").write_text(
         '<svg xmlns="http://www.w3.org/2000/svg"><path d="M0 0 L10 0 L10 10 Z"/></svg>')
@@ -395,6 +421,24 @@ def command_parser(command: str):  # noqa: ANN201 - argparse type
     return sub.choices[command]
 
 
+def _numeric(action: object) -> type | None:
+    """``float`` or ``int`` for an option whose argparse type takes numbers (builtin or voxfab's own)."""
+    kind = getattr(action, "type", None)
+    if kind in (int, float) or kind is None or kind in (str, _Path):
+        return kind if kind in (int, float) else None
+    for sample, result in (("2.5", float), ("3", int)):
+        try:
+            kind(sample)
+        except Exception:  # noqa: BLE001, S112 - probing an unknown converter
+            continue
+        try:
+            kind("not a number")
+        except Exception:  # noqa: BLE001 - refuses text: a number option
+            return result
+        return None
+    return None
+
+
 @st.composite
 def argv_for(draw: st.DrawFn, command: str, positionals: dict[str, st.SearchStrategy[str]],
              fixed: tuple[str, ...] = ()) -> list[str]:
@@ -416,7 +460,7 @@ def argv_for(draw: st.DrawFn, command: str, positionals: dict[str, st.SearchStra
     for action in actions:
         if not action.option_strings:
             continue
-        if not action.required and (draw(st.integers(0, 3)) > 0 or exclusive.get(id(action), -1) in taken):
+        if not action.required and (draw(st.integers(0, 4)) > 0 or exclusive.get(id(action), -1) in taken):
             continue
         if id(action) in exclusive:
             taken.add(exclusive[id(action)])
@@ -427,9 +471,9 @@ def argv_for(draw: st.DrawFn, command: str, positionals: dict[str, st.SearchStra
             argv.append(flag)
         elif action.choices:
             good = st.sampled_from(list(action.choices))
-            argv += [flag, draw(st.one_of(good, good, good, st.sampled_from(NASTY_TEXT)))]
-        elif action.type in (int, float):
-            argv.append(f"{flag}={draw(number_text(action.type))}")
+            argv += [flag, draw(st.one_of(good, good, good, good, good, st.sampled_from(NASTY_TEXT)))]
+        elif _numeric(action) is not None:
+            argv.append(f"{flag}={draw(number_text(_numeric(action)))}")
         else:
             argv.append(f"{flag}={draw(st.sampled_from(NASTY_TEXT))}")
     return argv + list(fixed)
@@ -443,6 +487,8 @@ OUTPUT_NAMES = {
     "render": ["r.png", "r.pdf", "r.gif", "missing/r.png", "folder", "r.bmp"],
     "convert": ["c.npy", "c.npz", "c.txt", "c.vox", "c.binvox", "c.stl", "missing/c.npy", "folder"],
 }
+#: Hostile files given to options that read a side input (--net, --constraints).
+SIDE_INPUTS = ["missing.json", "binary.json", "deep.json", "bigint.json", "fifo.json", "folder", "bar.npy"]
 #: Options added to every command line: net searches are bounded by time.
 CLI_FIXED = {"net": ("--timeout", "2")}
 #: Commands fuzzed through their options.
@@ -463,6 +509,14 @@ def cli_corpus(folder: _Path) -> None:
     (folder / "file.txt").write_text("not a folder")
     (folder / "bad.npy").write_bytes(b"\x93NUMPY garbage")
     (folder / "out").mkdir(exist_ok=True)
+    # Hostile side inputs (--net, --constraints, --repo): binary, deep, huge numbers, a FIFO.
+    (folder / "binary.json").write_bytes(bytes(range(256)))
+    (folder / "deep.json").write_text("[" * 100000)
+    (folder / "bigint.json").write_text('{"cut": [[[0, 0, ' + "9" * 5000 + ', "+z"]]]}')
+    if not (folder / "fifo.json").exists():
+        import os
+
+        os.mkfifo(folder / "fifo.json")
 
 
 def cli_positionals(folder: _Path, command: str) -> dict[str, st.SearchStrategy[str]]:
@@ -473,12 +527,13 @@ def cli_positionals(folder: _Path, command: str) -> dict[str, st.SearchStrategy[
     positionals = {
         "shape": st.one_of(good, good, bad),
         "input": st.one_of(good, good, bad),
-        "repo": st.just(str(folder / "repo.sqlite")),
+        "repo": st.sampled_from([str(folder / "repo.sqlite"), str(folder / "file.txt"), str(folder / "fifo.json")]),
         "recipes": st.just(str(folder / "none.toml")),
+        "constraints": st.sampled_from([str(folder / n) for n in SIDE_INPUTS]),
     }
     if command in OUTPUT_NAMES:
         names = [str(folder / "out" / n) if not n.startswith(("folder", "file")) else str(folder / n)
                  for n in OUTPUT_NAMES[command]]
         positionals["output"] = st.one_of(st.sampled_from(names[:2]), st.sampled_from(names))
-        positionals["net"] = st.sampled_from([str(folder / "out" / "n.json"), str(folder / "missing.json")])
+        positionals["net"] = st.sampled_from([str(folder / "out" / "n.json"), *(str(folder / n) for n in SIDE_INPUTS)])
     return positionals

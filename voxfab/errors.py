@@ -134,5 +134,5 @@ EXIT_CODES: dict[type[VoxfabError], int] = {
     RepositoryError: 8,
     MissingDependencyError: 9,
     FabricationError: 10,
-    LimitError: 11,
+    LimitError: 12,
 }

@@ -88,3 +88,14 @@ def test_big_dowels_are_a_warning_not_a_silent_success(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "without dowels" in err and err.count("voxfab: warning:") >= 1
     assert main([*argv, "--strict"]) == STRICT_EXIT
+
+
+def test_build_ends_with_the_warnings_and_strict_fails(tmp_path, capsys):
+    np.save(tmp_path / "b.npy", examples.box(3, 3, 3))
+    recipe = tmp_path / "b.toml"
+    recipe.write_text('pitch = 3.0\n[source]\nfile = "b.npy"\n[outputs.slices]\ndowel = 0.0\n')
+    assert main(["build", str(recipe), "-o", str(tmp_path / "out")]) == 0
+    err = capsys.readouterr().err.splitlines()
+    assert "voxfab: warning: b: slices: plates without dowels (dowel = 0): align the stack by the scored outlines" in err
+    assert main(["build", str(recipe), "-o", str(tmp_path / "out"), "--strict"]) == STRICT_EXIT
+    assert main(["build", str(recipe), "--check", "--strict"]) == 0  # checking builds nothing: no warnings

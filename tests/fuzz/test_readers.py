@@ -28,7 +28,9 @@ def test_mutated_files_read_or_fail_cleanly(corpus, ext):
     folder, valid = corpus
     outcomes = []
 
-    @settings(max_examples=20 if ext in (".stl", ".stl-ascii", ".obj", ".ply", ".3mf") else 30, database=None)
+    meshes = (".stl", ".stl-ascii", ".obj", ".ply", ".3mf")
+
+    @settings(max_examples=20 if ext in meshes else 30, database=None, derandomize=True)
     @given(data=st.one_of(mutated(valid[ext]), st.binary(max_size=64)))
     def fuzz(data):
         path = put(folder / "fuzz", ext, data)

@@ -15,6 +15,7 @@ MAX_INTEGER_DIGITS     30 digits                     integers in JSON files
 MAX_PIXELS             16,777,216 (4096 x 4096)      bitmaps (drawings, profiles, PNG slices)
 MAX_SAMPLES            100,000                       samples of a maker's curve (tube spine)
 MAX_FOCI               256                           foci of the focal maker
+MAX_SEARCH_CELLS       16,777,216                    cells of the tube maker's search grid
 MAX_TRIANGLES          1,000,000                     triangles read from a mesh file
 MAX_MESH_BYTES         64 MiB                        size of a mesh file (3MF: unpacked)
 MAX_RAY_TESTS          60,000,000                    triangle-column tests to voxelize a mesh
@@ -44,6 +45,7 @@ __all__ = [
     "MAX_PIXELS",
     "MAX_SAMPLES",
     "MAX_FOCI",
+    "MAX_SEARCH_CELLS",
     "MAX_TRIANGLES",
     "MAX_MESH_BYTES",
     "MAX_RAY_TESTS",
@@ -74,6 +76,9 @@ MAX_PIXELS = 4096 * 4096
 MAX_SAMPLES = 100_000
 #: Foci of the focal maker: each adds one distance field to every evaluation.
 MAX_FOCI = 256
+#: Cells of the tube maker's search grid, one per profile radius along the spine's
+#: box: a profile a billion times smaller than its spine would need petabytes.
+MAX_SEARCH_CELLS = 1 << 24
 #: Triangles read from a mesh file.
 MAX_TRIANGLES = 1_000_000
 #: Bytes of a mesh file (a binary STL of 1,000,000 triangles takes 50 MB).

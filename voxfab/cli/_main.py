@@ -118,12 +118,25 @@ def _show_warning(message: Warning | str, category: type[Warning], filename: str
 
 @contextlib.contextmanager
 def _quiet_warnings(debug: bool) -> Iterator[None]:
-    """Show voxfab's warnings as one line; hide library warnings unless ``--debug``."""
+    """Show voxfab's warnings as one line; hide library warnings and log records unless ``--debug``.
+
+    Libraries log through :mod:`logging` (trimesh logs the tracebacks of parsers it
+    falls back from); with no handler configured, Python prints those records on
+    stderr, so a handler that drops them stands in while the command runs.
+    """
+    import logging
+
+    root = logging.getLogger()
+    quiet = logging.NullHandler()
     with warnings.catch_warnings():
         if not debug:
             warnings.simplefilter("default")
             warnings.showwarning = _show_warning
-        yield
+            root.addHandler(quiet)
+        try:
+            yield
+        finally:
+            root.removeHandler(quiet)
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -69,12 +69,13 @@ def run(args: argparse.Namespace) -> int:
     title = name or Path(args.shape).stem
     net = None
     if args.net is not None:
+        from voxfab._shared.limits import read_input_bytes
         from voxfab.unfold import Net
 
-        try:
-            text = args.net.read_text(encoding="utf-8")
-        except OSError as exc:
-            raise InvalidShapeError(f"{args.net}: cannot read the net file ({exc.strerror})") from None
+        try:  # a regular file only: a FIFO would block
+            text = read_input_bytes(args.net, what="a net").decode("utf-8")
+        except UnicodeDecodeError:
+            raise InvalidShapeError(f"{args.net}: the net file is not UTF-8 text") from None
         net = Net.from_json(text)
 
     summary: dict[str, object] = {"output": str(out), "shape": title}

@@ -21,9 +21,9 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
-from voxfab._shared.limits import MAX_SAMPLES, check_count, parse_json, read_input_bytes
+from voxfab._shared.limits import MAX_SAMPLES, MAX_SEARCH_CELLS, check_count, parse_json, read_input_bytes
 from voxfab._shared.validate import check_choice, resolve_input
-from voxfab.errors import InvalidShapeError, VoxfabError
+from voxfab.errors import InvalidShapeError, LimitError, VoxfabError
 
 from ._curves import Curve2D, load_curve
 from ._expr import compile_expression
@@ -275,7 +275,18 @@ def tube_field(
     h = float(np.max(np.linalg.norm(np.diff(x, axis=0), axis=1))) if m > 1 else 0.0
     reach = radius * (1.0 if cp is Cap.FLAT else 1.0) + 2.0 * h
     box_lo, box_hi = x.min(axis=0) - reach, x.max(axis=0) + reach
-    cells_shape = tuple(int(c) for c in np.floor((box_hi - box_lo) / reach).astype(np.int64) + 1)
+    with np.errstate(all="ignore"):
+        cells = np.floor((box_hi - box_lo) / reach) + 1
+    # The search grid has one cell per `reach` of the spine's box: a profile tiny next to
+    # its spine would need more cells than memory holds.
+    count = float(np.prod(cells))
+    if not np.isfinite(count) or count > MAX_SEARCH_CELLS:
+        raise LimitError(
+            f"radius: {radius:g} is too small for a spine {float(np.max(np.abs(x))):g} from its origin: the tube's "
+            f"search grid would need {f'{count:,.0f}' if np.isfinite(count) else 'countless'} cells, over the "
+            f"limit of {MAX_SEARCH_CELLS:,}"
+        )
+    cells_shape = tuple(int(c) for c in cells.astype(np.int64))
     occ = np.zeros(cells_shape, dtype=bool)
     ci = np.floor((x - box_lo) / reach).astype(np.int64)
     for off in np.ndindex(3, 3, 3):

@@ -9,7 +9,6 @@ NET.svg``), and the recipe outputs ``mesh``, ``slices`` and ``pictures``
 
 from __future__ import annotations
 
-import argparse
 import inspect
 import math
 import shutil
@@ -254,8 +253,8 @@ def make_files(job: Job, grid: np.ndarray, *, artefact: str, title: str, pitch: 
             _one(job, target.name, [target])
         else:
             face = options.get("face_mm")
-            args = argparse.Namespace(pitch=face, sheet=options.get("sheet", "A4"))
-            lines = netdraw.write_drawing(VoxelShape(drawn_grid, face if face else pitch), net, target, args,
+            drawing = netdraw.DrawingOptions(pitch=face, sheet=options.get("sheet", "A4"))
+            lines = netdraw.write_drawing(VoxelShape(drawn_grid, face if face else pitch), net, target, drawing,
                                           title=title)
             written = [Path(line[len("wrote "):]) for line in lines if line.startswith("wrote ")]
             job.result["report"] = [line for line in lines if not line.startswith("wrote ")]

@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 
 import ezdxf
+import numpy as np
 import pytest
 
 from voxfab._shared.options import OptionError
@@ -75,3 +76,19 @@ def test_report_counts_and_is_frozen() -> None:
     assert r.sheet_area == pytest.approx(r.sheets * 100 * 100)
     with pytest.raises(AttributeError):
         r.plates = 1  # type: ignore[misc]
+
+
+def test_warnings_name_what_a_maker_must_know() -> None:
+    from voxfab.fabricate.plates import plate_warnings
+
+    box = VoxelShape(examples.box(4, 4, 4), 3.0)
+    assert plate_warnings(make_slices(box, thickness=3.0, sheet="100x100").report) == []
+    drift = plate_warnings(make_slices(box, thickness=3.2, sheet="100x100").report)
+    assert drift == ["the stack is 12.8 mm tall (4 plate layers of 3.2 mm), +0.8 mm from the object's 12 mm"]
+    assert plate_warnings(make_slices(box, thickness=3.0, dowel=0.0, sheet="100x100").report) == [
+        "plates without dowels (dowel = 0): align the stack by the scored outlines"]
+    g = np.zeros((5, 5, 3), bool)
+    g[:2, :2, :] = True
+    g[4, 4, 1] = True  # a loose island in the middle layer
+    islands = plate_warnings(make_slices(VoxelShape(g, 3.0), sheet="100x100").report)
+    assert any(w.startswith("1 loose island(s) touch no plate above or below: 2-2") for w in islands), islands

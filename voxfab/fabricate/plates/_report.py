@@ -162,7 +162,8 @@ def plate_warnings(report: PlatesReport) -> list[str]:
     elif report.dowel_diameter == 0 and report.layers > 1:
         out.append("plates without dowels (dowel = 0): align the stack by the scored outlines")
     if abs(report.drift) > DRIFT_WARNING * report.shape_height:
-        out.append(f"the stack is {report.stack_height:g} mm tall ({report.plates} plates of {report.thickness:g} mm), "
+        levels = round(report.stack_height / report.thickness)
+        out.append(f"the stack is {report.stack_height:g} mm tall ({levels} plate layers of {report.thickness:g} mm), "
                    f"{report.drift:+g} mm from the object's {report.shape_height:g} mm")
     if report.thin:
         out.append(f"{len(report.thin)} piece(s) narrower than {report.min_width:g} mm somewhere: "
