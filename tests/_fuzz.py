@@ -87,8 +87,8 @@ def check_outcome(o: Outcome, *, seconds: float = RUN_SECONDS) -> Outcome:
         assert o.err.count("voxfab: warning:") >= 1 and not o.error_lines, (o.argv, o.err)
         return o
     if o.usage:
-        # argparse's own refusal: usage lines and one "error:" line.
-        assert o.code == 2 and len([x for x in o.err.splitlines() if ": error: " in x]) == 1, (o.argv, o.err)
+        # argparse's own refusal: one "voxfab: error:" line, like every other error.
+        assert o.code == 2 and o.err.splitlines() == o.error_lines and len(o.error_lines) == 1, (o.argv, o.err)
         return o
     assert len(o.error_lines) == 1, (o.argv, o.err)
     assert len(o.error_lines[0]) <= 700, (o.argv, o.error_lines[0][:200])

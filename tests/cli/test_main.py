@@ -1,4 +1,5 @@
 import json
+import re
 import subprocess
 import sys
 
@@ -80,3 +81,20 @@ def test_build_cli_writes_the_folder(tmp_path):
     r = voxfab("build", tmp_path / "bad.toml", "-o", tmp_path / "out")
     assert r.returncode == 7
     assert "bad.toml:3: source.shade: unknown key" in r.stderr
+
+
+@pytest.mark.parametrize(
+    ("args", "pattern"),
+    [
+        (["net", "s.npy", "-o", "n.svg", "--count", "abc"], r"^voxfab: error: net: argument --count: .*'abc'"),
+        (["frob"], r"^voxfab: error: argument COMMAND: invalid choice: 'frob'"),
+        (["repo"], r"^voxfab: error: repo: the following arguments are required: ACTION"),
+        (["info"], r"^voxfab: error: info: the following arguments are required: SHAPE"),
+    ],
+)
+def test_usage_errors_are_one_line(args, pattern):
+    # argparse's refusals read like every other error: one line, exit 2, the help named.
+    r = voxfab(*args)
+    assert r.returncode == 2
+    assert len(r.stderr.splitlines()) == 1 and "usage:" not in r.stderr
+    assert re.match(pattern, r.stderr) and r.stderr.rstrip().endswith("--help)")

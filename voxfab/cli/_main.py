@@ -17,6 +17,7 @@ import traceback
 import warnings
 from collections.abc import Iterator, Sequence
 from pathlib import Path
+from typing import NoReturn
 
 from voxfab._version import __version__
 from voxfab.errors import EXIT_CODES, VoxfabError, VoxfabWarning, one_line
@@ -37,11 +38,23 @@ COMMANDS: dict[str, str] = {
 }
 
 
+class _Parser(argparse.ArgumentParser):
+    """An argument parser whose refusals are one line, like every other voxfab error.
+
+    argparse prints the whole usage block before its message; on a long command
+    line that buries the one fact the user needs, so the usage stays behind ``--help``.
+    Subcommand parsers are made from the same class.
+    """
+
+    def error(self, message: str) -> NoReturn:
+        command = self.prog.partition(" ")[2]  # "net" of "voxfab net"; empty for voxfab itself
+        where = f"{command}: " if command else ""
+        self.exit(2, f"voxfab: error: {where}{message} (see {self.prog} --help)\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
     """Return the argument parser with every available subcommand."""
-    parser = argparse.ArgumentParser(
-        prog="voxfab", description="Fabrication CAD for voxel shapes."
-    )
+    parser = _Parser(prog="voxfab", description="Fabrication CAD for voxel shapes.")
     parser.add_argument("--version", action="version", version=f"voxfab {__version__}")
     parser.add_argument("--debug", action="store_true", help="show tracebacks on errors")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
