@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
+import time
 
 import numpy as np
 
@@ -118,3 +119,15 @@ def test_net_refuses_faces_too_small_for_the_marks(tmp_path):
     assert not (tmp_path / "n.svg").exists()
     r = _run("box.npy", "-o", "n.svg", "--face-size", "5", "--no-numbers", "--no-tabs", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
+
+
+def test_count_stops_at_the_overall_budget(tmp_path):
+    # 50 nets of a radius-8 ball cannot all be found in 2 s: the run ends near the budget and says how many.
+    np.save(tmp_path / "b.npy", examples.ball(8))
+    start = time.perf_counter()
+    r = _run("b.npy", "-o", "net.json", "--count", "50", "--timeout", "2", "--budget", "2", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert time.perf_counter() - start < 60
+    found = json.loads(r.stdout)["nets"]
+    assert 1 <= len(found) < 50
+    assert f"{len(found)} distinct nets found of the 50 asked for" in r.stderr

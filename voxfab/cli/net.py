@@ -130,12 +130,15 @@ def run(args: argparse.Namespace) -> int:
         if args.fit is not None:
             raise InvalidShapeError("--fit: drawings fit their sheet (--sheet); --fit is for JSON nets only")
         found = netdraw.find_sheet_nets(shape.grid, drawing, rng=args.seed, pieces=search.pieces,
-                                        count=search.count, **options)
+                                        count=search.count, budget=search.budget, **options)
         results, drawing = found.nets, found.options
         print_notes(found.notes)
     elif search.count > 1:
-        results = [[n] for n in unfold_many(shape.grid, count=search.count, rng=args.seed,
+        results = [[n] for n in unfold_many(shape.grid, count=search.count, rng=args.seed, budget=search.budget,
                                             fit=_fit(args.fit, face_size), **options)]
+        if len(results) < search.count:
+            print_notes([f"{len(results)} distinct nets found of the {search.count} asked for "
+                         f"within the {search.budget:g} s budget"])
     else:
         found = unfold(shape.grid, rng=args.seed, pieces=search.pieces, fit=_fit(args.fit, face_size), **options)
         results = [found if isinstance(found, list) else [found]]

@@ -71,7 +71,7 @@ def _measured_extent(err: UnfoldError, grid: Any, rng: Any, search: dict[str, An
 
 
 def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str = "one", count: int = 1,
-                    **search: Any) -> SheetNets:
+                    budget: float = 60.0, **search: Any) -> SheetNets:
     """Search nets of ``grid`` that fit the sheet of ``options``.
 
     Parameters
@@ -86,6 +86,8 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
         ``"auto"``: when one piece does not fit, split into the fewest pieces that do.
     count : int
         Distinct one-piece nets wanted.
+    budget : float
+        Seconds for all ``count`` nets together (each also has its ``timeout``).
     **search
         ``strategy``, ``timeout``, ``fill``, ``compact``, ``tab_aware`` for
         :func:`voxfab.unfold.unfold`.
@@ -116,7 +118,7 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     if min(fit) < 1:
         raise InvalidShapeError(f"sheet: {options.sheet} has no room for one {options.pitch:g} mm face with its tabs")
     if count > 1:
-        found = unfold_many(grid, count=count, rng=rng, fit=fit, **search)
+        found = unfold_many(grid, count=count, rng=rng, fit=fit, budget=budget, **search)
         if len(found) < count:
             notes.append(f"{len(found)} distinct nets found of the {count} asked for")
         return SheetNets([[n] for n in found], options, notes)

@@ -33,6 +33,8 @@ class NetOptions(Options):
                             high=MAX_TIMEOUT)
     count: int = option(1, help="write N distinct nets as NAME-1.ext ... NAME-N.ext", low=1, high=MAX_COUNT,
                         recipe=False, metavar="N")
+    budget: float = option(60.0, help="search budget for all the nets of --count together", unit="s", low=0.0,
+                           low_open=True, high=MAX_TIMEOUT, recipe=False)
     pieces: str = option("one", help="auto: when no one-piece net fits the sheet, the fewest pieces, packed on as "
                          "few sheets as possible", choices=("one", "auto"))
     fill: bool = option(False, help="unfold the outer surface only, as if enclosed cavities were filled")
