@@ -26,6 +26,10 @@ format = "stl"
 
 [outputs.net]
 formats = ["svg"]
+face_size = 11.0  # mm: the smallest paper face that carries 2 mm four-digit numbers and 3 mm tabs
+sheet = "A1"
+fill = true
+pieces = "auto"
 
 [outputs.pictures]
 """
