@@ -10,9 +10,11 @@ from pathlib import Path
 
 from voxfab._shared.typing import BoolGrid
 
-__all__ = ["draw_thumbnails", "write_index", "SHEET_SHAPES", "INDEX_NAME"]
+__all__ = ["draw_thumbnails", "write_index", "SHEET_SHAPES", "INDEX_NAME", "THUMBS"]
 
 INDEX_NAME = "index.html"
+#: Folder of the thumbnails, beside the index page.
+THUMBS = "thumbs"
 #: Shapes per contact sheet; a bigger batch gets ``contact_sheet_2.png`` and so on.
 SHEET_SHAPES = 400
 #: Unfolding budget for a net thumbnail when the batch builds no net (the first call in a fresh
@@ -95,8 +97,6 @@ def write_index(outdir: Path, shapes: dict[str, dict[str, object]], *, tile: int
     """
     from voxfab._shared.atomic import write_text
     from voxfab.render import save_picture
-
-    from ._task import THUMBS
 
     thumbs = outdir / THUMBS
     names = sorted(shapes)

@@ -18,11 +18,12 @@ from pathlib import Path
 
 from voxfab.errors import RecipeError, VoxfabError
 
-__all__ = ["BatchTask", "Outcome", "build_task", "recipe_text", "done", "THUMBS"]
+from ._index import THUMBS
 
-#: Folder of DIR holding the per-shape recipes, and the index thumbnails.
+__all__ = ["BatchTask", "Outcome", "build_task", "recipe_text", "done"]
+
+#: Folder of DIR holding the per-shape recipes.
 RECIPES = "recipes"
-THUMBS = "thumbs"
 #: Side in pixels of the index thumbnails.
 THUMB_SIZE = 160
 

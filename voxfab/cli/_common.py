@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import re
 import sys
 from collections.abc import Sequence
 from pathlib import Path
@@ -12,8 +11,6 @@ from typing import Any
 
 from voxfab.shape import VoxelShape
 
-#: A repository name: 5-digit volume, a dot, 3-digit rank.
-NAME_PATTERN = re.compile(r"^\d{5}\.\d{3}$")
 DEFAULT_REPOSITORY = Path("output") / "repository.sqlite"
 #: Exit status of a command run with ``--strict`` that ended with warnings.
 STRICT_EXIT = 11
@@ -73,6 +70,8 @@ def load_scaled_shape(
         ShapeOptions(pitch=pitch)  # checked before reading
     except OptionError as exc:
         raise OptionError("--pitch", exc.reason) from None
+    from voxfab.repo import NAME_PATTERN
+
     if NAME_PATTERN.match(spec) and not Path(spec).exists():
         from voxfab.repo import Repository
 
