@@ -154,6 +154,16 @@ def _warm_aside(groups: tuple[str, ...]) -> None:
     warm_up(groups, processes=1)
 
 
+def _idle_core() -> bool:
+    """Whether a second process would find a core to itself (on a busy machine it only takes turns)."""
+    cores = _cores()
+    try:
+        busy = os.getloadavg()[0]
+    except (AttributeError, OSError):  # no load average on this platform
+        busy = 0.0
+    return cores >= 2 and busy <= cores - 1
+
+
 class Aside:
     """Kernel groups compiling in a side process; :meth:`wait` before the work that calls them.
 
@@ -199,13 +209,14 @@ class Aside:
 def compile_aside(groups: Sequence[str]) -> Aside:
     """Start compiling those of ``groups`` not yet compiled in a side process.
 
-    Nothing starts on a single core (the side process would only take turns with
-    this one), inside a daemonic worker, or when every group is compiled, so a
-    warm build pays only the cache check.
+    Nothing starts without an idle core (on one core, or one whose other cores are
+    busy, the side process would only take turns with this one; measured on 2
+    busy cores it made the first build slower), inside a daemonic worker, or
+    when every group is compiled, so a warm build pays only the cache check.
     """
     import multiprocessing
 
     # A pool's worker (a batch) is daemonic and may not start processes of its own.
-    if not groups or _cores() < 2 or multiprocessing.current_process().daemon:
+    if not groups or not _idle_core() or multiprocessing.current_process().daemon:
         return Aside(())
     return Aside([g for g in dict.fromkeys(groups) if not is_compiled(g)])
