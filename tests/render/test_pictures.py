@@ -5,7 +5,7 @@ import pytest
 from _handnets import tree_net
 from PIL import Image
 
-from voxfab.errors import UnknownFormatError
+from voxfab.errors import InvalidShapeError, UnknownFormatError
 from voxfab.render import (
     Picture,
     PictureKind,
@@ -65,3 +65,16 @@ def test_a_wrong_extension_is_refused_before_anything_is_written(tmp_path, kind,
     with pytest.raises(UnknownFormatError, match="can be written as"):
         render_pictures(BAR, PictureOptions(size=64), tmp_path, name="bar", seed=0, pictures=pics)
     assert not list(tmp_path.iterdir())
+
+
+@pytest.mark.parametrize(("fields", "text"), [({"kind": "paint"}, "unknown kind 'paint'"),
+                                              ({"view": "top"}, "unknown view 'top'"),
+                                              ({"size": 8}, "size: expected"), ({"size": True}, "size: expected")])
+def test_a_picture_refuses_what_cannot_be_drawn(fields, text):
+    with pytest.raises(InvalidShapeError, match=text):
+        Picture(**{"kind": "view", "path": "a.png", **fields})
+
+
+def test_a_picture_named_by_string_is_the_same_kind():
+    assert Picture("triptych", "t.pdf").kind is PictureKind.TRIPTYCH
+    assert Picture("triptych", "t.pdf").purpose() == "net | slices | 3D as a one-page PDF"

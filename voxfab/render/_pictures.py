@@ -14,7 +14,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from voxfab.errors import UnknownFormatError
+from voxfab.errors import InvalidShapeError, UnknownFormatError
 
 from ._options import PictureOptions
 from ._views import View
@@ -48,6 +48,12 @@ PICTURE_FORMATS: dict[PictureKind, tuple[str, ...]] = {
     PictureKind.TURNTABLE: (".gif",),
 }
 
+# What each kind shows, for the list of files written (a view also names its view).
+_SHOWS = {PictureKind.SLICES: "the layers bottom up, each numbered", PictureKind.TRIPTYCH: "net | slices | 3D",
+          PictureKind.NET: "the net with folds, tabs and seam numbers",
+          PictureKind.TURNTABLE: "the shape turning once around its vertical axis"}
+# The picture sides PictureOptions allows, px.
+_SIZES = (16, 8192)
 # What a kind is called in an error message.
 _NAMES = {PictureKind.VIEW: "a 3D picture", PictureKind.SLICES: "a slice sheet", PictureKind.TRIPTYCH: "a triptych",
           PictureKind.NET: "a net picture", PictureKind.TURNTABLE: "a turntable"}
@@ -75,6 +81,20 @@ class Picture:
     view: str = "iso"
     size: int | None = None
 
+    def __post_init__(self) -> None:
+        try:
+            object.__setattr__(self, "kind", PictureKind(self.kind))
+        except ValueError:
+            raise InvalidShapeError(f"picture: unknown kind {self.kind!r}; expected one of "
+                                    f"{', '.join(k.value for k in PictureKind)}") from None
+        if self.view not in {v.value for v in View}:
+            raise InvalidShapeError(f"view: unknown view {self.view!r}; expected one of "
+                                    f"{', '.join(v.value for v in View)}")
+        low, high = _SIZES
+        if self.size is not None and (isinstance(self.size, bool) or not isinstance(self.size, int)
+                                      or not low <= self.size <= high):
+            raise InvalidShapeError(f"size: expected a whole number of px from {low} to {high}, got {self.size!r}")
+
     @property
     def format(self) -> str:
         """The file extension, lower case."""
@@ -84,14 +104,11 @@ class Picture:
         """One line saying what the file shows."""
         if self.kind is PictureKind.VIEW:
             return f"3D picture of the voxels, view {self.view}"
-        if self.kind is PictureKind.TURNTABLE:
-            return "the shape turning once around its vertical axis"
-        shows = {PictureKind.SLICES: "the layers bottom up, each numbered",
-                 PictureKind.TRIPTYCH: "net | slices | 3D", PictureKind.NET: "the net with folds, tabs and seam numbers"}
         if self.format == ".pdf":
-            return f"{shows[self.kind]} as a one-page PDF"
-        return "net | slices | 3D, titled with the shape's name" if self.kind is PictureKind.TRIPTYCH \
-            else shows[self.kind]
+            return f"{_SHOWS[self.kind]} as a one-page PDF"
+        if self.kind is PictureKind.TRIPTYCH:
+            return f"{_SHOWS[self.kind]}, titled with the shape's name"
+        return _SHOWS[self.kind]
 
 
 def view_filename(view: str) -> str:
