@@ -161,7 +161,7 @@ def _idle_core() -> bool:
         busy = os.getloadavg()[0]
     except (AttributeError, OSError):  # no load average on this platform
         busy = 0.0
-    return cores >= 2 and busy <= cores - 1
+    return cores >= 2 and busy < cores - 0.5  # the 1-minute load: most of a core free
 
 
 class Aside:
