@@ -4,9 +4,14 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from voxfab.cli._common import add_repository_option, load_shape, print_json, print_notes
 from voxfab.errors import InvalidShapeError, UnknownFormatError
+
+if TYPE_CHECKING:
+    from voxfab.render import Picture
+    from voxfab.unfold import Net
 
 HELP = "draw a shape: 3D view, turntable GIF, slice sheet, net, triptych, or a repository contact sheet"
 
@@ -35,7 +40,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_option_arguments(parser, PictureOptions)
 
 
-def _picture(args: argparse.Namespace, out: Path, has_net: bool) -> object:
+def _picture(args: argparse.Namespace, out: Path, has_net: bool) -> Picture:
     """The one picture the flags ask for, written at ``out``."""
     from voxfab.render import Picture, PictureKind
 
@@ -68,7 +73,7 @@ def _contact_sheet(args: argparse.Namespace, out: Path, tile: int, background: s
     return 0
 
 
-def _read_net(path: Path) -> object:
+def _read_net(path: Path) -> Net:
     from voxfab._shared.limits import read_input_bytes
     from voxfab.unfold import Net
 
