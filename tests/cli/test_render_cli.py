@@ -141,3 +141,24 @@ def test_triptych_net_comes_from_the_engine_with_the_seed(tmp_path):
                  "--size", "120"]) == 0
     expected = triptych(g, name="b", net=unfold.unfold(g, rng=4), panel=120)
     assert (tmp_path / "t.png").read_bytes() == png_bytes(expected)
+
+
+def test_render_is_the_pictures_pipeline_with_one_picture(tmp_path, capsys):
+    from voxfab.render import Picture, PictureKind, PictureOptions, render_pictures
+
+    g = np.ones((1, 1, 1), dtype=bool)
+    np.save(tmp_path / "c.npy", g)
+    (tmp_path / "c.json").write_text(tree_net(g).to_json())
+    assert main(["render", str(tmp_path / "c.npy"), "--net", str(tmp_path / "c.json"), "-o",
+                 str(tmp_path / "n.pdf"), "--size", "100", "--background", "#eeeeee"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary == {"output": str(tmp_path / "n.pdf"), "shape": "c", "kind": "net", "width": 100, "height": 100}
+    lib = tmp_path / "lib"
+    lib.mkdir()
+    render_pictures(g, PictureOptions(size=100, background="#eeeeee"), lib, name="c", seed=0,
+                    net=tree_net(g), pictures=(Picture(PictureKind.NET, "n.pdf"),))
+    assert (lib / "n.pdf").read_bytes() == (tmp_path / "n.pdf").read_bytes()
+    # A turntable without --size is half the default picture side, as in a recipe.
+    assert main(["render", str(tmp_path / "c.npy"), "-o", str(tmp_path / "t.gif"), "--frames", "2"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert (summary["kind"], summary["width"], summary["frames"]) == ("turntable", 400, 2)

@@ -117,6 +117,17 @@ def test_rotation_sequence():
     assert abs(int(frames[0].sum()) - int(frames[2].sum())) < 0.1 * frames[0].sum()
 
 
+def test_rotations_take_the_tube_keywords_but_phase_and_scale():
+    options = {"radius": 0.4, "twist": 90.0, "cap": "round", "samples": 200, "size": 17}
+    (first,) = tube_rotations(S_CURVE, "(x - 0.5)^2 + y^2 - 0.25", steps=1, **options)
+    # The first frame is the tube itself, cut to the same size.
+    whole = tube(S_CURVE, "(x - 0.5)^2 + y^2 - 0.25", **options)
+    assert first.shape == whole.shape == (17, 17, 17) and first.sum() == whole.sum()
+    for bad in ({"phase": 10.0}, {"scale": 2.0}, {"radius_mm": 1.0}):
+        with pytest.raises(TypeError, match=next(iter(bad))):
+            next(tube_rotations(S_CURVE, steps=2, **bad))
+
+
 def test_spine_from_points_file(tmp_path):
     t = np.linspace(0, 1, 50)
     np.savetxt(tmp_path / "spine.csv", np.stack([t * 5, np.sin(t * 6), np.cos(t * 3)], axis=1), delimiter=",")

@@ -17,13 +17,14 @@ from voxfab.drawing import (
     Fill,
     Lines,
     Page,
+    PlacedImage,
     Polylines,
     WriteOptions,
     page_paths,
     text_polylines,
     write_drawing,
 )
-from voxfab.errors import UnknownFormatError
+from voxfab.errors import InvalidShapeError, UnknownFormatError
 
 SVG = "{http://www.w3.org/2000/svg}"
 
@@ -169,3 +170,60 @@ def test_same_drawing_same_bytes(tmp_path: Path) -> None:
         a = write_drawing(Drawing((page,)), tmp_path / f"a{ext}")
         b = write_drawing(Drawing((page,)), tmp_path / f"b{ext}")
         assert Path(a[0]).read_bytes() == Path(b[0]).read_bytes()
+
+
+def image_page() -> Page:
+    """A 40 x 20 mm page holding a 2 x 2 pixel picture stretched over the box (10, 5)-(30, 15) mm, and a cut line."""
+    pixels = np.array([[[255, 0, 0], [0, 255, 0]], [[0, 0, 255], [255, 255, 0]]], dtype=np.uint8)
+    return Page(40.0, 20.0, layers={"CUT": Polylines.from_segments([(0.0, 2.0)], [(40.0, 2.0)])},
+                images=(PlacedImage(pixels, 10.0, 5.0, 20.0, 10.0),))
+
+
+def quadrant_colours(img: np.ndarray, px_per_mm: float) -> np.ndarray:
+    """Colours at the centres of the box's four quarters: top left, top right, bottom left, bottom right."""
+    h = img.shape[0]
+    at = [(15.0, 12.5), (25.0, 12.5), (15.0, 7.5), (25.0, 7.5)]
+    return np.array([img[int(h - y * px_per_mm), int(x * px_per_mm)] for x, y in at], dtype=int)
+
+
+def test_a_placed_image_fills_its_box_in_png_pdf_and_svg_and_stays_out_of_dxf(tmp_path: Path) -> None:
+    from lxml import etree
+    from PIL import Image
+
+    from voxfab.drawing.svg import page_svg
+
+    page = image_page()
+    expected = np.array([(255, 0, 0), (0, 255, 0), (0, 0, 255), (255, 255, 0)])
+    write_drawing(Drawing((page,)), tmp_path / "i.png", WriteOptions(png_scale=10.0))
+    png = np.asarray(Image.open(tmp_path / "i.png").convert("RGB"))
+    assert png.shape == (200, 400, 3)
+    assert np.abs(quadrant_colours(png, 10.0) - expected).max() <= 8  # resampled to the box
+    assert tuple(png[200 - 20 * 10 // 2, 5 * 10]) == (255, 255, 255)  # paper beside the box
+    # SVG previews embed the picture with y flipped; laser files leave it out.
+    root = etree.fromstring(page_svg(page, lines=Lines.PREVIEW).encode())
+    (image,) = root.findall(f"{SVG}image")
+    assert [image.get(k) for k in ("x", "y", "width", "height")] == ["10", "5", "20", "10"]
+    assert image.get("href").startswith("data:image/png;base64,")
+    assert not etree.fromstring(page_svg(page).encode()).findall(f"{SVG}image")
+    write_drawing(Drawing((page,)), tmp_path / "i.dxf")
+    assert "IMAGE" not in (tmp_path / "i.dxf").read_text()
+    if not shutil.which("pdftoppm"):
+        pytest.skip("pdftoppm (poppler-utils) is not installed")
+    write_drawing(Drawing((page,)), tmp_path / "i.pdf")
+    info = subprocess.run(["pdfinfo", str(tmp_path / "i.pdf")], capture_output=True, text=True, check=True).stdout
+    assert re.search(r"Page size:\s+113.38\d* x 56.69\d* pts", info)  # 40 x 20 mm
+    subprocess.run(["pdftoppm", "-r", "254", "-png", "-singlefile", str(tmp_path / "i.pdf"), str(tmp_path / "r")],
+                   check=True)
+    pdf = np.asarray(Image.open(tmp_path / "r.png").convert("RGB"))
+    assert np.abs(quadrant_colours(pdf, 10.0) - expected).max() <= 8
+    red = (pdf[200 - 20, :, 0] > 200) & (pdf[200 - 20, :, 1] < 80)  # the cut line at y = 2 mm, over the paper
+    assert red.mean() > 0.9
+
+
+def test_a_placed_image_moves_with_its_page_and_refuses_bad_pixels() -> None:
+    page = image_page().shifted((3.0, 4.0), width=50.0, height=30.0)
+    assert (page.images[0].x, page.images[0].y) == (13.0, 9.0)
+    with pytest.raises(InvalidShapeError, match="uint8 RGB"):
+        PlacedImage(np.zeros((2, 2), dtype=np.uint8), 0.0, 0.0, 1.0, 1.0)
+    with pytest.raises(InvalidShapeError, match="positive size"):
+        PlacedImage(np.zeros((1, 1, 3), dtype=np.uint8), 0.0, 0.0, 0.0, 1.0)

@@ -46,13 +46,18 @@ def test_triptych_png_and_pdf_are_deterministic_and_the_pdf_is_sound():
     assert data == pdf_bytes(triptych(BOX, name="two cubes", net=net, panel=200), title="two cubes")
     assert data.startswith(b"%PDF-1.4") and b"CreationDate" not in data and b"ModDate" not in data
     objs = parse_pdf(data)
-    image_obj = objs[5]
+    # The drawing PDF backend: catalog, pages, info, page, content, then the page's image.
+    image_obj = objs[6]
     w, h = img.size
     assert b"/Width %d /Height %d" % (w, h) in image_obj
     stream = image_obj.split(b"stream\n", 1)[1].rsplit(b"\nendstream", 1)[0]
     assert int(re.search(rb"/Length (\d+)", image_obj).group(1)) == len(stream)
     assert zlib.decompress(stream) == img.convert("RGB").tobytes()
-    assert b"(two cubes)" in objs[6]
+    assert b"(two cubes)" in objs[3]
+    # 150 dpi: the page is the picture's size in mm (25.4 mm per 150 px), in points.
+    box = re.search(rb"/MediaBox \[0 0 ([\d.]+) ([\d.]+)\]", objs[4]).groups()
+    assert [float(v) for v in box] == pytest.approx([w * 72 / 150, h * 72 / 150], abs=1e-3)
+    assert b"/Im0 6 0 R" in objs[4] and b"/Im0 Do" in zlib.decompress(objs[5].split(b"stream\n", 1)[1][:-10])
 
 
 def test_without_a_net_engine_or_net_the_panel_says_why(monkeypatch):

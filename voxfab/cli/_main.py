@@ -35,6 +35,7 @@ COMMANDS: dict[str, str] = {
     "studio": "voxfab.cli.studio",
     "explore": "voxfab.cli.explore",
     "batch": "voxfab.cli.batch",
+    "warmup": "voxfab.cli.warmup",
 }
 
 

@@ -4,9 +4,14 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from voxfab.cli._common import add_repository_option, load_shape, print_json, print_notes
 from voxfab.errors import InvalidShapeError, UnknownFormatError
+
+if TYPE_CHECKING:
+    from voxfab.render import Picture
+    from voxfab.unfold import Net
 
 HELP = "draw a shape: 3D view, turntable GIF, slice sheet, net, triptych, or a repository contact sheet"
 
@@ -35,76 +40,79 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_option_arguments(parser, PictureOptions)
 
 
-def _suffix(path: Path, allowed: tuple[str, ...], what: str) -> str:
-    ext = path.suffix.lower()
-    if ext not in allowed:
-        raise UnknownFormatError(f"{path}: {what} can be written as {' or '.join(allowed)}, not {ext or 'no extension'!r}")
-    return ext
+def _picture(args: argparse.Namespace, out: Path, has_net: bool) -> Picture:
+    """The one picture the flags ask for, written at ``out``."""
+    from voxfab.render import Picture, PictureKind
+
+    # --size is the picture's side; without it a turntable takes the pipeline's half size.
+    if args.triptych:
+        return Picture(PictureKind.TRIPTYCH, out.name, size=args.size)
+    if args.slices:
+        return Picture(PictureKind.SLICES, out.name, size=args.size)
+    if has_net:
+        return Picture(PictureKind.NET, out.name, size=args.size)
+    ext = out.suffix.lower()
+    if ext not in (".png", ".gif"):
+        raise UnknownFormatError(f"{out}: a 3D picture can be written as .png or .gif, not {ext or 'no extension'!r}")
+    if ext == ".gif":
+        return Picture(PictureKind.TURNTABLE, out.name, size=args.size)
+    return Picture(PictureKind.VIEW, out.name, view=args.view, size=args.size)
+
+
+def _contact_sheet(args: argparse.Namespace, out: Path, tile: int, background: str) -> int:
+    from voxfab import render
+
+    if args.shape is not None:
+        raise InvalidShapeError("render --contact-sheet: takes no SHAPE, only --repo PATH")
+    if out.suffix.lower() not in (".png", ".pdf"):
+        raise UnknownFormatError(f"{out}: a contact sheet can be written as .png or .pdf, "
+                                 f"not {out.suffix.lower() or 'no extension'!r}")
+    image = render.repository_contact_sheet(args.repo, tile=tile, background=background)
+    render.save_picture(image, out, title=str(args.repo))
+    print_json({"output": str(out), "kind": "contact-sheet", "width": image.width, "height": image.height})
+    return 0
+
+
+def _read_net(path: Path) -> Net:
+    from voxfab._shared.limits import read_input_bytes
+    from voxfab.unfold import Net
+
+    try:  # a regular file only: a FIFO would block
+        text = read_input_bytes(path, what="a net").decode("utf-8")
+    except UnicodeDecodeError:
+        raise InvalidShapeError(f"{path}: the net file is not UTF-8 text") from None
+    return Net.from_json(text)
 
 
 def run(args: argparse.Namespace) -> int:
-    """Draw the requested picture and print a JSON summary."""
+    """Draw the requested picture through the pictures pipeline and print a JSON summary."""
     from voxfab import render
-    from voxfab._shared.atomic import check_output, write_bytes
+    from voxfab._shared.atomic import check_output
     from voxfab.cli._options import options_from_args
 
     out: Path = args.output
     check_output(out)  # an existing folder, before the drawing
-    # The default size depends on the picture: 200 px per contact-sheet tile, 400 for a GIF, else 800.
-    size = 200 if args.contact_sheet else 400 if out.suffix.lower() == ".gif" and not (args.triptych or args.slices) \
-        else 800
-    o = options_from_args(render.PictureOptions, args, size=args.size if args.size is not None else size)
     if args.contact_sheet:
-        if args.shape is not None:
-            raise InvalidShapeError("render --contact-sheet: takes no SHAPE, only --repo PATH")
-        _suffix(out, (".png", ".pdf"), "a contact sheet")
-        image = render.repository_contact_sheet(args.repo, tile=o.size, background=o.background)
-        render.save_picture(image, out, title=str(args.repo))
-        print_json({"output": str(out), "kind": "contact-sheet", "width": image.width, "height": image.height})
-        return 0
+        # A repository picture, not a shape's: tiles of 200 px unless --size says otherwise.
+        o = options_from_args(render.PictureOptions, args, size=args.size if args.size is not None else 200)
+        return _contact_sheet(args, out, o.size, o.background)
+    o = options_from_args(render.PictureOptions, args)
     if args.shape is None:
         raise InvalidShapeError("render: SHAPE is required (a file or a repository name)")
+    picture = _picture(args, out, args.net is not None)
     shape, name, notes = load_shape(args.shape, args.repo)
     print_notes(notes)
     title = name or Path(args.shape).stem
-    net = None
-    if args.net is not None:
-        from voxfab._shared.limits import read_input_bytes
-        from voxfab.unfold import Net
-
-        try:  # a regular file only: a FIFO would block
-            text = read_input_bytes(args.net, what="a net").decode("utf-8")
-        except UnicodeDecodeError:
-            raise InvalidShapeError(f"{args.net}: the net file is not UTF-8 text") from None
-        net = Net.from_json(text)
-
-    summary: dict[str, object] = {"output": str(out), "shape": title}
-    if args.triptych:
-        _suffix(out, (".png", ".pdf"), "a triptych")
-        image = render.triptych(shape, name=title, rng=args.seed, net=net, panel=o.size,
-                                background=o.background, color=o.color)
-        render.save_picture(image, out, title=title)
-        summary.update(kind="triptych", seed=args.seed)
-    elif args.slices:
-        _suffix(out, (".png", ".pdf"), "a slice sheet")
-        image = render.slice_sheet(shape, size=o.size, background=o.background, color=o.color)
-        render.save_picture(image, out, title=title)
-        summary.update(kind="slices")
-    elif net is not None:
-        _suffix(out, (".png", ".pdf"), "a net picture")
-        image = render.net_picture(net, shape, size=o.size, background=o.background)
-        render.save_picture(image, out, title=title)
-        summary.update(kind="net")
-    elif _suffix(out, (".png", ".gif"), "a 3D picture") == ".gif":
-        frames = render.save_turntable(shape, out, frames=o.frames, size=o.size, background=o.background,
-                                       color=o.color)
-        summary.update(kind="turntable", frames=frames, width=o.size, height=o.size)
-        print_json(summary)
-        return 0
-    else:
-        image = render.render(shape, view=args.view, size=o.size, background=o.background, color=o.color)
-        write_bytes(out, render.png_bytes(image))
-        summary.update(kind="view", view=args.view)
-    summary.update(width=image.width, height=image.height)
+    net = _read_net(args.net) if args.net is not None else None
+    made = render.render_pictures(shape, o, out.parent, name=title, seed=args.seed, net=net, pictures=(picture,))
+    drawn = dict(made.report["pictures"][0])
+    kind = drawn.pop("kind")
+    del drawn["path"]
+    summary: dict[str, object] = {"output": str(out), "shape": title, "kind": kind}
+    if kind == "triptych":
+        summary["seed"] = args.seed
+    elif kind == "view":
+        summary["view"] = args.view
+    summary.update(drawn)
     print_json(summary)
     return 0

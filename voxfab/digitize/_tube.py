@@ -12,11 +12,14 @@ closest point, not the self-intersecting sweep.
 
 from __future__ import annotations
 
+import functools
+import inspect
 import math
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from enum import Enum
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -389,6 +392,9 @@ def _build(
     spine: str | Sequence[str] | npt.ArrayLike,
     profile: str | Callable[..., npt.ArrayLike] | Curve2D,
     *,
+    radius: float,
+    twist: float,
+    cap: Cap | str,
     base_dir: Path | None,
     t_min: float,
     t_max: float,
@@ -397,10 +403,16 @@ def _build(
     frame: Frame | str,
     threshold: float,
     stroke: float | None,
-) -> tuple[Spine, Curve2D]:
+) -> Callable[[float], Field]:
+    """Read the spine and the profile once; return the tube's field at a profile phase (degrees)."""
     pts, is_closed = load_spine(spine, base_dir=base_dir, t_min=t_min, t_max=t_max, samples=samples, closed=closed)
     sp = spine_frames(pts, is_closed, frame)
-    return sp, _profile(profile, base_dir=base_dir, threshold=threshold, stroke=stroke)
+    pr = _profile(profile, base_dir=base_dir, threshold=threshold, stroke=stroke)
+    return functools.partial(_field_at_phase, sp, pr, radius, twist, cap)
+
+
+def _field_at_phase(sp: Spine, pr: Curve2D, radius: float, twist: float, cap: Cap | str, phase: float) -> Field:
+    return tube_field(sp, pr, radius=radius, twist=twist, phase=phase, cap=cap)
 
 
 def tube(
@@ -433,11 +445,11 @@ def tube(
     largest radius 1, then scaled to ``radius``. Other options: see
     :func:`tube_field` and :func:`voxfab.digitize.fit`.
     """
-    sp, pr = _build(
-        spine, profile, base_dir=base_dir, t_min=t_min, t_max=t_max, samples=samples, closed=closed,
-        frame=frame, threshold=threshold, stroke=stroke,
+    field_at = _build(
+        spine, profile, radius=radius, twist=twist, cap=cap, base_dir=base_dir, t_min=t_min, t_max=t_max,
+        samples=samples, closed=closed, frame=frame, threshold=threshold, stroke=stroke,
     )
-    return fit(tube_field(sp, pr, radius=radius, twist=twist, phase=phase, cap=cap), k=k, mode=mode, size=size, scale=scale)
+    return fit(field_at(phase), k=k, mode=mode, size=size, scale=scale)
 
 
 def tube_rotations(
@@ -446,34 +458,28 @@ def tube_rotations(
     *,
     steps: int = 12,
     turn: float = 360.0,
-    radius: float = 1.0,
-    twist: float = 0.0,
-    frame: Frame | str = "rmf",
-    cap: Cap | str = "flat",
-    closed: bool | None = None,
-    t_min: float = 0.0,
-    t_max: float = 1.0,
-    samples: int = 1024,
-    k: int = 0,
-    mode: Mode | str = "solid",
-    size: int = 25,
-    base_dir: Path | None = None,
-    threshold: float = 0.5,
-    stroke: float | None = None,
+    **tube_options: Any,
 ) -> Iterator[np.ndarray]:
     """Yield ``steps`` tubes as the profile rotates by ``turn`` degrees in all (for animation).
 
-    Every frame uses the scale and grid window fitted for the first one, so
-    the frames line up.
+    ``tube_options`` are the keywords of :func:`tube` (``radius``, ``twist``,
+    ``frame``, ``cap``, ``size``, ...) but ``phase``, which each frame sets, and
+    ``scale``: every frame uses the scale and grid window fitted for the first
+    one, so the frames line up.
     """
     if isinstance(steps, bool) or int(steps) != steps or steps < 1:
         raise InvalidShapeError(f"steps: expected a positive integer, got {steps!r}")
-    sp, pr = _build(
-        spine, profile, base_dir=base_dir, t_min=t_min, t_max=t_max, samples=samples, closed=closed,
-        frame=frame, threshold=threshold, stroke=stroke,
-    )
-    first = tube_field(sp, pr, radius=radius, twist=twist, phase=0.0, cap=cap)
-    placement, g0 = fit_scale(first, k=k, mode=mode, size=size)
+    for own in ("phase", "scale"):
+        if own in tube_options:
+            raise TypeError(f"tube_rotations() got an unexpected keyword argument {own!r}")
+    # One declaration of the tube's keywords and defaults: tube's signature.
+    bound = inspect.signature(tube).bind(spine, profile, **tube_options)
+    bound.apply_defaults()
+    opts = dict(bound.arguments)
+    k, mode, size = opts.pop("k"), opts.pop("mode"), opts.pop("size")
+    del opts["phase"], opts["scale"]
+    field_at = _build(**opts)
+    placement, g0 = fit_scale(field_at(0.0), k=k, mode=mode, size=size)
     start = []
     for axis in range(3):
         idx = np.flatnonzero(g0.any(axis=tuple(a for a in range(3) if a != axis)))
@@ -481,8 +487,7 @@ def tube_rotations(
         start.append(int(np.clip(lo, 0, g0.shape[axis] - size)))
     window = tuple(slice(s, s + size) for s in start)
     for i in range(int(steps)):
-        fld = tube_field(sp, pr, radius=radius, twist=twist, phase=turn * i / steps, cap=cap)
-        g = g0 if i == 0 else render(fld, placement, k=k, mode=mode)
+        g = g0 if i == 0 else render(field_at(turn * i / steps), placement, k=k, mode=mode)
         if _extent(g) == 0:
             raise InvalidShapeError(f"tube: frame {i} is empty")
         yield g[window].copy()

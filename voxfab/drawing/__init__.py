@@ -3,7 +3,8 @@
 Every flat output of voxfab (paper nets, slice plates, the net picture of the
 triptych) is a :class:`Drawing`: pages of :class:`Polylines` sorted into the
 layers of one table, :data:`LAYERS` (CUT, SCORE, MOUNTAIN, VALLEY, GRID, LABEL
-with their colours, dash styles and visible widths), plus circles and fills.
+with their colours, dash styles and visible widths), plus circles, fills and
+placed raster pictures (:class:`PlacedImage`: the pictures' PDFs, a triptych on a page).
 Text is single-stroke (:func:`text_polylines`), so no file needs a font.
 
 Backends, one module each, imported on first use:
@@ -37,7 +38,7 @@ from ._layers import (
     parse_colors,
 )
 from ._legend import Legend
-from ._model import Drawing, Fill, Page
+from ._model import Drawing, Fill, Page, PlacedImage
 from ._polylines import Polylines
 
 __all__ = [
@@ -53,6 +54,7 @@ __all__ = [
     "Legend",
     "Lines",
     "Page",
+    "PlacedImage",
     "Polylines",
     "WriteOptions",
     "aci",

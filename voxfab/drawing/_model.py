@@ -1,9 +1,10 @@
-"""Pages and drawings: layered polylines, circles and preview fills in millimetres."""
+"""Pages and drawings: layered polylines, circles, preview fills and placed raster pictures in millimetres."""
 
 from __future__ import annotations
 
 import dataclasses
 from collections.abc import Mapping
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -37,6 +38,42 @@ class Fill:
         return int(c[1:3], 16), int(c[3:5], 16), int(c[5:7], 16)
 
 
+@dataclasses.dataclass(frozen=True, eq=False)
+class PlacedImage:
+    """A raster picture placed in a box of the page (previews and prints; never sent to a laser).
+
+    Attributes
+    ----------
+    pixels : (rows, columns, 3) uint8 ndarray
+        RGB pixels, the first row at the top of the box.
+    x, y : float
+        Lower-left corner of the box, mm.
+    width, height : float
+        Size of the box, mm; the pixels are stretched to fill it.
+    """
+
+    pixels: npt.NDArray[np.uint8]
+    x: float
+    y: float
+    width: float
+    height: float
+
+    def __post_init__(self) -> None:
+        p = self.pixels
+        if p.dtype != np.uint8 or p.ndim != 3 or p.shape[2] != 3 or not p.shape[0] or not p.shape[1]:
+            raise InvalidShapeError(f"drawing: an image is (rows, columns, 3) uint8 RGB pixels, got {p.dtype} "
+                                    f"{p.shape}")
+        if not (self.width > 0 and self.height > 0):
+            raise InvalidShapeError(f"drawing: an image box needs a positive size, got {self.width} x {self.height}")
+
+    @classmethod
+    def of(cls, picture: Any, *, x: float, y: float, width: float, height: float) -> PlacedImage:
+        """Place ``picture`` (a Pillow image or an RGB array) in the box at ``(x, y)``."""
+        rgb = picture.convert("RGB") if hasattr(picture, "convert") else picture
+        return cls(np.ascontiguousarray(np.asarray(rgb, dtype=np.uint8)), float(x), float(y), float(width),
+                   float(height))
+
+
 def _no_circles() -> npt.NDArray[np.float64]:
     return np.zeros((0, 3))
 
@@ -59,6 +96,9 @@ class Page:
         Circles per layer as ``x, y, radius`` (mm), e.g. dowel holes.
     fills : tuple of Fill
         Areas painted under the lines in previews and prints, in order.
+    images : tuple of PlacedImage
+        Raster pictures painted first, under fills and lines (PDF, PNG and
+        SVG; DXF, for cutting, leaves them out).
     title : str
         Page title (SVG ``<title>``).
     """
@@ -68,6 +108,7 @@ class Page:
     layers: Mapping[str, Polylines]
     circles: Mapping[str, npt.NDArray[np.float64]] = dataclasses.field(default_factory=dict)
     fills: tuple[Fill, ...] = ()
+    images: tuple[PlacedImage, ...] = ()
     title: str = ""
 
     def __post_init__(self) -> None:
@@ -112,6 +153,7 @@ class Page:
             layers={k: v.translated(d) for k, v in self.layers.items()},
             circles={k: v + (d[0], d[1], 0.0) for k, v in self.circles.items()},
             fills=tuple(Fill(f.rings.translated(d), f.color) for f in self.fills),
+            images=tuple(dataclasses.replace(i, x=i.x + float(d[0]), y=i.y + float(d[1])) for i in self.images),
         )
 
     def with_layers(self, extra: Mapping[str, Polylines]) -> Page:

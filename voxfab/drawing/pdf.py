@@ -3,8 +3,9 @@
 The file is written directly (a catalog, one page and one compressed content
 stream per page, and an info dictionary without creation date), so the same
 drawing gives the same bytes.  Lines have the layers' visible widths so a home
-printer shows them clearly; fills are painted first; an optional legend names
-the line styles along the bottom edge.
+printer shows them clearly; placed images are painted first, losslessly
+(Flate-compressed RGB image objects), then fills, then lines; an optional
+legend names the line styles along the bottom edge.
 """
 
 from __future__ import annotations
@@ -20,7 +21,7 @@ from voxfab._shared.atomic import write_bytes
 from ._format import numbers, polyline_text
 from ._layers import DASH_PATTERNS, LAYERS, LayerStyle, Lines
 from ._legend import Legend, legend_layers
-from ._model import Drawing, Page
+from ._model import Drawing, Page, PlacedImage
 from ._polylines import Polylines
 
 __all__ = ["MM", "pdf_document", "page_content", "write_pdf"]
@@ -61,6 +62,9 @@ def page_content(page: Page, *, styles: Mapping[str, LayerStyle] | None = None, 
     st_map = LAYERS if styles is None else styles
     extra = legend_layers(page, legend) if legend else {}
     out = [f"q {MM:.6f} 0 0 {MM:.6f} 0 0 cm 1 J 1 j\n"]
+    for i, image in enumerate(page.images):
+        w, h, x, y = numbers([image.width, image.height, image.x, image.y])
+        out.append(f"q {w} 0 0 {h} {x} {y} cm /Im{i} Do Q\n")
     for fill in page.fills:
         if len(fill.rings):
             out.append(f"{_rgb(fill.rgb)} rg\n{_path_ops(fill.rings)}f*\n")
@@ -83,27 +87,39 @@ def _pdf_text(text: str) -> str:
     return "(" + safe.replace("\\", "\\\\").replace("(", "\\(").replace(")", "\\)") + ")"
 
 
+def _image_object(image: PlacedImage) -> bytes:
+    rows, cols = image.pixels.shape[:2]
+    data = zlib.compress(image.pixels.tobytes(), 6)
+    head = (f"<< /Type /XObject /Subtype /Image /Width {cols} /Height {rows} /ColorSpace /DeviceRGB "
+            f"/BitsPerComponent 8 /Filter /FlateDecode /Length {len(data)} >>\nstream\n")
+    return head.encode("ascii") + data + b"\nendstream"
+
+
 def pdf_document(drawing: Drawing, *, styles: Mapping[str, LayerStyle] | None = None, legend: Legend | None = None,
                  creator: str = "voxfab") -> bytes:
     """A PDF with one true-size page per page of ``drawing``."""
     n = len(drawing.pages)
+    # 1: catalog, 2: pages, 3: info, then per page a page object, its content and its images.
+    firsts = [4 + sum(2 + len(p.images) for p in drawing.pages[:i]) for i in range(n)]
     objects: list[bytes] = []
-    # 1: catalog, 2: pages, 3: info, then per page a page object and its content.
-    kids = " ".join(f"{4 + 2 * i} 0 R" for i in range(n))
+    kids = " ".join(f"{k} 0 R" for k in firsts)
     objects.append(b"<< /Type /Catalog /Pages 2 0 R >>")
     objects.append(f"<< /Type /Pages /Kids [{kids}] /Count {n} >>".encode("ascii"))
     objects.append(f"<< /Title {_pdf_text(drawing.title)} /Producer (voxfab) /Creator {_pdf_text(creator)} >>"
                    .encode("ascii"))
-    for i, page in enumerate(drawing.pages):
+    for first, page in zip(firsts, drawing.pages):
         w, h = numbers([page.width * MM, page.height * MM], decimals=3)
+        xobjects = " ".join(f"/Im{i} {first + 2 + i} 0 R" for i in range(len(page.images)))
+        resources = f"<< /XObject << {xobjects} >> >>" if page.images else "<< >>"
         objects.append(
-            f"<< /Type /Page /Parent 2 0 R /MediaBox [0 0 {w} {h}] /Contents {5 + 2 * i} 0 R "
-            "/Resources << >> >>".encode("ascii")
+            f"<< /Type /Page /Parent 2 0 R /MediaBox [0 0 {w} {h}] /Contents {first + 1} 0 R "
+            f"/Resources {resources} >>".encode("ascii")
         )
         data = zlib.compress(page_content(page, styles=styles, legend=legend), 6)
         objects.append(
             f"<< /Length {len(data)} /Filter /FlateDecode >>\nstream\n".encode("ascii") + data + b"\nendstream"
         )
+        objects += [_image_object(image) for image in page.images]
     out = bytearray(b"%PDF-1.4\n%\xe2\xe3\xcf\xd3\n")
     offsets = []
     for i, body in enumerate(objects):

@@ -19,7 +19,7 @@ from voxfab._shared.atomic import write_bytes
 
 from ._layers import DASH_PATTERNS, LAYERS, LayerStyle, Lines
 from ._legend import Legend, legend_layers
-from ._model import Page
+from ._model import Page, PlacedImage
 from ._polylines import Polylines
 
 if TYPE_CHECKING:
@@ -80,6 +80,24 @@ def even_odd_mask(rings: Polylines, width: int, height: int, to_px) -> npt.NDArr
     return (np.cumsum(toggles, axis=1)[:, :width] % 2).astype(bool)
 
 
+def _paste(pixels: npt.NDArray[np.uint8], placed: PlacedImage, page_height: float, scale: float) -> None:
+    """Resample ``placed`` to its box on ``pixels`` (rows top down), cut at the page's edges."""
+    from PIL import Image
+
+    left, right = round(placed.x * scale), round((placed.x + placed.width) * scale)
+    top, bottom = round((page_height - placed.y - placed.height) * scale), round((page_height - placed.y) * scale)
+    if right <= left or bottom <= top:
+        return
+    src = Image.fromarray(placed.pixels, "RGB")
+    box = np.asarray(src if src.size == (right - left, bottom - top)
+                     else src.resize((right - left, bottom - top), Image.Resampling.LANCZOS))
+    rows, cols = pixels.shape[:2]
+    r0, c0 = max(top, 0), max(left, 0)
+    r1, c1 = min(bottom, rows), min(right, cols)
+    if r1 > r0 and c1 > c0:
+        pixels[r0:r1, c0:c1] = box[r0 - top:r1 - top, c0 - left:c1 - left]
+
+
 def page_image(page: Page, *, scale: float, styles: Mapping[str, LayerStyle] | None = None,
                background: tuple[int, int, int] = (255, 255, 255), legend: Legend | None = None,
                hidden: frozenset[str] = frozenset()) -> Image.Image:
@@ -115,6 +133,8 @@ def page_image(page: Page, *, scale: float, styles: Mapping[str, LayerStyle] | N
 
     pixels = np.empty((h, w, 3), dtype=np.uint8)
     pixels[:] = background
+    for placed in page.images:
+        _paste(pixels, placed, page.height, scale)
     for fill in page.fills:
         pixels[even_odd_mask(fill.rings, w, h, to_px)] = fill.rgb
     image = Image.fromarray(pixels, "RGB")

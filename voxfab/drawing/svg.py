@@ -46,6 +46,23 @@ def _fills(page: Page) -> list[str]:
     return out
 
 
+def _images(page: Page) -> list[str]:
+    """The placed pictures as embedded PNGs, y flipped like the lines."""
+    import base64
+
+    from PIL import Image
+
+    from .png import png_bytes
+
+    out = []
+    for placed in page.images:
+        data = base64.b64encode(png_bytes(Image.fromarray(placed.pixels, "RGB"))).decode("ascii")
+        x, y, w, h = numbers([placed.x, page.height - placed.y - placed.height, placed.width, placed.height])
+        out.append(f'<image x="{x}" y="{y}" width="{w}" height="{h}" preserveAspectRatio="none" '
+                   f'href="data:image/png;base64,{data}"/>\n')
+    return out
+
+
 def page_svg(page: Page, *, styles: Mapping[str, LayerStyle] | None = None, lines: Lines = Lines.LASER) -> str:
     """The SVG document of one page.
 
@@ -55,7 +72,7 @@ def page_svg(page: Page, *, styles: Mapping[str, LayerStyle] | None = None, line
     styles : mapping of str to LayerStyle, optional
         Colour map (default :data:`~voxfab.drawing.LAYERS`).
     lines : Lines
-        ``LASER``: hairlines, no fills; ``PREVIEW``: visible widths and fills.
+        ``LASER``: hairlines, no fills or images; ``PREVIEW``: visible widths, images and fills.
 
     Returns
     -------
@@ -71,8 +88,10 @@ def page_svg(page: Page, *, styles: Mapping[str, LayerStyle] | None = None, line
     ]
     if page.title:
         out.append(f"<title>{escape(page.title)}</title>\n")
-    if lines is Lines.PREVIEW and page.fills:
-        out += _fills(page)
+    if lines is Lines.PREVIEW:
+        out += _images(page)
+        if page.fills:
+            out += _fills(page)
     for name in page.used_layers():
         st = st_map[name]
         dash = DASH_PATTERNS[st.style]

@@ -5,6 +5,7 @@ from __future__ import annotations
 import hashlib
 import json
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -17,6 +18,9 @@ from voxfab.shape import VoxelShape, canonical_key
 from voxfab.shape import _ops as ops
 
 from ._schema import OperationSpec, Recipe, SourceSpec
+
+if TYPE_CHECKING:
+    from voxfab.warmup import Aside
 
 MANIFEST_FORMAT = "voxfab-manifest/1"
 
@@ -78,6 +82,10 @@ def _sha256(path: Path) -> str:
     return hashlib.sha256(path.read_bytes()).hexdigest()
 
 
+#: Outputs that may search a net (the triptych unfolds the shape when no net output ran).
+_UNFOLDING = ("net", "pictures")
+
+
 def build(recipe: Recipe, outdir: PathLike) -> Path:
     """Build a recipe into ``outdir/<recipe.name>/``, replacing it only on success.
 
@@ -87,14 +95,26 @@ def build(recipe: Recipe, outdir: PathLike) -> Path:
         The recipe's output folder, holding ``shape.npy``, ``shape.vox``, each
         output's files and ``manifest.json``.
     """
+    from voxfab.warmup import compile_aside
+
+    target = Path(outdir) / recipe.name
+    check_output(target, folder=True, parents=True, marker="manifest.json")  # before the work
+    # Right after an install the net engine's kernels are not compiled yet: a second
+    # process compiles them while this one makes the shape and the print.
+    unfolds = any(spec.name in _UNFOLDING for spec in recipe.outputs)
+    with compile_aside(["net"] if unfolds else []) as aside:
+        _build_into(recipe, target, aside)
+    return target
+
+
+def _build_into(recipe: Recipe, target: Path, aside: Aside) -> None:
+    """Make the shape and write every output and the manifest into ``target``."""
     from voxfab import io
     from voxfab._shared.progress import progress
     from voxfab.fabricate import OutputFile
 
     from ._outputs import outputs as output_kinds
 
-    target = Path(outdir) / recipe.name
-    check_output(target, folder=True, parents=True, marker="manifest.json")  # before the work
     shape = make_shape(recipe)
     with atomic_dir(target, marker="manifest.json") as tmp:
         io.write(shape.grid, tmp / "shape.npy")
@@ -106,6 +126,8 @@ def build(recipe: Recipe, outdir: PathLike) -> Path:
         warnings: list[str] = []
         kinds = output_kinds()
         for spec in progress(recipe.outputs, desc="outputs"):
+            if spec.name in _UNFOLDING:
+                aside.wait()  # the net kernels are compiled by now, or never will be aside
             settings = spec.settings if spec.settings is not None else kinds[spec.name].parse(dict(spec.options))
             made = kinds[spec.name].run(shape, settings, tmp, name=recipe.name, seed=recipe.seed,
                                       recipe=recipe)
@@ -134,4 +156,3 @@ def build(recipe: Recipe, outdir: PathLike) -> Path:
             ],
         }
         write_text(tmp / "manifest.json", json.dumps(manifest, indent=2, sort_keys=True) + "\n")
-    return target

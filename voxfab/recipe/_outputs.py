@@ -78,10 +78,11 @@ def _run_pictures(shape: VoxelShape, options: Any, outdir: Path, *, name: str, s
 
     del recipe
 
-    # The build runs the `net` output before this one: the triptych draws that very
-    # net instead of searching again (a search may take a while on large shapes).
+    # The build runs the `net` output before this one: the triptych and the net picture
+    # draw that very net instead of searching again (a search may take a while on large shapes).
     net_file = outdir / "net.json"
-    net = Net.from_json(net_file.read_text()) if options.triptych and net_file.exists() else None
+    wants_net = options.triptych or options.net_picture
+    net = Net.from_json(net_file.read_text()) if wants_net and net_file.exists() else None
     return render_pictures(shape, options, outdir, name=name, seed=seed, net=net)
 
 

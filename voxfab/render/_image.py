@@ -1,9 +1,12 @@
-"""Deterministic PNG, PDF and GIF bytes from Pillow images (no dates, no varying metadata)."""
+"""Deterministic PNG, PDF and GIF bytes from Pillow images (no dates, no varying metadata).
+
+PNG and PDF go through the drawing backends (:mod:`voxfab.drawing`), so every
+PDF voxfab writes comes from one writer.
+"""
 
 from __future__ import annotations
 
 import io
-import zlib
 from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -26,59 +29,29 @@ def font(size: int):  # noqa: ANN201 - a PIL font object
 
 
 def png_bytes(image: Image.Image) -> bytes:
-    """PNG bytes of ``image`` with no text or time chunks."""
-    buf = io.BytesIO()
-    image.save(buf, format="PNG", optimize=False, compress_level=6)
-    return buf.getvalue()
+    """PNG bytes of ``image`` with no text or time chunks (the drawing PNG backend's encoder)."""
+    from voxfab.drawing.png import png_bytes as encode
 
-
-def _pdf_string(text: str) -> bytes:
-    escaped = text.replace("\\", "\\\\").replace("(", "\\(").replace(")", "\\)")
-    return b"(" + escaped.encode("latin-1", "replace") + b")"
+    return encode(image)
 
 
 def pdf_bytes(image: Image.Image, *, title: str = "", dpi: float = 150.0) -> bytes:
-    """A one-page PDF showing ``image`` at ``dpi``, losslessly (Flate), with no dates.
+    """A one-page PDF showing ``image`` at ``dpi``, losslessly, with no dates.
 
-    Pillow's own PDF writer stores creation dates and JPEG-compresses RGB images,
-    so the few objects are written here directly.
+    The page is a drawing holding the picture as one placed image, written by the
+    one PDF backend (:mod:`voxfab.drawing.pdf`); Pillow's own PDF writer would
+    store creation dates and JPEG-compress RGB images.
     """
-    rgb = image.convert("RGB")
-    w, h = rgb.size
-    pw, ph = w * 72.0 / dpi, h * 72.0 / dpi
-    data = zlib.compress(rgb.tobytes(), 6)
-    content = f"q {pw:.4f} 0 0 {ph:.4f} 0 0 cm /Im0 Do Q\n".encode("ascii")
-    objects = [
-        b"<< /Type /Catalog /Pages 2 0 R >>",
-        b"<< /Type /Pages /Kids [3 0 R] /Count 1 >>",
-        (
-            f"<< /Type /Page /Parent 2 0 R /MediaBox [0 0 {pw:.4f} {ph:.4f}] "
-            f"/Resources << /XObject << /Im0 5 0 R >> >> /Contents 4 0 R >>"
-        ).encode("ascii"),
-        b"<< /Length %d >>\nstream\n" % len(content) + content + b"\nendstream",
-        (
-            f"<< /Type /XObject /Subtype /Image /Width {w} /Height {h} /ColorSpace /DeviceRGB "
-            f"/BitsPerComponent 8 /Filter /FlateDecode /Length {len(data)} >>\nstream\n"
-        ).encode("ascii")
-        + data
-        + b"\nendstream",
-        b"<< /Title " + _pdf_string(title) + b" /Producer (voxfab) >>",
-    ]
-    out = bytearray(b"%PDF-1.4\n%\xe2\xe3\xcf\xd3\n")
-    offsets = []
-    for i, body in enumerate(objects, start=1):
-        offsets.append(len(out))
-        out += b"%d 0 obj\n" % i + body + b"\nendobj\n"
-    xref = len(out)
-    out += b"xref\n0 %d\n0000000000 65535 f \n" % (len(objects) + 1)
-    for off in offsets:
-        out += b"%010d 00000 n \n" % off
-    out += b"trailer\n<< /Size %d /Root 1 0 R /Info %d 0 R >>\nstartxref\n%d\n%%%%EOF\n" % (
-        len(objects) + 1,
-        len(objects),
-        xref,
-    )
-    return bytes(out)
+    from voxfab.drawing import Drawing, Page, PlacedImage
+    from voxfab.drawing.pdf import pdf_document
+
+    if not dpi > 0:
+        raise InvalidShapeError(f"dpi: expected a positive number, got {dpi!r}")
+    w, h = image.size
+    width, height = w * 25.4 / dpi, h * 25.4 / dpi
+    page = Page(width, height, layers={}, images=(PlacedImage.of(image, x=0.0, y=0.0, width=width, height=height),),
+                title=title)
+    return pdf_document(Drawing((page,), title=title))
 
 
 def gif_bytes(frames: Sequence[Image.Image], *, duration_ms: int = 80, loop: int = 0) -> bytes:

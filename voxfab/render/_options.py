@@ -32,6 +32,7 @@ class PictureOptions(Options):
                                     cli=False)
     triptych: bool = option(True, help="also write triptych.png and triptych.pdf (net | slices | 3D)",
                             cli=False)
+    net_picture: bool = option(False, help="also write net_picture.png, the triptych's net on its own", cli=False)
     turntable: bool = option(False, help="also write turntable.gif", cli=False)
     slices: bool = option(False, help="also write slices.png, the layers bottom up", cli=False)
     frames: int = option(36, help="turntable frames", low=1, high=720)
