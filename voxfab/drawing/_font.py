@@ -99,12 +99,8 @@ def text_width(text: str, height: float) -> float:
     return ((n - 1) * ADVANCE + GLYPH_WIDTH) * height / CAP_HEIGHT
 
 
-#: Characters that read as another one upside down; labels holding one are underlined.
-AMBIGUOUS = frozenset("69")
-
-
 @cache
-def _local(text: str, underline: bool = False) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]:
+def _local(text: str) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]:
     """Points (font units) and stroke lengths of ``text`` laid out from x = 0."""
     pts: list[npt.NDArray[np.float64]] = []
     lengths: list[int] = []
@@ -112,9 +108,6 @@ def _local(text: str, underline: bool = False) -> tuple[npt.NDArray[np.float64],
         for stroke in GLYPHS[glyph_for(ch)]:
             pts.append(stroke + (i * ADVANCE, 0.0))
             lengths.append(len(stroke))
-    if underline and text:
-        pts.append(np.array([[0.0, -1.2], [(len(text) - 1) * ADVANCE + GLYPH_WIDTH, -1.2]]))
-        lengths.append(2)
     if not pts:
         return np.zeros((0, 2)), np.zeros(0, dtype=np.int64)
     return np.concatenate(pts), np.array(lengths, dtype=np.int64)
@@ -127,7 +120,6 @@ def text_polylines(
     height: float | npt.ArrayLike,
     *,
     center: bool = False,
-    mark_ambiguous: bool = False,
 ) -> Polylines:
     """Lay out many strings as single-stroke polylines at once.
 
@@ -143,9 +135,6 @@ def text_polylines(
         Cap height in mm.
     center : bool
         Centre each string horizontally on its origin.
-    mark_ambiguous : bool
-        Underline strings holding a 6 or a 9, which labels seen upside down
-        would otherwise confuse.
 
     Returns
     -------
@@ -156,7 +145,7 @@ def text_polylines(
     origins = np.asarray(origins, dtype=np.float64).reshape(n, 2)
     directions = np.asarray(directions, dtype=np.float64).reshape(n, 2)
     scale = np.broadcast_to(np.asarray(height, dtype=np.float64), (n,)) / CAP_HEIGHT
-    local = [_local(t, mark_ambiguous and not AMBIGUOUS.isdisjoint(t)) for t in texts]
+    local = [_local(t) for t in texts]
     counts = np.array([p.shape[0] for p, _ in local], dtype=np.int64)
     if counts.sum() == 0:
         return Polylines.empty()

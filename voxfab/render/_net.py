@@ -137,13 +137,14 @@ def net_picture(
     fg = np.asarray(parse_color(color, name="color"), dtype=np.float64)
     style = _fold_styles(styles)
     grid = shape_grid(shape)
-    from voxfab.fabricate.netdraw._legible import digits_of, number_ratio
+    from voxfab.fabricate.netdraw._labels import label_length
+    from voxfab.fabricate.netdraw._legible import number_ratio
 
     strip = max(18, h_total // 22) if legend else 0
     scale = _scale(net, width, h_total - strip)
-    # Numbers under a few pixels are specks, not digits: leave them out of small pictures.
+    # Labels under a few pixels are specks, not characters: leave them out of small pictures.
     seams_max = 2 * net.face_count
-    numbers = numbers and number_ratio(digits_of(seams_max)) * _PICTURE_PITCH * scale >= _MIN_DIGIT_PX
+    numbers = numbers and number_ratio(label_length(seams_max)) * _PICTURE_PITCH * scale >= _MIN_DIGIT_PX
     colors = ",".join(f"{FOLD_LAYERS[k]}={LAYERS[FOLD_LAYERS[k]].color}:{v}"
                       for k, v in style.items() if v != HIDDEN)
     options = DrawingOptions(
