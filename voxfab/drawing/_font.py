@@ -1,4 +1,4 @@
-"""A single-stroke font for edge numbers and titles on cutting and engraving layers.
+"""A single-stroke font for seam labels and titles on cutting and engraving layers.
 
 Glyphs are polylines on a 4 × 6 grid (cap height 6, baseline 0), drawn with one
 pass of the pen or laser, so shops never need our fonts installed.  Letters are

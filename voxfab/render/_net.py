@@ -1,7 +1,7 @@
 """Net pictures: the net drawing of :mod:`voxfab.fabricate.netdraw`, rasterized for people.
 
 The picture is the same drawing the paper sheets get (cut outline, glue tabs,
-folds typed mountain/valley/coplanar, edge numbers), laid out to fill the
+folds typed mountain/valley/coplanar, seam labels), laid out to fill the
 picture and drawn by the PNG backend of :mod:`voxfab.drawing`, with the faces
 tinted by their outward direction like the 3D picture.
 """
@@ -115,7 +115,7 @@ def net_picture(
         Line style per fold kind (``"mountain"``, ``"valley"``, ``"flat"``), each one of
         ``"solid"``, ``"dashed"``, ``"dashdot"``, ``"dotted"``, ``"none"``.
     tabs, numbers, legend : bool
-        Draw glue tabs, edge numbers (when they come out at least 7 pixels tall)
+        Draw glue tabs, seam labels (when they come out at least 7 pixels tall)
         and a legend of the line styles.
 
     Returns
