@@ -13,6 +13,7 @@ from voxfab.drawing import Polylines
 from voxfab.errors import FormatError, InvalidShapeError
 from voxfab.fabricate.netdraw import DrawingOptions, draw_net, parse_colors, parse_sheet
 from voxfab.fabricate.netdraw._geometry import merge_unit_segments
+from voxfab.fabricate.netdraw._legible import LABEL_ADVANCE
 from voxfab.fabricate.netdraw._tabs import place_tabs
 from voxfab.shape import examples, surface_graph
 from voxfab.unfold import Net
@@ -256,8 +257,8 @@ def test_long_labels_on_small_faces_stay_inside_and_apart() -> None:
         return len(getattr(u, "geoms", [u]))
 
     # Glyphs of different labels never touch: the blobs are those of each label drawn alone.
-    alone = sum(2 * blobs(text_polylines([label], [(0.0, 0.0)], [(1.0, 0.0)], d.label_height))
-                for label in d.seam_labels)
+    alone = sum(2 * blobs(text_polylines([label], [(0.0, 0.0)], [(1.0, 0.0)], d.label_height,
+                                         advance=LABEL_ADVANCE)) for label in d.seam_labels)
     marks = 2 * int((~d.tab_seams).sum())
     assert blobs(labels) == alone + marks
 

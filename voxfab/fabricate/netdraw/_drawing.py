@@ -15,7 +15,7 @@ from voxfab.unfold import Net
 
 from ._geometry import NetEdges, check_net, classify_edges, merge_unit_segments, trace_outlines
 from ._labels import label_length, seam_labels
-from ._legible import NUMBER_INSET, legibility_problem, number_height, number_start
+from ._legible import LABEL_ADVANCE, NUMBER_INSET, legibility_problem, number_height, number_start
 from ._options import DrawingOptions, Perforate
 from ._sheets import SheetPlan, pack_pieces, plan_sheets
 from ._tabs import TabPlan, place_tabs, tab_heights
@@ -420,7 +420,7 @@ def _draw_sheet(
         here_texts = [labels[i] for i in np.flatnonzero(here).tolist()]
         texts += here_texts
         # Centred on the edge, or pushed along it just clear of the label on the previous edge.
-        width = np.array([text_width(t, label_h) for t in here_texts]).reshape(-1)
+        width = np.array([text_width(t, label_h, LABEL_ADVANCE) for t in here_texts]).reshape(-1)
         along = np.maximum((p - width) / 2, number_start(p, label_h))
         org.append(p0 + d * along[:, None] + inward * (NUMBER_INSET * p))
         dirs.append(d)
@@ -429,7 +429,8 @@ def _draw_sheet(
         off = inward[no_tab] * (0.015 * p)
         marks.append((p0[no_tab] + d[no_tab] * 0.2 * p + off, p1[no_tab] - d[no_tab] * 0.2 * p + off))
     if texts and opts.numbers:
-        layers["LABEL"].append(text_polylines(texts, np.concatenate(org), np.concatenate(dirs), label_h))
+        layers["LABEL"].append(text_polylines(texts, np.concatenate(org), np.concatenate(dirs), label_h,
+                                              advance=LABEL_ADVANCE))
     layers["LABEL"].append(Polylines.from_segments(np.concatenate([m[0] for m in marks]),
                                                    np.concatenate([m[1] for m in marks])))
     heading = title + (f"  SHEET {s + 1}/{plan.count}" if plan.count > 1 else "")

@@ -11,15 +11,21 @@ from __future__ import annotations
 
 import math
 
-from voxfab.drawing._font import ADVANCE, CAP_HEIGHT, GLYPH_WIDTH
+from voxfab.drawing._font import CAP_HEIGHT, GLYPH_WIDTH
 
 from ._options import DrawingOptions
 from ._tabs import tab_heights
 
 #: Gap between the face edge and the baseline of its label, as a fraction of the face size.
 NUMBER_INSET = 0.06
-#: Clear gap around a label, as a fraction of the face size.
+#: Clear gap between a label's end and the next corner, as a fraction of the face size.
 NUMBER_GAP = 0.04
+#: Font units from one character of a label to the next: with glyphs 4 wide, a letter gap of a
+#: sixth of the cap height (ordinary letter spacing), so a label reads as one word.
+LABEL_ADVANCE = 5.0
+#: Clear gap between the labels of neighbouring edges at a corner, as a fraction of the label height:
+#: three letter gaps, so two labels meeting at a corner never read as one.
+LABEL_GAP = 0.5
 #: Largest label height as a fraction of the face size (larger ones look shouty).
 NUMBER_MAX = 0.3
 
@@ -29,21 +35,22 @@ def number_start(pitch: float, height: float) -> float:
 
     Each label reads along its edge with the face on its left, so the label
     of the previous edge (counter-clockwise) lies in a strip ``inset + height``
-    deep along the start of this edge; starting past that strip, labels on
-    neighbouring edges never meet, however long they are.
+    deep along the start of this edge; starting :data:`LABEL_GAP` label heights
+    past that strip, labels on neighbouring edges never meet, however long they
+    are.
     """
-    return (NUMBER_INSET + NUMBER_GAP) * pitch + height
+    return NUMBER_INSET * pitch + (1.0 + LABEL_GAP) * height
 
 
 def number_ratio(chars: int) -> float:
     """Largest label height per mm of face size for labels of ``chars`` characters.
 
     A label starts at :func:`number_start` and must end a gap before the next
-    corner: ``(inset + gap) p + h + w h <= (1 - gap) p`` with ``w`` the text
-    width per mm of height.
+    corner: ``inset p + (1 + label gap) h + w h <= (1 - gap) p`` with ``w`` the
+    text width per mm of height.
     """
-    width = ((chars - 1) * ADVANCE + GLYPH_WIDTH) / CAP_HEIGHT  # per mm of height
-    return min((1.0 - NUMBER_INSET - 2 * NUMBER_GAP) / (1.0 + width), NUMBER_MAX)
+    width = ((chars - 1) * LABEL_ADVANCE + GLYPH_WIDTH) / CAP_HEIGHT  # per mm of height
+    return min((1.0 - NUMBER_INSET - NUMBER_GAP) / (1.0 + LABEL_GAP + width), NUMBER_MAX)
 
 
 def number_height(options: DrawingOptions, pitch: float, chars: int) -> float:
