@@ -477,6 +477,10 @@ def test_pieces_drawn_apart_agree_on_numbers_and_tabs() -> None:
     seams = [dict(zip(d.seam_numbers.tolist(), zip(d.tab_seams.tolist(), d.tab_elsewhere.tolist())))
              for d in drawings]
     shared = set(seams[0]) & set(seams[1])
+    # Labels as long as the surface has edges, so a seam's label is one string in both pieces.
+    assert drawings[0].label_chars == drawings[1].label_chars
+    labels = [dict(zip(d.seam_numbers.tolist(), d.seam_labels)) for d in drawings]
+    assert all(labels[0][n] == labels[1][n] for n in shared)
     # The cut fold became one seam numbered alike in both pieces, plus the seams between them.
     assert len(shared) >= 1
     assert sum(len(s) for s in seams) - len(shared) == whole.seams + 1
