@@ -92,7 +92,8 @@ def legibility_problem(options: DrawingOptions, pitch: float, chars: int) -> str
     if options.numbers:
         h = number_height(options, pitch, chars)
         if h < options.min_label_height - 1e-9:
-            short.append(f"{options.min_label_height:g} mm edge labels (they would be {h:.1f} mm)")
+            short.append(f"{options.min_label_height:g} mm edge labels of {chars} character{'s' if chars > 1 else ''} "
+                         f"(they would be {h:.1f} mm)")
             outs.append("--no-numbers")
     if options.tabs:
         t = tab_depth(options, pitch)
