@@ -1,5 +1,6 @@
 """Every recipe shipped in recipes/ builds, and its outputs pass independent checks."""
 
+import functools
 import hashlib
 import json
 import re
@@ -14,6 +15,8 @@ from voxfab.recipe import build, load_recipe
 from voxfab.shape import fill_cavities, well_formed_reasons
 
 RECIPES = sorted((Path(__file__).parents[2] / "recipes").rglob("*.toml"))
+#: Build volume the recipes' comments ask for, mm a side (Bambu Lab X1 and P1 class printers).
+PRINT_VOLUME = 256.0
 
 
 @pytest.fixture(scope="session")
@@ -82,8 +85,12 @@ def test_recipe_3mf_passes_prusa_slicer(built, path, tmp_path):
         assert re.search(r"^manifold = yes$", info.stdout, re.M), info.stdout
         assert re.search(r"^number_of_parts =\s*1$", info.stdout, re.M), info.stdout
         gcode = tmp_path / (mesh.stem + ".gcode")
+        # The bundled objects are up to 215 mm: sliced for a printer with a 256 mm build volume.
+        assert (_mesh_size_from_3mf(mesh) <= PRINT_VOLUME).all()
+        bed = f"0x0,{PRINT_VOLUME:g}x0,{PRINT_VOLUME:g}x{PRINT_VOLUME:g},0x{PRINT_VOLUME:g}"
         sliced = subprocess.run(
-            [slicer, "--export-gcode", str(mesh), "--output", str(gcode)],
+            [slicer, "--export-gcode", str(mesh), "--bed-shape", bed, "--max-print-height", f"{PRINT_VOLUME:g}",
+             "--output", str(gcode)],
             capture_output=True, text=True, timeout=600,
         )
         assert sliced.returncode == 0, sliced.stderr + sliced.stdout
@@ -118,12 +125,9 @@ def _face_size_from_dxf(path: Path) -> float:
     Folds lie on the lines of the face lattice: the x of the vertical ones and the y of
     the horizontal ones differ by whole numbers of faces, the smallest gap being one face.
     """
-    import ezdxf
-
-    msp = ezdxf.readfile(path).modelspace()
+    layers = _dxf_layers(path)
     xs, ys = set(), set()
-    for e in msp.query('LINE[layer=="MOUNTAIN" | layer=="VALLEY"]'):
-        (x0, y0, _), (x1, y1, _) = e.dxf.start, e.dxf.end
+    for (x0, y0), (x1, y1) in (line for k in ("MOUNTAIN", "VALLEY") for line in layers.get(k, []) if len(line) == 2):
         if abs(x0 - x1) < 1e-9:
             xs.add(round(x0, 6))
         elif abs(y0 - y1) < 1e-9:
@@ -165,8 +169,12 @@ def _sheet_mm(spec: str) -> tuple[float, float]:
     return float(w), float(h)
 
 
+@functools.cache
 def _dxf_layers(path: Path) -> dict[str, list[np.ndarray]]:
-    """The polylines of each layer of a DXF (LINE and POLYLINE entities, closed ones closed), read with ezdxf."""
+    """The polylines of each layer of a DXF (LINE and POLYLINE entities, closed ones closed), read with ezdxf.
+
+    Read once per file: ezdxf takes seconds over a net of a few thousand faces.
+    """
     import ezdxf
 
     out: dict[str, list[np.ndarray]] = {}
@@ -185,8 +193,6 @@ def _dxf_layers(path: Path) -> dict[str, list[np.ndarray]]:
 
 def _paper(cut: list[np.ndarray]):
     """The paper the CUT lines outline, polygonized with shapely: inside an odd number of closed rings."""
-    import functools
-
     import shapely
 
     rings = shapely.polygonize([shapely.union_all([shapely.LineString(x) for x in cut])]).geoms
