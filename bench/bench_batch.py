@@ -26,7 +26,7 @@ format = "stl"
 
 [outputs.net]
 formats = ["svg"]
-face_size = 11.0  # mm: the smallest paper face that carries 2 mm four-digit numbers and 3 mm tabs
+face_size = 11.0  # mm: paper faces that carry 2 mm seam labels (8.6 mm would do) and 3 mm tabs
 sheet = "A1"
 fill = true
 pieces = "auto"

@@ -38,7 +38,7 @@ def shapes() -> list[tuple[str, np.ndarray]]:
 
 
 def bench_one(name: str, grid: np.ndarray, net, tmp: Path) -> None:
-    # 11 mm faces carry 2 mm four-digit numbers; the sheet is a large laser bed.
+    # 11 mm faces carry 2 mm seam labels of up to four characters; the sheet is a large laser bed.
     opts = DrawingOptions(pitch=11.0, sheet="2500x2500")
     opts2k = DrawingOptions(pitch=11.0, sheet="2500x2500", dxf_version="R2000")
     d = draw_net(grid, net, options=opts, name=name)

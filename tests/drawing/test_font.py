@@ -13,10 +13,8 @@ from voxfab.drawing._font import CAP_HEIGHT, GLYPHS, glyph_for, text_polylines, 
 REQUIRED = "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZ.-"
 
 
-def glyph_shape(text: str, height: float = 5.0, *, underline: bool = False, turn: bool = False):
-    # Turned half a turn about the middle of its box.
-    lines = text_polylines([text], [(0.0, height if turn else 0.0)], [(-1.0, 0.0) if turn else (1.0, 0.0)], height,
-                           center=True, mark_ambiguous=underline)
+def glyph_shape(text: str, height: float = 5.0):
+    lines = text_polylines([text], [(0.0, 0.0)], [(1.0, 0.0)], height, center=True)
     geoms = [shapely.LineString(x) if len(x) > 1 and np.ptp(x, axis=0).any() else shapely.Point(x[0])
              for x in lines.lines()]
     # A 0.3 mm pen or laser line.
@@ -38,14 +36,6 @@ def test_characters_are_distinct_at_5_mm() -> None:
         # At least a 1.5 mm stroke of a 0.3 mm pen tells any two characters apart.
         differ = sa.symmetric_difference(sb).area
         assert differ > 0.45, (a, b, differ)
-
-
-def test_underline_tells_six_from_nine_upside_down() -> None:
-    six_turned = glyph_shape("6", underline=True, turn=True)
-    nine = glyph_shape("9", underline=True)
-    assert six_turned.symmetric_difference(nine).area / six_turned.union(nine).area > 0.25
-    # Without it they are the same shape.
-    assert glyph_shape("6", turn=True).symmetric_difference(glyph_shape("9")).area < 1e-6
 
 
 def test_layout_scale_direction_and_fallbacks() -> None:

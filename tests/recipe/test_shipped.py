@@ -1,5 +1,6 @@
 """Every recipe shipped in recipes/ builds, and its outputs pass independent checks."""
 
+import functools
 import hashlib
 import json
 import re
@@ -14,6 +15,8 @@ from voxfab.recipe import build, load_recipe
 from voxfab.shape import fill_cavities, well_formed_reasons
 
 RECIPES = sorted((Path(__file__).parents[2] / "recipes").rglob("*.toml"))
+#: Build volume the recipes' comments ask for, mm a side (Bambu Lab X1 and P1 class printers).
+PRINT_VOLUME = 256.0
 
 
 @pytest.fixture(scope="session")
@@ -82,8 +85,12 @@ def test_recipe_3mf_passes_prusa_slicer(built, path, tmp_path):
         assert re.search(r"^manifold = yes$", info.stdout, re.M), info.stdout
         assert re.search(r"^number_of_parts =\s*1$", info.stdout, re.M), info.stdout
         gcode = tmp_path / (mesh.stem + ".gcode")
+        # The bundled objects are up to 215 mm: sliced for a printer with a 256 mm build volume.
+        assert (_mesh_size_from_3mf(mesh) <= PRINT_VOLUME).all()
+        bed = f"0x0,{PRINT_VOLUME:g}x0,{PRINT_VOLUME:g}x{PRINT_VOLUME:g},0x{PRINT_VOLUME:g}"
         sliced = subprocess.run(
-            [slicer, "--export-gcode", str(mesh), "--output", str(gcode)],
+            [slicer, "--export-gcode", str(mesh), "--bed-shape", bed, "--max-print-height", f"{PRINT_VOLUME:g}",
+             "--output", str(gcode)],
             capture_output=True, text=True, timeout=600,
         )
         assert sliced.returncode == 0, sliced.stderr + sliced.stdout
@@ -118,12 +125,9 @@ def _face_size_from_dxf(path: Path) -> float:
     Folds lie on the lines of the face lattice: the x of the vertical ones and the y of
     the horizontal ones differ by whole numbers of faces, the smallest gap being one face.
     """
-    import ezdxf
-
-    msp = ezdxf.readfile(path).modelspace()
+    layers = _dxf_layers(path)
     xs, ys = set(), set()
-    for e in msp.query('LINE[layer=="MOUNTAIN" | layer=="VALLEY"]'):
-        (x0, y0, _), (x1, y1, _) = e.dxf.start, e.dxf.end
+    for (x0, y0), (x1, y1) in (line for k in ("MOUNTAIN", "VALLEY") for line in layers.get(k, []) if len(line) == 2):
         if abs(x0 - x1) < 1e-9:
             xs.add(round(x0, 6))
         elif abs(y0 - y1) < 1e-9:
@@ -153,6 +157,108 @@ def _plates_in_dxf(paths: list[Path]) -> int:
     return count
 
 
+#: ISO sheets a recipe may name, mm (portrait); laser beds are given as WxH.
+_ISO_SHEETS = {"A0": (841.0, 1189.0), "A1": (594.0, 841.0), "A2": (420.0, 594.0), "A3": (297.0, 420.0),
+               "A4": (210.0, 297.0)}
+
+
+def _sheet_mm(spec: str) -> tuple[float, float]:
+    if spec.upper() in _ISO_SHEETS:
+        return _ISO_SHEETS[spec.upper()]
+    w, h = re.fullmatch(r"\s*([0-9.]+)\s*[xX]\s*([0-9.]+)\s*", spec).groups()
+    return float(w), float(h)
+
+
+@functools.cache
+def _dxf_layers(path: Path) -> dict[str, list[np.ndarray]]:
+    """The polylines of each layer of a DXF (LINE and POLYLINE entities, closed ones closed), read with ezdxf.
+
+    Read once per file: ezdxf takes seconds over a net of a few thousand faces.
+    """
+    import ezdxf
+
+    out: dict[str, list[np.ndarray]] = {}
+    for e in ezdxf.readfile(path).modelspace():
+        if e.dxftype() == "LINE":
+            pts = np.array([tuple(e.dxf.start)[:2], tuple(e.dxf.end)[:2]])
+        elif e.dxftype() == "POLYLINE":
+            pts = np.array([tuple(v.dxf.location)[:2] for v in e.vertices])
+            if e.is_closed:
+                pts = np.vstack([pts, pts[:1]])
+        else:
+            continue
+        out.setdefault(e.dxf.layer, []).append(pts)
+    return out
+
+
+def _paper(cut: list[np.ndarray]):
+    """The paper the CUT lines outline, polygonized with shapely: inside an odd number of closed rings."""
+    import shapely
+
+    rings = shapely.polygonize([shapely.union_all([shapely.LineString(x) for x in cut])]).geoms
+    return functools.reduce(shapely.symmetric_difference, [shapely.Polygon(r.exterior) for r in rings])
+
+
+def _net_on_sheet(net: dict, layers: dict[str, list[np.ndarray]], face: float, paper) -> np.ndarray:
+    """Where the faces of ``net.json`` lie on the sheet, ``(F, 4, 2)`` mm, matched to the drawn lattice.
+
+    The faces' bounding box is that of the drawn straight lines that lie on the face lattice (folds,
+    tab folds, slits and outline; tab tops and sides are off it); the net is drawn as is or turned a
+    quarter turn, whichever puts every face inside the paper.
+    """
+    import shapely
+
+    def on_axes(kinds: tuple[str, ...]) -> tuple[np.ndarray, np.ndarray]:
+        segs = np.concatenate([np.stack([x[:-1], x[1:]], axis=1) for k in kinds for x in layers.get(k, [])])
+        vertical = np.abs(segs[:, 0, 0] - segs[:, 1, 0]) < 1e-6
+        horizontal = np.abs(segs[:, 0, 1] - segs[:, 1, 1]) < 1e-6
+        return segs[vertical][:, 0, 0], segs[horizontal][:, 0, 1]
+
+    def on_lattice(values: np.ndarray, origin: float) -> np.ndarray:
+        units = (values - origin) / face
+        return values[np.abs(units - np.round(units)) < 1e-4]
+
+    # Fold lines (tab folds too) lie on the lattice; they fix its offset.
+    fx, fy = on_axes(("MOUNTAIN", "VALLEY"))
+    xs, ys = on_axes(("CUT", "MOUNTAIN", "VALLEY"))
+    ox, oy = on_lattice(xs, fx[0]), on_lattice(ys, fy[0])
+    cells = np.array([f["corners2d"] for f in net["faces"]], dtype=float)
+    for turned in (False, True):
+        c = np.stack([-cells[..., 1], cells[..., 0]], axis=-1) if turned else cells
+        c = c - c.reshape(-1, 2).min(axis=0)
+        pos = np.array([ox.min(), oy.min()]) + c * face
+        centres = pos.mean(axis=1)
+        if np.allclose(pos.reshape(-1, 2).max(axis=0), [ox.max(), oy.max()], atol=1e-4) and \
+                shapely.contains_xy(paper.buffer(1e-6), centres[:, 0], centres[:, 1]).all():
+            return pos
+    raise AssertionError("the faces of net.json do not match the drawn net")
+
+
+def _edge_labels(pos: np.ndarray, label: list[np.ndarray], face: float, band: float) -> dict:
+    """The LABEL strokes standing on each face edge, in the edge's frame: ``(face, edge) → (n, 2, 2)``.
+
+    A label stands on its edge inside its face, reading along it with the face on its left; the
+    stroke segments within ``band`` mm of the edge and more than ``band`` from its start belong to
+    it (the label of the previous edge keeps within ``band`` of that corner).
+    """
+    import shapely
+
+    segs = np.concatenate([np.stack([x[:-1], x[1:]], axis=1) for x in label])
+    mid = segs.mean(axis=1)
+    hit_seg, hit_face = shapely.STRtree(shapely.polygons(pos)).query(shapely.points(mid), predicate="within")
+    out: dict[tuple[int, int], np.ndarray] = {}
+    for f in np.unique(hit_face).tolist():
+        mine = segs[hit_seg[hit_face == f]]
+        for k in range(4):
+            p0, p1 = pos[f, k], pos[f, (k + 1) % 4]
+            d = (p1 - p0) / face
+            local = (mine - p0) @ np.stack([d, [-d[1], d[0]]], axis=1)
+            keep = ((local[..., 1] < band) & (local[..., 0] > band)).all(axis=1)
+            if keep.any():
+                out[(f, k)] = local[keep]
+    return out
+
+
 @pytest.mark.parametrize("path", RECIPES, ids=[p.stem for p in RECIPES])
 def test_recipe_builds_one_consistent_object(built, path):
     """The print, the paper net and the plate stack have one size, measured from the written files."""
@@ -175,6 +281,70 @@ def test_recipe_builds_one_consistent_object(built, path):
     stack = len(levels) * plates.thickness
     tolerance = plates.thickness
     assert np.allclose(print_size, extents * recipe.pitch, atol=1e-6), (print_size, extents)
-    assert np.all(np.abs(extents * face - print_size) <= tolerance), (face, recipe.pitch)
+    assert face == pytest.approx(recipe.pitch, abs=1e-6), (face, recipe.pitch)
     assert abs(stack - print_size[axis]) <= tolerance / 2 + 1e-9, (stack, print_size[axis])
     assert report["stack_height"] == pytest.approx(stack)
+
+
+@pytest.mark.parametrize("path", RECIPES, ids=[p.stem for p in RECIPES])
+def test_recipe_net_is_legible_on_its_sheet(built, path):
+    """From net.dxf alone: the paper lies on the recipe's sheet, tabs are 3 mm deep, labels 2 mm tall and paired.
+
+    Each seam's two edges (found from the 3D corners in net.json) carry the same label, drawn alike
+    in the frame of the edge, and no two seams share a label.
+    """
+    import shapely
+
+    recipe = load_recipe(path)
+    spec = next((s for s in recipe.outputs if s.name == "net"), None)
+    if spec is None:
+        pytest.skip("this recipe asks for no net")
+    written = dict(spec.options)
+    assert "numbers" not in written and "tabs" not in written and "min_tab_depth" not in written, \
+        "a bundled recipe draws legible labels and tabs"
+    folder = built(path)
+    layers = _dxf_layers(folder / "net.dxf")
+    face = _face_size_from_dxf(folder / "net.dxf")
+    paper = _paper(layers["CUT"])
+    w, h = _sheet_mm(written.get("sheet", "A4"))
+    assert paper.within(shapely.box(0, 0, w, h)), (paper.bounds, w, h)
+    net = json.loads((folder / "net.json").read_text())
+    pos = _net_on_sheet(net, layers, face, paper)
+    # Tabs: the paper outside the faces (grown by a hair so tabs part at their folds), each a
+    # trapezoid whose depth is its short side.
+    faces = shapely.union_all(shapely.polygons(pos)).buffer(1e-4, join_style="mitre")
+    tabs = [t for t in getattr(paper.difference(faces), "geoms", []) if t.area > 1e-3]
+    depths = [min(t.bounds[2] - t.bounds[0], t.bounds[3] - t.bounds[1]) + 1e-4 for t in tabs]
+    assert min(depths) >= 3.0 - 1e-6, min(depths)
+    # Seams: face edges that are no fold, paired by their 3D corners; those meeting in the plane are uncut.
+    c3 = np.array([f["corners3d"] for f in net["faces"]])
+    folds = {tuple(sorted(x)) for x in net["folds"]}
+    ends = {}
+    for f in range(len(c3)):
+        for k in range(4):
+            ends.setdefault(frozenset((tuple(c3[f, k]), tuple(c3[f, (k + 1) % 4]))), []).append((f, k))
+    labels = _edge_labels(pos, layers["LABEL"], face, band=0.08 * face + 2.0)
+    signatures: dict[tuple, int] = {}
+    heights = []
+    for pair in ends.values():
+        assert len(pair) == 2
+        (f, k), (g, j) = pair
+        if tuple(sorted((f, g))) in folds:
+            continue
+        a0, a1 = pos[f, k], pos[f, (k + 1) % 4]
+        if np.allclose(a0, pos[g, (j + 1) % 4]) and np.allclose(a1, pos[g, j]):
+            continue
+        sides = [labels.get((f, k)), labels.get((g, j))]
+        assert sides[0] is not None and sides[1] is not None, ("seam without a label", pair)
+        # The strokes as a set of segments, each with its ends in order: the label as drawn.
+        one, two = (frozenset(tuple(sorted(map(tuple, seg))) for seg in np.round(x, 3).tolist()) for x in sides)
+        assert one == two, ("the two edges of a seam carry different labels", pair)
+        signatures[one] = signatures.get(one, 0) + 1
+        # Cap height: the depth the glyphs span above the tape bar of a seam without a tab.
+        depth = sides[0][..., 1]
+        depth = depth[depth > 0.03 * face]
+        heights.append(depth.max() - depth.min())
+    assert signatures and set(signatures.values()) == {1}, "two seams share a label"
+    assert min(heights) >= 2.0 - 1e-6, min(heights)
+    # One tab per seam, but for the few without room (marked for tape and warned about).
+    assert len(signatures) - 10 <= len(tabs) <= len(signatures)

@@ -1,4 +1,4 @@
-"""A single-stroke font for edge numbers and titles on cutting and engraving layers.
+"""A single-stroke font for seam labels and titles on cutting and engraving layers.
 
 Glyphs are polylines on a 4 × 6 grid (cap height 6, baseline 0), drawn with one
 pass of the pen or laser, so shops never need our fonts installed.  Letters are
@@ -91,30 +91,23 @@ def glyph_for(char: str) -> str:
     return up if up in GLYPHS else "?"
 
 
-def text_width(text: str, height: float) -> float:
-    """Width in mm of ``text`` drawn at cap ``height`` mm (without trailing gap)."""
+def text_width(text: str, height: float, advance: float = ADVANCE) -> float:
+    """Width in mm of ``text`` drawn at cap ``height`` mm (without trailing gap), ``advance`` font units a character."""
     n = len(text)
     if n == 0:
         return 0.0
-    return ((n - 1) * ADVANCE + GLYPH_WIDTH) * height / CAP_HEIGHT
-
-
-#: Characters that read as another one upside down; labels holding one are underlined.
-AMBIGUOUS = frozenset("69")
+    return ((n - 1) * advance + GLYPH_WIDTH) * height / CAP_HEIGHT
 
 
 @cache
-def _local(text: str, underline: bool = False) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]:
+def _local(text: str, advance: float = ADVANCE) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]:
     """Points (font units) and stroke lengths of ``text`` laid out from x = 0."""
     pts: list[npt.NDArray[np.float64]] = []
     lengths: list[int] = []
     for i, ch in enumerate(text):
         for stroke in GLYPHS[glyph_for(ch)]:
-            pts.append(stroke + (i * ADVANCE, 0.0))
+            pts.append(stroke + (i * advance, 0.0))
             lengths.append(len(stroke))
-    if underline and text:
-        pts.append(np.array([[0.0, -1.2], [(len(text) - 1) * ADVANCE + GLYPH_WIDTH, -1.2]]))
-        lengths.append(2)
     if not pts:
         return np.zeros((0, 2)), np.zeros(0, dtype=np.int64)
     return np.concatenate(pts), np.array(lengths, dtype=np.int64)
@@ -127,7 +120,7 @@ def text_polylines(
     height: float | npt.ArrayLike,
     *,
     center: bool = False,
-    mark_ambiguous: bool = False,
+    advance: float = ADVANCE,
 ) -> Polylines:
     """Lay out many strings as single-stroke polylines at once.
 
@@ -143,9 +136,9 @@ def text_polylines(
         Cap height in mm.
     center : bool
         Centre each string horizontally on its origin.
-    mark_ambiguous : bool
-        Underline strings holding a 6 or a 9, which labels seen upside down
-        would otherwise confuse.
+    advance : float
+        Font units from one character to the next (the glyphs are 4 wide):
+        seam labels set their characters closer than the gap between labels.
 
     Returns
     -------
@@ -156,14 +149,14 @@ def text_polylines(
     origins = np.asarray(origins, dtype=np.float64).reshape(n, 2)
     directions = np.asarray(directions, dtype=np.float64).reshape(n, 2)
     scale = np.broadcast_to(np.asarray(height, dtype=np.float64), (n,)) / CAP_HEIGHT
-    local = [_local(t, mark_ambiguous and not AMBIGUOUS.isdisjoint(t)) for t in texts]
+    local = [_local(t, advance) for t in texts]
     counts = np.array([p.shape[0] for p, _ in local], dtype=np.int64)
     if counts.sum() == 0:
         return Polylines.empty()
     pts = np.concatenate([p for p, _ in local])
     lengths = np.concatenate([s for _, s in local])
     inst = np.repeat(np.arange(n), counts)
-    shift = np.array([((len(t) - 1) * ADVANCE + GLYPH_WIDTH) / 2 if center and t else 0.0 for t in texts])
+    shift = np.array([((len(t) - 1) * advance + GLYPH_WIDTH) / 2 if center and t else 0.0 for t in texts])
     x = (pts[:, 0] - shift[inst]) * scale[inst]
     y = pts[:, 1] * scale[inst]
     d = directions[inst]

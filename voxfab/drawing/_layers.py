@@ -92,7 +92,7 @@ LAYERS: dict[str, LayerStyle] = {
 
 #: What each layer holds, for file descriptions and legends.
 LAYER_PURPOSES: dict[str, str] = {
-    "LABEL": "single-stroke numbers and titles (engrave or print)",
+    "LABEL": "single-stroke seam labels, plate numbers and titles (engrave or print)",
     "GRID": "coplanar folds, a faint score",
     "SCORE": "score lines (outline of the next plate)",
     "VALLEY": "valley folds (fold towards you)",

@@ -2,7 +2,7 @@
 
 * :func:`render` — shaded cubes with dark voxel edges, isometric or from one of six sides.
 * :func:`slice_sheet` — the layers in a grid, each numbered.
-* :func:`net_picture` — a net with fold styles, glue tabs and seam numbers.
+* :func:`net_picture` — a net with fold styles, glue tabs and seam labels.
 * :func:`triptych` — net | slices | 3D under the shape's name (PNG and PDF).
 * :func:`save_turntable`, :func:`save_animation` — GIFs of a turning shape or a sequence of shapes.
 * :func:`contact_sheet`, :func:`repository_contact_sheet` — many shapes by volume with names.

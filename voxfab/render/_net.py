@@ -1,7 +1,7 @@
 """Net pictures: the net drawing of :mod:`voxfab.fabricate.netdraw`, rasterized for people.
 
 The picture is the same drawing the paper sheets get (cut outline, glue tabs,
-folds typed mountain/valley/coplanar, edge numbers), laid out to fill the
+folds typed mountain/valley/coplanar, seam labels), laid out to fill the
 picture and drawn by the PNG backend of :mod:`voxfab.drawing`, with the faces
 tinted by their outward direction like the 3D picture.
 """
@@ -115,7 +115,7 @@ def net_picture(
         Line style per fold kind (``"mountain"``, ``"valley"``, ``"flat"``), each one of
         ``"solid"``, ``"dashed"``, ``"dashdot"``, ``"dotted"``, ``"none"``.
     tabs, numbers, legend : bool
-        Draw glue tabs, edge numbers (when they come out at least 7 pixels tall)
+        Draw glue tabs, seam labels (when they come out at least 7 pixels tall)
         and a legend of the line styles.
 
     Returns
@@ -137,13 +137,14 @@ def net_picture(
     fg = np.asarray(parse_color(color, name="color"), dtype=np.float64)
     style = _fold_styles(styles)
     grid = shape_grid(shape)
-    from voxfab.fabricate.netdraw._legible import digits_of, number_ratio
+    from voxfab.fabricate.netdraw._labels import label_length
+    from voxfab.fabricate.netdraw._legible import number_ratio
 
     strip = max(18, h_total // 22) if legend else 0
     scale = _scale(net, width, h_total - strip)
-    # Numbers under a few pixels are specks, not digits: leave them out of small pictures.
+    # Labels under a few pixels are specks, not characters: leave them out of small pictures.
     seams_max = 2 * net.face_count
-    numbers = numbers and number_ratio(digits_of(seams_max)) * _PICTURE_PITCH * scale >= _MIN_DIGIT_PX
+    numbers = numbers and number_ratio(label_length(seams_max)) * _PICTURE_PITCH * scale >= _MIN_DIGIT_PX
     colors = ",".join(f"{FOLD_LAYERS[k]}={LAYERS[FOLD_LAYERS[k]].color}:{v}"
                       for k, v in style.items() if v != HIDDEN)
     options = DrawingOptions(

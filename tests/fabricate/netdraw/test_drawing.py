@@ -1,4 +1,4 @@
-"""Net drawings: geometry, tabs, numbers and sheets, checked against the net and with shapely."""
+"""Net drawings: geometry, tabs, seam labels and sheets, checked against the net and with shapely."""
 
 from __future__ import annotations
 
@@ -13,6 +13,7 @@ from voxfab.drawing import Polylines
 from voxfab.errors import FormatError, InvalidShapeError
 from voxfab.fabricate.netdraw import DrawingOptions, draw_net, parse_colors, parse_sheet
 from voxfab.fabricate.netdraw._geometry import merge_unit_segments
+from voxfab.fabricate.netdraw._legible import LABEL_ADVANCE
 from voxfab.fabricate.netdraw._tabs import place_tabs
 from voxfab.shape import examples, surface_graph
 from voxfab.unfold import Net
@@ -177,7 +178,7 @@ def test_cut_outline_is_closed_and_never_doubled(name: str) -> None:
     assert outer.buffer(1e-6).contains(paper)
 
 
-def test_every_seam_numbered_on_both_edges_inside_its_faces() -> None:
+def test_every_seam_labelled_on_both_edges_inside_its_faces() -> None:
     g = examples.ball(1)
     net = tree_net(g)
     d = draw_net(g, net, options=DrawingOptions(pitch=20.0), name="")
@@ -193,7 +194,10 @@ def test_every_seam_numbered_on_both_edges_inside_its_faces() -> None:
     assert title_strokes > 10
     from voxfab.drawing._font import _local
 
-    strokes = sum(2 * len(_local(str(i + 1), "6" in str(i + 1) or "9" in str(i + 1))[1]) for i in range(d.seams))
+    # 25 < seams <= 25²: two characters, one label per seam.
+    assert 25 < d.seams <= 625 and d.label_chars == 2
+    assert len(set(d.seam_labels)) == d.seams and {len(x) for x in d.seam_labels} == {2}
+    strokes = sum(2 * len(_local(label)[1]) for label in d.seam_labels)
     marks = 2 * int((~d.tab_seams).sum())
     assert len(labels) == strokes + marks + title_strokes
 
@@ -211,19 +215,19 @@ def glyph_heights(lines: Polylines) -> list[float]:
 
 def test_numbers_are_legible_or_refused_with_the_face_size_that_works() -> None:
     g, net = cross_net()
-    # The cross has seams 1..7: one digit.  Numbers shrink with the face, down to 2 mm.
+    # The cross has 7 seams: one-character labels.  They shrink with the face, down to 2 mm.
     d = draw_net(g, net, options=DrawingOptions(pitch=60.0, heading=False))
     assert d.label_height == 5.0 and d.warnings() == []
     small = draw_net(g, net, options=DrawingOptions(pitch=10.0, heading=False))
     assert 2.0 <= small.label_height < 5.0
     assert any("shrunk" in w for w in small.warnings())
-    # Measured from the LABEL geometry: the digits without the underline of 6 are that tall.
+    # Measured from the LABEL geometry: the characters are that tall.
     heights = sorted(glyph_heights(small.sheets[0].layers["LABEL"]))
     assert np.median(heights) == pytest.approx(small.label_height, abs=0.02)
-    with pytest.raises(InvalidShapeError, match=r"too small for 2 mm edge numbers.*works is 6.7 mm.*--no-numbers"):
+    with pytest.raises(InvalidShapeError, match=r"too small for 2 mm edge labels.*works is 6.7 mm.*--no-numbers"):
         draw_net(g, net, options=DrawingOptions(pitch=6.6, tabs=False))
     assert draw_net(g, net, options=DrawingOptions(pitch=6.7, tabs=False)).label_height >= 2.0
-    with pytest.raises(InvalidShapeError, match=r"numbers .* and 3 mm glue tabs .*works is 7.5 mm"):
+    with pytest.raises(InvalidShapeError, match=r"labels .* and 3 mm glue tabs .*works is 7.5 mm"):
         draw_net(g, net, options=DrawingOptions(pitch=6.0))
     # An explicit opt-out draws no numbers at all; tabs still need 3 mm.
     bare = draw_net(g, net, options=DrawingOptions(pitch=7.5, numbers=False, heading=False))
@@ -232,13 +236,14 @@ def test_numbers_are_legible_or_refused_with_the_face_size_that_works() -> None:
         draw_net(g, net, options=DrawingOptions(pitch=6.0, numbers=False))
 
 
-def test_long_numbers_on_small_faces_stay_inside_and_apart() -> None:
+def test_long_labels_on_small_faces_stay_inside_and_apart() -> None:
     from voxfab.drawing import text_polylines
 
     g = SHAPES["engine-ball4"]
     net = net_of("engine-ball4")
-    d = draw_net(g, net, options=DrawingOptions(pitch=8.6, sheet="1000x1000", heading=False))
-    assert d.seam_numbers.max() >= 100 and d.label_height >= 2.0
+    # Two-character labels on the smallest faces with 3 mm tabs: pushed along their edges.
+    d = draw_net(g, net, options=DrawingOptions(pitch=7.5, sheet="1000x1000", heading=False))
+    assert d.label_chars == 2 and d.label_height >= 2.0
     (sheet,) = d.sheets
     labels = sheet.layers["LABEL"]
     numbers = labels
@@ -251,9 +256,9 @@ def test_long_numbers_on_small_faces_stay_inside_and_apart() -> None:
         u = shapely.union_all([x.buffer(0.05) for x in geoms])
         return len(getattr(u, "geoms", [u]))
 
-    # Glyphs of different numbers never touch: the blobs are those of each number drawn alone.
-    alone = sum(2 * blobs(text_polylines([str(n)], [(0.0, 0.0)], [(1.0, 0.0)], d.label_height,
-                                         mark_ambiguous=True)) for n in d.seam_numbers.tolist())
+    # Glyphs of different labels never touch: the blobs are those of each label drawn alone.
+    alone = sum(2 * blobs(text_polylines([label], [(0.0, 0.0)], [(1.0, 0.0)], d.label_height,
+                                         advance=LABEL_ADVANCE)) for label in d.seam_labels)
     marks = 2 * int((~d.tab_seams).sum())
     assert blobs(labels) == alone + marks
 
@@ -365,8 +370,8 @@ def test_pieces_are_packed_on_few_sheets_with_numbered_seams_between_them() -> N
     # A lower bound on sheets: the paper area over one sheet's drawable area.
     assert len(d.sheets) <= len(pieces)
     assert d.pieces == len(pieces) and d.warnings()[0].startswith(f"net split into {len(pieces)} pieces")
-    # Numbers pair up: each appears on exactly two edges.
-    assert d.seams == len(d.seam_numbers) and len(set(d.seam_numbers.tolist())) == d.seams
+    # Labels pair up: each stands for one seam, drawn on its two edges.
+    assert d.seams == len(d.seam_labels) and len(set(d.seam_labels)) == d.seams
 
 
 def test_grid_lines_and_perforation() -> None:
@@ -472,6 +477,10 @@ def test_pieces_drawn_apart_agree_on_numbers_and_tabs() -> None:
     seams = [dict(zip(d.seam_numbers.tolist(), zip(d.tab_seams.tolist(), d.tab_elsewhere.tolist())))
              for d in drawings]
     shared = set(seams[0]) & set(seams[1])
+    # Labels as long as the surface has edges, so a seam's label is one string in both pieces.
+    assert drawings[0].label_chars == drawings[1].label_chars
+    labels = [dict(zip(d.seam_numbers.tolist(), d.seam_labels)) for d in drawings]
+    assert all(labels[0][n] == labels[1][n] for n in shared)
     # The cut fold became one seam numbered alike in both pieces, plus the seams between them.
     assert len(shared) >= 1
     assert sum(len(s) for s in seams) - len(shared) == whole.seams + 1

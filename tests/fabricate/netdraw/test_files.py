@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import re
 import shutil
 import subprocess
 from collections import Counter
@@ -309,7 +310,8 @@ def _paper(cut: np.ndarray):
 def engine_dxf(tmp_path_factory, ball_net: Net):
     """The ball's net at the smallest legible face size on A2, as R12 DXF."""
     folder = tmp_path_factory.mktemp("dxf")
-    options = DrawingOptions(pitch=8.6, sheet="A2", grid_lines=True)
+    # Two-character labels reach 2 mm at 6.7 mm; 3 mm tabs at 45 degrees need 7.5 mm.
+    options = DrawingOptions(pitch=7.5, sheet="A2", grid_lines=True)
     from voxfab.fabricate.netdraw import write_net_drawing
 
     result = write_net_drawing(BALL, ball_net, folder / "ball.dxf", options, title="ball")
@@ -356,14 +358,15 @@ def test_tab_depth_and_text_height_measured_in_the_dxf(engine_dxf) -> None:
                 for s in (1, -1)]
         depths.append(min(shapely.distance(shapely.Point(mid), x) for x in hits if not x.is_empty))
     assert min(depths) >= options.min_tab_depth - 1e-3
-    # Digits read along the face edges: a digit's extent across its baseline is the cap height.
+    # Labels read along the face edges: a character's extent across its baseline is the cap height.
     label = shapely.union_all([x.buffer(0.01) for x in shapely.linestrings(seg["LABEL"])])
     heights = []
     for blob in label.geoms:
         x0, y0, x1, y1 = blob.bounds
         heights.append(max(x1 - x0, y1 - y0) - 0.02)
     assert np.median(heights) >= options.min_label_height - 1e-3
-    assert "numbers 2.0 mm high" in result.report[1]
+    told = re.search(r"(\d)-character labels (\d+\.\d) mm high", result.report[1])
+    assert told and told[1] == "2" and float(told[2]) == pytest.approx(np.median(heights), abs=0.05)
 
 
 def test_the_drawing_refolds_onto_the_shape(engine_dxf, ball_net: Net) -> None:

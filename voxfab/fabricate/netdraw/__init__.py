@@ -1,10 +1,11 @@
-"""Net drawings: cut outlines, mountain/valley folds, glue tabs and edge numbers as SVG, DXF, PDF and PNG.
+"""Net drawings: cut outlines, mountain/valley folds, glue tabs and seam labels as SVG, DXF, PDF and PNG.
 
 A net from :mod:`voxfab.unfold` becomes a sheet that a laser cutter or a home
 printer takes as is: one closed cut outline per piece, folds typed as seen from
-outside, one non-overlapping glue tab per seam, matching single-stroke numbers
-on both edges of every seam, and a title with the shape's name, face size and
-seed.  Numbers are at least 2 mm tall and tabs at least 3 mm deep; smaller
+outside, one non-overlapping glue tab per seam, a matching single-stroke label
+(a short code, :mod:`._labels`) on both edges of every seam, and a title with
+the shape's name, face size and seed.  Labels are at least 2 mm tall and tabs
+at least 3 mm deep; smaller
 faces are refused with the smallest face size that works.  A net that does not
 fit its sheet is refused too, naming the largest face size at which it fits and
 the smallest sheet that takes it; pieces (``pieces="auto"``) are packed on as
@@ -123,10 +124,10 @@ class DrawingResult:
     files : list of str
         Paths written.
     report : list of str
-        Face size, sheets and their fill, tabs, numbers and folds.
+        Face size, sheets and their fill, tabs, labels and folds.
     warnings : list of str
         The lines a maker must read before making it (a net split into pieces,
-        numbers shrunk, seams without tabs); also the last lines of ``report``.
+        labels shrunk, seams without tabs); also the last lines of ``report``.
     face_size : float
         Face edge, mm.
     fill : list of float
@@ -206,10 +207,11 @@ def write_drawing(shape: VoxelShape, net: Net | list[Net], path: str | Path,
 
 _PURPOSES = {
     "svg": "net for laser cutters and Inkscape (mm): cut red, mountain folds blue dashed, valley folds "
-           "green dash-dot, numbers black; one layer per line type",
+           "green dash-dot, seam labels black; one layer per line type",
     "dxf": "net for CAD and laser shops (mm): layers CUT, MOUNTAIN, VALLEY, GRID, LABEL, straight lines only",
     "pdf": "net to print at 100 % (no fit to page) on card and cut by hand: cut along the red lines, "
-           "fold blue dashed lines away from you and green dash-dot lines towards you, glue tab N under edge N",
+           "fold blue dashed lines away from you and green dash-dot lines towards you, glue each tab under "
+           "the other edge of the same label (each label stands on its edge)",
     "png": "preview of the net sheets to look at: visible lines, shaded tabs, a legend",
 }
 
@@ -237,7 +239,7 @@ def fabricate_net(shape: VoxelShape, net: NetOptions, drawing: DrawingOptions, o
     -------
     Artefact
         ``net.json`` (``net.piece-N.json`` per piece) and the drawings, the
-        warnings (net split, numbers shrunk, seams without tabs) and a report
+        warnings (net split, labels shrunk, seams without tabs) and a report
         with the face size and the fill of every sheet.
     """
     from voxfab import unfold

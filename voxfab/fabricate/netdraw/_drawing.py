@@ -1,4 +1,4 @@
-"""From a net to sheets of layered polylines: cut outlines, folds, tabs, numbers and a title."""
+"""From a net to sheets of layered polylines: cut outlines, folds, tabs, seam labels and a title."""
 
 from __future__ import annotations
 
@@ -14,7 +14,8 @@ from voxfab.shape import SurfaceGraph, surface_graph
 from voxfab.unfold import Net
 
 from ._geometry import NetEdges, check_net, classify_edges, merge_unit_segments, trace_outlines
-from ._legible import NUMBER_INSET, digits_of, legibility_problem, number_height, number_start
+from ._labels import label_length, seam_labels
+from ._legible import LABEL_ADVANCE, NUMBER_INSET, legibility_problem, number_height, number_start
 from ._options import DrawingOptions, Perforate
 from ._sheets import SheetPlan, pack_pieces, plan_sheets
 from ._tabs import TabPlan, place_tabs, tab_heights
@@ -78,14 +79,16 @@ class Drawing:
     rotated : bool
         The net was turned a quarter turn to fit.
     seams : int
-        Glued seam pairs (each numbered on both edges).
+        Glued seam pairs (each labelled on both edges).
     tab_seams : (S,) bool ndarray
         Which seams got a tab here.
     tab_elsewhere : (S,) bool ndarray
         Seams to another piece whose tab is drawn with that piece.
     seam_numbers : (S,) int ndarray
-        The number printed on both edges of each seam: 1..S for a whole net, the
-        surface edge's global index + 1 for a piece (so pieces drawn apart agree).
+        The number of each seam: 1..S for a whole net, the surface edge's global
+        index + 1 for a piece (so pieces drawn apart agree).
+    label_chars : int
+        Characters of every seam label (:mod:`._labels`), from the largest number.
     seam_type : (S,) int ndarray
         +1 convex, -1 concave, 0 coplanar seam.
     tab_fold_length : (S,) float ndarray
@@ -97,9 +100,9 @@ class Drawing:
     pieces : int
         Separate pieces of paper the net was split into (1 for a one-piece net).
     label_height, tab_height : float
-        Cap height of the edge numbers and full tab height, mm.
+        Cap height of the seam labels and full tab height, mm.
     label_wanted : float
-        The largest number height asked for, mm (``label_height`` is smaller when
+        The largest label height asked for, mm (``label_height`` is smaller when
         the faces could not carry it).
     title : str
         The title printed on the sheets (without sheet numbers).
@@ -112,6 +115,7 @@ class Drawing:
     tab_seams: npt.NDArray[np.bool_]
     tab_elsewhere: npt.NDArray[np.bool_]
     seam_numbers: npt.NDArray[np.int64]
+    label_chars: int
     seam_type: npt.NDArray[np.int64]
     tab_fold_length: npt.NDArray[np.float64]
     fold_counts: dict[str, int]
@@ -128,23 +132,28 @@ class Drawing:
         return Document(tuple(s.page(self.title) for s in self.sheets), self.title)
 
     @property
-    def marked_seams(self) -> list[int]:
-        """Numbers of the seams without room for a tab (marked for tape instead)."""
-        return self.seam_numbers[~self.tab_seams & ~self.tab_elsewhere].tolist()
+    def seam_labels(self) -> list[str]:
+        """The label printed on both edges of each seam."""
+        return seam_labels(self.seam_numbers.tolist(), self.label_chars)
+
+    @property
+    def marked_seams(self) -> list[str]:
+        """Labels of the seams without room for a tab (marked for tape instead)."""
+        return seam_labels(self.seam_numbers[~self.tab_seams & ~self.tab_elsewhere].tolist(), self.label_chars)
 
     def warnings(self) -> list[str]:
-        """The lines a maker must not miss: a net split into pieces, numbers shrunk, seams without tabs."""
+        """The lines a maker must not miss: a net split into pieces, labels shrunk, seams without tabs."""
         out = []
         if self.pieces > 1:
             n = len(self.sheets)
             out.append(f"net split into {self.pieces} pieces on {n} sheet{'s' if n > 1 else ''}: "
-                       "glue the seams between pieces by their numbers")
+                       "glue the seams between pieces by their labels")
         if self.numbers and self.seams and self.label_height < self.label_wanted - 1e-9:
-            out.append(f"edge numbers shrunk to {self.label_height:.1f} mm (asked {self.label_wanted:g} mm) "
+            out.append(f"seam labels shrunk to {self.label_height:.1f} mm (asked {self.label_wanted:g} mm) "
                        f"to fit {self.pitch:g} mm faces")
         marked = self.marked_seams
         if marked:
-            shown = ", ".join(map(str, marked[:20])) + (" ..." if len(marked) > 20 else "")
+            shown = ", ".join(marked[:20]) + (" ..." if len(marked) > 20 else "")
             out.append(f"{len(marked)} seams without room for a tab, marked for tape: {shown}")
         return out
 
@@ -157,7 +166,8 @@ class Drawing:
             f"faces {self.pitch:g} mm, {n} sheet{'s' if n > 1 else ''} of {w:g} x {h:g} mm, "
             f"filled {fills}" + (", net turned a quarter turn" if self.rotated else "")
         ]
-        numbers = f", numbers {self.label_height:.1f} mm high" if self.numbers else ", no numbers"
+        numbers = (f", {self.label_chars}-character labels {self.label_height:.1f} mm high" if self.numbers
+                   else ", no labels")
         lines.append(
             f"{self.seams} glued seams; {int(self.tab_seams.sum())} tabs ({self.tab_height:.1f} mm deep){numbers}"
         )
@@ -212,7 +222,7 @@ def _edge_points(pos: npt.NDArray[np.float64], fe: npt.NDArray[np.int64]) -> tup
 
 
 def draw_net(grid: npt.ArrayLike, net: Net, *, options: DrawingOptions | None = None, name: str = "") -> Drawing:
-    """Lay a net out on sheets with cut outlines, folds, glue tabs, numbers and a title.
+    """Lay a net out on sheets with cut outlines, folds, glue tabs, seam labels and a title.
 
     Parameters
     ----------
@@ -237,7 +247,7 @@ def draw_net(grid: npt.ArrayLike, net: Net, *, options: DrawingOptions | None = 
     SheetFitError
         When the net does not fit the sheet at the face size asked for.
     InvalidShapeError
-        When the faces are too small for the edge numbers or glue tabs; the
+        When the faces are too small for the seam labels or glue tabs; the
         message gives the smallest face size that works.
     """
     opts = options or DrawingOptions()
@@ -250,7 +260,7 @@ def draw_pieces(grid: npt.ArrayLike, pieces: list[Net], *, options: DrawingOptio
                 name: str = "") -> Drawing:
     """Pack the pieces of a several-piece unfolding on as few sheets as possible and draw them.
 
-    Seams between pieces are numbered on both edges and get a tab on one side,
+    Seams between pieces are labelled on both edges and get a tab on one side,
     like every other seam; the report gives the fill of each sheet.
 
     Parameters
@@ -303,11 +313,13 @@ def _draw(graph: SurfaceGraph, net: Net, plan: SheetPlan, opts: DrawingOptions, 
     allowed = np.stack([~elsewhere, ~external], axis=1)
     if external.any():
         numbers = edges.seam_id[sides[:, 0, 0], sides[:, 0, 1]] + 1
+        # Label length from all 2F surface edges, so pieces drawn apart print one label per seam.
+        chars = label_length(2 * graph.face_count)
     else:
         numbers = np.arange(1, sides.shape[0] + 1)
+        chars = label_length(int(numbers.max(initial=1)))
     p = plan.pitch
-    digits = digits_of(int(numbers.max(initial=1)))
-    problem = legibility_problem(opts, p, digits)
+    problem = legibility_problem(opts, p, chars)
     if problem:
         raise InvalidShapeError(problem)
     pos = plan.face_positions()
@@ -318,7 +330,7 @@ def _draw(graph: SurfaceGraph, net: Net, plan: SheetPlan, opts: DrawingOptions, 
     tabs = place_tabs(pos, fs, sides, pitch=p, area=plan.area, sheet_width=w, tab_width=opts.tab_width,
                       tab_angle=opts.tab_angle, allowed=allowed, min_height=opts.min_tab_depth)
     inset, tab_h = tab_heights(p, opts.tab_width, opts.tab_angle)
-    label_h = number_height(opts, p, digits)
+    label_h = number_height(opts, p, chars)
     fold_mask = joined & edges.canonical()
     fold_counts = {
         kind: int(np.count_nonzero(fold_mask & (edges.fold_type == t)))
@@ -327,12 +339,13 @@ def _draw(graph: SurfaceGraph, net: Net, plan: SheetPlan, opts: DrawingOptions, 
     title = f"{name}  FACES {p:g} MM  SEED {net.seed}".strip()
     sheets = tuple(
         _draw_sheet(s, plan, edges, joined, sides, seam_type, tabs, opts, label_h, title, pos, shared,
-                    numbers, elsewhere)
+                    seam_labels(numbers.tolist(), chars), elsewhere)
         for s in range(plan.count)
     )
     return Drawing(
         sheets=sheets, pitch=p, rotated=plan.rotated, seams=int(sides.shape[0]),
-        tab_seams=tabs.placed, tab_elsewhere=elsewhere, seam_numbers=numbers, seam_type=seam_type,
+        tab_seams=tabs.placed, tab_elsewhere=elsewhere, seam_numbers=numbers, label_chars=chars,
+        seam_type=seam_type,
         tab_fold_length=np.where(tabs.placed, p - 2 * inset, 0.0), fold_counts=fold_counts,
         closed_in_plane=int(np.count_nonzero(edges.closed_in_plane & edges.canonical())),
         pieces=pieces, label_height=float(label_h), tab_height=float(tab_h) if opts.tabs else 0.0,
@@ -343,7 +356,7 @@ def _draw(graph: SurfaceGraph, net: Net, plan: SheetPlan, opts: DrawingOptions, 
 def _draw_sheet(
     s: int, plan: SheetPlan, edges: NetEdges, joined: npt.NDArray[np.bool_], sides: npt.NDArray[np.int64],
     seam_type: npt.NDArray[np.int64], tabs: TabPlan, opts: DrawingOptions, label_h: float, title: str,
-    pos: npt.NDArray[np.float64], shared: npt.NDArray[np.bool_], numbers: npt.NDArray[np.int64],
+    pos: npt.NDArray[np.float64], shared: npt.NDArray[np.bool_], labels: list[str],
     elsewhere: npt.NDArray[np.bool_],
 ) -> Sheet:
     p = plan.pitch
@@ -393,7 +406,7 @@ def _draw_sheet(
     rings, pieces = trace_outlines(a_cell[boundary], b_cell[boundary], detour[boundary], origin=origin, pitch=p)
     layers["CUT"].insert(0, Polylines.from_list(rings, [True] * len(rings)))
     layers["CUT"].insert(1, Polylines.from_segments(slit_a, slit_b))
-    # Numbers on both edges of every seam, inside the face, reading along the edge.
+    # The label on both edges of every seam, inside the face, standing on the edge and reading along it.
     texts: list[str] = []
     org: list[np.ndarray] = []
     dirs: list[np.ndarray] = []
@@ -404,10 +417,10 @@ def _draw_sheet(
         p0, p1 = _edge_points(pos, fe[here])
         d = (p1 - p0) / p
         inward = np.stack([-d[:, 1], d[:, 0]], axis=1)
-        here_texts = [str(i) for i in numbers[here].tolist()]
+        here_texts = [labels[i] for i in np.flatnonzero(here).tolist()]
         texts += here_texts
-        # Centred on the edge, or pushed along it just clear of the number on the previous edge.
-        width = np.array([text_width(t, label_h) for t in here_texts]).reshape(-1)
+        # Centred on the edge, or pushed along it just clear of the label on the previous edge.
+        width = np.array([text_width(t, label_h, LABEL_ADVANCE) for t in here_texts]).reshape(-1)
         along = np.maximum((p - width) / 2, number_start(p, label_h))
         org.append(p0 + d * along[:, None] + inward * (NUMBER_INSET * p))
         dirs.append(d)
@@ -417,7 +430,7 @@ def _draw_sheet(
         marks.append((p0[no_tab] + d[no_tab] * 0.2 * p + off, p1[no_tab] - d[no_tab] * 0.2 * p + off))
     if texts and opts.numbers:
         layers["LABEL"].append(text_polylines(texts, np.concatenate(org), np.concatenate(dirs), label_h,
-                                                  mark_ambiguous=True))
+                                              advance=LABEL_ADVANCE))
     layers["LABEL"].append(Polylines.from_segments(np.concatenate([m[0] for m in marks]),
                                                    np.concatenate([m[1] for m in marks])))
     heading = title + (f"  SHEET {s + 1}/{plan.count}" if plan.count > 1 else "")

@@ -23,7 +23,8 @@ import numpy as np
 from voxfab.errors import InvalidShapeError, UnfoldError
 from voxfab.unfold import Net
 
-from ._legible import digits_of, legibility_problem, smallest_face_size
+from ._labels import label_length
+from ._legible import legibility_problem, smallest_face_size
 from ._options import DrawingOptions
 from ._sheets import extent_of, fit_error, largest_face_size, sheet_cells, smallest_sheet
 
@@ -106,12 +107,14 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     from voxfab.unfold import unfold, unfold_many
 
     search = {k: v for k, v in search.items() if k != "fit"}
-    digits = digits_of(_surface_faces(grid, bool(search.get("fill", False))) + 1)
+    faces = _surface_faces(grid, bool(search.get("fill", False)))
+    # A one-piece net has at most F + 1 seams; pieces label seams by their surface edge, of which there are 2F.
+    chars = label_length(2 * faces if pieces == "auto" else faces + 1)
     notes: list[str] = []
     if options.pitch is None:
-        options, auto_notes = _auto_face_size(grid, options, rng=rng, pieces=pieces, digits=digits, search=search)
+        options, auto_notes = _auto_face_size(grid, options, rng=rng, pieces=pieces, chars=chars, search=search)
         notes += auto_notes
-    problem = legibility_problem(options, float(options.pitch), digits)
+    problem = legibility_problem(options, float(options.pitch), chars)
     if problem:
         raise InvalidShapeError(problem)
     fit = sheet_cells(options, float(options.pitch))
@@ -132,7 +135,7 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     return SheetNets([list(nets)], options, notes)
 
 
-def _auto_face_size(grid: Any, options: DrawingOptions, *, rng: int, pieces: str, digits: int,
+def _auto_face_size(grid: Any, options: DrawingOptions, *, rng: int, pieces: str, chars: int,
                     search: dict[str, Any]) -> tuple[DrawingOptions, list[str]]:
     """The largest face size at which a compact one-piece net fits the sheet, if its marks are legible."""
     from voxfab.unfold import unfold
@@ -140,7 +143,7 @@ def _auto_face_size(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     net = unfold(grid, rng=rng, **{**search, "compact": True})
     extent = extent_of(net.corners2d)
     p = largest_face_size(extent, options)
-    need = smallest_face_size(options, digits)
+    need = smallest_face_size(options, chars)
     if p >= need:
         return dataclasses.replace(options, pitch=p), [f"face size {p:g} mm: the largest at which the net fits"]
     if pieces == "auto":

@@ -74,10 +74,10 @@ class DrawingOptions(Options):
 
     ``pitch`` is the face size in mm (set from ``face_size`` by the front
     ends); ``None`` picks the largest, in 0.1 mm steps, at which the net fits
-    one sheet.  Numbers shrink from ``label_height`` to fit the faces but never
-    below ``min_label_height``, and tabs never below ``min_tab_depth``: smaller
-    faces are refused with the smallest face size that works, unless numbers or
-    tabs are switched off.
+    one sheet.  Seam labels shrink from ``label_height`` to fit the faces but
+    never below ``min_label_height``, and tabs never below ``min_tab_depth``:
+    smaller faces are refused with the smallest face size that works, unless
+    labels (``numbers``) or tabs are switched off.
     """
 
     pitch: float | None = option(None, help="face edge (set from face_size)", unit="mm", low=0.0, low_open=True,
@@ -88,9 +88,9 @@ class DrawingOptions(Options):
     tab_width: float = option(5.0, help="largest glue tab height", unit="mm", low=0.0, low_open=True, high=100.0)
     tab_angle: float = option(45.0, help="angle of the tab sides to their fold", unit="degrees", low=15.0,
                               high=75.0)
-    label_height: float = option(5.0, help="largest height of the edge numbers; they shrink to fit the faces",
+    label_height: float = option(5.0, help="largest height of the seam labels; they shrink to fit the faces",
                                  unit="mm", low=0.0, low_open=True, high=100.0)
-    min_label_height: float = option(2.0, help="smallest height of the edge numbers: smaller faces are refused "
+    min_label_height: float = option(2.0, help="smallest height of the seam labels: smaller faces are refused "
                                      "with the face size that works", unit="mm", low=0.0, low_open=True,
                                      high=100.0)
     min_tab_depth: float = option(3.0, help="smallest glue tab: smaller faces are refused likewise", unit="mm",
@@ -110,12 +110,12 @@ class DrawingOptions(Options):
     colors: str = option("", help="colour map, e.g. 'cut=#ff0000,mountain=blue:dashed'; layers CUT SCORE "
                          "MOUNTAIN VALLEY GRID LABEL, styles solid dashed dashdot dotted", check=_colors_problem,
                          metavar="LAYER=COLOR[:STYLE],...")
-    numbers: bool = option(True, help="draw the edge numbers (--no-numbers for faces too small to carry them)")
+    numbers: bool = option(True, help="draw the seam labels (--no-numbers for faces too small to carry them)")
     tabs: bool = option(True, help="draw glue tabs (--no-tabs: seams are marked for tape)")
     heading: bool = option(True, help="print the title line", cli=False, recipe=False)
 
     def check(self) -> None:
-        """Rules between options: tabs and numbers at least their minimum, room inside the margin."""
+        """Rules between options: tabs and labels at least their minimum, room inside the margin."""
         if self.tabs and self.tab_width < self.min_tab_depth:
             raise OptionError("tab_width", f"{self.tab_width:g} mm is under the {self.min_tab_depth:g} mm "
                               "smallest tab (min_tab_depth)")
