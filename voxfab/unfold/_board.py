@@ -70,7 +70,8 @@ C_NLOG = 16  # faces logged in this move
 C_BESTBAD = 17  # fewest seams without tab room seen (annealing)
 C_RNG = 18  # xorshift state (the bits of a uint64)
 C_OFF = 19  # 4 slots: cell offset across sides 0..3
-N_COUNTERS = 23
+C_STALE = 23  # tab-room moves since the best count last fell
+N_COUNTERS = 24
 
 
 class Surface(NamedTuple):
@@ -433,6 +434,36 @@ def remove_subtree(link, gmem, face, half, board, cnt, m):
         unplace(link, gmem, face, half, board, cnt, f)
         n += 1
     return n
+
+
+@njit(cache=True)
+def rehang_children(link, face, half, cnt, m):
+    """Hang m's children from other faces they meet in the plane, where they can.
+
+    m's subtree shrinks without a face moving: a fold between faces that meet
+    in the plane is a fold whether or not it is a tree edge, so the layout, the
+    seams and the placeable set stay as they are.  Only a child whose new
+    parent lies outside m's subtree moves (no cycle, and a real gain).
+    Without constraints only: kept groups hang from their entry face.
+    """
+    if cnt[C_CONSTRAINED]:
+        return
+    for k in range(4):
+        y = link[m, NB, k]
+        if face[y, POS] < 0 or face[y, PAR] != m:
+            continue
+        for e in range(4):
+            z = link[y, NB, e]
+            if z == m or face[z, POS] < 0:
+                continue
+            s = (e + face[y, ROT]) & 3
+            if face[z, POS] != face[y, POS] + cnt[C_OFF + s] or face[z, ROT] != ((s + 2 - link[y, NE, e]) & 3):
+                continue
+            if in_subtree(face, z, m):
+                continue
+            _log(face, half, cnt, y)
+            face[y, PAR] = z
+            break
 
 
 @njit(cache=True)

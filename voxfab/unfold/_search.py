@@ -30,11 +30,13 @@ _PURE_FACES = 150
 MAX_BOARD = 1021
 #: Growth steps per compiled call between two clock checks.
 _CHUNK = 4000
-#: Tab-room rounds (each from a fresh net), moves per face in each, and moves
-#: per compiled call between two clock checks.
-_ROUNDS = 8
-
+#: Tab-room repair: moves per face over all rounds (each round from a fresh
+#: net), at most per round, and without a new best count before a round gives
+#: up (its last seams are then cheaper to fix in a new net); moves per compiled
+#: call between two clock checks.
+_BUDGET_PER_FACE = 120
 _MOVES_PER_FACE = 15
+_PATIENCE_PER_FACE = 3
 _ANNEAL_CHUNK = 20000
 #: Largest subtree one annealing move may remove.
 _RUIN_CAP = 20  # most moves
@@ -207,7 +209,7 @@ class _Board:
 
     def anneal_budget(self) -> int:
         """Moves of tab-room repair allowed for this many faces (over all rounds)."""
-        return _ROUNDS * _MOVES_PER_FACE * int(self.faces.size)
+        return _BUDGET_PER_FACE * int(self.faces.size)
 
     def exclude_unplaced(self) -> None:
         """Make the placed faces a whole piece: the others are left out for good."""
@@ -220,7 +222,7 @@ class _Board:
 
         Rounds of annealing, each from a freshly grown net when the one before
         got stuck (the last few seams are often cheaper to fix in a new net than
-        in an old one), each within a fixed number of moves, so the outcome
+        in an old one), all within a fixed number of moves, so the outcome
         depends on the seed alone unless the clock runs out first.  The state
         ends at the best net seen.  ``bar`` counts the moves tried.
         """
@@ -229,12 +231,15 @@ class _Board:
         kept: tuple[int, np.ndarray, int] | None = None
         left = -1
         grown = (self.pos.copy(), self.rot.copy(), self.par.copy())
-        for r in range(_ROUNDS):
-            if r:
+        budget = self.anneal_budget()
+        spent = 0
+        while spent < budget:
+            if spent:
                 self.restart()
                 if not self.grow(gw, deadline, _FIT_STEPS_PER_FACE * int(self.faces.size)):
                     break
-            left = self._anneal_round(gw, deadline, best, bar)
+            left, used = self._anneal_round(gw, deadline, best, budget - spent, bar)
+            spent += max(used, 1)
             if not self._whole():
                 break  # never keep a broken tree (a safety net: should not happen)
             if kept is None or left < kept[0]:
@@ -262,14 +267,18 @@ class _Board:
             anc = np.where(anc >= 0, anc[np.maximum(anc, 0)], -1)
         return bool((anc < 0).all())
 
-    def _anneal_round(self, gw, deadline: float, best: np.ndarray, bar: Meter | None) -> int:
+    def _anneal_round(self, gw, deadline: float, best: np.ndarray, most: int,
+                      bar: Meter | None) -> tuple[int, int]:
+        """One annealing run of at most ``most`` moves; returns the best count and the moves used."""
         tr = self.tabroom
         face, half, board, cnt, _ = self.b
-        total = _MOVES_PER_FACE * int(self.faces.size)
-        sched = Annealing(total, _T0, _T1, _REGROW_STEPS, _RUIN_CAP, _BIG_CAP, _P_BIG)
+        n = int(self.faces.size)
+        total = min(_MOVES_PER_FACE * n, most)
+        sched = Annealing(total, _T0, _T1, _REGROW_STEPS, _RUIN_CAP, _BIG_CAP, _P_BIG,
+                          _PATIENCE_PER_FACE * n)
         gw = gw._replace(restart=False)  # a move that cannot regrow cheaply is undone instead
         cnt[self.k.C_TRACK] = 0
-        done = 0
+        done = spent = 0
         while True:
             step = min(_ANNEAL_CHUNK, total - done)
             with _quiet():
@@ -277,12 +286,13 @@ class _Board:
             if bar is not None:
                 bar.update(used)
             done += step
+            spent += used
             if not cnt[self.k.C_TRACK]:
-                break  # the run ended: no seam left, or its last move done
+                break  # the run ended: no seam left, its last move done, or out of patience
             if time.monotonic() > deadline:
                 tr.finish(face, half, board, cnt, best)
                 break
-        return int(cnt[self.k.C_BESTBAD])
+        return int(cnt[self.k.C_BESTBAD]), spent
 
     def net(self, sg: SurfaceGraph, *, faces: npt.NDArray[np.int64] | None = None,
             seed: int, strategy: str) -> Net:
