@@ -36,7 +36,7 @@ _CHUNK = 4000
 #: call between two clock checks.
 _BUDGET_PER_FACE = 120
 _MOVES_PER_FACE = 15
-_PATIENCE_PER_FACE = 3
+_PATIENCE_PER_FACE = 1.5
 _ANNEAL_CHUNK = 20000
 #: Largest subtree one annealing move may remove.
 _RUIN_CAP = 20  # most moves
@@ -275,7 +275,7 @@ class _Board:
         n = int(self.faces.size)
         total = min(_MOVES_PER_FACE * n, most)
         sched = Annealing(total, _T0, _T1, _REGROW_STEPS, _RUIN_CAP, _BIG_CAP, _P_BIG,
-                          _PATIENCE_PER_FACE * n)
+                          int(_PATIENCE_PER_FACE * n))
         gw = gw._replace(restart=False)  # a move that cannot regrow cheaply is undone instead
         cnt[self.k.C_TRACK] = 0
         done = spent = 0

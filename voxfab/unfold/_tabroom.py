@@ -32,7 +32,7 @@ from ._board import (
     entry,
     randint,
     random,
-    rehang_children,
+    rehang,
     remove_subtree,
     restore,
     subtree_size,
@@ -81,7 +81,7 @@ def _ruin_near_seams(link, gmem, face, half, board, cnt, sched):
             if size > left:
                 # A crowded corner on the trunk of the tree: hang the trunk
                 # around m where faces meet in the plane, then try again.
-                rehang_children(link, face, half, cnt, m)
+                rehang(link, face, half, cnt, m, sched.big_cap)
                 size = subtree_size(link, face, half, m, -1, left)
             if size <= left:
                 left -= remove_subtree(link, gmem, face, half, board, cnt, m)
