@@ -65,6 +65,8 @@ def _ruin_near_seams(link, gmem, face, half, board, cnt, sched):
     width = cnt[C_WIDTH]
     c0 = face[a, POS]
     r = 1 + randint(cnt, 2)
+    if sched.patience > 0 and 2 * cnt[C_STALE] > sched.patience:
+        r += 1  # no progress for a while: clear a wider corner
     left = cap
     for dy in range(-r, r + 1):
         for dx in range(-r, r + 1):
