@@ -458,8 +458,9 @@ def unfold(
         ``"one"``: return one Net or raise UnfoldError.  ``"auto"``: always return a
         list of Nets, as few pieces as the budget allows: one per separate
         surface part (cavity walls, separate components), and when no one-piece
-        net fits ``fit`` the fewest large pieces that each fit it, none under a
-        tenth of the largest when it can help it.  Face ``i`` of a piece is then
+        net fits ``fit`` few large pieces that each fit it, none of a surface
+        part's pieces under a tenth of its largest (UnfoldError when no such
+        split is found).  Face ``i`` of a piece is then
         *not* face ``i`` of the surface graph: faces are identified by
         ``(voxel, normal)``.
     compact : bool
