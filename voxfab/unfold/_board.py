@@ -37,7 +37,8 @@ ROT = 1  # rotation r: edge k lies on cell side (k + r) % 4
 PAR = 2  # parent in the fold tree, -1 for the root, -2 unplaced
 LPOS, LROT, LPAR = 3, 4, 5  # state before the move that first touched the face
 STAMP = 6  # id of the move that last logged the face
-N_FACE = 7
+MARK = 7  # scratch: id of the last subtree walk that reached the face
+N_FACE = 8
 # ``half[t, col]``: lists over half-edges and faces, with positions.
 CL = 0  # placeable half-edges (slots 0..), then unplaced faces (slots 4F..)
 CP = 1  # position of each half-edge (4F + face) in CL, -1 absent
@@ -70,7 +71,9 @@ C_NLOG = 16  # faces logged in this move
 C_BESTBAD = 17  # fewest seams without tab room seen (annealing)
 C_RNG = 18  # xorshift state (the bits of a uint64)
 C_OFF = 19  # 4 slots: cell offset across sides 0..3
-N_COUNTERS = 23
+C_STALE = 23  # tab-room moves since the best count last fell
+C_MARK = 24  # id of the last marking subtree walk
+N_COUNTERS = 25
 
 
 class Surface(NamedTuple):
@@ -88,7 +91,7 @@ class Surface(NamedTuple):
 class Board(NamedTuple):
     """The search state.
 
-    ``face`` : (F, N_FACE) int64, see POS .. STAMP.
+    ``face`` : (F, N_FACE) int64, see POS .. MARK.
     ``half`` : (5F + 4, N_HALF) int64, see CL .. LOG.  The placeable set holds
     the half-edges of placed faces whose neighbour is unplaced, whose forced
     cell is free and whose constraints are met, kept exact incrementally so a
@@ -132,6 +135,7 @@ def make_board(faces: npt.NDArray[np.int64], f: int, board: npt.NDArray[np.int64
     face[faces, POS] = -1
     face[:, PAR] = -2
     face[:, STAMP] = -1
+    face[:, MARK] = -1
     half = np.zeros((5 * f + 4, N_HALF), dtype=np.int64)
     half[:, CP] = -1
     half[:, SP] = -1
@@ -433,6 +437,71 @@ def remove_subtree(link, gmem, face, half, board, cnt, m):
         unplace(link, gmem, face, half, board, cnt, f)
         n += 1
     return n
+
+
+@njit(cache=True)
+def _meets(link, face, cnt, u, e):
+    # Whether u's neighbour across edge e lies where a fold across e would lay it.
+    z = link[u, NB, e]
+    if face[z, POS] < 0:
+        return False
+    s = (e + face[u, ROT]) & 3
+    return face[z, POS] == face[u, POS] + cnt[C_OFF + s] and face[z, ROT] == ((s + 2 - link[u, NE, e]) & 3)
+
+
+@njit(cache=True)
+def rehang(link, face, half, cnt, m, limit):
+    """Shrink m's subtree without moving a face: re-hang its branches elsewhere.
+
+    A fold between faces that meet in the plane is a fold whether or not it is
+    a tree edge, so the layout, the seams and the placeable set stay as they
+    are.  When a face u below m meets a face z outside m's subtree, the branch
+    holding u is turned to hang from u, and u from z.  Subtrees over ``limit``
+    faces are left alone (the walk costs their size).  Without constraints
+    only: kept groups hang from their entry face.
+    """
+    if cnt[C_CONSTRAINED]:
+        return
+    for _ in range(4):  # at most one pass per child of m
+        cnt[C_MARK] += 1
+        mark = cnt[C_MARK]
+        half[0, STACK] = m  # breadth first, so the walk lists the subtree in STACK
+        face[m, MARK] = mark
+        head = 0
+        tail = 1
+        while head < tail:
+            a = half[head, STACK]
+            head += 1
+            for k in range(4):
+                g = link[a, NB, k]
+                if face[g, POS] >= 0 and face[g, PAR] == a:
+                    if tail >= limit:
+                        return
+                    face[g, MARK] = mark
+                    half[tail, STACK] = g
+                    tail += 1
+        found = False
+        for t in range(1, tail):
+            u = half[t, STACK]
+            for e in range(4):
+                z = link[u, NB, e]
+                if face[z, MARK] == mark or not _meets(link, face, cnt, u, e):
+                    continue
+                # Reverse the path from u up to m's child, then hang u from z.
+                a = u
+                p = z
+                while a != m:
+                    up = face[a, PAR]
+                    _log(face, half, cnt, a)
+                    face[a, PAR] = p
+                    p = a
+                    a = up
+                found = True
+                break
+            if found:
+                break
+        if not found:
+            return
 
 
 @njit(cache=True)

@@ -27,7 +27,9 @@ class Annealing(NamedTuple):
     """Move schedule: temperatures ``t0`` to ``t1`` (in seams) over ``total``
     moves, growth steps a regrowth may spend, and the largest subtree a move
     may remove: ``ruin_cap`` mostly, ``big_cap`` with chance ``p_big`` (a seam
-    whose faces and tab cells all lie on the trunk of the tree needs it)."""
+    whose faces and tab cells all lie on the trunk of the tree needs it), and
+    the ``patience``: moves without a new best count after which the run ends
+    early (0: never), since a fresh net then fixes its last seams sooner."""
 
     total: int
     t0: float
@@ -36,3 +38,4 @@ class Annealing(NamedTuple):
     ruin_cap: int
     big_cap: int = 0
     p_big: float = 0.0
+    patience: int = 0

@@ -30,11 +30,13 @@ _PURE_FACES = 150
 MAX_BOARD = 1021
 #: Growth steps per compiled call between two clock checks.
 _CHUNK = 4000
-#: Tab-room rounds (each from a fresh net), moves per face in each, and moves
-#: per compiled call between two clock checks.
-_ROUNDS = 8
-
+#: Tab-room repair: moves per face over all rounds (each round from a fresh
+#: net), at most per round, and without a new best count before a round gives
+#: up (its last seams are then cheaper to fix in a new net); moves per compiled
+#: call between two clock checks.
+_BUDGET_PER_FACE = 120
 _MOVES_PER_FACE = 15
+_PATIENCE_PER_FACE = 1.5
 _ANNEAL_CHUNK = 20000
 #: Largest subtree one annealing move may remove.
 _RUIN_CAP = 20  # most moves
@@ -52,6 +54,13 @@ DEFAULT_BUDGET = 60.0
 #: Compactness: box-shrinking trials, and growth steps per face each trial may use.
 _COMPACT_TRIES = 24
 _COMPACT_STEPS_PER_FACE = 100
+#: pieces="auto": the smallest piece as a share of the largest (by faces), and
+#: branches of a neighbour a too-small piece may try to take.
+_MIN_SHARE = 0.1
+_BRANCH_TRIES = 24
+#: pieces="auto": pairs of neighbouring pieces tried for a join (once the
+#: size rule holds).
+_JOIN_TRIES = 24
 
 
 class Strategy(enum.StrEnum):
@@ -125,8 +134,11 @@ class _Board:
     """Search state for the faces of one piece on one board."""
 
     def __init__(self, sg: SurfaceGraph, faces: npt.NDArray[np.int64], seed: int | list[int],
-                 fit: tuple[int, int] | None, resolved: Resolved | None = None) -> None:
-        _board, _growth, _tabroom = _kernels(faces.size)
+                 fit: tuple[int, int] | None, resolved: Resolved | None = None,
+                 kernel_faces: int | None = None) -> None:
+        # ``kernel_faces`` picks the kernels by a larger search than this board
+        # (the pieces of one surface): many small boards add up.
+        _board, _growth, _tabroom = _kernels(faces.size if kernel_faces is None else kernel_faces)
         self.k = _board
         self.growth = _growth
         self.tabroom = _tabroom
@@ -207,7 +219,7 @@ class _Board:
 
     def anneal_budget(self) -> int:
         """Moves of tab-room repair allowed for this many faces (over all rounds)."""
-        return _ROUNDS * _MOVES_PER_FACE * int(self.faces.size)
+        return _BUDGET_PER_FACE * int(self.faces.size)
 
     def exclude_unplaced(self) -> None:
         """Make the placed faces a whole piece: the others are left out for good."""
@@ -220,7 +232,7 @@ class _Board:
 
         Rounds of annealing, each from a freshly grown net when the one before
         got stuck (the last few seams are often cheaper to fix in a new net than
-        in an old one), each within a fixed number of moves, so the outcome
+        in an old one), all within a fixed number of moves, so the outcome
         depends on the seed alone unless the clock runs out first.  The state
         ends at the best net seen.  ``bar`` counts the moves tried.
         """
@@ -229,12 +241,15 @@ class _Board:
         kept: tuple[int, np.ndarray, int] | None = None
         left = -1
         grown = (self.pos.copy(), self.rot.copy(), self.par.copy())
-        for r in range(_ROUNDS):
-            if r:
+        budget = self.anneal_budget()
+        spent = 0
+        while spent < budget:
+            if spent:
                 self.restart()
                 if not self.grow(gw, deadline, _FIT_STEPS_PER_FACE * int(self.faces.size)):
                     break
-            left = self._anneal_round(gw, deadline, best, bar)
+            left, used = self._anneal_round(gw, deadline, best, budget - spent, bar)
+            spent += max(used, 1)
             if not self._whole():
                 break  # never keep a broken tree (a safety net: should not happen)
             if kept is None or left < kept[0]:
@@ -262,14 +277,18 @@ class _Board:
             anc = np.where(anc >= 0, anc[np.maximum(anc, 0)], -1)
         return bool((anc < 0).all())
 
-    def _anneal_round(self, gw, deadline: float, best: np.ndarray, bar: Meter | None) -> int:
+    def _anneal_round(self, gw, deadline: float, best: np.ndarray, most: int,
+                      bar: Meter | None) -> tuple[int, int]:
+        """One annealing run of at most ``most`` moves; returns the best count and the moves used."""
         tr = self.tabroom
         face, half, board, cnt, _ = self.b
-        total = _MOVES_PER_FACE * int(self.faces.size)
-        sched = Annealing(total, _T0, _T1, _REGROW_STEPS, _RUIN_CAP, _BIG_CAP, _P_BIG)
+        n = int(self.faces.size)
+        total = min(_MOVES_PER_FACE * n, most)
+        sched = Annealing(total, _T0, _T1, _REGROW_STEPS, _RUIN_CAP, _BIG_CAP, _P_BIG,
+                          int(_PATIENCE_PER_FACE * n))
         gw = gw._replace(restart=False)  # a move that cannot regrow cheaply is undone instead
         cnt[self.k.C_TRACK] = 0
-        done = 0
+        done = spent = 0
         while True:
             step = min(_ANNEAL_CHUNK, total - done)
             with _quiet():
@@ -277,12 +296,13 @@ class _Board:
             if bar is not None:
                 bar.update(used)
             done += step
+            spent += used
             if not cnt[self.k.C_TRACK]:
-                break  # the run ended: no seam left, or its last move done
+                break  # the run ended: no seam left, its last move done, or out of patience
             if time.monotonic() > deadline:
                 tr.finish(face, half, board, cnt, best)
                 break
-        return int(cnt[self.k.C_BESTBAD])
+        return int(cnt[self.k.C_BESTBAD]), spent
 
     def net(self, sg: SurfaceGraph, *, faces: npt.NDArray[np.int64] | None = None,
             seed: int, strategy: str) -> Net:
@@ -438,8 +458,9 @@ def unfold(
         ``"one"``: return one Net or raise UnfoldError.  ``"auto"``: always return a
         list of Nets, as few pieces as the budget allows: one per separate
         surface part (cavity walls, separate components), and when no one-piece
-        net fits ``fit`` the fewest large pieces that each fit it, none under a
-        tenth of the largest when it can help it.  Face ``i`` of a piece is then
+        net fits ``fit`` few large pieces that each fit it, none of a surface
+        part's pieces under a tenth of its largest (UnfoldError when no such
+        split is found).  Face ``i`` of a piece is then
         *not* face ``i`` of the surface graph: faces are identified by
         ``(voxel, normal)``.
     compact : bool
@@ -612,10 +633,11 @@ def _compact(job: _Job, faces: npt.NDArray[np.int64], board: _Board, resolved: R
 
 def _pieces(job: _Job, faces: npt.NDArray[np.int64]) -> list[Net]:
     """One surface part as few pieces as the budget allows."""
-    try:
-        return [_one_piece(job, faces)]
-    except UnfoldError:
-        pass
+    if job.fit is None or job.fit[0] * job.fit[1] >= faces.size:  # else one piece cannot fit
+        try:
+            return [_one_piece(job, faces)]
+        except UnfoldError:
+            pass
     boards = _partition(job, faces)
     nets = []
     for b, placed in boards:
@@ -627,13 +649,152 @@ def _pieces(job: _Job, faces: npt.NDArray[np.int64]) -> list[Net]:
 
 
 def _partition(job: _Job, faces: npt.NDArray[np.int64]) -> list[tuple[_Board, npt.NDArray[np.int64]]]:
-    """Cut the faces into pieces that each fit the box: the largest first, then merge small ones.
+    """Cut the faces into pieces that each fit the box, then join pieces while they fit.
 
-    Each piece is the largest net ruin-and-recreate packs into the box from the
-    faces left over within a growth budget.  A piece under a tenth of the
-    largest is then merged into a neighbouring piece when the two still fit
-    together.
+    Without constraints the pieces are branches of one free net, each cut off
+    where its layout stops fitting the box: every piece is a connected net
+    from the start, with no stray faces left over.  With constraints (a kept
+    group must not be cut) each piece is instead the largest net that
+    ruin-and-recreate packs into the box from the faces left over.
     """
+    pieces = _tree_pieces(job, faces) if job.constraints is None and job.fit is not None else None
+    if pieces is None:
+        pieces = _greedy_pieces(job, faces)
+    return _balance(job, _merge_small(job, pieces))
+
+
+def _tree_pieces(job: _Job, faces: npt.NDArray[np.int64]) -> list | None:
+    """Branches of a free net that fit the box, bottom up; None when no free net grows."""
+    n = int(faces.size)
+    free = _Board(job.sg, faces, [job.seed, 1999], None, None, n)
+    if not free.grow(job.growth(n), math.inf, _FIT_STEPS_PER_FACE * n):
+        return None
+    w_box, h_box = job.fit
+    x, y = free.pos % free.width, free.pos // free.width
+
+    def fits(b: tuple[int, int, int, int]) -> bool:
+        w, h = b[1] - b[0] + 1, b[3] - b[2] + 1
+        return (w <= w_box and h <= h_box) or (w <= h_box and h <= w_box)
+
+    children: dict[int, list[int]] = {}
+    root = -1
+    for f in faces.tolist():
+        p = int(free.par[f])
+        if p >= 0:
+            children.setdefault(p, []).append(f)
+        else:
+            root = f
+    walk = [root]  # breadth first: every face after its parent
+    for f in walk:
+        walk.extend(children.get(f, ()))
+    box: dict[int, tuple[int, int, int, int]] = {}
+    members: dict[int, list[int]] = {}
+    cut: list[list[int]] = []
+    for f in reversed(walk):
+        b = (int(x[f]), int(x[f]), int(y[f]), int(y[f]))
+        mem = [f]
+        # The smallest branches join first, so that fewer faces are cut off.
+        for c in sorted(children.get(f, ()), key=lambda c: (len(members[c]), c)):
+            cb = box.pop(c)
+            joined = (min(b[0], cb[0]), max(b[1], cb[1]), min(b[2], cb[2]), max(b[3], cb[3]))
+            if fits(joined):
+                b = joined
+                mem += members.pop(c)
+            else:
+                cut.append(members.pop(c))
+        box[f], members[f] = b, mem
+    cut.append(members[root])
+    return [_laid_out(job, free, np.array(sorted(m), dtype=np.int64), t) for t, m in enumerate(cut)]
+
+
+def _laid_out(job: _Job, free: _Board, piece: npt.NDArray[np.int64], t: int) -> tuple[_Board, npt.NDArray[np.int64]]:
+    """A board in the box holding ``piece`` as laid out on the free board ``free``."""
+    cells = np.stack([free.pos % free.width, free.pos // free.width], axis=1)
+    return _board_of(job, piece, cells, free.rot, free.par, [job.seed, 2000 + t])
+
+
+def _board_of(job: _Job, piece: npt.NDArray[np.int64], cells: npt.NDArray[np.int64],
+              rot: npt.NDArray[np.int64], par: npt.NDArray[np.int64], seed: list[int]
+              ) -> tuple[_Board, npt.NDArray[np.int64]]:
+    """A board in the box (turned to fit) holding ``piece`` laid out on ``cells``."""
+    x, y = cells[piece, 0], cells[piece, 1]
+    w, h = int(np.ptp(x)) + 1, int(np.ptp(y)) + 1
+    if job.fit is None:
+        box = None
+    else:
+        box = job.fit if w <= job.fit[0] and h <= job.fit[1] else (job.fit[1], job.fit[0])
+    b = _Board(job.sg, piece, seed, box, None, job.sg.face_count)
+    saved = np.zeros((job.sg.face_count, 3), dtype=np.int64)
+    saved[:, 0] = -3  # faces of other pieces stay out
+    saved[:, 2] = -2
+    saved[piece, 0] = (y - y.min() + 1) * b.width + (x - x.min() + 1)  # inside the wall
+    saved[piece, 1] = rot[piece]
+    inside = np.zeros(job.sg.face_count, dtype=bool)
+    inside[piece] = True
+    up = par[piece]
+    saved[piece, 2] = np.where((up >= 0) & inside[np.maximum(up, 0)], up, -1)
+    b.k.restore(*b.b[:4], saved)
+    b.cnt[b.k.C_ROOT] = int(piece[saved[piece, 2] < 0][0])
+    b.faces = piece
+    return b, piece
+
+
+def _layout(b: _Board) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64], npt.NDArray[np.int64]]:
+    return np.stack([b.pos % b.width, b.pos // b.width], axis=1), b.rot.copy(), b.par.copy()
+
+
+def _join_layouts(job: _Job, q: tuple, r: tuple, seed: list[int]) -> tuple | None:
+    """Pieces q and r as one, r turned and moved rigidly to fold onto q along a shared edge.
+
+    No face is regrown: both keep their layouts, so the join works even when
+    each fills most of the box.  None when no shared edge gives a layout
+    without overlap inside the box.
+    """
+    sg = job.sg
+    (bq, fq), (br, fr) = q, r
+    cq, rq, pq = _layout(bq)
+    cr, rr, pr = _layout(br)
+    taken = {tuple(c) for c in cq[fq].tolist()}
+    in_r = np.zeros(sg.face_count, dtype=bool)
+    in_r[fr] = True
+    step = np.array([[0, -1], [1, 0], [0, 1], [-1, 0]], dtype=np.int64)
+    for a in fq.tolist():
+        for k in range(4):
+            c = int(sg.neighbor[a, k])
+            if not in_r[c]:
+                continue
+            s_ = (k + int(rq[a])) % 4
+            target = cq[a] + step[s_]
+            if tuple(target.tolist()) in taken:
+                continue
+            turns = ((s_ + 2 - int(sg.neighbor_edge[a, k])) - int(rr[c])) % 4
+            v = cr[fr] - cr[c]
+            for _ in range(turns):  # a quarter turn counter-clockwise: (x, y) -> (-y, x)
+                v = np.stack([-v[:, 1], v[:, 0]], axis=1)
+            moved = v + target
+            lo = np.minimum(moved.min(axis=0), cq[fq].min(axis=0))
+            side = np.maximum(moved.max(axis=0), cq[fq].max(axis=0)) - lo + 1
+            if job.fit is not None and not ((side[0] <= job.fit[0] and side[1] <= job.fit[1]) or (side[0] <= job.fit[1] and side[1] <= job.fit[0])):
+                continue
+            if any(tuple(m) in taken for m in moved.tolist()):
+                continue
+            cells, rot, par = cq.copy(), rq.copy(), pq.copy()
+            cells[fr] = moved
+            rot[fr] = (rr[fr] + turns) % 4
+            par[fr] = pr[fr]
+            # Re-root r's tree at c, then hang c from a.
+            node, above = c, a
+            while node >= 0:
+                nxt = int(par[node])
+                par[node] = above
+                above, node = node, nxt
+            both = np.sort(np.concatenate([fq, fr]))
+            return _board_of(job, both, cells, rot, par, seed)
+    return None
+
+
+def _greedy_pieces(job: _Job, faces: npt.NDArray[np.int64]) -> list[tuple[_Board, npt.NDArray[np.int64]]]:
+    """Pieces grown one by one into the box from the faces left over, the largest first."""
     n = int(faces.size)
     p = job.growth(n)
     pieces: list[tuple[_Board, npt.NDArray[np.int64]]] = []
@@ -643,7 +804,7 @@ def _partition(job: _Job, faces: npt.NDArray[np.int64]) -> list[tuple[_Board, np
     while left.any():
         for part in _surface_parts(job.sg, np.flatnonzero(left)):
             t += 1
-            b = _Board(job.sg, part, [job.seed, 2000 + t], job.fit, job.resolved(part))
+            b = _Board(job.sg, part, [job.seed, 2000 + t], job.fit, job.resolved(part), n)
             if b.started:
                 b.grow(p, math.inf, _steps_left(job, part.size))
             placed = part[b.pos[part] >= 0]
@@ -653,7 +814,7 @@ def _partition(job: _Job, faces: npt.NDArray[np.int64]) -> list[tuple[_Board, np
                     "faces kept together, or for a single face")
             pieces.append((b, placed))
             left[placed] = False
-    return _merge_small(job, pieces)
+    return pieces
 
 
 def _steps_left(job: _Job, faces: int) -> int:
@@ -663,36 +824,155 @@ def _steps_left(job: _Job, faces: int) -> int:
 
 
 def _merge_small(job: _Job, pieces: list) -> list:
-    """Merge each piece under a tenth of the largest into a neighbour, when they fit together."""
-    p = job.growth(job.sg.face_count)
-    owner = np.full(job.sg.face_count, -1, dtype=np.int64)
+    """Join neighbouring pieces, the smallest first, while their union grows inside the box.
+
+    A join is tried only when no piece would end under a tenth of the
+    largest, or when it swallows a piece that breaks that rule.
+    """
+    sg = job.sg
+    area = math.inf if job.fit is None else job.fit[0] * job.fit[1]
     tried: set[tuple[int, int]] = set()
     while True:
-        pieces.sort(key=lambda bp: -bp[1].size)
+        pieces.sort(key=lambda bp: (bp[1].size, int(bp[1][0])))
+        owner = np.full(sg.face_count, -1, dtype=np.int64)
         for q, (_, placed) in enumerate(pieces):
             owner[placed] = q
-        large = pieces[0][1].size
-        merge = None
-        for q in range(len(pieces) - 1, 0, -1):
-            placed = pieces[q][1]
-            if placed.size * 10 >= large:
-                break
-            near = owner[job.sg.neighbor[placed].ravel()]
-            for r in np.unique(near[(near >= 0) & (near != q)])[::-1].tolist():
+        sizes = [int(bp[1].size) for bp in pieces]
+        # Joins for fewer pieces stop with the clock or the tries; joins that
+        # mend the size rule go on while a pair is left to try.
+        if not _too_small(sizes) and (time.monotonic() > job.deadline or len(tried) >= _JOIN_TRIES):
+            break
+        joined = False
+        for q in range(len(pieces)):
+            near = owner[sg.neighbor[pieces[q][1]].ravel()]
+            for r in sorted(set(near[(near >= 0) & (near != q)].tolist())):
                 key = (int(pieces[q][1][0]), int(pieces[r][1][0]))
-                if key not in tried:
-                    merge = (q, r)
-                    tried.add(key)
+                if key in tried or sizes[q] + sizes[r] > area:
+                    continue
+                rest = [z for t, z in enumerate(sizes) if t not in (q, r)] + [sizes[q] + sizes[r]]
+                mends = _too_small(sizes) and sizes[q] < _MIN_SHARE * max(sizes)  # q breaks the rule
+                if _too_small(rest) and not mends:
+                    continue
+                tried.add(key)
+                both = np.sort(np.concatenate([pieces[q][1], pieces[r][1]]))
+                box = None if job.fit is None else _orientations(job.fit)[len(tried) % len(_orientations(job.fit))]
+                seed = [job.seed, 3000 + len(tried)]
+                joinable = job.constraints is None
+                one = _join_layouts(job, pieces[q], pieces[r], seed) if joinable else None
+                if one is None:
+                    b = _Board(sg, both, seed, box, job.resolved(both), sg.face_count)
+                    # Past the clock a join still gets a full budget while the split breaks the rule.
+                    steps = _FIT_STEPS_PER_FACE * int(both.size) if _too_small(sizes) else _steps_left(job, both.size)
+                    if b.started and b.grow(_settings(Strategy.DEFAULT, both.size), math.inf, steps):
+                        one = (b, both)
+                if one is not None:
+                    pieces = [bp for t, bp in enumerate(pieces) if t not in (q, r)] + [one]
+                    joined = True
                     break
-            if merge:
+            if joined:
                 break
-        if merge is None or time.monotonic() > job.deadline:
+        if not joined:
+            break
+    return pieces
+
+
+def _too_small(sizes: list[int]) -> bool:
+    return min(sizes) < _MIN_SHARE * max(sizes)
+
+
+def _balance(job: _Job, pieces: list) -> list:
+    """Guarantee the size rule: no piece under a tenth of the largest.
+
+    A piece still too small after merging (its neighbours fill their boxes)
+    takes a branch of a neighbour's fold tree: the neighbour keeps its layout
+    minus the branch (still a net, still inside the box), and the small piece
+    is grown anew with the branch's faces.  UnfoldError when no branch works.
+    """
+    for _ in range(2 * len(pieces) + 8):
+        pieces.sort(key=lambda bp: -bp[1].size)
+        sizes = [int(bp[1].size) for bp in pieces]
+        if not _too_small(sizes):
             return pieces
-        q, r = merge
-        both = np.sort(np.concatenate([pieces[q][1], pieces[r][1]]))
-        b = _Board(job.sg, both, [job.seed, 3000 + len(tried)], job.fit, job.resolved(both))
-        if b.started and b.grow(p, math.inf, _steps_left(job, both.size)):
-            pieces = [bp for t, bp in enumerate(pieces) if t not in (q, r)] + [(b, both)]
+        if not _take_branch(job, pieces, len(pieces) - 1):
+            break
+    sizes = sorted((int(bp[1].size) for bp in pieces), reverse=True)
+    where = "" if job.fit is None else f" that fit {job.fit[0]}x{job.fit[1]} cells"
+    raise UnfoldError(
+        f"could not split the {sum(sizes)}-face surface into pieces{where} "
+        f"with none under a tenth of the largest (sizes "
+        f"{sizes[:3]} ... {sizes[-3:]}); use a larger sheet or smaller faces")
+
+
+def _take_branch(job: _Job, pieces: list, q: int) -> bool:
+    """Grow piece ``q`` with a branch of a neighbouring piece; False when none fits."""
+    sg = job.sg
+    small = pieces[q][1]
+    large = max(int(bp[1].size) for bp in pieces)
+    floor = math.ceil(_MIN_SHARE * large)  # every piece must keep at least this many faces
+    owner = np.full(sg.face_count, -1, dtype=np.int64)
+    for r, (_, placed) in enumerate(pieces):
+        owner[placed] = r
+    near = owner[sg.neighbor[small].ravel()]
+    tries = 0
+    for r in sorted(set(near[(near >= 0) & (near != q)].tolist()), key=lambda r: (-pieces[r][1].size, r)):
+        b, placed = pieces[r]
+        for u, branch in _branches(b, placed, small, floor - small.size, placed.size - floor):
+            both = np.sort(np.concatenate([small, branch]))
+            tries += 1
+            trial = _Board(sg, both, [job.seed, 4000 + tries], job.fit, job.resolved(both), sg.face_count)
+            if trial.started and trial.grow(_settings(Strategy.DEFAULT, both.size), math.inf,
+                                            _FIT_STEPS_PER_FACE * int(both.size)):
+                b.k.remove_subtree(*b.sf, *b.b[:4], u)
+                pieces[r] = (b, np.setdiff1d(placed, branch))
+                pieces[q] = (trial, both)
+                return True
+            if tries >= _BRANCH_TRIES:
+                return False
+    return False
+
+
+def _branches(b: _Board, placed: npt.NDArray[np.int64], small: npt.NDArray[np.int64], least: int,
+              most: int):
+    """Branches of board ``b``'s fold tree of ``least`` to ``most`` faces that touch ``small``.
+
+    Yields (the branch's top face, its faces), smallest first: the neighbour
+    then loses as little as it can.  A branch never starts inside a kept group.
+    """
+    nf = b.sf.link.shape[0]
+    par = b.par
+    size = np.zeros(nf, dtype=np.int64)
+    touch = np.zeros(nf, dtype=bool)  # the branch holds a neighbour of the small piece
+    near_small = np.zeros(nf, dtype=bool)
+    near_small[b.sf.link[small, b.k.NB].ravel()] = True
+    children: dict[int, list[int]] = {}
+    root = -1
+    for f in placed.tolist():
+        p = int(par[f])
+        if p >= 0:
+            children.setdefault(p, []).append(f)
+        else:
+            root = f
+    walk = [root]  # breadth first: every face after its parent
+    for f in walk:
+        walk.extend(children.get(f, ()))
+    for f in reversed(walk):
+        size[f] += 1
+        touch[f] |= near_small[f]
+        p = int(par[f])
+        if p >= 0:
+            size[p] += size[f]
+            touch[p] |= touch[f]
+    cands = [f for f in walk if f != root and least <= size[f] <= most and touch[f]
+             and int(b.k.entry(b.sf.link, b.b.face, b.cnt, f)) == f]
+    cands.sort(key=lambda f: (int(size[f]), f))
+    for u in cands:
+        branch = []
+        stack = [u]
+        while stack:
+            f = stack.pop()
+            branch.append(f)
+            stack.extend(children.get(f, ()))
+        yield u, np.array(sorted(branch), dtype=np.int64)
 
 
 def unfold_many(

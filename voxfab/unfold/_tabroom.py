@@ -18,13 +18,13 @@ from ._board import (
     C_MOVE,
     C_NBAD,
     C_NLOG,
-    C_OFF,
     C_REGROW_FAILED,
     C_ROOT,
+    C_STALE,
     C_TRACK,
     C_UNPLACED,
+    C_WIDTH,
     NB,
-    NE,
     PAR,
     POS,
     ROT,
@@ -32,6 +32,7 @@ from ._board import (
     entry,
     randint,
     random,
+    rehang,
     remove_subtree,
     restore,
     subtree_size,
@@ -44,30 +45,50 @@ from ._jit import njit
 
 @njit(cache=True)
 def _ruin_near_seams(link, gmem, face, half, board, cnt, sched):
-    # Remove one or two subtrees, mostly next to a seam without tab room: one of
-    # its faces, or the face on one of its tab cells.
+    # Mostly (while seams lack room) clear a square window of cells around a
+    # seam without tab room: every face there whose subtree is small goes, so
+    # regrowth can rearrange the crowded corner as a whole.  Removing only the
+    # seam's own faces (often leaves) tends to lay them straight back.
     f = face.shape[0]
     root = cnt[C_ROOT]
-    for _ in range(1 + randint(cnt, 2)):
-        n = cnt[C_NBAD]
-        if n > 0 and random(cnt) < 0.9:
-            e = half[randint(cnt, n), SL]
-            a = e >> 2
-            ka = e & 3
-            if randint(cnt, 2) == 1:
-                a, ka = link[a, NB, ka], link[a, NE, ka]
-            if face[a, POS] < 0:
+    n = cnt[C_NBAD]
+    cap = sched.big_cap if random(cnt) < sched.p_big else sched.ruin_cap
+    if n == 0 or random(cnt) >= 0.9:
+        m = entry(link, face, cnt, randint(cnt, f))
+        if face[m, POS] >= 0 and m != root and subtree_size(link, face, half, m, -1, cap) <= cap:
+            remove_subtree(link, gmem, face, half, board, cnt, m)
+        return
+    e = half[randint(cnt, n), SL]
+    a = e >> 2
+    if randint(cnt, 2) == 1:
+        a = link[a, NB, e & 3]
+    width = cnt[C_WIDTH]
+    c0 = face[a, POS]
+    r = 1 + randint(cnt, 2)
+    if sched.patience > 0 and 2 * cnt[C_STALE] > sched.patience:
+        r += 1  # no progress for a while: clear a wider corner
+    left = cap
+    for dy in range(-r, r + 1):
+        for dx in range(-r, r + 1):
+            c = c0 + dy * width + dx
+            if c < 0 or c >= board.shape[0]:
                 continue
-            m = a if randint(cnt, 2) == 0 else board[face[a, POS] + cnt[C_OFF + ((ka + face[a, ROT]) & 3)]]
-        else:
-            m = randint(cnt, f)
-        if m < 0 or face[m, POS] < 0:
-            continue
-        m = entry(link, face, cnt, m)
-        cap = sched.big_cap if random(cnt) < sched.p_big else sched.ruin_cap
-        if m == root or subtree_size(link, face, half, m, -1, cap) > cap:
-            continue
-        remove_subtree(link, gmem, face, half, board, cnt, m)
+            m = board[c]
+            if m < 0:
+                continue
+            m = entry(link, face, cnt, m)
+            if m == root:
+                continue
+            size = subtree_size(link, face, half, m, -1, left)
+            if size > left:
+                # A crowded corner on the trunk of the tree: hang the trunk
+                # around m where faces meet in the plane, then try again.
+                rehang(link, face, half, cnt, m, sched.big_cap)
+                size = subtree_size(link, face, half, m, -1, left)
+            if size <= left:
+                left -= remove_subtree(link, gmem, face, half, board, cnt, m)
+            if left <= 0:
+                return
 
 
 @njit(cache=True)
@@ -83,6 +104,7 @@ def begin(link, face, half, board, cnt, best):
     """Start tracking a complete net's seams and save it as the best; returns their count."""
     track_seams(link, face, half, board, cnt)
     _save(face, cnt, best)
+    cnt[C_STALE] = 0
     return cnt[C_NBAD]
 
 
@@ -109,7 +131,7 @@ def anneal(link, gmem, face, half, board, cnt, root_cells, gw, sched, moves, mv0
     used = 0
     for mv in range(moves):
         cur = cnt[C_NBAD]
-        if cur == 0:
+        if cur == 0 or (sched.patience > 0 and cnt[C_STALE] >= sched.patience):
             break
         used = mv + 1
         temp = sched.t0 * (sched.t1 / sched.t0) ** (min(mv0 + mv, total) / max(total, 1))
@@ -121,17 +143,20 @@ def anneal(link, gmem, face, half, board, cnt, root_cells, gw, sched, moves, mv0
         if cnt[C_UNPLACED] > 0:
             ok = grow(link, gmem, face, half, board, cnt, root_cells, gw, sched.regrow_steps, True)
         cnt[C_LOGGING] = 0
+        cnt[C_STALE] += 1
         if ok:
             new = cnt[C_NBAD]
             if new <= cur or random(cnt) < np.exp(-(new - cur) / temp):
                 cnt[C_ACCEPTED] += 1
                 if new < cnt[C_BESTBAD]:
                     _save(face, cnt, best)
+                    cnt[C_STALE] = 0
                 continue
         else:
             cnt[C_REGROW_FAILED] += 1
         undo(link, gmem, face, half, board, cnt)
-    if cnt[C_NBAD] == 0 or mv0 + moves >= total:
+    stale = sched.patience > 0 and cnt[C_STALE] >= sched.patience
+    if cnt[C_NBAD] == 0 or mv0 + moves >= total or stale:
         finish(face, half, board, cnt, best)
     return used
 
