@@ -28,7 +28,9 @@ def client(tmp_path):
 
     from voxfab.studio import Settings, create_app
 
-    app = create_app(Settings(repo=tmp_path / "repo.sqlite", hosts=frozenset({"testserver"}), work=tmp_path / "work"))
+    # No kernel warm-up thread: it would run the net engine beside tests that patch it.
+    app = create_app(Settings(repo=tmp_path / "repo.sqlite", hosts=frozenset({"testserver"}), work=tmp_path / "work",
+                              warm_up=False))
     with TestClient(app) as c:
         yield c
 

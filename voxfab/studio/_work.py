@@ -176,20 +176,17 @@ def net_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, timeout: f
 
 
 def warm_up() -> None:
-    """Compile the numba kernels of drawings, tubes and nets once, so the first real request is not slowed.
+    """Compile (or load from numba's cache) every kernel group in this process, so the first real request is not slowed.
 
-    numba compiles (or loads from its cache) on the first call, and that time would
-    otherwise count against the artist's first preview or the first net's budget.
+    numba compiles on the first call in each process, and that time would otherwise
+    count against the artist's first preview or the first net's budget.
     """
-    from voxfab.digitize import revolution, tube
     from voxfab.errors import VoxfabError
-    from voxfab.unfold import unfold
+    from voxfab.warmup import warm_up as warm_kernels
 
     try:
-        revolution("x^2 + y^2 - 1", np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 2.0], [0.0, 2.0]]), size=9)
-        tube(["cos(2*pi*t)", "sin(2*pi*t)", "0"], radius=0.3, size=9)
-        unfold(np.ones((2, 1, 1), dtype=bool), rng=0, timeout=120.0)
-    except VoxfabError:  # pragma: no cover - the warm-up shapes are fixed and valid
+        warm_kernels(processes=1)  # here, not in child processes: this process serves the requests
+    except VoxfabError:  # pragma: no cover - the warm-up jobs are fixed and valid
         pass
 
 
