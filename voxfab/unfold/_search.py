@@ -45,7 +45,10 @@ _P_BIG = 0.1
 #: Growth steps an annealing move may spend regrowing before it is undone.
 _REGROW_STEPS = 2000
 #: Annealing temperatures (in seams without tab room) at the start and the end.
-_T0, _T1 = 1.0, 0.05
+#: A round mostly ends by patience within its first fifth of moves, so it runs
+#: near ``_T0``: hot enough to accept most moves that add a seam, which walks
+#: out of a crowded corner far sooner than a cooler search.
+_T0, _T1 = 3.0, 0.05
 #: Fitting a box: tries (alternating the two orientations) and growth steps per face each.
 _FIT_TRIES = 6
 _FIT_STEPS_PER_FACE = 200

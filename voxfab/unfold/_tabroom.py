@@ -129,6 +129,9 @@ def anneal(link, gmem, face, half, board, cnt, root_cells, gw, sched, moves, mv0
         begin(link, face, half, board, cnt, best)
     total = sched.total
     used = 0
+    # Regrowth prefers sparse cells.  A value read from the board, not the
+    # literal True, so numba reuses the one compiled grow the search calls.
+    sparse = cnt[C_TRACK] != 0
     for mv in range(moves):
         cur = cnt[C_NBAD]
         if cur == 0 or (sched.patience > 0 and cnt[C_STALE] >= sched.patience):
@@ -141,7 +144,7 @@ def anneal(link, gmem, face, half, board, cnt, root_cells, gw, sched, moves, mv0
         _ruin_near_seams(link, gmem, face, half, board, cnt, sched)
         ok = True
         if cnt[C_UNPLACED] > 0:
-            ok = grow(link, gmem, face, half, board, cnt, root_cells, gw, sched.regrow_steps, True)
+            ok = grow(link, gmem, face, half, board, cnt, root_cells, gw, sched.regrow_steps, sparse)
         cnt[C_LOGGING] = 0
         cnt[C_STALE] += 1
         if ok:
