@@ -666,6 +666,22 @@ def _partition(job: _Job, faces: npt.NDArray[np.int64]) -> list[tuple[_Board, np
     return _balance(job, _merge_small(job, pieces))
 
 
+def _fold_tree(faces: npt.NDArray[np.int64], par: npt.NDArray[np.int64]) -> tuple[int, dict[int, list[int]], list[int]]:
+    """The root, the children of each face and a breadth-first walk (every face after its parent) of a net's folds."""
+    children: dict[int, list[int]] = {}
+    root = -1
+    for f in faces.tolist():
+        p = int(par[f])
+        if p >= 0:
+            children.setdefault(p, []).append(f)
+        else:
+            root = f
+    walk = [root]
+    for f in walk:
+        walk.extend(children.get(f, ()))
+    return root, children, walk
+
+
 def _tree_pieces(job: _Job, faces: npt.NDArray[np.int64]) -> list | None:
     """Branches of a free net that fit the box, bottom up; None when no free net grows."""
     n = int(faces.size)
@@ -679,17 +695,7 @@ def _tree_pieces(job: _Job, faces: npt.NDArray[np.int64]) -> list | None:
         w, h = b[1] - b[0] + 1, b[3] - b[2] + 1
         return (w <= w_box and h <= h_box) or (w <= h_box and h <= w_box)
 
-    children: dict[int, list[int]] = {}
-    root = -1
-    for f in faces.tolist():
-        p = int(free.par[f])
-        if p >= 0:
-            children.setdefault(p, []).append(f)
-        else:
-            root = f
-    walk = [root]  # breadth first: every face after its parent
-    for f in walk:
-        walk.extend(children.get(f, ()))
+    root, children, walk = _fold_tree(faces, free.par)
     box: dict[int, tuple[int, int, int, int]] = {}
     members: dict[int, list[int]] = {}
     cut: list[list[int]] = []
@@ -947,17 +953,7 @@ def _branches(b: _Board, placed: npt.NDArray[np.int64], small: npt.NDArray[np.in
     touch = np.zeros(nf, dtype=bool)  # the branch holds a neighbour of the small piece
     near_small = np.zeros(nf, dtype=bool)
     near_small[b.sf.link[small, b.k.NB].ravel()] = True
-    children: dict[int, list[int]] = {}
-    root = -1
-    for f in placed.tolist():
-        p = int(par[f])
-        if p >= 0:
-            children.setdefault(p, []).append(f)
-        else:
-            root = f
-    walk = [root]  # breadth first: every face after its parent
-    for f in walk:
-        walk.extend(children.get(f, ()))
+    root, children, walk = _fold_tree(placed, par)
     for f in reversed(walk):
         size[f] += 1
         touch[f] |= near_small[f]
