@@ -11,7 +11,7 @@ Three primitives cover every output of voxfab:
   set: files of an earlier run named like the set (``t-3.svg``) and not written
   again are removed, so no stale sheet survives.
 
-Temporaries are named ``.NAME.PID-XXXXXXXX.tmp``.  They are removed when the run
+Temporaries are named ``.NAME.PID-<8 random characters>.tmp``.  They are removed when the run
 fails, is interrupted (SIGINT) or terminated (SIGTERM: the CLI turns it into an
 exception).  A run killed outright (SIGKILL, power cut) leaves them behind; the
 next run writing into the same folder removes those whose process is gone

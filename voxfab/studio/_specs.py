@@ -234,7 +234,7 @@ def toml_value(value: Any) -> str:
             raise SpecError(f"recipe: {value} has no TOML form")
         return repr(value)
     if isinstance(value, str):
-        # JSON's escapes (\" \\ \n \uXXXX) are valid in TOML basic strings
+        # JSON's escapes (\" \\ \n \u00e9) are valid in TOML basic strings
         return json.dumps(value)
     if isinstance(value, (list, tuple)):
         return "[" + ", ".join(toml_value(v) for v in value) + "]"
