@@ -256,6 +256,7 @@ def test_explore_then_stats_and_pages(tmp_path: Path, capsys: pytest.CaptureFixt
 def test_explore_is_reproducible_from_the_command_line(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     outs = []
     for d in ("a", "b"):
+        (tmp_path / d).mkdir()
         assert main(["explore", "--count", "12", "--seed", "8", "--generator", "mix", "--repo",
                      str(tmp_path / d / "r.sqlite")]) == 0
         outs.append(capsys.readouterr().out.replace(str(tmp_path / d), "R"))

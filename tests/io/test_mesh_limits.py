@@ -9,7 +9,7 @@ import pytest
 import trimesh
 
 from voxfab import io
-from voxfab.errors import LimitError
+from voxfab.errors import LimitError, VoxfabError
 from voxfab.io.mesh import ray_tests
 
 
@@ -37,3 +37,28 @@ def test_long_thin_triangles_are_refused_before_voxelizing(tmp_path):
     assert time.perf_counter() - start < 10
     # At the default resolution the same mesh is cheap and reads.
     assert io.read(tmp_path / "slivers.stl").grid.any()
+
+
+PLY_TETRAHEDRON = (
+    "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+    "element face {faces}\nproperty list uchar int vertex_indices\nend_header\n"
+    "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n3 0 1 3\n3 0 2 3\n3 1 2 3\n"
+)
+
+
+@pytest.mark.parametrize(("faces", "error"), [
+    ("1000000000", "over the limit of 1,000,000"),
+    ("6", "states 6 faces but the file holds 4"),
+    ("many", "is not a number"),
+])
+def test_a_ply_header_that_lies_about_its_faces_is_refused(tmp_path, faces, error):
+    path = tmp_path / "t.ply"
+    path.write_text(PLY_TETRAHEDRON.format(faces=faces))
+    with pytest.raises(VoxfabError, match=error):
+        io.read(path)
+
+
+def test_a_ply_header_that_tells_the_truth_is_read(tmp_path):
+    path = tmp_path / "t.ply"
+    path.write_text(PLY_TETRAHEDRON.format(faces=4))
+    assert io.read(path).grid.any()

@@ -20,6 +20,10 @@ MAX_TRIANGLES          1,000,000                     triangles read from a mesh 
 MAX_MESH_BYTES         64 MiB                        size of a mesh file (3MF: unpacked)
 MAX_RAY_TESTS          60,000,000                    triangle-column tests to voxelize a mesh
 MAX_TEXT_BYTES         16 MiB                        drawings, point lists, recipes
+MAX_EXPLORE_COUNT      1,000,000                     new shapes of one ``explore`` run
+MAX_EXPLORE_ATTEMPTS   100,000,000                   candidates of one ``explore`` run
+MAX_BATCH_WORKERS      256                           local Dask workers of ``batch --workers``
+MAX_WAIT_SECONDS       3,600 s                       any wait a user sets (``--connect-timeout``)
 =====================  ============================  ======================================
 
 Only regular files are read (:func:`check_regular_file`): a FIFO, a device or a
@@ -50,6 +54,10 @@ __all__ = [
     "MAX_MESH_BYTES",
     "MAX_RAY_TESTS",
     "MAX_TEXT_BYTES",
+    "MAX_EXPLORE_COUNT",
+    "MAX_EXPLORE_ATTEMPTS",
+    "MAX_BATCH_WORKERS",
+    "MAX_WAIT_SECONDS",
     "check_regular_file",
     "read_input_bytes",
     "parse_json",
@@ -87,6 +95,15 @@ MAX_MESH_BYTES = 64 * 1024 * 1024
 MAX_RAY_TESTS = 60_000_000
 #: Bytes of a text input: a drawing, a point list or a recipe.
 MAX_TEXT_BYTES = 16 * 1024 * 1024
+#: New shapes one ``explore`` run stores: the repository names at most 999 per
+#: volume, and a million at the measured rate is already a run of hours.
+MAX_EXPLORE_COUNT = 1_000_000
+#: Candidates one ``explore`` run draws before giving up (the default is 50 per shape).
+MAX_EXPLORE_ATTEMPTS = 100_000_000
+#: Local Dask workers of one batch run: each is a process of its own.
+MAX_BATCH_WORKERS = 256
+#: Seconds of any wait the user sets (connecting to a scheduler, waiting for workers).
+MAX_WAIT_SECONDS = 3600.0
 
 
 _PIL_LOCK = threading.Lock()

@@ -3,13 +3,17 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import sys
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from voxfab.shape import VoxelShape
+
+if TYPE_CHECKING:
+    from voxfab.repo import Repository
 
 DEFAULT_REPOSITORY = Path("output") / "repository.sqlite"
 #: Exit status of a command run with ``--strict`` that ended with warnings.
@@ -28,6 +32,38 @@ def add_repository_option(parser: argparse.ArgumentParser) -> None:
         "--repo", type=Path, default=DEFAULT_REPOSITORY, metavar="PATH",
         help=f"repository database (default {DEFAULT_REPOSITORY})",
     )
+
+
+@contextlib.contextmanager
+def open_repository_for_writing(path: Path) -> Iterator[Repository]:
+    """Open (or create) the repository a command stores shapes in.
+
+    A file at a path the user names must go in an existing folder (only the
+    default ``output/`` folder is made), and a file this run created is removed
+    again when the run fails before storing anything: a refusal leaves no empty
+    repository behind.
+    """
+    from voxfab._shared.atomic import check_output
+    from voxfab.repo import Repository
+
+    existed = path.exists()
+    if not existed:
+        check_output(path, parents=path == DEFAULT_REPOSITORY)
+    made_folder = not path.parent.exists()
+    repo = Repository(path, create=True)
+    try:
+        yield repo
+    except BaseException:
+        empty = not existed and len(repo) == 0
+        repo.close()
+        if empty:
+            for leftover in (path, path.with_name(path.name + "-wal"), path.with_name(path.name + "-shm")):
+                leftover.unlink(missing_ok=True)
+            if made_folder:
+                with contextlib.suppress(OSError):
+                    path.parent.rmdir()
+        raise
+    repo.close()
 
 
 def add_pitch_option(parser: argparse.ArgumentParser) -> None:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from voxfab.cli._common import add_repository_option
+from voxfab.cli._common import add_repository_option, open_repository_for_writing
 
 HELP = "generate N new well-formed shapes (distinct up to the 48 cube symmetries) into the repository"
 
@@ -27,11 +27,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from voxfab._shared.progress import meter
-    from voxfab.generate import explore, parse_volume_range, volume_bins
-    from voxfab.repo import Repository
+    from voxfab.generate import check_explore, explore, parse_volume_range, volume_bins
 
     volume = parse_volume_range(args.volume) if args.volume is not None else None
-    with Repository(args.repo, create=True) as repo, meter(args.count, desc="exploring") as bar:
+    check_explore(args.count, seed=args.seed, generator=args.generator, volume=volume,
+                  max_attempts=args.max_attempts)  # before the repository is made
+    with open_repository_for_writing(args.repo) as repo, meter(args.count, desc="exploring") as bar:
         report = explore(repo, args.count, seed=args.seed, generator=args.generator, volume=volume,
                          max_attempts=args.max_attempts, on_added=bar.update)
     volumes = [v for _, v in report.added]

@@ -6,12 +6,12 @@ import argparse
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from voxfab.cli._common import add_repository_option, print_json, print_notes
+from voxfab.cli._common import add_repository_option, open_repository_for_writing, print_json, print_notes
 
 if TYPE_CHECKING:
     from voxfab.repo import Repository
 
-HELP = "manage the shape repository (add, list, stats, show, export, remove)"
+HELP = "manage the shape repository (add, list, stats, show, export, remove, check)"
 
 
 def _subparser(sub: argparse._SubParsersAction, name: str, help_text: str) -> argparse.ArgumentParser:
@@ -22,7 +22,7 @@ def _subparser(sub: argparse._SubParsersAction, name: str, help_text: str) -> ar
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """Add the ``add``, ``list``, ``stats``, ``show``, ``export`` and ``remove`` actions."""
+    """Add the ``add``, ``list``, ``stats``, ``show``, ``export``, ``remove`` and ``check`` actions."""
     sub = parser.add_subparsers(dest="_repo_action", metavar="ACTION", required=True)
 
     p = _subparser(sub, "add", "store shapes and print their names (NAME created / NAME exists)")
@@ -57,6 +57,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     p = _subparser(sub, "remove", "delete a shape (the other names do not change)")
     p.add_argument("name", metavar="NAME", help="a name such as 00797.001, or draft-N")
 
+    _subparser(sub, "check", "check every row of the file; list the bad ones (an error when any)")
+
 
 def run(args: argparse.Namespace) -> int:
     """Run the chosen action; return 0."""
@@ -73,8 +75,13 @@ def run(args: argparse.Namespace) -> int:
         elif action == "show":
             _show(repo, args.name, as_json=args.json)
         elif action == "export":
+            from voxfab._shared.atomic import check_output
+
+            check_output(args.out)  # an existing folder: no folders made on the way
             repo.export(args.name, args.out)
             print(f"{args.name} -> {args.out}")
+        elif action == "check":
+            return _check(repo)
         else:
             repo.remove(args.name)
             print(f"{args.name} removed")
@@ -85,10 +92,9 @@ def _add(args: argparse.Namespace) -> int:
     from voxfab import io
     from voxfab._shared.progress import progress
     from voxfab.errors import RepositoryError
-    from voxfab.repo import Repository
     from voxfab.shape import well_formed_reasons
 
-    with Repository(args.repo, create=True) as repo:
+    with open_repository_for_writing(args.repo) as repo:
         for path in progress(args.shapes, total=len(args.shapes), desc="adding"):
             result = io.read(path)
             print_notes([f"{path}: {n}" for n in result.notes])
@@ -105,6 +111,18 @@ def _add(args: argparse.Namespace) -> int:
             print(f"{added.name} {'created' if added.created else 'exists'}", flush=True)
             if added.reasons:
                 print_notes([f"{path}: stored as a draft: {'; '.join(added.reasons)}"])
+    return 0
+
+
+def _check(repo: Repository) -> int:
+    from voxfab.errors import RepositoryError
+
+    problems = repo.check()
+    for problem in problems:
+        print(problem)
+    if problems:
+        raise RepositoryError(f"{repo.path}: {len(problems)} problem(s) found")
+    print(f"{repo.path}: {len(repo)} rows, all sound")
     return 0
 
 

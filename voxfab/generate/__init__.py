@@ -6,7 +6,7 @@ candidates (face-connected growth spanning the grid, or random parameters for th
 makers of :mod:`voxfab.digitize`) and :func:`explore` stores the new ones.
 """
 
-from ._explore import ExploreReport, explore, parse_volume_range, volume_bins
+from ._explore import ExploreReport, check_explore, explore, parse_volume_range, volume_bins
 from ._keys import symmetric_key
 from ._makers import GENERATORS, MAKER_GENERATORS, Candidate, candidate, growth
 
@@ -15,6 +15,7 @@ __all__ = [
     "MAKER_GENERATORS",
     "Candidate",
     "ExploreReport",
+    "check_explore",
     "candidate",
     "explore",
     "growth",

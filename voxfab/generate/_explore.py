@@ -8,13 +8,14 @@ from collections.abc import Callable
 
 import numpy as np
 
+from voxfab._shared.limits import MAX_EXPLORE_ATTEMPTS, MAX_EXPLORE_COUNT, check_count
 from voxfab.errors import InvalidShapeError, RepositoryError
 from voxfab.shape import GRID_SIDE, crop, well_formed_reasons
 
 from ._keys import symmetric_key
 from ._makers import GENERATORS, candidate
 
-__all__ = ["ExploreReport", "explore", "volume_bins", "parse_volume_range"]
+__all__ = ["ExploreReport", "check_explore", "explore", "volume_bins", "parse_volume_range"]
 
 #: Candidates drawn, keyed and looked up before one write transaction.
 _CHUNK = 512
@@ -47,6 +48,8 @@ class ExploreReport:
 def parse_volume_range(text: str) -> tuple[int, int]:
     """Parse ``MIN:MAX`` (inclusive; either side may be left empty) into a volume range."""
     lo_text, sep, hi_text = str(text).partition(":")
+    if not (lo_text.strip() or hi_text.strip()):
+        raise InvalidShapeError(f"volume: expected MIN:MAX, MIN: or :MAX, got {text!r}")
     try:
         lo = int(lo_text) if lo_text.strip() else 1
         hi = int(hi_text) if hi_text.strip() else GRID_SIDE**3
@@ -77,6 +80,40 @@ def volume_bins(volumes: list[int], *, bins: int = 10) -> list[tuple[int, int, i
     start = (lo // width) * width
     counts = np.bincount((np.asarray(volumes) - start) // width)
     return [(start + i * width, start + (i + 1) * width - 1, int(n)) for i, n in enumerate(counts) if n]
+
+
+def check_explore(
+    count: int,
+    *,
+    seed: int,
+    generator: str = "growth",
+    volume: tuple[int, int] | None = None,
+    max_attempts: int | None = None,
+) -> int:
+    """Check :func:`explore`'s arguments before any work; return the candidate limit.
+
+    Raises
+    ------
+    InvalidShapeError
+        For a bad count, seed, generator, volume range or number of attempts.
+    LimitError
+        For a count or a number of attempts over the limits table's.
+    """
+    if generator not in GENERATORS:
+        raise InvalidShapeError(f"generator: expected one of {', '.join(GENERATORS)}, got {generator!r}")
+    for name, value in (("count", count), ("max_attempts", max_attempts)):
+        if value is not None and (isinstance(value, bool) or int(value) != value or value < 1):
+            raise InvalidShapeError(f"{name}: expected a whole number >= 1, got {value!r}")
+    check_count(int(count), MAX_EXPLORE_COUNT, name="count")
+    if isinstance(seed, bool) or int(seed) != seed or seed < 0:
+        raise InvalidShapeError(f"seed: expected a whole number >= 0, got {seed!r}")
+    if volume is not None and int(volume[1]) < GRID_SIDE:
+        raise InvalidShapeError(
+            f"volume: a well-formed shape spans {GRID_SIDE} voxels, so MAX must be at least {GRID_SIDE}"
+        )
+    if max_attempts is None:
+        return min(max(2000, 50 * int(count)), MAX_EXPLORE_ATTEMPTS)
+    return check_count(int(max_attempts), MAX_EXPLORE_ATTEMPTS, name="max_attempts")
 
 
 def explore(
@@ -124,19 +161,9 @@ def explore(
     """
     from voxfab.repo import MAX_RANK
 
-    if generator not in GENERATORS:
-        raise InvalidShapeError(f"generator: expected one of {', '.join(GENERATORS)}, got {generator!r}")
-    if isinstance(count, bool) or int(count) != count or count < 1:
-        raise InvalidShapeError(f"count: expected a whole number >= 1, got {count!r}")
-    if isinstance(seed, bool) or int(seed) != seed or seed < 0:
-        raise InvalidShapeError(f"seed: expected a whole number >= 0, got {seed!r}")
+    limit = check_explore(count, seed=seed, generator=generator, volume=volume, max_attempts=max_attempts)
     if volume is not None:
         volume = (int(volume[0]), int(volume[1]))
-        if volume[1] < GRID_SIDE:
-            raise InvalidShapeError(
-                f"volume: a well-formed shape spans {GRID_SIDE} voxels, so MAX must be at least {GRID_SIDE}"
-            )
-    limit = max(2000, 50 * int(count)) if max_attempts is None else int(max_attempts)
     ranks = repo.last_ranks()  # type: ignore[attr-defined]
     seen: set[str] = set()
     added: list[tuple[str, int]] = []

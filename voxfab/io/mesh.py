@@ -298,6 +298,10 @@ def check_mesh_size(path: PathLike, file_type: str) -> None:
             raise LimitError(
                 f"{path}: the STL header states {count:,} triangles, over the limit of {MAX_TRIANGLES:,}"
             )
+    if file_type == "ply":
+        faces = ply_face_count(path)
+        if faces is not None and faces > MAX_TRIANGLES:
+            raise LimitError(f"{path}: the PLY header states {faces:,} faces, over the limit of {MAX_TRIANGLES:,}")
     if file_type == "3mf":
         import zipfile
 
@@ -310,6 +314,26 @@ def check_mesh_size(path: PathLike, file_type: str) -> None:
             raise LimitError(
                 f"{path}: the 3MF package unpacks to {unpacked:,} bytes, over the limit of {MAX_MESH_BYTES:,}"
             )
+
+
+def ply_face_count(path: PathLike) -> int | None:
+    """The face count a PLY file's header states, or None when its header gives none.
+
+    The header is text up to ``end_header``; only its first 64 KiB are read.
+    """
+    with open(path, "rb") as fh:
+        head = fh.read(65536)
+    end = head.find(b"end_header")
+    if not head.startswith(b"ply") or end < 0:
+        return None
+    for line in head[:end].decode("latin-1").splitlines():
+        words = line.split()
+        if len(words) == 3 and words[0] == "element" and words[1] == "face":
+            try:
+                return int(words[2])
+            except ValueError:
+                raise FormatError(f"{path}: the PLY header's face count {words[2][:20]!r} is not a number") from None
+    return None
 
 
 def ray_tests(vertices: npt.ArrayLike, faces: npt.ArrayLike, *, resolution: int) -> int:
@@ -358,6 +382,10 @@ def _load(path: PathLike, file_type: str) -> tuple[np.ndarray, np.ndarray, bool]
         raise FormatError(f"{path}: cannot read as a .{file_type} mesh ({why})") from None
     if faces.ndim != 2 or faces.shape[1] != 3 or len(faces) == 0:
         raise FormatError(f"{path}: the file holds no triangle (empty, truncated or not a .{file_type} mesh)")
+    stated = ply_face_count(path) if file_type == "ply" else None
+    if stated is not None and len(faces) < stated:
+        # Each PLY face gives at least one triangle: fewer means a truncated file or a lying header.
+        raise FormatError(f"{path}: the PLY header states {stated:,} faces but the file holds {len(faces):,}")
     if len(faces) > MAX_TRIANGLES:
         raise LimitError(f"{path}: {len(faces):,} triangles is over the limit of {MAX_TRIANGLES:,}")
     if vertices.ndim != 2 or vertices.shape[1] != 3 or not np.isfinite(vertices).all():

@@ -11,9 +11,10 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from voxfab._shared.limits import parse_json
 from voxfab._shared.typing import BoolGrid
-from voxfab._shared.validate import as_grid
-from voxfab.errors import RepositoryError
+from voxfab._shared.validate import MAX_SIDE, as_grid
+from voxfab.errors import RepositoryError, VoxfabError
 from voxfab.shape import canonical_key, crop, well_formed_reasons
 
 __all__ = [
@@ -26,6 +27,9 @@ __all__ = [
     "prepare",
     "encode_bits",
     "decode_bits",
+    "decode_row",
+    "decode_reasons",
+    "decode_meta",
     "format_name",
     "draft_name",
     "check_name",
@@ -74,10 +78,97 @@ def encode_bits(cropped: BoolGrid) -> bytes:
 
 
 def decode_bits(bits: bytes, extents: tuple[int, int, int]) -> BoolGrid:
-    """Inverse of :func:`encode_bits`: a writable ``extents``-shaped bool grid."""
+    """Inverse of :func:`encode_bits`: a writable ``extents``-shaped bool grid.
+
+    Raises
+    ------
+    RepositoryError
+        When ``bits`` is not bytes of exactly the length the extents need:
+        ``np.unpackbits(count=n)`` on a short buffer would make up the rest.
+    """
+    if not isinstance(bits, (bytes, bytearray, memoryview)):
+        raise RepositoryError("bits: not stored as a blob")
+    if len(extents) != 3 or not all(type(n) is int and 0 < n <= MAX_SIDE for n in extents):
+        raise RepositoryError(f"extents: {extents!r} is not three sizes of 1 to {MAX_SIDE} voxels")
     n = extents[0] * extents[1] * extents[2]
-    flat = np.unpackbits(np.frombuffer(bits, dtype=np.uint8), count=n)
+    if len(bits) != (n + 7) // 8:
+        raise RepositoryError(
+            f"bits: {len(bits)} bytes stored, a {extents[0]}x{extents[1]}x{extents[2]} box needs {(n + 7) // 8}"
+        )
+    flat = np.unpackbits(np.frombuffer(bytes(bits), dtype=np.uint8), count=n)
     return flat.astype(bool).reshape(extents)
+
+
+def _corrupt(name: str, detail: str) -> RepositoryError:
+    return RepositoryError(f"{name}: corrupt repository row ({detail}); 'voxfab repo check' lists every bad row")
+
+
+def decode_row(
+    name: str,
+    bits: object,
+    extents: tuple[object, object, object],
+    volume: object,
+    key: object = None,
+    symmetric_key: object = None,
+) -> BoolGrid:
+    """Decode a stored row's grid after checking it against what the row says of it.
+
+    The blob must have the length of its box, the grid must hold ``volume``
+    voxels and fill its box (the stored grid is cropped), and when given, ``key``
+    and ``symmetric_key`` (32-byte blobs) must be the decoded grid's canonical keys.
+    A row that fails any of these is never taken for a shape.
+
+    Raises
+    ------
+    RepositoryError
+        Naming the shape and what is wrong with its row.
+    """
+    try:
+        grid = decode_bits(bits, tuple(extents))  # type: ignore[arg-type]
+    except RepositoryError as exc:
+        raise _corrupt(name, str(exc)) from None
+    if type(volume) is not int:
+        raise _corrupt(name, f"volume stored as {type(volume).__name__}")
+    count = int(np.count_nonzero(grid))
+    if count != volume:
+        raise _corrupt(name, f"{count} voxels stored, volume says {volume}")
+    if count == 0 or crop(grid).shape != grid.shape:
+        raise _corrupt(name, "the stored grid does not fill its box")
+    for label, stored, symmetric in (("key", key, False), ("symmetric_key", symmetric_key, True)):
+        if stored is None:
+            continue
+        if not isinstance(stored, bytes) or len(stored) != 32:
+            raise _corrupt(name, f"{label} is not a 32-byte blob")
+        if canonical_key(grid, symmetric=symmetric) != stored.hex():
+            raise _corrupt(name, f"{label} does not match the stored voxels")
+    return grid
+
+
+def _decode_json(name: str, field: str, text: object) -> Any:
+    if not isinstance(text, str):
+        raise _corrupt(name, f"{field} stored as {type(text).__name__}, expected JSON text")
+    try:
+        return parse_json(text, name=field)
+    except VoxfabError as exc:
+        raise _corrupt(name, str(exc)) from None
+
+
+def decode_reasons(name: str, text: object) -> tuple[str, ...]:
+    """The stored ``reasons`` of ``name``: a JSON list of strings, checked."""
+    reasons = _decode_json(name, "reasons", text)
+    if not isinstance(reasons, list) or not all(isinstance(r, str) for r in reasons):
+        raise _corrupt(name, "reasons is not a JSON list of strings")
+    return tuple(reasons)
+
+
+def decode_meta(name: str, text: object) -> dict[str, Any] | None:
+    """The stored ``meta`` of ``name``: None, or a JSON object, checked."""
+    if text is None:
+        return None
+    meta = _decode_json(name, "meta", text)
+    if not isinstance(meta, dict):
+        raise _corrupt(name, "meta is not a JSON object")
+    return meta
 
 
 def encode_meta(meta: Mapping[str, Any] | None) -> str | None:

@@ -14,14 +14,16 @@ import numpy.typing as npt
 
 from voxfab._shared.typing import BoolGrid, PathLike
 from voxfab.errors import RepositoryError
-from voxfab.shape import canonical_key
+from voxfab.shape import canonical_key, well_formed_reasons
 
 from ._records import (
     MAX_RANK,
     Record,
     check_grid,
     check_name,
-    decode_bits,
+    decode_meta,
+    decode_reasons,
+    decode_row,
     draft_name,
     encode_meta,
     format_name,
@@ -281,7 +283,7 @@ class Repository:
             row = self._db.execute(
                 f"SELECT name, reasons FROM shapes WHERE {column} = ? {_ORDER} LIMIT 1", (bytes.fromhex(key),)
             ).fetchone()
-        return None if row is None else (row[0], tuple(json.loads(row[1])))
+        return None if row is None else (row[0], decode_reasons(row[0], row[1]))
 
     def _insert(self, db: sqlite3.Connection, r: Record, *, symmetric: bool) -> AddResult:
         column, key = ("symmetric_key", r.symmetric_key) if symmetric else ("key", r.key)
@@ -340,17 +342,22 @@ class Repository:
         RepositoryError
             For a malformed or unknown name.
         """
-        bits, nx, ny, nz = self._row(name, "bits, nx, ny, nz")
-        return decode_bits(bits, (nx, ny, nz))
+        return decode_row(name, *self._grid_columns(name))
+
+    def _grid_columns(self, name: str) -> tuple[Any, ...]:
+        bits, nx, ny, nz, volume, key, skey = self._row(name, f"{_BITS}, nx, ny, nz, volume, key, symmetric_key")
+        return bits, (nx, ny, nz), volume, key, skey
 
     def packed(self, name: str) -> tuple[bytes, tuple[int, int, int]]:
         """Return the stored packed bits of ``name`` and its extents, without unpacking.
 
         ``voxfab.repo._records.decode_bits(bits, extents)`` gives the grid of :meth:`get`;
-        a batch sends these few bytes to its workers.
+        a batch sends these few bytes to its workers.  The row is checked as by
+        :meth:`get` first, so a worker never receives a corrupt shape.
         """
-        bits, nx, ny, nz = self._row(name, "bits, nx, ny, nz")
-        return bytes(bits), (int(nx), int(ny), int(nz))
+        bits, extents, volume, key, skey = self._grid_columns(name)
+        decode_row(name, bits, extents, volume, key, skey)
+        return bytes(bits), extents
 
     def find(self, grid: npt.ArrayLike, *, symmetric: bool = False) -> str | None:
         """Return the name of the stored shape equal to ``grid``, or None.
@@ -399,6 +406,9 @@ class Repository:
                 raise RepositoryError(f"volume: the range {span[0]}:{span[1]} is empty")
         if limit is not None and int(limit) < 1:
             raise RepositoryError(f"limit: expected at least 1, got {limit}")
+        if limit is not None:
+            # SQLite's LIMIT is a 64-bit integer; no file holds more rows than that anyway.
+            limit = min(int(limit), 2**62)
         start: tuple[int, int, int, int | None] | None = None
         if after is not None:
             row_id, d, v, r = self._row(after, "id, draft, volume, rank")
@@ -473,19 +483,20 @@ class Repository:
         ``draft``, ``reasons`` (why a draft is not well formed), ``key`` and
         ``symmetric_key`` (canonical sha256 keys), ``meta`` (None if none stored).
         """
-        volume, rank, nx, ny, nz, d, reasons, key, skey, meta = self._row(
-            name, "volume, rank, nx, ny, nz, draft, reasons, key, symmetric_key, meta"
+        volume, rank, nx, ny, nz, d, reasons, key, skey, meta, bits = self._row(
+            name, f"volume, rank, nx, ny, nz, draft, reasons, key, symmetric_key, meta, {_BITS}"
         )
+        decode_row(name, bits, (nx, ny, nz), volume, key, skey)
         return {
             "name": name,
             "volume": volume,
             "rank": rank,
             "extents": [nx, ny, nz],
             "draft": bool(d),
-            "reasons": json.loads(reasons),
+            "reasons": list(decode_reasons(name, reasons)),
             "key": key.hex(),
             "symmetric_key": skey.hex(),
-            "meta": None if meta is None else json.loads(meta),
+            "meta": decode_meta(name, meta),
         }
 
     def export(self, name: str, path: PathLike) -> Path:
@@ -522,28 +533,43 @@ class Repository:
     def check(self) -> list[str]:
         """Return the problems found in the file (an empty list when it is sound).
 
-        Runs SQLite's ``PRAGMA integrity_check`` and checks that every name matches
-        its row (``VVVVV.NNN`` from volume and rank, ``draft-N`` from the row id),
-        that no rank exceeds its volume's counter, and that each stored grid holds
-        ``volume`` voxels.
+        Runs SQLite's ``PRAGMA integrity_check``, then checks every row as a read
+        does (blob length against the box, column types, JSON of ``reasons`` and
+        ``meta``, volume and both keys against the decoded voxels), that every name
+        matches its row (``VVVVV.NNN`` from volume and rank, ``draft-N`` from the row
+        id), that no rank exceeds its volume's counter, and that named shapes are
+        well formed while drafts say why they are not.
         """
         problems: list[str] = []
         with sqlite_errors(self._path):
             db = self._db
             problems += [r[0] for r in db.execute("PRAGMA integrity_check") if r[0] != "ok"]
             rows = db.execute(
-                "SELECT s.id, s.name, s.volume, s.rank, s.draft, s.nx, s.ny, s.nz, s.bits, c.last_rank"
+                f"SELECT s.id, s.name, s.volume, s.rank, s.draft, s.nx, s.ny, s.nz, {_BITS}, s.key,"
+                " s.symmetric_key, s.reasons, s.meta, c.last_rank"
                 " FROM shapes s LEFT JOIN rank_counters c ON c.volume = s.volume ORDER BY s.id"
             ).fetchall()
-        for row_id, name, volume, rank, d, nx, ny, nz, bits, last in rows:
+        for row_id, name, volume, rank, d, nx, ny, nz, bits, key, skey, reasons, meta, last in rows:
+            label = f"row {row_id} ({name})" if isinstance(name, str) else f"row {row_id}"
+            try:
+                grid = decode_row(label, bits, (nx, ny, nz), volume, key, skey)
+                why = decode_reasons(label, reasons)
+                decode_meta(label, meta)
+            except RepositoryError as exc:
+                problems.append(str(exc).split("; 'voxfab repo check'")[0])
+                continue
+            if d not in (0, 1) or (not d and type(rank) is not int):
+                problems.append(f"{label}: draft {d!r} and rank {rank!r} do not make a name")
+                continue
             expected = draft_name(row_id) if d else format_name(volume, rank)
             if name != expected:
-                problems.append(f"row {row_id}: name {name!r}, expected {expected!r}")
+                problems.append(f"{label}: name {name!r}, expected {expected!r}")
             if not d and (last is None or rank > last):
-                problems.append(f"row {row_id}: rank {rank} beyond the counter {last} of volume {volume}")
-            count = int(decode_bits(bits, (nx, ny, nz)).sum())
-            if count != volume:
-                problems.append(f"row {row_id}: {count} voxels stored, volume says {volume}")
+                problems.append(f"{label}: rank {rank} beyond the counter {last} of volume {volume}")
+            if not d and (why or well_formed_reasons(grid)):
+                problems.append(f"{label}: a named shape that is not well formed")
+            if d and not why:
+                problems.append(f"{label}: a draft that gives no reason")
         return problems
 
     # -- container protocol -----------------------------------------------------
@@ -561,6 +587,11 @@ class Repository:
             return False
         with sqlite_errors(self._path):
             return self._db.execute("SELECT 1 FROM shapes WHERE name = ?", (name,)).fetchone() is not None
+
+
+#: The ``bits`` column as read: a blob, or NULL when the row holds another type
+#: (text or a number written over it), which the row checks then refuse.
+_BITS = "CASE typeof(bits) WHEN 'blob' THEN bits END"
 
 
 def _not_well_formed(label: str, reasons: Sequence[str]) -> RepositoryError:

@@ -192,6 +192,14 @@ def _use_wal(conn: sqlite3.Connection) -> None:
             time.sleep(0.01)
 
 
+def _text(data: bytes) -> str | bytes:
+    """Text columns as str; text that is not UTF-8 (a damaged row) as its bytes, for the row checks."""
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError:
+        return data
+
+
 def connect(path: Path, *, create: bool) -> sqlite3.Connection:
     """Open (and with ``create`` make or upgrade) the repository file at ``path``.
 
@@ -214,6 +222,7 @@ def connect(path: Path, *, create: bool) -> sqlite3.Connection:
     uri = f"{path.resolve().as_uri()}?mode={'rwc' if create else 'rw'}"
     with sqlite_errors(path):
         conn = sqlite3.connect(uri, uri=True, timeout=BUSY_TIMEOUT_S, isolation_level=None)
+        conn.text_factory = _text
     try:
         with sqlite_errors(path):
             conn.execute(f"PRAGMA busy_timeout = {int(BUSY_TIMEOUT_S * 1000)}")
