@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
+import time
 
 import numpy as np
 import pytest
@@ -158,3 +159,25 @@ def test_net_command_reads_constraints(tmp_path):
     assert done.returncode != 0
     assert done.stderr.startswith("voxfab: error:") and "not an exposed face" in done.stderr
     assert "Traceback" not in done.stderr
+
+
+def _all_edges_of(grid, net: Net, face: int) -> list[tuple]:
+    """Every surface edge of ``face``, from the folds and seams of a net of ``grid``."""
+    named = _face(net, face)
+    return [e for e in _folds(net) + _seams(grid, net) if named in e]
+
+
+@pytest.mark.parametrize("name, grid", [("ball5", examples.ball(5)), ("tunnel5", examples.tunnel_cube(5))])
+def test_cut_constraints_that_leave_no_one_piece_net_fail_at_once(name, grid):
+    other = unfold(grid, rng=1, tab_aware=False)
+    lonely = _all_edges_of(grid, other, 7)
+    assert len(lonely) == 4
+    t0 = time.perf_counter()
+    with pytest.raises(UnfoldError, match=r"cut off from all its neighbours.*--pieces auto"):
+        unfold(grid, rng=2, constraints=EdgeConstraints(cut=lonely), timeout=60)
+    # A ring of cuts around a patch of two faces.
+    mate = next(b if a == 7 else a for a, b in other.folds.tolist() if 7 in (a, b))
+    ring = sorted(set(lonely + _all_edges_of(grid, other, mate)) - {_edge(other, 7, mate)})
+    with pytest.raises(UnfoldError, match=r"separate the 2 faces"):
+        unfold(grid, rng=2, constraints=EdgeConstraints(cut=ring), timeout=60)
+    assert time.perf_counter() - t0 < 10  # both refused before the 60 s search

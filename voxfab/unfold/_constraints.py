@@ -21,7 +21,7 @@ import numpy.typing as npt
 from voxfab.errors import FormatError, InvalidShapeError, UnfoldError
 from voxfab.shape import SurfaceGraph
 
-__all__ = ["EdgeConstraints", "Face", "Edge"]
+__all__ = ["EdgeConstraints", "Face", "Edge", "check_one_piece"]
 
 #: A face: voxel ``(x, y, z)`` and outward normal.
 Face = tuple[int, int, int, str]
@@ -296,6 +296,42 @@ def _check_cuts_in_groups(sg, edge, group, gx, gy, grot) -> None:
                 f"cut edge between kept faces {_face_name(sg, i)} and {_face_name(sg, j)} closes "
                 "up in the plane (the kept edges around it hold both sides in place); keep "
                 "fewer edges there")
+
+
+def check_one_piece(sg: SurfaceGraph, resolved: Resolved | None) -> None:
+    """Refuse, before any search, cut edges under which no one-piece net exists.
+
+    A net is the surface held together by its folds, so the faces must stay
+    connected across the edges that are not cut: a face whose four edges are all
+    cut, or a ring of cut edges around a patch, leaves no one-piece net to find.
+    (Kept edges that close a loop which cannot lie flat, or whose faces would
+    overlap, are refused by :func:`resolve` already.)
+
+    Raises
+    ------
+    UnfoldError
+        Naming a face of the smallest part the cuts separate.
+    """
+    if resolved is None:
+        return
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    f = sg.face_count
+    a, k = np.nonzero(resolved.edge != CUT)
+    b = sg.neighbor[a, k]
+    joined = b >= 0
+    graph = coo_matrix((np.ones(int(joined.sum()), dtype=np.int8), (a[joined], b[joined])), shape=(f, f))
+    parts, labels = connected_components(graph, directed=False)
+    if parts <= 1:
+        return
+    sizes = np.bincount(labels, minlength=parts)
+    small = int(np.argmin(sizes))
+    face = _face_name(sg, int(np.flatnonzero(labels == small)[0]))
+    where = (f"face {face} is cut off from all its neighbours" if sizes[small] == 1
+             else f"the cut edges separate the {int(sizes[small])} faces around face {face} from the rest")
+    raise UnfoldError(f"{where}, so no one-piece net exists; cut fewer edges, or allow several pieces "
+                      "(--pieces auto)")
 
 
 def _face_name(sg: SurfaceGraph, i: int) -> str:

@@ -16,7 +16,7 @@ from voxfab._shared.validate import as_grid, check_choice
 from voxfab.errors import InvalidShapeError, UnfoldError
 from voxfab.shape import SurfaceGraph, cavity_count, component_count, fill_cavities, surface_graph
 
-from ._constraints import EdgeConstraints, Resolved, resolve
+from ._constraints import EdgeConstraints, Resolved, check_one_piece, resolve
 from ._layout import build_net, count_without_tab_room
 from ._net import Net
 from ._outline import outline_key
@@ -504,12 +504,14 @@ def unfold(
     g = _prepare(grid, fill, mode)
     deadline = time.monotonic() + float(timeout)
     sg = surface_graph(g)
-    _check_groups_fit(resolve(constraints, sg), fit)  # every named edge must be on this surface
+    resolved = resolve(constraints, sg)  # every named edge must be on this surface
+    _check_groups_fit(resolved, fit)
     job = _Job(g, sg, seed, strat, fit, tab_aware, compact, deadline, float(timeout), constraints)
     parts = _surface_parts(sg)
     if mode is Pieces.ONE:
         if len(parts) > 1:
             _refuse_parts(g, len(parts))
+        check_one_piece(sg, resolved)  # in milliseconds, not after the whole budget
         return dataclasses.replace(_one_piece(job, parts[0]), filled=fill)
     nets: list[Net] = []
     for t, part in enumerate(parts):
