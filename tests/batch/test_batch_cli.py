@@ -30,14 +30,14 @@ def _closed_port() -> int:
     ("args", "message"),
     [
         (["--repo", "{root}/none.sqlite"], "no repository at"),
-        (["--outputs", "{root}/missing.toml"], "cannot read the outputs file"),
+        (["--outputs", "{root}/missing.toml"], "missing.toml: no such file"),
         (["--names", "25:26"], "not a shape name"),
         (["--names", "00030.001:00040.001"], "no shape matches the selection"),
         (["--limit", "0"], "--limit: expected at least 1"),
-        (["--workers", "0"], "--workers: expected at least 1"),
+        (["--workers", "0"], "--workers: expected an integer >= 1"),
         (["-o", "{root}/a_file"], "exists and is not a folder"),
         (["--scheduler", "tcp://127.0.0.1:{port}", "--connect-timeout", "2"], "--scheduler: cannot reach"),
-        (["--scheduler", "nonsense", "--connect-timeout", "2"], "missing port number"),
+        (["--scheduler", "nonsense", "--connect-timeout", "2"], "expected tcp://HOST:PORT"),
     ],
 )
 def test_batch_errors(setup: Path, args: list[str], message: str) -> None:

@@ -2,20 +2,16 @@
 
 from __future__ import annotations
 
-import contextlib
 import json
-import os
-import socket
 import subprocess
 import sys
 import time
 import urllib.request
-from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
 import pytest
-from _batch_fixtures import OUTPUTS, make_repo, write_outputs
+from _batch_fixtures import OUTPUTS, dask_process, free_port, make_repo, processes, write_outputs
 
 from voxfab.batch import BATCH_FORMAT, run_batch
 from voxfab.errors import RepositoryError
@@ -93,46 +89,18 @@ def test_local_cluster_batch_resume_and_failures(tmp_path: Path) -> None:
         run_batch(tmp_path / "r.sqlite", other, out, workers=1, dashboard=None)
 
 
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
-
-
-@contextlib.contextmanager
-def _processes() -> Iterator[list[subprocess.Popen[bytes]]]:
-    procs: list[subprocess.Popen[bytes]] = []
-    try:
-        yield procs
-    finally:
-        for p in procs:
-            p.terminate()
-        for p in procs:
-            try:
-                p.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                p.kill()
-                p.wait(timeout=10)
-
-
-def _dask(*args: str, log: Path) -> subprocess.Popen[bytes]:
-    # The dask console script of this interpreter, run as a module so PATH does not matter.
-    return subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_" + args[0], *args[1:]],
-                            stdout=log.open("wb"), stderr=subprocess.STDOUT, env={**os.environ})
-
-
 def test_real_scheduler_with_two_worker_processes(tmp_path: Path) -> None:
     from distributed import Client
 
     make_repo(tmp_path / "r.sqlite")
     outputs = write_outputs(tmp_path / "outputs.toml")
-    port = _free_port()
+    port = free_port()
     address = f"tcp://127.0.0.1:{port}"
-    with _processes() as procs:
-        procs.append(_dask("scheduler", "--host", "127.0.0.1", "--port", str(port), "--no-dashboard",
+    with processes() as procs:
+        procs.append(dask_process("scheduler", "--host", "127.0.0.1", "--port", str(port), "--no-dashboard",
                            log=tmp_path / "scheduler.log"))
         for i in range(2):
-            procs.append(_dask("worker", address, "--host", "127.0.0.1", "--nthreads", "1", "--nworkers", "1",
+            procs.append(dask_process("worker", address, "--host", "127.0.0.1", "--nthreads", "1", "--nworkers", "1",
                                "--no-dashboard", "--name", f"w{i}", log=tmp_path / f"worker{i}.log"))
         deadline = time.monotonic() + 60
         with Client(address, timeout=60) as client:

@@ -2,19 +2,21 @@
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import json
 import time
-import tomllib
 import uuid
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
 from voxfab._shared.typing import PathLike
-from voxfab.errors import MissingDependencyError, RecipeError, RepositoryError
+from voxfab.errors import RecipeError, RepositoryError, VoxfabError
 
-from ._task import RECIPES, BatchTask, Outcome, build_task, done, outputs_sha256, recipe_text
+from ._cluster import Cluster, check_dashboard, check_wait, check_workers, connect
+from ._index import THUMBS
+from ._task import RECIPES, BatchTask, Outcome, build_task, folder_problem, outputs_sha256, recipe_text
 
 __all__ = ["BatchReport", "load_outputs", "parse_name_range", "select_names", "run_batch", "BATCH_FORMAT"]
 
@@ -65,18 +67,18 @@ def load_outputs(path: PathLike) -> str:
     import numpy as np
 
     from voxfab import io
+    from voxfab._shared.limits import parse_toml, read_input_bytes
     from voxfab.recipe import load_recipe
 
     p = Path(path)
+    # The reader build uses: a FIFO, a device or a huge file is refused before reading.
     try:
-        text = p.read_bytes().decode("utf-8")
-        data = tomllib.loads(text)
-    except OSError as exc:
-        raise RecipeError(f"{p}: cannot read the outputs file: {exc.strerror or exc}") from None
+        text = read_input_bytes(p, what="an outputs file").decode("utf-8")
+        data = parse_toml(text, name=str(p))
     except UnicodeDecodeError:
         raise RecipeError(f"{p}: not UTF-8 text") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise RecipeError(f"{p}: invalid TOML: {exc}") from None
+    except VoxfabError as exc:  # the reader's FormatError and LimitError, as a recipe's
+        raise RecipeError(str(exc)) from None
     extra = sorted(set(data) - _OUTPUT_KEYS)
     if extra:
         raise RecipeError(f"{p}: {extra[0]}: unknown key; an outputs file accepts: {', '.join(sorted(_OUTPUT_KEYS))}")
@@ -134,15 +136,23 @@ def select_names(repo: Any, *, names: str | None = None, limit: int | None = Non
 
 
 def _read_previous(path: Path, sha: str) -> dict[str, dict[str, Any]]:
-    if not path.is_file():
+    """The outcomes an earlier run recorded in ``batch.json`` (checked), or none."""
+    from voxfab._shared.limits import parse_json, read_input_bytes
+    from voxfab.errors import VoxfabError
+
+    if not path.exists():
         return {}
+    refuse = RepositoryError(f"{path}: not a voxfab batch record; use another output folder")
     try:
-        data = json.loads(path.read_text())
-        shapes = data["shapes"]
-        previous_sha = data["outputs_sha256"]
-    except (OSError, ValueError, KeyError, TypeError):
-        raise RepositoryError(f"{path}: not a voxfab batch record; use another output folder") from None
-    if previous_sha != sha:
+        data = parse_json(read_input_bytes(path, what="a batch record").decode("utf-8"), name=str(path))
+    except (VoxfabError, UnicodeDecodeError):
+        raise refuse from None
+    if not isinstance(data, dict) or data.get("format") != BATCH_FORMAT or not isinstance(data.get("shapes"), dict):
+        raise refuse
+    shapes = data["shapes"]
+    if not all(isinstance(k, str) and isinstance(v, dict) for k, v in shapes.items()):
+        raise refuse
+    if data.get("outputs_sha256") != sha:
         raise RepositoryError(
             f"{path}: this folder was built with other outputs; use another output folder to build these"
         )
@@ -156,48 +166,42 @@ def _save(path: Path, outputs_file: str, sha: str, shapes: dict[str, dict[str, A
     write_text(path, json.dumps(data, indent=1, sort_keys=True) + "\n")
 
 
-@dataclasses.dataclass
-class _Cluster:
-    client: Any
-    cluster: Any
-    workers: int
+def _check_folder(outdir: PathLike) -> None:
+    """Refuse ``-o DIR`` before any work: one level below an existing folder, and ours if it holds files."""
+    from voxfab._shared.atomic import check_output
+    from voxfab.errors import OutputError
 
-    def close(self) -> None:
-        self.client.close()
-        if self.cluster is not None:
-            self.cluster.close()
+    if not str(outdir).strip():  # Path("") would be the current folder
+        raise OutputError("-o: expected a folder name, got ''")
+    out = Path(outdir)
+    check_output(out, folder=True, parents=True, marker="batch.json")
+    for sub in (RECIPES, THUMBS):
+        if (out / sub).exists() and not (out / sub).is_dir():
+            raise OutputError(f"{out / sub}: exists and is not a folder")
 
 
-def _connect(scheduler: str | None, workers: int, dashboard: str | None, timeout: float) -> _Cluster:
+def _make_folder(out: Path) -> None:
+    from voxfab.errors import OutputError
+
     try:
-        from distributed import Client, LocalCluster
-    except ImportError as exc:
-        raise MissingDependencyError("batch needs Dask distributed: pip install 'dask[distributed]'") from exc
-    if scheduler is not None:
-        try:
-            client = Client(scheduler, timeout=timeout)
-        except (OSError, TimeoutError, ValueError) as exc:
-            # ValueError: an address distributed cannot parse (no port, unknown protocol).
-            raise RepositoryError(f"--scheduler: cannot reach {scheduler}: {' '.join(str(exc).split())}") from None
-        try:
-            client.wait_for_workers(1, timeout=timeout)
-        except TimeoutError:
-            client.close()
-            raise RepositoryError(f"--scheduler: {scheduler} has no worker after {timeout:g} s") from None
-        return _Cluster(client, None, len(client.scheduler_info()["workers"]))
-    if workers < 1:
-        raise RepositoryError(f"--workers: expected at least 1, got {workers}")
-    # One thread per process: the builds hold the GIL (numpy, shapely, PIL) and each
-    # worker gets its own memory, which the dashboard shows per worker.
-    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
-                           dashboard_address=dashboard, silence_logs=40)
-    return _Cluster(Client(cluster), cluster, workers)
+        out.mkdir(exist_ok=True)
+        (out / RECIPES).mkdir(exist_ok=True)
+    except OSError as exc:
+        raise OutputError(f"{out}: cannot create the batch folder: {exc.strerror or exc}") from None
+    probe = out / f".voxfab-write-test-{uuid.uuid4().hex[:8]}"
+    try:
+        probe.write_bytes(b"")
+        probe.unlink()
+    except OSError as exc:
+        raise OutputError(f"{out}: cannot write in the batch folder: {exc.strerror or exc}") from None
 
 
-def _tasks(repo: Any, names: list[str], outdir: Path, outputs: str, thumbnails: bool) -> Iterator[BatchTask]:
-    for name in names:
-        bits, extents = repo.packed(name)
-        yield BatchTask(name, bits, extents, str(outdir), outputs, thumbnails)
+def _sweep(out: Path) -> None:
+    """Remove the temporaries of builds that were stopped (Ctrl-C, a killed worker)."""
+    from voxfab._shared.atomic import sweep
+
+    for folder in (out, out / RECIPES, out / THUMBS):
+        sweep(folder)
 
 
 def run_batch(
@@ -218,6 +222,13 @@ def run_batch(
 ) -> BatchReport:
     """Build the outputs of the selected shapes on a Dask cluster.
 
+    Everything is checked before a folder is made or a cluster started: the
+    outputs file, the options, ``DIR`` and its ``batch.json``, and each selected
+    shape's repository row.  A shape whose row is corrupt fails with the reason
+    and is never built.  A folder of an earlier run counts as built only when
+    every file matches its manifest's sha256 (:func:`folder_problem`); any other
+    is built again, and ``batch.json`` is brought in line with the folders.
+
     Parameters
     ----------
     repo_path, outputs_path, outdir
@@ -225,8 +236,9 @@ def run_batch(
     names, limit
         Selection: a name range ``A:B`` (inclusive) and/or the first ``limit`` shapes.
     scheduler : str, optional
-        Address of a running scheduler (``tcp://host:8786``); otherwise a local
-        cluster of ``workers`` processes is started and stopped.
+        Address of a running scheduler (``tcp://host:8786``), probed before Dask
+        connects; otherwise a local cluster of ``workers`` processes is started
+        and stopped.
     dashboard : str, optional
         Dashboard address of the local cluster (``":8787"``, ``":0"`` for a free
         port); None turns it off.  It needs bokeh.
@@ -235,68 +247,74 @@ def run_batch(
     window : int, optional
         Tasks in flight at once (default 4 per worker): the scheduler holds only
         these, however many shapes are selected.
+    timeout : float
+        Seconds to wait for the scheduler and a first worker, and at most without
+        any worker during the run.
     on_start, on_outcome : callable, optional
         Called with (shapes to build, shapes skipped, dashboard link), and with each outcome as it arrives.
 
     Returns
     -------
     BatchReport
+
+    Raises
+    ------
+    RepositoryError
+        A bad option, repository, selection or scheduler, or no worker for
+        ``timeout`` seconds during the run.
     """
-    from voxfab.repo import Repository
+    from voxfab.repo import Repository, decode_bits
 
     outputs = load_outputs(outputs_path)
+    timeout = check_wait(timeout)
+    if scheduler is None:
+        check_workers(workers)
+        check_dashboard(dashboard)
     sha = outputs_sha256(outputs)
+    _check_folder(outdir)
     out = Path(outdir)
-    if out.exists() and not out.is_dir():
-        raise RepositoryError(f"{out}: exists and is not a folder")
     record_path = out / "batch.json"
     shapes = _read_previous(record_path, sha)
     with Repository(repo_path, create=False) as repo:
         selected = select_names(repo, names=names, limit=limit)
         if not selected:
             raise RepositoryError(f"{repo_path}: no shape matches the selection")
-        todo = [n for n in selected if not done(out, n)]
-        skipped = len(selected) - len(todo)
-        out.mkdir(parents=True, exist_ok=True)
-        (out / RECIPES).mkdir(exist_ok=True)
-        for n in selected:
-            if n not in todo and shapes.get(n, {}).get("status") != "built":
-                shapes[n] = {"status": "built", "seconds": 0.0, "worker": "earlier run"}
-        start = time.perf_counter()
-        failures: list[tuple[str, str]] = []
-        built = 0
-        n_workers = 0
-        if todo:
-            from distributed import as_completed
-
-            cl = _connect(scheduler, workers, dashboard, timeout)
-            n_workers = cl.workers
+        packed: dict[str, tuple[bytes, tuple[int, int, int]]] = {}
+        corrupt: list[Outcome] = []
+        for name in selected:
             try:
-                if on_start is not None:
-                    link = cl.client.dashboard_link if dashboard is not None or scheduler is not None else None
-                    on_start(len(todo), skipped, link)
-                tasks = _tasks(repo, todo, out, outputs, thumbnails)
-                size = window or 4 * max(1, cl.workers)
-                # Task keys are unique per run: several batches may share one scheduler.
-                run_id = uuid.uuid4().hex[:12]
-                by_key: dict[str, str] = {}
-
-                def submit(t: BatchTask) -> Any:
-                    key = f"voxfab-batch-{run_id}-{t.name}"
-                    by_key[key] = t.name
-                    return cl.client.submit(build_task, t, key=key, pure=False)
-
-                # A sliding window: the scheduler holds only the tasks in flight.
-                pending = as_completed([submit(t) for _, t in zip(range(size), tasks)])
-                saved = time.monotonic()
-                for future in pending:
-                    try:
-                        outcome: Outcome = future.result()
-                    except Exception as exc:  # noqa: BLE001 - a lost worker (KilledWorker) fails one shape
-                        outcome = Outcome(by_key[future.key], "failed", 0.0, "lost",
-                                          f"{type(exc).__name__}: {' '.join(str(exc).split())}")
-                    by_key.pop(future.key, None)
-                    future.release()
+                packed[name] = repo.packed(name)  # the row is checked here, before any worker sees it
+            except RepositoryError as exc:
+                corrupt.append(Outcome(name, "failed", 0.0, "client", " ".join(str(exc).split())))
+    todo, skipped = [], 0
+    for name, (bits, extents) in packed.items():
+        if out.is_dir() and folder_problem(out, name, outputs, decode_bits(bits, extents)) is None:
+            skipped += 1
+            if shapes.get(name, {}).get("status") != "built":
+                shapes[name] = {"status": "built", "seconds": 0.0, "worker": "earlier run"}
+        else:
+            todo.append(name)
+    start = time.perf_counter()
+    failures: list[tuple[str, str]] = [(o.name, o.error or "") for o in corrupt]
+    for o in corrupt:
+        shapes[o.name] = o.to_json()
+    built = n_workers = 0
+    if todo:
+        cl = connect(scheduler, workers, dashboard, timeout)  # before DIR exists: a refusal leaves nothing
+        n_workers = cl.workers
+        try:
+            _make_folder(out)
+            if on_start is not None:
+                link = cl.client.dashboard_link if dashboard is not None or scheduler is not None else None
+                on_start(len(todo), skipped, link)
+            for o in corrupt:
+                if on_outcome is not None:
+                    on_outcome(o)
+            tasks = (BatchTask(n, *packed[n], str(out), outputs, thumbnails) for n in todo)
+            runner = _run_tasks(cl, tasks, window or 4 * max(1, cl.workers), timeout,
+                                lambda: _save(record_path, Path(outputs_path).name, sha, shapes))
+            with contextlib.closing(runner):  # closed at once on an error or Ctrl-C: tasks cancelled
+                for outcome in runner:
                     shapes[outcome.name] = outcome.to_json()
                     if outcome.status == "built":
                         built += 1
@@ -304,18 +322,19 @@ def run_batch(
                         failures.append((outcome.name, outcome.error or ""))
                     if on_outcome is not None:
                         on_outcome(outcome)
-                    nxt = next(tasks, None)
-                    if nxt is not None:
-                        pending.add(submit(nxt))
-                    if time.monotonic() - saved > _SAVE_EVERY_S:
-                        _save(record_path, Path(outputs_path).name, sha, shapes)
-                        saved = time.monotonic()
-            finally:
+        finally:
+            cl.close()
+            if out.is_dir():
+                _sweep(out)
                 _save(record_path, Path(outputs_path).name, sha, shapes)
-                cl.close()
-        elif on_start is not None:
+    else:
+        _make_folder(out)
+        if on_start is not None:
             on_start(0, skipped, None)
-        seconds = time.perf_counter() - start
+        for o in corrupt:
+            if on_outcome is not None:
+                on_outcome(o)
+    seconds = time.perf_counter() - start
     _save(record_path, Path(outputs_path).name, sha, shapes)
     index = out / "index.html"
     if thumbnails:
@@ -323,3 +342,63 @@ def run_batch(
 
         index = write_index(out, shapes)[0]
     return BatchReport(built, len(failures), skipped, seconds, n_workers, index, tuple(failures))
+
+
+def _run_tasks(cl: Cluster, tasks: Iterator[BatchTask], window: int, timeout: float,
+               save: Callable[[], None]) -> Iterator[Outcome]:
+    """Run ``tasks`` through a sliding window of ``window`` futures; yield each outcome as it arrives.
+
+    The wait is bounded: without a worker (or a scheduler) for ``timeout``
+    seconds the run stops with an error.  On any exit (an error, Ctrl-C) the
+    tasks still in flight are cancelled, so no worker writes after the client
+    has gone.
+    """
+    from distributed import as_completed
+
+    run_id = uuid.uuid4().hex[:12]  # task keys are unique per run: several batches may share a scheduler
+    in_flight: dict[str, Any] = {}
+    names: dict[str, str] = {}
+
+    def submit(t: BatchTask) -> Any:
+        key = f"voxfab-batch-{run_id}-{t.name}"
+        names[key] = t.name
+        in_flight[key] = cl.client.submit(build_task, t, key=key, pure=False)
+        return in_flight[key]
+
+    pending = as_completed([submit(t) for _, t in zip(range(window), tasks)])
+    saved = checked = seen = time.monotonic()
+    try:
+        while in_flight:
+            if not pending.has_ready():
+                now = time.monotonic()
+                if now - checked > 0.5:
+                    checked = now
+                    if cl.client.status == "running" and cl.worker_count() > 0:
+                        seen = now
+                    elif now - seen > timeout:
+                        what = "the scheduler" if cl.client.status != "running" else "every worker"
+                        raise RepositoryError(
+                            f"lost {what}: no worker for {timeout:g} s; {len(in_flight)} shapes in flight "
+                            "and the rest not built (run again to resume)"
+                        )
+                time.sleep(0.02)
+                continue
+            future = next(pending)
+            try:
+                outcome: Outcome = future.result()
+            except Exception as exc:  # noqa: BLE001 - a lost worker (KilledWorker) fails one shape
+                outcome = Outcome(names[future.key], "failed", 0.0, "lost",
+                                  f"{type(exc).__name__}: {' '.join(str(exc).split())}")
+            in_flight.pop(future.key, None)
+            future.release()
+            yield outcome
+            nxt = next(tasks, None)
+            if nxt is not None:
+                pending.add(submit(nxt))
+            if time.monotonic() - saved > _SAVE_EVERY_S:
+                save()
+                saved = time.monotonic()
+    finally:
+        if in_flight:
+            with contextlib.suppress(Exception):
+                cl.client.cancel(list(in_flight.values()), force=True)

@@ -16,11 +16,12 @@ import time
 import traceback
 from pathlib import Path
 
+from voxfab._shared.typing import BoolGrid
 from voxfab.errors import RecipeError, VoxfabError
 
 from ._index import THUMBS
 
-__all__ = ["BatchTask", "Outcome", "build_task", "recipe_text", "done"]
+__all__ = ["BatchTask", "Outcome", "build_task", "recipe_text", "folder_problem"]
 
 #: Folder of DIR holding the per-shape recipes.
 RECIPES = "recipes"
@@ -88,9 +89,62 @@ def recipe_text(outputs: str, name: str) -> str:
     return f'{body}\n[source]\nfile = "{name}.npy"\n'
 
 
-def done(outdir: Path, name: str) -> bool:
-    """Whether ``DIR/<name>/`` is complete (it appears only complete, manifest included)."""
-    return (outdir / name / "manifest.json").is_file()
+def folder_problem(outdir: Path, name: str, outputs: str, grid: BoolGrid) -> str | None:
+    """Why ``DIR/<name>/`` is not a sound build of ``grid`` with ``outputs``, or None when it is.
+
+    A resumed batch trusts nothing it did not check: the manifest must parse, every
+    file it lists must exist with its sha256, the recipe beside it
+    (``DIR/recipes/<name>.toml`` and ``.npy``) must be this outputs text and this
+    shape, and the manifest must name both.
+    """
+    from voxfab._shared.limits import parse_json, read_input_bytes
+    from voxfab.shape import canonical_key
+
+    root = outdir.resolve()
+    folder = root / name
+    try:
+        manifest = parse_json(read_input_bytes(folder / "manifest.json", what="a manifest").decode("utf-8"),
+                              name="manifest.json")
+        files = manifest["files"]
+        expected = {f["path"]: f["sha256"] for f in files}
+        key = manifest["shape"]["key"]
+        recipe_sha = manifest["recipe_sha256"]
+    except VoxfabError as exc:
+        return " ".join(str(exc).split())
+    except (UnicodeDecodeError, KeyError, TypeError, AttributeError):
+        return "manifest.json is not a voxfab manifest"
+    recipe = recipe_text(outputs, name).encode("utf-8")
+    if recipe_sha != hashlib.sha256(recipe).hexdigest():
+        return "built from another recipe"
+    if key != canonical_key(grid):
+        return "built from another shape"
+    # (file, its sha256): the recipe beside the folder, then every file of the manifest.
+    checks = [(root / RECIPES / f"{name}.toml", hashlib.sha256(recipe).hexdigest())]
+    for path, sha in sorted(expected.items()):
+        target = (folder / str(path)).resolve()
+        if folder not in target.parents:
+            return f"manifest.json lists a file outside the folder: {str(path)[:60]!r}"
+        checks.append((target, sha))
+    for target, sha in checks:
+        try:
+            data = read_input_bytes(target, what="a built file", limit=1 << 31)
+        except VoxfabError:
+            return f"{target.relative_to(root)}: missing"
+        if hashlib.sha256(data).hexdigest() != sha:
+            return f"{target.relative_to(root)}: changed since it was built"
+    return _npy_problem(root / RECIPES / f"{name}.npy", grid)
+
+
+def _npy_problem(path: Path, grid: BoolGrid) -> str | None:
+    import numpy as np
+
+    from voxfab import io
+
+    try:
+        stored = io.read(path).grid
+    except VoxfabError:
+        return f"{path.name}: missing or unreadable"
+    return None if np.array_equal(stored, grid) else f"{path.name}: another shape"
 
 
 def _worker_address() -> str:

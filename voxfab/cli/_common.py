@@ -20,6 +20,13 @@ DEFAULT_REPOSITORY = Path("output") / "repository.sqlite"
 STRICT_EXIT = 11
 
 
+def path_argument(text: str) -> Path:
+    """An argparse ``type`` for a path the user names: an empty one is refused, not taken as ``.``."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError("expected a path, got ''")
+    return Path(text)
+
+
 def add_shape_argument(parser: argparse.ArgumentParser) -> None:
     """Add the SHAPE positional (a file or a repository name) and ``--repo``."""
     parser.add_argument("shape", metavar="SHAPE", help="a shape file, or a repository name such as 00797.001")
@@ -34,6 +41,22 @@ def add_repository_option(parser: argparse.ArgumentParser) -> None:
     )
 
 
+def check_repository_path(path: Path) -> None:
+    """Refuse ``--repo PATH`` at start unless it is a voxfab repository or can become one.
+
+    An existing file must open as a repository of a schema this voxfab reads (not
+    a folder, another SQLite file or a newer schema); a new one must go in an
+    existing folder (only the default ``output/`` folder is made).
+    """
+    from voxfab._shared.atomic import check_output
+    from voxfab.repo import Repository
+
+    if path.exists():
+        Repository(path, create=False).close()
+    else:
+        check_output(path, parents=path == DEFAULT_REPOSITORY)
+
+
 @contextlib.contextmanager
 def open_repository_for_writing(path: Path) -> Iterator[Repository]:
     """Open (or create) the repository a command stores shapes in.
@@ -43,12 +66,10 @@ def open_repository_for_writing(path: Path) -> Iterator[Repository]:
     again when the run fails before storing anything: a refusal leaves no empty
     repository behind.
     """
-    from voxfab._shared.atomic import check_output
     from voxfab.repo import Repository
 
     existed = path.exists()
-    if not existed:
-        check_output(path, parents=path == DEFAULT_REPOSITORY)
+    check_repository_path(path)
     made_folder = not path.parent.exists()
     repo = Repository(path, create=True)
     try:

@@ -6,7 +6,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from voxfab.cli._common import add_repository_option
+from voxfab.cli._common import add_repository_option, path_argument
 
 HELP = "build the outputs of many repository shapes on Dask workers (local or a cluster), with an index"
 
@@ -15,7 +15,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_repository_option(parser)
     parser.add_argument("--outputs", type=Path, required=True, metavar="FILE.toml",
                         help="[outputs.*] tables as in a recipe; pitch and seed may be given too")
-    parser.add_argument("-o", "--output", type=Path, required=True, metavar="DIR",
+    parser.add_argument("-o", "--output", type=path_argument, required=True, metavar="DIR",
                         help="batch folder: DIR/<name>/ per shape, DIR/batch.json, DIR/index.html")
     parser.add_argument("--names", metavar="A:B", help="the shapes named A to B (inclusive), e.g. 00100.001:00200.999")
     parser.add_argument("--limit", type=int, metavar="N", help="the first N selected shapes in name order")

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ._common import DEFAULT_REPOSITORY
+from ._common import DEFAULT_REPOSITORY, check_repository_path
 
 HELP = "open the studio: draw, edit and keep shapes, choose nets, download files (local web app)"
 
@@ -22,7 +22,23 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Serve until Ctrl+C."""
+    import ipaddress
+    import socket
+    import sys
+
+    from voxfab.errors import InvalidShapeError
     from voxfab.studio import serve
 
+    if not args.host.strip():
+        raise InvalidShapeError("--host: expected an address such as 127.0.0.1, got ''")
+    check_repository_path(args.repo)  # now, not inside the page at the first keep
+    try:
+        found = {info[4][0] for info in socket.getaddrinfo(args.host, None, type=socket.SOCK_STREAM)}
+    except (socket.gaierror, UnicodeError) as exc:
+        raise InvalidShapeError(f"--host: cannot use {args.host[:60]!r} as an address: "
+                                f"{getattr(exc, 'strerror', None) or exc}") from None
+    if not all(ipaddress.ip_address(a.split("%")[0]).is_loopback for a in found):
+        print(f"voxfab: warning: --host {args.host}: the studio is reachable from the network, by anyone who "
+              "can reach this computer; use 127.0.0.1 to keep it to yourself", file=sys.stderr, flush=True)
     serve(host=args.host, port=args.port, repo=args.repo, open_browser=not args.no_browser)
     return 0

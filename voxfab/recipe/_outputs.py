@@ -33,12 +33,16 @@ class OutputKind:
     run : callable
         ``run(shape, settings, outdir, name=..., seed=..., recipe=...) -> Artefact``; ``recipe``
         is the :class:`Recipe` being built (an animation re-runs its maker).
+    maker : str or None
+        The source maker the output needs (the animation re-runs a tube), checked
+        when the recipe is read; None for outputs of any shape.
     """
 
     name: str
     keys: tuple[str, ...]
     parse: Callable[[Mapping[str, Any]], Any]
     run: Callable[..., Artefact]
+    maker: str | None = None
 
 
 def _recipe_keys(cls: type, *, exclude: tuple[str, ...] = ()) -> tuple[str, ...]:
@@ -151,7 +155,7 @@ def _outputs() -> dict[str, OutputKind]:
 
     return {
         "animation": OutputKind("animation", _recipe_keys(AnimationOptions), _parse_with(AnimationOptions),
-                                _run_animation),
+                                _run_animation, maker="tube"),
         "mesh": OutputKind("mesh", _recipe_keys(MeshOptions), _parse_with(MeshOptions), _run_mesh),
         "net": OutputKind("net", _net_keys(), _parse_net, _run_net),
         "pictures": OutputKind("pictures", _recipe_keys(PictureOptions), _parse_with(PictureOptions),

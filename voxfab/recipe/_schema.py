@@ -383,6 +383,9 @@ def load_recipe(path: PathLike, *, allow_outside: bool = False) -> Recipe:
         if out_name not in kinds:
             raise err(f"outputs.{out_name}", f"unknown output {out_name!r}; expected one of {', '.join(sorted(kinds))}")
         kind = kinds[out_name]
+        if kind.maker is not None and source.maker != kind.maker:
+            raise err(f"outputs.{out_name}", f"needs a {kind.maker} source (maker = {kind.maker!r}), "
+                      f"got {source.maker or 'a file'!r}")
         for key in options:
             if key not in kind.keys:
                 raise err(f"outputs.{out_name}.{key}", f"unknown key; outputs.{out_name} accepts: "
