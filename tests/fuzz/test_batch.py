@@ -279,3 +279,32 @@ def test_losing_every_worker_stops_the_run_in_bounded_time(tmp_path: Path) -> No
     record = json.loads((tmp_path / "out" / "batch.json").read_text())["shapes"]
     built = {n for n, e in record.items() if e["status"] == "built"}
     assert built == {p.name for p in (tmp_path / "out").iterdir() if (p / "manifest.json").is_file()}
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_an_interrupted_batch_stops_its_tasks_and_the_next_run_agrees_with_the_disk(tmp_path: Path, sig) -> None:
+    names = make_repo(tmp_path / "r.sqlite")[:4]
+    outputs = write_outputs(tmp_path / "outputs.toml", MESH + "\n[outputs.pictures]\n")
+    out = tmp_path / "out"
+    argv = [sys.executable, "-m", "voxfab", "batch", "--repo", str(tmp_path / "r.sqlite"), "--outputs",
+            str(outputs), "-o", str(out), "--workers", "1", "--no-dashboard", "--no-index",
+            "--names", f"{names[0]}:{names[-1]}"]
+    run = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert run.stdout is not None
+        assert "shapes to build" in run.stdout.readline()
+        time.sleep(1.0)
+        run.send_signal(sig)
+        _, err = run.communicate(timeout=60)
+    finally:
+        if run.poll() is None:
+            run.kill()
+    assert run.returncode in (130, 143) and "Traceback" not in err, err
+    assert not list(out.glob(".*.tmp")), "a stopped build left its temporary folder"
+    # Whatever finished, the next run counts it from the folders and builds only the rest.
+    sound = sorted(p.name for p in out.iterdir() if (p / "manifest.json").is_file())
+    report = run_batch(tmp_path / "r.sqlite", outputs, out, names=f"{names[0]}:{names[-1]}", workers=1,
+                       thumbnails=False)
+    assert (report.built, report.skipped) == (len(names) - len(sound), len(sound))
+    record = json.loads((out / "batch.json").read_text())["shapes"]
+    assert sorted(n for n, e in record.items() if e["status"] == "built") == names
