@@ -54,6 +54,18 @@ def test_file_source_with_operations(tmp_path, shape_file):
     assert (s.grid == expected).all()
 
 
+def test_shift_moves_the_shape_by_whole_voxels_and_refuses_to_push_it_out(tmp_path):
+    cube = np.zeros((25, 25, 25), bool)
+    cube[10:15, 10:15, 10:15] = True
+    np.save(tmp_path / "cube.npy", cube)
+    r = load_recipe(write(tmp_path, '[source]\nfile = "cube.npy"\n[[operations]]\nop = "shift"\nby = [1, -2, -10]\n'))
+    moved = make_shape(r).grid
+    assert np.argwhere(moved).min(axis=0).tolist() == [11, 8, 0] and moved.sum() == 125
+    out = load_recipe(write(tmp_path, '[source]\nfile = "cube.npy"\n[[operations]]\nop = "shift"\nby = [0, 0, 11]\n'))
+    with pytest.raises(RecipeError, match=r"operations\[0\] \(shift\): offset: \(0, 0, 11\) moves filled voxels out"):
+        make_shape(out)
+
+
 def test_build_writes_shape_and_manifest_and_is_reproducible(tmp_path, shape_file):
     recipe = load_recipe(write(tmp_path, f'[source]\nfile = "{shape_file.name}"\n'))
     a = build(recipe, tmp_path / "a")
@@ -77,6 +89,8 @@ def test_build_writes_shape_and_manifest_and_is_reproducible(tmp_path, shape_fil
         ('[source]\nfile = "x.npy"\n[[operations]]\nop = "melt"\n', r"r\.toml:4: operations\[0\]\.op: unknown operation"),
         ('[source]\nfile = "x.npy"\n[[operations]]\nop = "rotate"\nturns = "2"\n', r"r\.toml:5: operations\[0\]\.turns: expected int"),
         ('[source]\nfile = "x.npy"\n[outputs.laser]\n', r"r\.toml:3: outputs\.laser: unknown output"),
+        ('[source]\nfile = "x.npy"\n[[operations]]\nop = "shift"\nby = [1, 2]\n', r"r\.toml:5: operations\[0\]\.by: expected list of int"),
+        ('[source]\nfile = "x.npy"\n[[operations]]\nop = "shift"\n', r"operations\[0\]: op 'shift' needs 'by"),
         ('[source]\nmaker = "no-such-maker"\n', r"r\.toml:2: source\.maker: unknown maker"),
         ('[source]\nfile = "x.npy"\nmaker = "x"\n', r"source: expected exactly one"),
         ('name = "a/b"\n[source]\nfile = "x.npy"\n', r"name: expected a folder-safe name"),
