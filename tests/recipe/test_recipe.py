@@ -184,6 +184,18 @@ def test_check_catches_what_the_build_would_reject(tmp_path, table, message):
         load_recipe(write(tmp_path, body))
 
 
+def test_another_scale_by_its_name_is_warned_about(tmp_path):
+    """A print of another size and a paper model at its own scale: the build says both."""
+    np.save(tmp_path / "box.npy", examples.box(2, 3, 4))
+    r = load_recipe(write(tmp_path, 'pitch = 4.0\n[source]\nfile = "box.npy"\n[outputs.net]\nformats = ["dxf"]\n'
+                                    'sheet = "A3"\nface_size = 8.0\n[outputs.mesh]\nsize = 20.0\n'))
+    folder = build(r, tmp_path / "out")
+    warnings = json.loads((folder / "manifest.json").read_text())["warnings"]
+    assert "mesh: printed at size = 20 mm (5 mm per voxel), 1.25 x the recipe's pitch of 4 mm" in warnings
+    assert "net: the paper model is at face_size = 8 mm, 2 x the recipe's pitch of 4 mm" in warnings
+    assert json.loads((folder / "mesh.json").read_text())["size_mm"] == [10.0, 15.0, 20.0]
+
+
 def test_net_faces_default_to_the_shape_pitch(tmp_path):
     """One scale: without face_size, the paper faces are the print's voxels."""
     import ezdxf
