@@ -65,9 +65,10 @@ def rook_generatrix() -> dict:
 
 
 def top_generatrix() -> dict:
-    # spinning top: a one-voxel tip on the axis (the thin stem at the bottom), wide body, thin handle
-    return {"points": [[0, 0], [0.35, 0], [0.35, 0.8], [1.5, 1.6], [6, 4.4], [10, 7], [10.5, 8], [9, 9], [2, 10],
-                       [1.2, 10.5], [1.2, 15], [0, 15.5]]}
+    # spinning top: a one-voxel tip on the axis (the thin stem at the bottom), a 45 degree cone (each
+    # printed layer at most one voxel wider than the one below), wide body, thin handle
+    return {"points": [[0, 0], [0.35, 0], [0.35, 0.8], [1.2, 1.6], [6, 6.2], [10, 10], [10.5, 11], [9, 12], [2, 13],
+                       [1.2, 13.5], [1.2, 17.5], [0, 18]]}
 
 
 def bishop() -> Image.Image:

@@ -434,6 +434,23 @@ def test_chess_piece_is_one_part_at_playing_size_on_a_base_it_stands_on(built, p
 PICTURES = Path(__file__).parents[2] / "output" / "test-pictures"
 
 
+def _widest_step(grid: np.ndarray) -> int:
+    """The most voxels any layer reaches beyond the layer under it (1: a 45 degree staircase at worst)."""
+    from scipy import ndimage
+
+    z = np.flatnonzero(grid.any(axis=(0, 1)))
+    steps = [int(ndimage.distance_transform_cdt(~grid[:, :, k - 1], metric="chessboard")[grid[:, :, k]].max())
+             for k in range(z.min() + 1, z.max() + 1)]
+    return max(steps)
+
+
+@pytest.mark.parametrize("name", ["knight", "spinning_top"])
+def test_the_designed_pieces_print_without_support(built, name):
+    """Each layer stands on the one below, reaching at most one voxel further (a 45 degree overhang)."""
+    path = next(p for p in RECIPES if p.stem == name)
+    assert _widest_step(np.load(built(path) / "shape.npy")) == 1
+
+
 def test_the_knight_is_a_horse_on_a_base_not_a_surface_of_revolution(built):
     from PIL import Image
 
