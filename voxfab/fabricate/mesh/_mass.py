@@ -21,6 +21,8 @@ PLA_DENSITY = 1.24
 DEFAULT_INFILL = 20.0
 #: Furthest the centre of mass may lie from the axis through a top's tip, mm.
 SPIN_AXIS_TOLERANCE = 0.5
+#: Standard gravity, mm/s² (for the slowest upright spin of a top).
+GRAVITY = 9806.65
 
 
 @dataclasses.dataclass(frozen=True)
@@ -214,10 +216,6 @@ class SpinReport:
     center_ratio: float
     sleep_rpm: float
     warnings: tuple[str, ...]
-
-
-#: Standard gravity, mm/s².
-GRAVITY = 9806.65
 
 
 def spin_report(mesh: MeshData, props: MassProperties, *, pitch: float) -> SpinReport:
