@@ -59,12 +59,16 @@ def rook_section() -> str:
 
 def rook_generatrix() -> dict:
     # (rho, z) points, open, from the axis at the foot to the axis at the top
-    return {"points": [[0, 0], [9, 0], [9, 1.5], [7.5, 2.5], [6, 3.5], [5.2, 12], [7, 13], [7, 17], [5, 17], [5, 16], [0, 16]]}
+    # taller than wide, as a playing piece: 60 mm tall on a 45 mm foot
+    return {"points": [[0, 0], [9, 0], [9, 1.5], [7.5, 2.5], [6, 3.5], [5.4, 16.5], [7, 18], [7, 23.5], [5, 23.5],
+                       [5, 22], [0, 22]]}
 
 
 def top_generatrix() -> dict:
-    # spinning top: point at the bottom, wide body, thin handle
-    return {"points": [[0, 0], [2, 1], [6, 4], [10, 7], [10.5, 8], [9, 9], [2, 10], [1.2, 10.5], [1.2, 15], [0, 15.5]]}
+    # spinning top: a one-voxel tip on the axis (the thin stem at the bottom), a 45 degree cone (each
+    # printed layer at most one voxel wider than the one below), wide body, thin handle
+    return {"points": [[0, 0], [0.35, 0], [0.35, 0.8], [1.2, 1.6], [6, 6.2], [10, 10], [10.5, 11], [9, 12], [2, 13],
+                       [1.2, 13.5], [1.2, 17.5], [0, 18]]}
 
 
 def bishop() -> Image.Image:

@@ -77,6 +77,12 @@ def test_build_cli_writes_the_folder(tmp_path):
     r = voxfab("build", tmp_path / "r.toml", "-o", tmp_path / "out")
     assert r.returncode == 0, r.stderr
     assert (tmp_path / "out" / "demo" / "manifest.json").exists()
+    assert "print:" not in r.stdout  # no mesh asked
+    (tmp_path / "m.toml").write_text('name = "m"\npitch = 2.0\n[source]\nfile = "s.npy"\n[outputs.mesh]\ninfill = 15\n')
+    r = voxfab("build", tmp_path / "m.toml", "-o", tmp_path / "out")
+    assert r.returncode == 0, r.stderr
+    report = json.loads((tmp_path / "out" / "m" / "mesh.json").read_text())
+    assert f"{report['mass_g']:.1f} g of PLA at 15 % infill, about {report['print_time']}" in r.stdout
     (tmp_path / "bad.toml").write_text('[source]\nfile = "s.npy"\nshade = 2\n')
     r = voxfab("build", tmp_path / "bad.toml", "-o", tmp_path / "out")
     assert r.returncode == 7

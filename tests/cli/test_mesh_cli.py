@@ -27,6 +27,16 @@ def test_writes_3mf_and_reports(tmp_path, shape_file, capsys):
     assert len(read_mesh(out).triangles) == info["triangles"]
 
 
+def test_prints_mass_time_and_the_spin_check(tmp_path, shape_file, capsys):
+    out = tmp_path / "t.3mf"
+    assert main(["mesh", str(shape_file), "-o", str(out), "--pitch", "2", "--spin", "--infill", "40"]) == 0
+    printed = capsys.readouterr()
+    assert "g of PLA at 40 % infill, about " in printed.out and "as a top it wobbles" in printed.out
+    assert "spin: the lowest point is not a single tip" in printed.err
+    assert main(["mesh", str(shape_file), "-o", str(tmp_path / "u.3mf"), "--infill", "120"]) == 3
+    assert not (tmp_path / "u.3mf").exists()
+
+
 def test_size_and_thin_wall_warning(tmp_path, shape_file):
     out = tmp_path / "t.stl"
     run = subprocess.run(

@@ -54,6 +54,18 @@ def test_file_source_with_operations(tmp_path, shape_file):
     assert (s.grid == expected).all()
 
 
+def test_shift_moves_the_shape_by_whole_voxels_and_refuses_to_push_it_out(tmp_path):
+    cube = np.zeros((25, 25, 25), bool)
+    cube[10:15, 10:15, 10:15] = True
+    np.save(tmp_path / "cube.npy", cube)
+    r = load_recipe(write(tmp_path, '[source]\nfile = "cube.npy"\n[[operations]]\nop = "shift"\nby = [1, -2, -10]\n'))
+    moved = make_shape(r).grid
+    assert np.argwhere(moved).min(axis=0).tolist() == [11, 8, 0] and moved.sum() == 125
+    out = load_recipe(write(tmp_path, '[source]\nfile = "cube.npy"\n[[operations]]\nop = "shift"\nby = [0, 0, 11]\n'))
+    with pytest.raises(RecipeError, match=r"operations\[0\] \(shift\): offset: \(0, 0, 11\) moves filled voxels out"):
+        make_shape(out)
+
+
 def test_build_writes_shape_and_manifest_and_is_reproducible(tmp_path, shape_file):
     recipe = load_recipe(write(tmp_path, f'[source]\nfile = "{shape_file.name}"\n'))
     a = build(recipe, tmp_path / "a")
@@ -77,6 +89,8 @@ def test_build_writes_shape_and_manifest_and_is_reproducible(tmp_path, shape_fil
         ('[source]\nfile = "x.npy"\n[[operations]]\nop = "melt"\n', r"r\.toml:4: operations\[0\]\.op: unknown operation"),
         ('[source]\nfile = "x.npy"\n[[operations]]\nop = "rotate"\nturns = "2"\n', r"r\.toml:5: operations\[0\]\.turns: expected int"),
         ('[source]\nfile = "x.npy"\n[outputs.laser]\n', r"r\.toml:3: outputs\.laser: unknown output"),
+        ('[source]\nfile = "x.npy"\n[[operations]]\nop = "shift"\nby = [1, 2]\n', r"r\.toml:5: operations\[0\]\.by: expected list of int"),
+        ('[source]\nfile = "x.npy"\n[[operations]]\nop = "shift"\n', r"operations\[0\]: op 'shift' needs 'by"),
         ('[source]\nmaker = "no-such-maker"\n', r"r\.toml:2: source\.maker: unknown maker"),
         ('[source]\nfile = "x.npy"\nmaker = "x"\n', r"source: expected exactly one"),
         ('name = "a/b"\n[source]\nfile = "x.npy"\n', r"name: expected a folder-safe name"),
@@ -168,6 +182,18 @@ def test_check_catches_what_the_build_would_reject(tmp_path, table, message):
     body = (top if not rest else "") + '[source]\nfile = "x.npy"\n' + ("[" + rest if rest else "") + "\n"
     with pytest.raises(RecipeError, match=message):
         load_recipe(write(tmp_path, body))
+
+
+def test_another_scale_by_its_name_is_warned_about(tmp_path):
+    """A print of another size and a paper model at its own scale: the build says both."""
+    np.save(tmp_path / "box.npy", examples.box(2, 3, 4))
+    r = load_recipe(write(tmp_path, 'pitch = 4.0\n[source]\nfile = "box.npy"\n[outputs.net]\nformats = ["dxf"]\n'
+                                    'sheet = "A3"\nface_size = 8.0\n[outputs.mesh]\nsize = 20.0\n'))
+    folder = build(r, tmp_path / "out")
+    warnings = json.loads((folder / "manifest.json").read_text())["warnings"]
+    assert "mesh: printed at size = 20 mm (5 mm per voxel), 1.25 x the recipe's pitch of 4 mm" in warnings
+    assert "net: the paper model is at face_size = 8 mm, 2 x the recipe's pitch of 4 mm" in warnings
+    assert json.loads((folder / "mesh.json").read_text())["size_mm"] == [10.0, 15.0, 20.0]
 
 
 def test_net_faces_default_to_the_shape_pitch(tmp_path):

@@ -15,8 +15,10 @@ from voxfab.recipe import build, load_recipe
 from voxfab.shape import fill_cavities, well_formed_reasons
 
 RECIPES = sorted((Path(__file__).parents[2] / "recipes").rglob("*.toml"))
-#: Build volume the recipes' comments ask for, mm a side (Bambu Lab X1 and P1 class printers).
-PRINT_VOLUME = 256.0
+#: Build volume the recipes' comments ask for, mm (a common 220 x 220 x 250 mm printer).
+PRINT_VOLUME = (220.0, 220.0, 250.0)
+#: How close voxfab's filament and time estimates come to PrusaSlicer's, as a fraction.
+ESTIMATE_TOLERANCE = 0.30
 
 
 @pytest.fixture(scope="session")
@@ -85,16 +87,30 @@ def test_recipe_3mf_passes_prusa_slicer(built, path, tmp_path):
         assert re.search(r"^manifold = yes$", info.stdout, re.M), info.stdout
         assert re.search(r"^number_of_parts =\s*1$", info.stdout, re.M), info.stdout
         gcode = tmp_path / (mesh.stem + ".gcode")
-        # The bundled objects are up to 215 mm: sliced for a printer with a 256 mm build volume.
-        assert (_mesh_size_from_3mf(mesh) <= PRINT_VOLUME).all()
-        bed = f"0x0,{PRINT_VOLUME:g}x0,{PRINT_VOLUME:g}x{PRINT_VOLUME:g},0x{PRINT_VOLUME:g}"
+        # Sliced for a common printer with PrusaSlicer's default print profile, in PLA.
+        assert (_mesh_size_from_3mf(mesh) <= np.array(PRINT_VOLUME)).all()
+        (w, d, h), report = PRINT_VOLUME, json.loads((mesh.parent / "mesh.json").read_text())
         sliced = subprocess.run(
-            [slicer, "--export-gcode", str(mesh), "--bed-shape", bed, "--max-print-height", f"{PRINT_VOLUME:g}",
-             "--output", str(gcode)],
+            [slicer, "--export-gcode", str(mesh), "--bed-shape", f"0x0,{w:g}x0,{w:g}x{d:g},0x{d:g}",
+             "--max-print-height", f"{h:g}", "--filament-density", "1.24",
+             "--fill-density", f"{report['infill_percent']:g}%", "--output", str(gcode)],
             capture_output=True, text=True, timeout=600,
         )
         assert sliced.returncode == 0, sliced.stderr + sliced.stdout
-        assert gcode.stat().st_size > 1000 and b"G1 " in gcode.read_bytes()
+        text = gcode.read_text()
+        assert len(text) > 1000 and "G1 " in text
+        grams, seconds = _slicer_estimates(text)
+        assert abs(report["mass_g"] / grams - 1) <= ESTIMATE_TOLERANCE, (report["mass_g"], grams)
+        assert abs(report["print_time_s"] / seconds - 1) <= ESTIMATE_TOLERANCE, (report["print_time_s"], seconds)
+
+
+def _slicer_estimates(gcode: str) -> tuple[float, float]:
+    """PrusaSlicer's filament mass (g) and print time (s), from the comments of its G-code."""
+    grams = float(re.search(r"^; filament used \[g\] = ([0-9.]+)", gcode, re.M).group(1))
+    spent = re.search(r"^; estimated printing time \(normal mode\) = (.+)$", gcode, re.M).group(1)
+    units = {"d": 86400, "h": 3600, "m": 60, "s": 1}
+    seconds = sum(int(n) * units[u] for n, u in re.findall(r"(\d+)([dhms])", spent))
+    return grams, float(seconds)
 
 
 def test_a_rebuild_is_byte_identical(built, tmp_path):
@@ -280,9 +296,17 @@ def test_recipe_builds_one_consistent_object(built, path):
     levels = {(p["layer"], p["copy"]) for p in report["plates_list"]}
     stack = len(levels) * plates.thickness
     tolerance = plates.thickness
-    assert np.allclose(print_size, extents * recipe.pitch, atol=1e-6), (print_size, extents)
-    assert face == pytest.approx(recipe.pitch, abs=1e-6), (face, recipe.pitch)
-    assert abs(stack - print_size[axis]) <= tolerance / 2 + 1e-9, (stack, print_size[axis])
+    # Another scale only by its name: the print's `size`, the paper's `face_size`.
+    size = outputs["mesh"].size
+    print_pitch = recipe.pitch if size is None else size / extents.max()
+    paper_pitch = outputs["net"].net.face_size or recipe.pitch
+    assert np.allclose(print_size, extents * print_pitch, atol=1e-6), (print_size, extents)
+    assert face == pytest.approx(paper_pitch, abs=1e-6), (face, paper_pitch)
+    manifest = json.loads((folder / "manifest.json").read_text())
+    named = [w for w in manifest["warnings"] if "face_size =" in w or "size =" in w]
+    assert len(named) == (size is not None) + (abs(paper_pitch - recipe.pitch) > 1e-9), manifest["warnings"]
+    # The plates stand at the recipe's pitch, the print's scale unless the print names a size.
+    assert abs(stack - extents[axis] * recipe.pitch) <= tolerance / 2 + 1e-9, (stack, extents[axis])
     assert report["stack_height"] == pytest.approx(stack)
 
 
@@ -348,3 +372,126 @@ def test_recipe_net_is_legible_on_its_sheet(built, path):
     assert min(heights) >= 2.0 - 1e-6, min(heights)
     # One tab per seam, but for the few without room (marked for tape and warned about).
     assert len(signatures) - 10 <= len(tabs) <= len(signatures)
+
+
+#: Tournament heights of the pieces, mm (a king of about 95 mm, a pawn of about 50 mm).
+CHESS_HEIGHTS = {"king": 95.0, "queen": 85.0, "bishop": 70.0, "knight": 70.0, "rook": 60.0, "pawn": 50.0}
+CHESS = [p for p in RECIPES if p.parent.name == "chess"]
+
+
+def _objects_in_3mf(path: Path) -> list[np.ndarray]:
+    """Each 3MF object's triangle corners, ``(T, 3, 3)`` mm, read from its XML (no voxfab code)."""
+    import xml.etree.ElementTree as ET
+    import zipfile
+
+    with zipfile.ZipFile(path) as z:
+        root = ET.fromstring(z.read("3D/3dmodel.model"))
+    ns = {"m": "http://schemas.microsoft.com/3dmanufacturing/core/2015/02"}
+    out = []
+    for obj in root.iterfind(".//m:object", ns):
+        xyz = np.array([[float(v.get(a)) for a in "xyz"] for v in obj.iterfind(".//m:vertex", ns)])
+        tri = np.array([[int(t.get(k)) for k in ("v1", "v2", "v3")] for t in obj.iterfind(".//m:triangle", ns)])
+        out.append(xyz[tri])
+    return out
+
+
+def _centroid(corners: np.ndarray) -> np.ndarray:
+    """Centre of the solid a closed mesh bounds, by signed tetrahedra from the origin."""
+    a, b, c = corners[:, 0], corners[:, 1], corners[:, 2]
+    vol = np.einsum("ij,ij->i", np.cross(a, b), c) / 6.0
+    return (vol[:, None] * (a + b + c) / 4.0).sum(axis=0) / vol.sum()
+
+
+def _footprint(corners: np.ndarray) -> np.ndarray:
+    """``(2, 2)`` min and max xy corner of the triangles lying on the lowest plane, mm."""
+    z0 = corners[..., 2].min()
+    low = corners[(np.abs(corners[..., 2] - z0) < 1e-6).all(axis=1)].reshape(-1, 3)[:, :2]
+    return np.stack([low.min(axis=0), low.max(axis=0)])
+
+
+def test_the_chess_set_has_six_kinds_of_piece():
+    assert {p.stem for p in CHESS} == set(CHESS_HEIGHTS)
+
+
+@pytest.mark.parametrize("path", CHESS, ids=[p.stem for p in CHESS])
+def test_chess_piece_is_one_part_at_playing_size_on_a_base_it_stands_on(built, path):
+    folder = built(path)
+    objects = _objects_in_3mf(folder / "mesh.3mf")
+    assert len(objects) == 1, "one part"
+    corners = objects[0]
+    size = corners.reshape(-1, 3).max(axis=0) - corners.reshape(-1, 3).min(axis=0)
+    assert size[2] == pytest.approx(CHESS_HEIGHTS[path.stem], rel=0.03), size
+    assert (size <= np.array(PRINT_VOLUME)).all()
+    # The base: at least 40 % of the height across, and the centre of mass over its middle.
+    foot = _footprint(corners)
+    across = foot[1] - foot[0]
+    assert across.min() >= 0.4 * size[2], (across, size)
+    centre = _centroid(corners)
+    assert (np.abs(centre[:2] - foot.mean(axis=0)) <= across / 4).all(), (centre, foot)
+    assert json.loads((folder / "mesh.json").read_text())["center_of_mass_mm"] == pytest.approx(centre, abs=1e-4)
+
+
+PICTURES = Path(__file__).parents[2] / "output" / "test-pictures"
+
+
+def _widest_step(grid: np.ndarray) -> int:
+    """The most voxels any layer reaches beyond the layer under it (1: a 45 degree staircase at worst)."""
+    from scipy import ndimage
+
+    z = np.flatnonzero(grid.any(axis=(0, 1)))
+    steps = [int(ndimage.distance_transform_cdt(~grid[:, :, k - 1], metric="chessboard")[grid[:, :, k]].max())
+             for k in range(z.min() + 1, z.max() + 1)]
+    return max(steps)
+
+
+@pytest.mark.parametrize("name", ["knight", "spinning_top"])
+def test_the_designed_pieces_print_without_support(built, name):
+    """Each layer stands on the one below, reaching at most one voxel further (a 45 degree overhang)."""
+    path = next(p for p in RECIPES if p.stem == name)
+    assert _widest_step(np.load(built(path) / "shape.npy")) == 1
+
+
+def test_the_knight_is_a_horse_on_a_base_not_a_surface_of_revolution(built):
+    from PIL import Image
+
+    from voxfab.render import render
+
+    knight = next(p for p in CHESS if p.stem == "knight")
+    grid = np.load(built(knight) / "shape.npy")
+    assert well_formed_reasons(grid) == []
+    assert not np.array_equal(grid, np.rot90(grid, axes=(0, 1))), "unchanged by a quarter turn about z"
+    # Seen from the side (along x), the head reaches further forward than the neck under it, and the
+    # outline is far from a mirror image of itself; from the front (along y) the head is narrow.
+    side, front = grid.any(axis=0), grid.any(axis=1)
+    head = np.flatnonzero(side[:, 15:].any(axis=1))
+    neck = np.flatnonzero(side[:, 7:12].any(axis=1))
+    assert head.max() >= neck.max() + 3, (head, neck)
+    assert (side != side[::-1]).sum() > 0.2 * side.sum()
+    assert np.flatnonzero(front[:, 15:].any(axis=1)).size <= 0.5 * head.size
+    # A side view for a person to look at; read back, it is no mirror image of itself.
+    PICTURES.mkdir(parents=True, exist_ok=True)
+    picture = PICTURES / "knight-side.png"
+    tmp = picture.with_suffix(".part.png")
+    render(grid, view="x", size=400).save(tmp)
+    tmp.replace(picture)
+    ink = np.asarray(Image.open(picture).convert("L")) < 200
+    assert ink.mean() > 0.1
+    assert (ink != ink[:, ::-1]).mean() > 0.05
+
+
+def test_the_spinning_top_spins_and_fits_a_hand(built):
+    top = next(p for p in RECIPES if p.stem == "spinning_top")
+    folder = built(top)
+    report = json.loads((folder / "mesh.json").read_text())
+    spin = report["spin"]
+    assert spin["spins"], report["warnings"]
+    manifest = json.loads((folder / "manifest.json").read_text())
+    assert not [w for w in manifest["warnings"] if "spin:" in w]
+    (corners,) = _objects_in_3mf(folder / "mesh.3mf")
+    size = corners.reshape(-1, 3).max(axis=0) - corners.reshape(-1, 3).min(axis=0)
+    assert size[:2] == pytest.approx([60.0, 60.0], abs=1.0) and size[2] < size[0]
+    # The tip is one voxel face; the centre of mass stands within 0.5 mm of the vertical through it.
+    foot = _footprint(corners)
+    assert (foot[1] - foot[0]) == pytest.approx([report["pitch_mm"]] * 2)
+    offset = float(np.hypot(*(_centroid(corners)[:2] - foot.mean(axis=0))))
+    assert offset <= 0.5 and spin["axis_offset_mm"] == pytest.approx(offset, abs=1e-5)

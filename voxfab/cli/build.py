@@ -42,5 +42,10 @@ def run(args: argparse.Namespace) -> int:
         folder = build(recipe, args.output)
         manifest = json.loads((folder / "manifest.json").read_text())
         print(f"{folder}: {len(manifest['files'])} files")
+        mesh_report = folder / "mesh.json"
+        if "mesh" in manifest["outputs"] and mesh_report.exists():
+            from voxfab.fabricate.mesh import estimate_line
+
+            print(f"  print: {estimate_line(json.loads(mesh_report.read_text()))}")
         warnings += [f"{recipe.name}: {w}" for w in manifest["warnings"]]
     return print_warnings(warnings, strict=args.strict)

@@ -37,7 +37,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from voxfab._shared.atomic import check_output
     from voxfab.errors import InvalidShapeError
-    from voxfab.fabricate.mesh import MeshOptions, fabricate_mesh, format_for
+    from voxfab.fabricate.mesh import MeshOptions, estimate_line, fabricate_mesh, format_for
 
     from ._options import options_from_args
 
@@ -63,4 +63,5 @@ def run(args: argparse.Namespace) -> int:
             f"{args.output}: {info['triangles']} triangles, {info['parts']} part(s), "
             f"{size} mm, {info['volume_mm3']:g} mm³, {info['bridges']} bridge(s)"
         )
+        print(f"  print: {estimate_line(info)}")
     return print_warnings(made.warnings, strict=args.strict)

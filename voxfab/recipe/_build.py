@@ -54,6 +54,11 @@ def apply_operation(grid: BoolGrid, op: OperationSpec, base_dir: Path) -> BoolGr
         return ops.rotate(grid, params.get("axis", "z"), params.get("turns", 1))
     if op.op == "mirror":
         return ops.mirror(grid, params.get("axis", "x"))
+    if op.op == "shift":
+        try:
+            return ops.translate(grid, tuple(params["by"]))
+        except VoxfabError as exc:
+            raise RecipeError(f"{op.keypath} (shift): {exc}") from None
     assert op.source is not None
     other = make_source(op.source, base_dir)
     return {"union": ops.union, "intersection": ops.intersection, "difference": ops.difference}[op.op](

@@ -59,8 +59,15 @@ def _run_mesh(shape: VoxelShape, options: Any, outdir: Path, *, name: str, seed:
     from voxfab.fabricate.mesh import fabricate_mesh
 
     del seed, recipe  # a mesh is deterministic
-    return fabricate_mesh(shape, options, outdir / f"mesh.{options.format}", name=name,
+    made = fabricate_mesh(shape, options, outdir / f"mesh.{options.format}", name=name,
                           report_path=outdir / "mesh.json")
+    if options.size is not None:
+        # One object in every medium unless the recipe names another scale: say so when it does.
+        pitch = made.report["pitch_mm"]
+        note = (f"printed at size = {options.size:g} mm ({pitch:.4g} mm per voxel), {pitch / shape.pitch:.3g} x "
+                f"the recipe's pitch of {shape.pitch:g} mm")
+        made = dataclasses.replace(made, warnings=(note, *made.warnings))
+    return made
 
 
 # ---- slices -------------------------------------------------------------------------------------
@@ -127,7 +134,13 @@ def _run_net(shape: VoxelShape, settings: NetSettings, outdir: Path, *, name: st
         # One scale for the whole object: the paper faces are the print's voxels unless the
         # recipe gives another face size.
         drawing = dataclasses.replace(drawing, pitch=shape.pitch)
-    return fabricate_net(shape, settings.net, drawing, outdir, name=name, seed=seed)
+    made = fabricate_net(shape, settings.net, drawing, outdir, name=name, seed=seed)
+    face = settings.net.face_size
+    if face is not None and abs(face - shape.pitch) > 1e-9 * shape.pitch:
+        note = (f"the paper model is at face_size = {face:g} mm, {face / shape.pitch:.3g} x the recipe's pitch "
+                f"of {shape.pitch:g} mm")
+        made = dataclasses.replace(made, warnings=(note, *made.warnings))
+    return made
 
 
 # ---- animation ----------------------------------------------------------------------------------

@@ -31,6 +31,7 @@ _OPERATIONS: dict[str, dict[str, type | tuple]] = {
     "crop": {},
     "rotate": {"axis": str, "turns": int},
     "mirror": {"axis": str},
+    "shift": {"by": tuple[int, int, int]},
     "union": {"source": dict},
     "intersection": {"source": dict},
     "difference": {"source": dict},
@@ -366,7 +367,9 @@ def load_recipe(path: PathLike, *, allow_outside: bool = False) -> Recipe:
                 raise err(f"{kp}.{key}", f"expected {_type_name(allowed[key])}, got {value!r}")
             if key == "axis" and value not in ("x", "y", "z"):
                 raise err(f"{kp}.axis", f"expected 'x', 'y' or 'z', got {value!r}")
-            params.append((key, value))
+            params.append((key, value if key != "by" else tuple(value)))
+        if kind == "shift" and "by" not in op:
+            raise err(kp, "op 'shift' needs 'by = [dx, dy, dz]' (voxels)")
         if kind in ("union", "intersection", "difference") and sub is None:
             raise err(kp, f"op {kind!r} needs a 'source' table")
         ops.append(OperationSpec(kind, tuple(sorted(params)), sub, kp))

@@ -31,13 +31,27 @@ from ._check import MeshReport, check_mesh
 from ._contacts import Contacts, bridge_boxes, find_contacts
 from ._data import MeshData
 from ._faces import voxel_mesh
+from ._mass import (
+    DEFAULT_INFILL,
+    PLA_DENSITY,
+    MassProperties,
+    PrintEstimate,
+    PrintProfile,
+    SpinReport,
+    estimate_print,
+    format_duration,
+    mass_properties,
+    spin_report,
+)
 from ._options import MeshOptions
 from .formats import format_for, mesh_extensions, read_mesh, write_mesh
 
 __all__ = [
     "BRIDGE_WIDTH",
     "ENGRAVE_DEPTH",
+    "DEFAULT_INFILL",
     "MAX_FACES",
+    "PLA_DENSITY",
     "MIN_WALL",
     "ContactMode",
     "Contacts",
@@ -45,10 +59,19 @@ __all__ = [
     "MeshOptions",
     "MeshReport",
     "MeshResult",
+    "MassProperties",
+    "PrintEstimate",
+    "PrintProfile",
+    "SpinReport",
     "bridge_boxes",
     "build_mesh",
     "fabricate_mesh",
     "check_mesh",
+    "estimate_line",
+    "estimate_print",
+    "format_duration",
+    "mass_properties",
+    "spin_report",
     "find_contacts",
     "format_for",
     "hollow_out",
@@ -61,9 +84,55 @@ __all__ = [
 ]
 
 
-def report_dict(result: MeshResult, *, name: str) -> dict[str, object]:
-    """The figures of a mesh result as plain JSON values."""
+def _rounded(values: object, digits: int = 6) -> object:
+    """Plain floats rounded to ``digits`` decimals (nested lists kept)."""
+    import numpy as np
+
+    return np.round(np.asarray(values, dtype=np.float64), digits).tolist()
+
+
+def report_dict(result: MeshResult, *, name: str, infill: float = DEFAULT_INFILL,
+                spin: bool = False) -> dict[str, object]:
+    """The figures of a mesh result as plain JSON values.
+
+    Besides counts and sizes: the centre of mass and the principal moments of
+    inertia of the solid (uniform, at the print's average density), the PLA mass
+    and print time at ``infill`` percent, and with ``spin`` the top's spin report.
+    """
+    import numpy as np
+
     r = result.report
+    props = mass_properties(result.mesh)
+    estimate = estimate_print(result.mesh, props.volume, infill=infill)
+    density = estimate.mass_g / props.volume  # g/mm³, averaged over walls and infill
+    moments, axes = np.linalg.eigh(props.inertia * density)
+    warnings = list(result.warnings)
+    figures: dict[str, object] = {
+        "center_of_mass_mm": _rounded(props.center),
+        "inertia_tensor_g_mm2": _rounded(props.inertia * density),
+        "principal_moments": _rounded(moments),
+        "principal_axes": _rounded(axes.T),
+        "moments_unit": "g mm^2, about the centre of mass, print frame (z up)",
+        "infill_percent": infill,
+        "filament_mm3": round(estimate.filament_mm3, 6),
+        "mass_g": round(estimate.mass_g, 9),
+        "print_time_s": round(estimate.time_s),
+        "print_time": format_duration(estimate.time_s),
+    }
+    if spin:
+        top = spin_report(result.mesh, props, pitch=result.pitch)
+        figures["spin"] = {
+            "tip_mm": _rounded(top.tip),
+            "tip_width_mm": round(top.tip_width, 6),
+            "tip_patches": top.tip_patches,
+            "axis_offset_mm": round(top.axis_offset, 6),
+            "center_height_mm": round(top.height, 6),
+            "moment_ratio": round(top.moment_ratio, 6),
+            "center_moment_ratio": round(top.center_ratio, 6),
+            "sleep_rpm": round(top.sleep_rpm, 1),
+            "spins": not top.warnings,
+        }
+        warnings += top.warnings
     return {
         "name": name,
         "pitch_mm": result.pitch,
@@ -76,8 +145,22 @@ def report_dict(result: MeshResult, *, name: str) -> dict[str, object]:
         "size_mm": [round(hi - lo, 6) for lo, hi in zip(*r.bounds)],
         "contacts": result.contacts,
         "bridges": result.bridges,
-        "warnings": list(result.warnings),
+        **figures,
+        "warnings": warnings,
     }
+
+
+def estimate_line(report: dict[str, object]) -> str:
+    """One line a maker reads before printing: size, PLA mass and print time (and the top's spin check)."""
+    size = " x ".join(f"{s:g}" for s in report["size_mm"])  # type: ignore[attr-defined]
+    line = (f"{size} mm, {report['mass_g']:.1f} g of PLA at {report['infill_percent']:g} % infill, "
+            f"about {report['print_time']}")
+    spin = report.get("spin")
+    if isinstance(spin, dict):
+        verdict = "spins" if spin["spins"] else "wobbles"
+        line += (f"; as a top it {verdict} (centre of mass {spin['axis_offset_mm']:.2f} mm off the tip's axis, "
+                 f"moment ratio {spin['moment_ratio']:.2f} at the tip; upright above {spin['sleep_rpm']:.0f} rpm)")
+    return line
 
 
 def fabricate_mesh(
@@ -121,11 +204,11 @@ def fabricate_mesh(
         base=options.base, magnet=options.magnet, merge=options.merge, name=name,
     )
     write_mesh(target, result.mesh, name=name)
-    report = report_dict(result, name=name)
+    report = report_dict(result, name=name, infill=options.infill, spin=options.spin)
     files = [OutputFile(target.name, module.DESCRIPTION)]
     if report_path is not None:
         rp = Path(report_path)
         write_text(rp, json.dumps(report, indent=2, sort_keys=True) + "\n")
         files.append(OutputFile(rp.relative_to(target.parent).as_posix(),
-                                "size, volume, part count and printability warnings of the mesh (JSON)"))
+                                "size, volume, part count, mass, print time, centre of mass, moments and printability warnings of the mesh (JSON)"))
     return Artefact(tuple(files), tuple(report["warnings"]), report)  # type: ignore[arg-type]

@@ -54,6 +54,10 @@ class MeshOptions(Options):
     merge: bool = option(True, help="merge coplanar faces (off: two triangles per voxel face)",
                          flag="--no-merge", negate=True,
                          flag_help="two triangles per voxel face (no coplanar merging)")
+    infill: float = option(20.0, help="sparse infill the filament, mass and print-time estimates assume "
+                           "(PLA, 0.3 mm layers, 3 perimeters)", unit="%", low=0.0, high=100.0)
+    spin: bool = option(False, help="check the print as a spinning top: a single tip under the centre of mass, "
+                        "wide rather than tall in its mass")
 
     def check(self) -> None:
         """A label needs some text."""
