@@ -236,7 +236,7 @@ def recipe_trees(draw: st.DrawFn, *, with_outputs: bool = True, strict: bool = F
     extreme), so most recipes reach the makers.
     """
     from voxfab.digitize import available_makers, get_maker
-    from voxfab.recipe._outputs import outputs as output_kinds
+    from voxfab.fabricate import outputs as output_kinds
     from voxfab.recipe._schema import _OPERATIONS, keyword_options
 
     def source() -> dict:

@@ -28,23 +28,6 @@ from voxfab.errors import InvalidShapeError
 __all__ = ["GROUPS", "Aside", "GroupTime", "compile_aside", "is_compiled", "warm_group", "warm_up"]
 
 
-def _print_mesh(folder: Path) -> None:
-    from voxfab.fabricate.mesh import MeshOptions, fabricate_mesh
-    from voxfab.shape import VoxelShape, examples
-
-    fabricate_mesh(VoxelShape(examples.torus(5, 2)), MeshOptions(), folder / "mesh.3mf", name="warm-up")
-
-
-def _paper_net(folder: Path) -> None:
-    from voxfab.fabricate.netdraw import DrawingOptions, NetOptions, fabricate_net
-    from voxfab.shape import VoxelShape, examples
-
-    # More faces than the net engine leaves to its plain-Python kernels, and tabs to make room for.
-    shape = VoxelShape(examples.ball(4))
-    fabricate_net(shape, NetOptions(formats=("svg",)), DrawingOptions(pitch=10.0), folder, name="warm-up",
-                  seed=0)
-
-
 def _shape_makers(folder: Path) -> None:
     import numpy as np
 
@@ -59,24 +42,25 @@ def _shape_makers(folder: Path) -> None:
     growth(0, 2 * GRID_SIDE)
 
 
-#: The kernel groups: name → the pipeline run that compiles them (into a scratch folder).
-GROUPS: dict[str, Callable[[Path], None]] = {
-    "print": _print_mesh,
-    "net": _paper_net,
-    "makers": _shape_makers,
-}
+def _groups() -> tuple[dict[str, Callable[[Path], None]], dict[str, tuple[tuple[str, str], ...]]]:
+    from voxfab.fabricate import outputs
+
+    runs = {o.warm_group: o.warm for o in outputs().values() if o.warm_group and o.warm}
+    kernels = {o.warm_group: o.kernels for o in outputs().values() if o.warm_group}
+    # The shape makers are no output but compile kernels of their own.
+    runs["makers"] = _shape_makers
+    kernels["makers"] = (("voxfab.digitize._kernels", "even_odd"), ("voxfab.digitize._kernels", "transport"),
+                         ("voxfab.generate._kernels", "grow"))
+    return runs, kernels
 
 
+#: The kernel groups: name → the pipeline run that compiles them (into a scratch folder); the
+#: outputs' groups come from the table of outputs (:func:`voxfab.fabricate.outputs`).
+GROUPS: dict[str, Callable[[Path], None]]
 #: The kernels of each group that the pipelines call from Python, as (module, function); a
 #: group is compiled when numba's cache holds every one of them.
-ENTRY_KERNELS: dict[str, tuple[tuple[str, str], ...]] = {
-    "print": (("voxfab.fabricate.mesh._contact_scan", "contact_scan"),
-              ("voxfab.fabricate.mesh._rectangles", "rectangle_mesh"),
-              ("voxfab.fabricate.mesh._edges", "edge_fan_shells")),
-    "net": (("voxfab.unfold._growth", "grow"), ("voxfab.unfold._tabroom", "anneal")),
-    "makers": (("voxfab.digitize._kernels", "even_odd"), ("voxfab.digitize._kernels", "transport"),
-               ("voxfab.generate._kernels", "grow")),
-}
+ENTRY_KERNELS: dict[str, tuple[tuple[str, str], ...]]
+GROUPS, ENTRY_KERNELS = _groups()
 
 
 @dataclasses.dataclass(frozen=True)

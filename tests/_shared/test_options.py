@@ -116,18 +116,16 @@ def test_specs_and_table():
 
 
 def readme_tables() -> dict[str, str]:
-    """The README's option tables as the code declares them, by marker name."""
-    from voxfab.fabricate.mesh import MeshOptions
-    from voxfab.fabricate.netdraw import DrawingOptions, NetOptions
-    from voxfab.fabricate.plates import PlateOptions
-    from voxfab.render import AnimationOptions, PictureOptions
+    """The README's option tables as the code declares them, by marker name: the shape's, then every output's."""
+    from voxfab.fabricate import outputs
+    from voxfab.fabricate._table import resolve
     from voxfab.shape import ShapeOptions
 
-    return {"shape": markdown_table(ShapeOptions), "mesh": markdown_table(MeshOptions),
-            "net": markdown_table(NetOptions),
-            "net-drawing": markdown_table(DrawingOptions, exclude=("pitch", "title_height", "heading")), "slices": markdown_table(PlateOptions),
-            "pictures": markdown_table(PictureOptions),
-            "animation": markdown_table(AnimationOptions)}
+    tables = {"shape": markdown_table(ShapeOptions)}
+    for output in outputs().values():
+        for t in output.options:
+            tables[t.readme] = markdown_table(resolve(t.cls), exclude=t.exclude)
+    return tables
 
 
 def rewrite_readme(text: str) -> str:

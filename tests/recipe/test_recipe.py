@@ -111,22 +111,22 @@ class _DemoOptions(Options):
 
 
 def _demo_kind(run):
-    from voxfab._shared.options import from_mapping, option_specs
-    from voxfab.recipe._outputs import OutputKind
+    from voxfab._shared.options import from_mapping
+    from voxfab.fabricate import OptionTable, Output
 
-    keys = tuple(s.name for s in option_specs(_DemoOptions))
-    return OutputKind("demo", keys, lambda table: from_mapping(_DemoOptions, table), run)
+    return Output("demo", (OptionTable(_DemoOptions, "demo"),), "tests.recipe:run", ("x.txt",), run,
+                  parse=lambda t: from_mapping(_DemoOptions, t))
 
 
 def test_output_options_are_checked_against_the_options_dataclass(tmp_path, monkeypatch):
+    from voxfab import fabricate
     from voxfab.fabricate import Artefact, OutputFile
-    from voxfab.recipe import _outputs
 
-    def run(shape, o, outdir, *, name, seed, recipe):
+    def run(shape, o, outdir, *, name, seed, context):
         (outdir / "x.txt").write_text(f"{name} {seed} {o.size} {o.mode} {list(o.views)}")
         return Artefact((OutputFile("x.txt", "a test file"),), ("demo warning",))
 
-    monkeypatch.setitem(_outputs.outputs(), "demo", _demo_kind(run))
+    monkeypatch.setitem(fabricate.outputs(), "demo", _demo_kind(run))
     np.save(tmp_path / "x.npy", examples.random_shape(1))
     ok = load_recipe(write(tmp_path, '[source]\nfile = "x.npy"\n[outputs.demo]\nsize = 3\nmode = "b"\nviews = ["iso"]\n'))
     folder = build(ok, tmp_path / "out")
@@ -141,13 +141,13 @@ def test_output_options_are_checked_against_the_options_dataclass(tmp_path, monk
 
 
 def test_failed_build_leaves_no_partial_folder(tmp_path, monkeypatch):
-    from voxfab.recipe import _outputs
+    from voxfab import fabricate
 
-    def failing(shape, o, outdir, *, name, seed, recipe):
+    def failing(shape, o, outdir, *, name, seed, context):
         (outdir / "half.bin").write_bytes(b"x")
         raise RecipeError("boom")
 
-    monkeypatch.setitem(_outputs.outputs(), "demo", _demo_kind(failing))
+    monkeypatch.setitem(fabricate.outputs(), "demo", _demo_kind(failing))
     np.save(tmp_path / "x.npy", examples.random_shape(1))
     r = load_recipe(write(tmp_path, '[source]\nfile = "x.npy"\n[outputs.demo]\n'))
     with pytest.raises(RecipeError):

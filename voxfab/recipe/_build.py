@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import json
 from pathlib import Path
@@ -87,10 +88,6 @@ def _sha256(path: Path) -> str:
     return hashlib.sha256(path.read_bytes()).hexdigest()
 
 
-#: Outputs that may search a net (the triptych unfolds the shape when no net output ran).
-_UNFOLDING = ("net", "pictures")
-
-
 def build(recipe: Recipe, outdir: PathLike) -> Path:
     """Build a recipe into ``outdir/<recipe.name>/``, replacing it only on success.
 
@@ -100,13 +97,14 @@ def build(recipe: Recipe, outdir: PathLike) -> Path:
         The recipe's output folder, holding ``shape.npy``, ``shape.vox``, each
         output's files and ``manifest.json``.
     """
+    from voxfab.fabricate import outputs as output_kinds
     from voxfab.warmup import compile_aside
 
     target = Path(outdir) / recipe.name
     check_output(target, folder=True, parents=True, marker="manifest.json")  # before the work
     # Right after an install the net engine's kernels are not compiled yet: a second
     # process compiles them while this one makes the shape and the print.
-    unfolds = any(spec.name in _UNFOLDING for spec in recipe.outputs)
+    unfolds = any(output_kinds()[spec.name].unfolds for spec in recipe.outputs)
     with compile_aside(["net"] if unfolds else []) as aside:
         _build_into(recipe, target, aside)
     return target
@@ -116,11 +114,17 @@ def _build_into(recipe: Recipe, target: Path, aside: Aside) -> None:
     """Make the shape and write every output and the manifest into ``target``."""
     from voxfab import io
     from voxfab._shared.progress import progress
-    from voxfab.fabricate import OutputFile
-
-    from ._outputs import outputs as output_kinds
+    from voxfab.fabricate import BuildContext, OutputFile
+    from voxfab.fabricate import outputs as output_kinds
+    from voxfab.unfold import Net
 
     shape = make_shape(recipe)
+    source = recipe.source
+    context = BuildContext(maker=source.maker, params=dict(source.params), base_dir=recipe.base_dir)
+    kinds = output_kinds()
+    # The outputs that write a net come first, and pass it on: the pictures draw that very net
+    # instead of searching again.
+    ordered = sorted(recipe.outputs, key=lambda spec: "net.json" not in kinds[spec.name].files)
     with atomic_dir(target, marker="manifest.json") as tmp:
         io.write(shape.grid, tmp / "shape.npy")
         io.write(shape.grid, tmp / "shape.vox")
@@ -129,13 +133,14 @@ def _build_into(recipe: Recipe, target: Path, aside: Aside) -> None:
             OutputFile("shape.vox", "the voxel shape for MagicaVoxel and other voxel editors"),
         ]
         warnings: list[str] = []
-        kinds = output_kinds()
-        for spec in progress(recipe.outputs, desc="outputs"):
-            if spec.name in _UNFOLDING:
+        for spec in progress(ordered, desc="outputs"):
+            kind = kinds[spec.name]
+            if kind.unfolds:
                 aside.wait()  # the net kernels are compiled by now, or never will be aside
-            settings = spec.settings if spec.settings is not None else kinds[spec.name].parse(dict(spec.options))
-            made = kinds[spec.name].run(shape, settings, tmp, name=recipe.name, seed=recipe.seed,
-                                      recipe=recipe)
+            settings = spec.settings if spec.settings is not None else kind.settings(dict(spec.options))
+            made = kind.run(shape, settings, tmp, name=recipe.name, seed=recipe.seed, context=context)
+            if context.net is None and any(f.path == "net.json" for f in made.files):
+                context = dataclasses.replace(context, net=Net.from_json((tmp / "net.json").read_text()))
             files += made.files
             warnings += [f"{spec.name}: {w}" for w in made.warnings]
         manifest = {

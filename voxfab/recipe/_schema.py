@@ -298,9 +298,8 @@ def load_recipe(path: PathLike, *, allow_outside: bool = False) -> Recipe:
     RecipeError
         Naming the file, line and key path of the first problem.
     """
+    from voxfab.fabricate import outputs as output_kinds
     from voxfab.shape import ShapeOptions
-
-    from ._outputs import outputs as output_kinds
 
     p = Path(path)
     try:
@@ -394,7 +393,7 @@ def load_recipe(path: PathLike, *, allow_outside: bool = False) -> Recipe:
                 raise err(f"outputs.{out_name}.{key}", f"unknown key; outputs.{out_name} accepts: "
                           f"{', '.join(sorted(kind.keys))}")
         try:
-            settings = kind.parse(options)
+            settings = kind.settings(options)
         except OptionError as exc:
             raise err(f"outputs.{out_name}.{exc.option}", exc.reason) from None
         except VoxfabError as exc:

@@ -6,13 +6,23 @@
 * :func:`triptych` — net | slices | 3D under the shape's name (PNG and PDF).
 * :func:`save_turntable`, :func:`save_animation` — GIFs of a turning shape or a sequence of shapes.
 * :func:`contact_sheet`, :func:`repository_contact_sheet` — many shapes by volume with names.
+* :func:`render_animation` — the animation pipeline (a tube's turning profile); :func:`tube_frames`
+  and :func:`save_tube_animation` for its frames and GIF.
 * :func:`render_pictures` — the pictures pipeline of the recipe output ``pictures``, the studio and
   ``voxfab render``: options :class:`PictureOptions`, files :class:`Picture`.
 """
 
 from __future__ import annotations
 
-from ._animate import animation_frames, save_animation, save_turntable, turntable_frames
+from ._animate import (
+    animation_frames,
+    render_animation,
+    save_animation,
+    save_tube_animation,
+    save_turntable,
+    tube_frames,
+    turntable_frames,
+)
 from ._contact_sheet import contact_sheet, repository_contact_sheet, sheet_layout
 from ._image import gif_bytes, pdf_bytes, png_bytes, save_picture
 from ._net import DEFAULT_STYLES, LineStyle, net_picture
@@ -51,6 +61,9 @@ __all__ = [
     "animation_frames",
     "save_turntable",
     "save_animation",
+    "render_animation",
+    "save_tube_animation",
+    "tube_frames",
     "contact_sheet",
     "sheet_layout",
     "repository_contact_sheet",

@@ -20,7 +20,7 @@ from voxfab._shared.progress import progress
 from voxfab._shared.typing import PathLike
 from voxfab._shared.validate import as_grid
 from voxfab.errors import InvalidShapeError
-from voxfab.fabricate._outputs import OutputFile
+from voxfab.fabricate._outputs import Artefact, OutputFile
 from voxfab.shape import VoxelShape, bounding_box
 
 from ._image import gif_bytes
@@ -31,6 +31,8 @@ from ._views import ISO_AZIMUTH, ISO_ELEVATION, Camera, View, camera_for, orbit_
 if TYPE_CHECKING:
     from PIL import Image
 
+    from ._options import AnimationOptions
+
 __all__ = [
     "turntable_frames",
     "animation_frames",
@@ -38,7 +40,7 @@ __all__ = [
     "save_animation",
     "tube_frames",
     "save_tube_animation",
-    "recipe_output",
+    "render_animation",
 ]
 
 
@@ -258,55 +260,49 @@ def save_tube_animation(path: PathLike, tube: Mapping[str, Any], *, steps: int =
     return len(pics)
 
 
-def recipe_output(
+def render_animation(
     shape: VoxelShape,
-    outdir: Path,
+    options: AnimationOptions,
+    outdir: PathLike,
     *,
-    name: str,
-    seed: int,
-    source: Any,
-    base_dir: Path,
-    steps: int = 24,
-    turn: float = 360.0,
-    view: str = "iso",
-    size: int = 400,
-    duration_ms: int = 80,
-) -> list[OutputFile]:
-    """The recipe output ``animation``: ``animation.gif``, the tube's profile turning along its spine.
+    maker: str | None,
+    params: Mapping[str, Any],
+    base_dir: PathLike | None = None,
+) -> Artefact:
+    """The animation pipeline: ``animation.gif``, a swept tube's profile turning along its spine.
+
+    The recipe output ``animation`` and the studio's download call it.
 
     Parameters
     ----------
     shape : VoxelShape
-        The recipe's shape (frame 0 before any operation; the animation shows the source).
-    outdir : Path
+        The shape made by the maker (the animation shows the maker's frames, before any operation).
+    options : AnimationOptions
+        Frames, turn, view, picture size and frame time.
+    outdir : path
         Folder to write into.
-    name, seed
-        Unused: the animation is deterministic.
-    source, base_dir
-        The recipe's :class:`voxfab.recipe.SourceSpec`, which must be the maker ``tube``,
-        and its folder (passed by the build, not recipe keys).
-    steps : int
-        Frames (1..720).
-    turn : float
-        Rotation of the profile in degrees over the whole animation.
-    view : str
-        ``"iso"``, ``"x"``, ..., ``"-z"``.
-    size : int
-        Picture side in pixels.
-    duration_ms : int
-        Time per frame in milliseconds.
+    maker, params, base_dir
+        The source of the shape: it must be the maker ``tube``; its parameters, and
+        the folder its file names are relative to.
+
+    Raises
+    ------
+    RecipeError
+        A source that is not a tube, or tube parameters the animation cannot turn.
     """
     from voxfab.errors import RecipeError, VoxfabError
 
-    del shape, name, seed
-    if source.maker != "tube":
+    del shape
+    if maker != "tube":
         raise RecipeError(
             f"outputs.animation: the rotating-profile animation needs a tube source (maker = \"tube\"), "
-            f"got {source.maker or 'a file'!r}"
+            f"got {maker or 'a file'!r}"
         )
+    o = options
     try:
-        save_tube_animation(Path(outdir) / "animation.gif", dict(source.params), steps=steps, turn=turn,
-                            view=view, size=size, duration_ms=duration_ms, base_dir=base_dir)
+        frames = save_tube_animation(Path(outdir) / "animation.gif", dict(params), steps=o.steps, turn=o.turn,
+                                     view=o.view, size=o.size, duration_ms=o.duration_ms, base_dir=base_dir)
     except VoxfabError as exc:
         raise RecipeError(f"outputs.animation: {exc}") from None
-    return [OutputFile("animation.gif", "the tube's profile turning along its spine, one turn per loop")]
+    files = (OutputFile("animation.gif", "the tube's profile turning along its spine, one turn per loop"),)
+    return Artefact(files, (), {"frames": frames})

@@ -242,7 +242,7 @@ def create_app(settings: Settings) -> Starlette:
         except ImportError:
             constraints = False
         return {"version": __version__, "repository": settings.repo.name, "side": _grid.SIDE,
-                "max_body": MAX_BODY, "constraints": constraints, "artefacts": list(_work.ARTEFACTS),
+                "max_body": MAX_BODY, "constraints": constraints, "artefacts": _work.artefacts(),
                 "max_nets": _work.MAX_NETS}
 
     async def preview(request: Request) -> dict[str, Any]:
@@ -294,7 +294,7 @@ def create_app(settings: Settings) -> Starlette:
         steps = _work.check_number(data.get("steps", 24), name="steps", lo=2, hi=72, integer=True)
 
         def run() -> dict[str, Any]:
-            from voxfab.render._animate import tube_frames
+            from voxfab.render import tube_frames
 
             params, folder = _specs.tube_params(data.get("shape"), work())
             try:
@@ -418,8 +418,8 @@ def create_app(settings: Settings) -> Starlette:
         if not isinstance(data, dict):
             raise InvalidShapeError("request: expected {\"grid\": ..., \"artefact\": ...}")
         artefact = data.get("artefact")
-        if artefact not in _work.ARTEFACTS:
-            raise InvalidShapeError(f"artefact: expected one of {', '.join(_work.ARTEFACTS)}, got {artefact!r:.40}")
+        if artefact not in _work.artefacts():
+            raise InvalidShapeError(f"artefact: expected one of {', '.join(_work.artefacts())}, got {artefact!r:.40}")
         grid = _grid.unpack(data.get("grid"))
         if not grid.any():
             raise InvalidShapeError("shape: empty; draw or add voxels first")
@@ -427,25 +427,11 @@ def create_app(settings: Settings) -> Starlette:
         title = data.get("title") or "studio"
         if not isinstance(title, str) or not re.fullmatch(r"[A-Za-z0-9_.\- ]{1,64}", title):
             raise InvalidShapeError(f"title: letters, digits, space, _ . - (at most 64), got {str(title)[:70]!r}")
-        options: dict[str, Any] = {}
         opts = data.get("options") or {}
         if not isinstance(opts, dict):
             raise InvalidShapeError("options: expected an object")
-        if opts.get("face_mm") is not None:
-            options["face_mm"] = _work.check_number(opts["face_mm"], name="face_mm", lo=1.0, hi=500.0)
-        if opts.get("sheet") is not None:
-            from voxfab.fabricate.netdraw import parse_sheet
-
-            if not isinstance(opts["sheet"], str):
-                raise InvalidShapeError("sheet: expected A4, A3, Letter or WxH in mm")
-            parse_sheet(opts["sheet"])
-            options["sheet"] = opts["sheet"]
-        if opts.get("thickness") is not None:
-            options["thickness"] = _work.check_number(opts["thickness"], name="thickness", lo=0.1, hi=100.0)
-        if opts.get("timeout") is not None:
-            options["timeout"] = _work.check_number(opts["timeout"], name="timeout", lo=0.5, hi=_work.MAX_NET_SECONDS)
-        if opts.get("steps") is not None:
-            options["steps"] = _work.check_number(opts["steps"], name="steps", lo=2, hi=72, integer=True)
+        # Checked now, by the output's own options dataclass: the same bounds and words as the CLI.
+        settings = _work.download_settings(artefact, opts)
         net = None
         pick = data.get("net")
         if pick is not None:
@@ -461,7 +447,7 @@ def create_app(settings: Settings) -> Starlette:
         if artefact == "animation.gif":
             tube = await run_in_threadpool(_specs.tube_params, data.get("shape"), work())
         job = jobs().submit("make", lambda j: _work.make_files(
-            j, grid, artefact=artefact, title=title, pitch=pitch, net=net, options=options, tube=tube))
+            j, grid, artefact=artefact, title=title, pitch=pitch, net=net, settings=settings, tube=tube))
         return {"job": job.id}
 
     async def job_status(request: Request) -> dict[str, Any]:

@@ -28,9 +28,12 @@ MAX_NETS = 12
 MAX_NET_SECONDS = 60.0
 MAX_GALLERY_SECONDS = 180.0
 
-#: The files the page can ask for, with what makes them.
-ARTEFACTS = ("mesh.3mf", "mesh.stl", "net.svg", "net.dxf", "net.pdf", "net.json", "plates.zip",
-             "triptych.png", "triptych.pdf", "animation.gif")
+
+def artefacts() -> list[str]:
+    """The files the page can ask for: the studio downloads of the table of outputs."""
+    from voxfab.fabricate import outputs
+
+    return [d for row in outputs().values() for d in row.downloads]
 
 _DIRS = ("+x", "-x", "+y", "-y", "+z", "-z")
 
@@ -211,81 +214,45 @@ def _one(job: Job, name: str, paths: list[Path]) -> None:
     job.files.append((f"{stem}.zip", _zip(job.folder, paths, job.folder / f"{stem}.zip")))
 
 
+def download_settings(artefact: str, values: dict[str, Any]) -> Any:
+    """The checked settings of one download, by the output's own options dataclass (as a recipe's)."""
+    from voxfab.fabricate import output_for_download
+
+    row = output_for_download(artefact)
+    assert row.download_table is not None
+    return row.settings(row.download_table(artefact, values))
+
+
 def make_files(job: Job, grid: np.ndarray, *, artefact: str, title: str, pitch: float, net: Any,
-               options: dict[str, Any], tube: tuple[dict[str, Any], Path] | None = None) -> None:
-    """Write one artefact of the shape into the job's folder through the CLI's library functions."""
+               settings: Any, tube: tuple[dict[str, Any], Path] | None = None) -> None:
+    """Write one artefact of the shape into the job's folder through its pipeline in the table of outputs."""
+    from voxfab.fabricate import BuildContext, output_for_download
     from voxfab.shape import VoxelShape
 
+    row = output_for_download(artefact)
     shape = VoxelShape(grid, pitch)
-    out = job.folder
+    out = job.folder / "made"
+    out.mkdir(exist_ok=True)
     stem = title.replace(" ", "_")
     job.step(0, 1, f"making {artefact}")
-    if artefact in ("mesh.3mf", "mesh.stl"):
-        from voxfab.fabricate.mesh import MeshOptions, fabricate_mesh
-
-        fmt = artefact.split(".")[1]
-        made = fabricate_mesh(shape, MeshOptions(), out / f"mesh.{fmt}", name=title)
-        job.result["warnings"] = list(made.warnings)
-        _one(job, f"{stem}.{fmt}", [out / f"mesh.{fmt}"])
-    elif artefact.startswith("net."):
-        from voxfab.fabricate import netdraw
-        from voxfab.shape import fill_cavities
-
-        if net is None:
-            from voxfab.unfold import unfold
-
-            job.step(0, 2, "searching a net (pick one in Net to choose)")
-            net = unfold(grid, rng=0, timeout=float(options.get("timeout", 5.0)))
-        from voxfab.unfold import validate
-
-        drawn_grid = fill_cavities(grid) if net.filled else grid
-        if not validate(drawn_grid, net).ok:
-            raise InvalidShapeError("net: the chosen net is not a net of this shape; pick a net again")
-        ext = artefact.split(".")[1]
-        target = out / f"{stem}-net.{ext}"
-        if ext == "json":
-            from voxfab._shared.atomic import write_text
-
-            write_text(target, net.to_json())
-            _one(job, target.name, [target])
-        else:
-            face = options.get("face_mm")
-            drawing = netdraw.DrawingOptions(pitch=face, sheet=options.get("sheet", "A4"))
-            lines = netdraw.write_drawing(VoxelShape(drawn_grid, face if face else pitch), net, target, drawing,
-                                          title=title)
-            written = [Path(line[len("wrote "):]) for line in lines if line.startswith("wrote ")]
-            job.result["report"] = [line for line in lines if not line.startswith("wrote ")]
-            _one(job, target.name, written)
-    elif artefact == "plates.zip":
-        from voxfab.fabricate.plates import PlateOptions, fabricate_plates
-
-        plate_options = PlateOptions(thickness=options.get("thickness", 3.0),
-                                     sheet=options.get("plate_sheet", "600x400"))
-        made = fabricate_plates(shape, plate_options, out / "slices", name=title)
-        job.result["warnings"] = list(made.warnings)
-        files = [p for p in sorted((out / "slices").rglob("*")) if p.is_file()]
-        job.files.append((f"{stem}-plates.zip", _zip(out, files, out / f"{stem}-plates.zip")))
-    elif artefact in ("triptych.png", "triptych.pdf"):
-        from voxfab.render import PictureOptions, render_pictures
-
-        # the pictures pipeline of `voxfab build`, asked for the triptych only, with the chosen net
-        render_pictures(shape, PictureOptions(size=600, views=(), triptych=True), out, name=title, seed=0, net=net)
-        ext = artefact.split(".")[1]
-        target = out / f"{stem}-triptych.{ext}"
-        (out / f"triptych.{ext}").rename(target)
-        _one(job, target.name, [target])
-    elif artefact == "animation.gif":
-        from voxfab.render._animate import save_tube_animation
-
-        if tube is None:
-            raise InvalidShapeError("animation: only a drawn tube has a turning profile; choose Tube in Draw")
-        params, folder = tube
-        target = out / f"{stem}-animation.gif"
-        try:
-            save_tube_animation(target, params, steps=int(options.get("steps", 24)), size=400, base_dir=folder)
-        finally:
+    if row.maker == "tube" and tube is None:
+        raise InvalidShapeError("animation: only a drawn tube has a turning profile; choose Tube in Draw")
+    params, folder = tube if tube is not None else ({}, None)
+    context = BuildContext(maker="tube" if tube is not None else None, params=params, base_dir=folder, net=net,
+                           paper_at_pitch=False)
+    try:
+        made = row.run(shape, settings, out, name=title, seed=0, context=context)
+    finally:
+        if folder is not None:
             shutil.rmtree(folder, ignore_errors=True)
-        _one(job, target.name, [target])
+    job.result["warnings"] = list(made.warnings)
+    stem_of, ext = artefact.rsplit(".", 1)
+    if ext == "zip":  # the whole folder the output wrote (the plates and their sheets)
+        files = [out / f.path for f in made.files]
+        job.files.append((f"{stem}-{stem_of}.zip", _zip(out, files, job.folder / f"{stem}-{stem_of}.zip")))
     else:
-        raise InvalidShapeError(f"artefact: expected one of {', '.join(ARTEFACTS)}, got {artefact!r:.40}")
+        # The files of the asked kind: one, or several sheets (zipped).
+        files = [out / f.path for f in made.files if f.path.endswith(f".{ext}") and f.path.startswith(stem_of)]
+        name = f"{stem}.{ext}" if row.name == "mesh" else f"{stem}-{artefact}"
+        _one(job, name, files)
     job.step(1, 1, "done")

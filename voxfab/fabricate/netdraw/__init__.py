@@ -217,7 +217,7 @@ _PURPOSES = {
 
 
 def fabricate_net(shape: VoxelShape, net: NetOptions, drawing: DrawingOptions, outdir: str | Path, *, name: str,
-                  seed: int, constraints: Any = None) -> Artefact:
+                  seed: int, constraints: Any = None, chosen: Any = None) -> Artefact:
     """The paper net of ``shape``: ``net.json`` and its drawings, fitted to the sheet.
 
     Parameters
@@ -234,6 +234,9 @@ def fabricate_net(shape: VoxelShape, net: NetOptions, drawing: DrawingOptions, o
         Shape name (in the title) and seed of the net.
     constraints : voxfab.unfold.EdgeConstraints, optional
         Edges to cut or keep folded.
+    chosen : Net or list of Net, optional
+        A net chosen already (the studio's gallery pick): drawn as it is, after the
+        same validation, instead of searching one.
 
     Returns
     -------
@@ -250,8 +253,12 @@ def fabricate_net(shape: VoxelShape, net: NetOptions, drawing: DrawingOptions, o
     search = dict(strategy=net.strategy, timeout=net.timeout, fill=net.fill, compact=net.compact)
     if constraints is not None:
         search["constraints"] = constraints
-    found = find_sheet_nets(shape.grid, drawing, rng=seed, pieces=net.pieces, **search)
-    nets = found.nets[0]
+    if chosen is None:
+        found = find_sheet_nets(shape.grid, drawing, rng=seed, pieces=net.pieces, **search)
+        nets, fitted, notes = found.nets[0], found.options, list(found.notes)
+    else:
+        nets = list(chosen) if isinstance(chosen, (list, tuple)) else [chosen]
+        fitted, notes = drawing, []
     grid = fill_cavities(shape.grid) if nets[0].filled else shape.grid
     unfold.validate(grid, nets if len(nets) > 1 else nets[0])
     outdir = Path(outdir)
@@ -261,14 +268,17 @@ def fabricate_net(shape: VoxelShape, net: NetOptions, drawing: DrawingOptions, o
         write_text(outdir / json_name, piece.to_json())
         files.append(OutputFile(json_name, "the net as voxfab-net/1 JSON: each face's voxel, normal, 3D and 2D "
                                            "corners, and the folds"))
+    if chosen is not None and not net.formats:
+        # The chosen net itself, with nothing to draw: no sheet to fit, no marks to size.
+        return Artefact(tuple(files), (), {"faces": sum(n.face_count for n in nets), "pieces": len(nets)})
     from ._writers import write
 
-    drawing = _draw_any(grid, nets, found.options, name)
+    drawing = _draw_any(grid, nets, fitted, name)
     for f in net.formats:
-        written = write(drawing, outdir / f"net.{f}", found.options)
+        written = write(drawing, outdir / f"net.{f}", fitted)
         files += [OutputFile(Path(p).relative_to(outdir).as_posix(), _PURPOSES[f]) for p in written]
     result = _result(drawing, [])
     report = {"face_size_mm": result.face_size, "faces": sum(n.face_count for n in nets), "pieces": len(nets),
               "sheets": len(result.fill),
-              "sheet_fill": [round(f, 4) for f in result.fill], "notes": list(found.notes)}
+              "sheet_fill": [round(f, 4) for f in result.fill], "notes": notes}
     return Artefact(tuple(files), tuple(result.warnings), report)

@@ -1,0 +1,62 @@
+"""The one table of outputs: every surface reads it, and each row says truly what it writes."""
+
+from __future__ import annotations
+
+import fnmatch
+import json
+import shutil
+from pathlib import Path
+
+import pytest
+
+from voxfab.fabricate import outputs
+from voxfab.fabricate._table import resolve
+from voxfab.recipe import build, load_recipe
+
+RECIPES = Path(__file__).resolve().parents[2] / "recipes"
+
+
+def test_every_row_resolves_to_its_options_and_pipeline():
+    from voxfab._shared.options import Options
+
+    for row in outputs().values():
+        assert callable(resolve(row.pipeline)), row.name
+        for table in row.options:
+            assert issubclass(resolve(table.cls), Options), (row.name, table.cls)
+        assert row.keys and len(set(row.keys)) == len(row.keys)
+        assert row.files and all(row.download_table is not None for _ in row.downloads)
+
+
+def test_the_surfaces_list_what_the_table_lists():
+    from voxfab.studio._work import artefacts
+    from voxfab.warmup import GROUPS
+
+    assert artefacts() == [d for row in outputs().values() for d in row.downloads]
+    assert {row.warm_group for row in outputs().values() if row.warm_group} <= set(GROUPS)
+    readme = (RECIPES.parent / "README.md").read_text(encoding="utf-8")
+    for row in outputs().values():
+        assert f"[outputs.{row.name}]" in readme, row.name
+        for table in row.options:
+            assert f"<!-- options:{table.readme} -->" in readme
+
+
+@pytest.mark.parametrize("recipe", ["tubes/interlaced.toml"])
+def test_a_build_writes_only_the_files_its_rows_declare(tmp_path, recipe):
+    """A recipe with every output (the animation needs a tube) writes only files its rows name."""
+    folder = tmp_path / "r"
+    shutil.copytree((RECIPES / recipe).parent, folder)
+    path = folder / Path(recipe).name
+    text = path.read_text()
+    # Small and quick: a coarse tube, plates and pictures of it, the net on a large sheet.
+    text = text.replace("[source]\n", "[source]\nsize = 12\n").replace("[outputs.pictures]", "[outputs.pictures]\nsize = 120")
+    text += "\n[outputs.animation]\nsteps = 2\nsize = 64\n"
+    path.write_text(text)
+    built = build(load_recipe(path), tmp_path / "out")
+    manifest = json.loads((built / "manifest.json").read_text())
+    assert set(manifest["outputs"]) == set(outputs())
+    patterns = [p for row in outputs().values() for p in row.files] + ["shape.npy", "shape.vox"]
+    for entry in manifest["files"]:
+        assert any(fnmatch.fnmatch(entry["path"], p) for p in patterns), entry["path"]
+        assert (built / entry["path"]).is_file()
+    for row in outputs().values():
+        assert any(fnmatch.fnmatch(e["path"], p) for e in manifest["files"] for p in row.files), row.name

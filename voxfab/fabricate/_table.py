@@ -1,0 +1,336 @@
+"""The one table of outputs: each output's name, options, pipeline function and the files it writes.
+
+Recipes (``[outputs.NAME]``), the CLI, the studio's downloads, batch runs, the
+warm-up and the README's option tables all read :func:`outputs`; nothing else
+lists outputs.  A new output is one module with its pipeline and options, and
+one row here.
+
+The rows name their options classes and pipelines by import path, resolved on
+first use: the table loads nothing heavy, and ``fabricate`` keeps no import of
+the packages above it (``render`` makes the pictures and the animation).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import importlib
+from collections.abc import Callable, Mapping
+from pathlib import Path
+from typing import Any
+
+from voxfab._shared.options import from_mapping, option_specs
+
+from ._outputs import Artefact, OutputFile
+
+__all__ = ["Output", "OptionTable", "BuildContext", "outputs", "output_for_download", "resolve"]
+
+
+def resolve(path: str | Any) -> Any:
+    """The object named ``"package.module:name"`` (an object given itself is returned as it is)."""
+    if not isinstance(path, str):
+        return path
+    module, _, name = path.partition(":")
+    return getattr(importlib.import_module(module), name)
+
+
+@dataclasses.dataclass(frozen=True)
+class OptionTable:
+    """One options dataclass of an output, the recipe keys it hides, and its README table's marker."""
+
+    cls: str | type
+    readme: str
+    exclude: tuple[str, ...] = ()
+
+    def keys(self) -> tuple[str, ...]:
+        """The recipe keys of this class."""
+        return tuple(s.name for s in option_specs(resolve(self.cls)) if s.recipe and s.name not in self.exclude)
+
+
+@dataclasses.dataclass(frozen=True)
+class BuildContext:
+    """What an output may need beyond the shape and its options.
+
+    Attributes
+    ----------
+    maker, params, base_dir
+        The source that made the shape (the animation re-runs a tube maker):
+        maker name (None for a file), its parameters, and the folder its file
+        names are relative to.
+    net : Net or list of Net, optional
+        A net chosen already (the studio's gallery pick, or the build's own net
+        output): the net output draws it instead of searching, the pictures show it.
+    paper_at_pitch : bool
+        A net without a ``face_size`` is drawn at the shape's pitch, so the paper
+        model is the printed object (a recipe's one-scale rule); False lets the net
+        pipeline choose the face size for the sheet (the studio's default).
+    """
+
+    maker: str | None = None
+    params: Mapping[str, Any] = dataclasses.field(default_factory=dict)
+    base_dir: Path | None = None
+    net: Any = None
+    paper_at_pitch: bool = True
+
+
+@dataclasses.dataclass(frozen=True)
+class Output:
+    """One row of the table.
+
+    Attributes
+    ----------
+    name : str
+        ``[outputs.NAME]`` in a recipe.
+    options : tuple of OptionTable
+        Its options dataclasses (the net has two: the search and the drawing).
+    pipeline : str
+        Import path of the pipeline function that makes it (the one the CLI command calls).
+    files : tuple of str
+        The files it writes, relative to the output folder (``*`` for numbered sheets).
+    run : callable
+        ``run(shape, settings, outdir, *, name, seed, context) -> Artefact``: the pipeline
+        called with checked settings.
+    parse : callable, optional
+        ``parse(table) -> settings``; by default the one options class reads the table.
+    downloads : tuple of str
+        The files the studio's Make tab offers for it.
+    download_table : callable, optional
+        ``download_table(download, values) -> table``: the recipe-style table that
+        makes one download from the studio's values (checked by :attr:`parse`).
+    maker : str, optional
+        The source maker it needs (the animation re-runs a tube), checked when a recipe is read.
+    unfolds : bool
+        It may search a net (the build compiles the net engine aside first).
+    warm_group : str, optional
+        The warm-up kernel group of its compiled code (``voxfab warmup --group``).
+    warm : callable, optional
+        ``warm(folder)``: a small run of the pipeline that compiles that group.
+    kernels : tuple of (module, function)
+        The compiled kernels of that group, to tell whether numba's cache holds them.
+    """
+
+    name: str
+    options: tuple[OptionTable, ...]
+    pipeline: str
+    files: tuple[str, ...]
+    run: Callable[..., Artefact]
+    parse: Callable[[Mapping[str, Any]], Any] | None = None
+    downloads: tuple[str, ...] = ()
+    download_table: Callable[[str, Mapping[str, Any]], dict[str, Any]] | None = None
+    maker: str | None = None
+    unfolds: bool = False
+    warm_group: str | None = None
+    warm: Callable[[Path], None] | None = None
+    kernels: tuple[tuple[str, str], ...] = ()
+
+    @property
+    def keys(self) -> tuple[str, ...]:
+        """Every recipe key of the output."""
+        return tuple(k for t in self.options for k in t.keys())
+
+    def settings(self, table: Mapping[str, Any]) -> Any:
+        """Checked settings from a recipe-style table (``OptionError`` or ``VoxfabError`` when bad)."""
+        if self.parse is not None:
+            return self.parse(table)
+        return from_mapping(resolve(self.options[0].cls), table)
+
+
+# ---- mesh ---------------------------------------------------------------------------------------
+
+def _run_mesh(shape: Any, options: Any, outdir: Path, *, name: str, seed: int, context: BuildContext) -> Artefact:
+    from voxfab.fabricate.mesh import fabricate_mesh
+
+    del seed, context  # a mesh is deterministic
+    made = fabricate_mesh(shape, options, outdir / f"mesh.{options.format}", name=name,
+                          report_path=outdir / "mesh.json")
+    if options.size is not None:
+        # One object in every medium unless the recipe names another scale: say so when it does.
+        pitch = made.report["pitch_mm"]
+        note = (f"printed at size = {options.size:g} mm ({pitch:.4g} mm per voxel), {pitch / shape.pitch:.3g} x "
+                f"the recipe's pitch of {shape.pitch:g} mm")
+        made = dataclasses.replace(made, warnings=(note, *made.warnings))
+    return made
+
+
+def _mesh_download(download: str, values: Mapping[str, Any]) -> dict[str, Any]:
+    del values
+    return {"format": download.rsplit(".", 1)[1]}
+
+
+# ---- slices -------------------------------------------------------------------------------------
+
+def _run_slices(shape: Any, options: Any, outdir: Path, *, name: str, seed: int, context: BuildContext) -> Artefact:
+    from voxfab.fabricate.plates import fabricate_plates
+
+    del seed, context  # plates are deterministic
+    art = fabricate_plates(shape, options, outdir / "slices", name=name)
+    files = tuple(OutputFile(f"slices/{f.path}", f.purpose) for f in art.files)
+    return dataclasses.replace(art, files=files)
+
+
+def _slices_download(download: str, values: Mapping[str, Any]) -> dict[str, Any]:
+    del download
+    table = {}
+    if values.get("thickness") is not None:
+        table["thickness"] = values["thickness"]
+    if values.get("plate_sheet") is not None:
+        table["sheet"] = values["plate_sheet"]
+    return table
+
+
+# ---- pictures -----------------------------------------------------------------------------------
+
+def _run_pictures(shape: Any, options: Any, outdir: Path, *, name: str, seed: int,
+                  context: BuildContext) -> Artefact:
+    from voxfab.render import render_pictures
+
+    return render_pictures(shape, options, outdir, name=name, seed=seed, net=context.net)
+
+
+def _pictures_download(download: str, values: Mapping[str, Any]) -> dict[str, Any]:
+    del download, values
+    return {"size": 600, "views": [], "triptych": True}
+
+
+# ---- net ----------------------------------------------------------------------------------------
+
+#: Drawing options that are not recipe keys: the face size is ``face_size``; the rest are internal.
+_DRAWING_HIDDEN = ("pitch", "title_height", "heading")
+
+
+@dataclasses.dataclass(frozen=True)
+class NetSettings:
+    """The net output's checked options: the search and the drawing."""
+
+    net: Any
+    drawing: Any
+
+
+def _parse_net(table: Mapping[str, Any]) -> NetSettings:
+    from voxfab._shared.options import OptionError, check_values
+    from voxfab.fabricate.netdraw import DrawingOptions, NetOptions
+
+    net_keys = set(OptionTable("voxfab.fabricate.netdraw:NetOptions", "net").keys())
+    drawing_keys = set(OptionTable("voxfab.fabricate.netdraw:DrawingOptions", "net-drawing", _DRAWING_HIDDEN).keys())
+    for key in table:
+        if key not in net_keys | drawing_keys:
+            raise OptionError(str(key), f"unknown option; accepted: {', '.join(sorted(net_keys | drawing_keys))}")
+    net = from_mapping(NetOptions, {k: v for k, v in table.items() if k in net_keys})
+    drawing_values = check_values(DrawingOptions, {k: v for k, v in table.items() if k in drawing_keys})
+    return NetSettings(net, DrawingOptions(pitch=net.face_size, **drawing_values))
+
+
+def _run_net(shape: Any, settings: NetSettings, outdir: Path, *, name: str, seed: int,
+             context: BuildContext) -> Artefact:
+    from voxfab.fabricate.netdraw import fabricate_net
+
+    drawing = settings.drawing
+    if settings.net.face_size is None and context.paper_at_pitch:
+        # One scale for the whole object: the paper faces are the print's voxels unless the
+        # recipe gives another face size.
+        drawing = dataclasses.replace(drawing, pitch=shape.pitch)
+    made = fabricate_net(shape, settings.net, drawing, outdir, name=name, seed=seed, chosen=context.net)
+    face = settings.net.face_size
+    if face is not None and abs(face - shape.pitch) > 1e-9 * shape.pitch:
+        note = (f"the paper model is at face_size = {face:g} mm, {face / shape.pitch:.3g} x the recipe's pitch "
+                f"of {shape.pitch:g} mm")
+        made = dataclasses.replace(made, warnings=(note, *made.warnings))
+    return made
+
+
+def _net_download(download: str, values: Mapping[str, Any]) -> dict[str, Any]:
+    ext = download.rsplit(".", 1)[1]
+    table: dict[str, Any] = {"formats": [] if ext == "json" else [ext]}
+    for key, value in (("face_size", values.get("face_mm")), ("sheet", values.get("sheet")),
+                       ("timeout", values.get("timeout"))):
+        if value is not None:
+            table[key] = value
+    return table
+
+
+# ---- animation ----------------------------------------------------------------------------------
+
+def _run_animation(shape: Any, options: Any, outdir: Path, *, name: str, seed: int,
+                   context: BuildContext) -> Artefact:
+    from voxfab.render import render_animation
+
+    del name, seed
+    return render_animation(shape, options, outdir, maker=context.maker, params=context.params,
+                            base_dir=context.base_dir)
+
+
+def _animation_download(download: str, values: Mapping[str, Any]) -> dict[str, Any]:
+    del download
+    return {"size": 400} | ({"steps": values["steps"]} if values.get("steps") is not None else {})
+
+
+# ---- warm-up runs: small real runs that compile an output's kernels --------------------------------
+
+def _warm_mesh(folder: Path) -> None:
+    from voxfab.fabricate.mesh import MeshOptions, fabricate_mesh
+    from voxfab.shape import VoxelShape, examples
+
+    fabricate_mesh(VoxelShape(examples.torus(5, 2)), MeshOptions(), folder / "mesh.3mf", name="warm-up")
+
+
+def _warm_net(folder: Path) -> None:
+    from voxfab.fabricate.netdraw import DrawingOptions, NetOptions, fabricate_net
+    from voxfab.shape import VoxelShape, examples
+
+    # More faces than the net engine leaves to its plain-Python kernels, and tabs to make room for.
+    shape = VoxelShape(examples.ball(4))
+    fabricate_net(shape, NetOptions(formats=("svg",)), DrawingOptions(pitch=10.0), folder, name="warm-up",
+                  seed=0)
+
+
+# ---- the table ----------------------------------------------------------------------------------
+
+def _table() -> dict[str, Output]:
+    rows = [
+        Output("animation", (OptionTable("voxfab.render:AnimationOptions", "animation"),),
+               "voxfab.render:render_animation", ("animation.gif",), _run_animation,
+               downloads=("animation.gif",), download_table=_animation_download, maker="tube"),
+        Output("mesh", (OptionTable("voxfab.fabricate.mesh:MeshOptions", "mesh"),),
+               "voxfab.fabricate.mesh:fabricate_mesh", ("mesh.3mf", "mesh.stl", "mesh.obj", "mesh.glb", "mesh.json"),
+               _run_mesh, downloads=("mesh.3mf", "mesh.stl"), download_table=_mesh_download,
+               warm_group="print", warm=_warm_mesh,
+               kernels=(("voxfab.fabricate.mesh._contact_scan", "contact_scan"),
+                        ("voxfab.fabricate.mesh._rectangles", "rectangle_mesh"),
+                        ("voxfab.fabricate.mesh._edges", "edge_fan_shells"))),
+        Output("net", (OptionTable("voxfab.fabricate.netdraw:NetOptions", "net"),
+                       OptionTable("voxfab.fabricate.netdraw:DrawingOptions", "net-drawing", _DRAWING_HIDDEN)),
+               "voxfab.fabricate.netdraw:fabricate_net", ("net.json", "net*.svg", "net*.dxf", "net*.pdf", "net*.png"),
+               _run_net, parse=_parse_net, downloads=("net.svg", "net.dxf", "net.pdf", "net.json"),
+               download_table=_net_download, unfolds=True, warm_group="net", warm=_warm_net,
+               kernels=(("voxfab.unfold._growth", "grow"), ("voxfab.unfold._tabroom", "anneal"))),
+        Output("pictures", (OptionTable("voxfab.render:PictureOptions", "pictures"),),
+               "voxfab.render:render_pictures", ("render_*.png", "turntable.gif", "slices.png", "net_picture.png",
+                                                 "triptych.png", "triptych.pdf"),
+               _run_pictures, downloads=("triptych.png", "triptych.pdf"), download_table=_pictures_download,
+               unfolds=True),
+        Output("slices", (OptionTable("voxfab.fabricate.plates:PlateOptions", "slices"),),
+               "voxfab.fabricate.plates:fabricate_plates", ("slices/*",), _run_slices,
+               downloads=("plates.zip",), download_table=_slices_download),
+    ]
+    return {row.name: row for row in rows}
+
+
+#: Output name → :class:`Output`, filled on first use.
+OUTPUTS: dict[str, Output] = {}
+
+
+def outputs() -> dict[str, Output]:
+    """The outputs by name, in name order."""
+    if not OUTPUTS:
+        OUTPUTS.update(_table())
+    return OUTPUTS
+
+
+def output_for_download(download: str) -> Output:
+    """The output whose studio download is ``download`` (``"mesh.3mf"``, ``"plates.zip"``, ...)."""
+    from voxfab.errors import InvalidShapeError
+
+    for row in outputs().values():
+        if download in row.downloads:
+            return row
+    offered = [d for row in outputs().values() for d in row.downloads]
+    raise InvalidShapeError(f"artefact: expected one of {', '.join(offered)}, got {str(download)[:40]!r}")
