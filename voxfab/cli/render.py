@@ -33,6 +33,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     mode.add_argument("--slices", action="store_true", help="the layers in a grid, each numbered")
     mode.add_argument("--contact-sheet", action="store_true",
                       help="every shape of the repository (--repo) by volume, with names")
+    mode.add_argument("--fold", type=Path, metavar="NET.json",
+                      help="a GIF of this net folding up from the flat sheet to the shape (no SHAPE needed)")
+    parser.add_argument("--steps", type=int, default=36, metavar="N",
+                        help="frames of the --fold animation, 2 to 240 (default 36)")
     parser.add_argument("--net", type=Path, metavar="NET.json",
                         help="a voxfab-net/1 file: draw it (or use it in --triptych) instead of unfolding")
     parser.add_argument("--view", choices=_VIEWS, default="iso", help="3D view (default iso)")
@@ -84,6 +88,19 @@ def _read_net(path: Path) -> Net:
     return Net.from_json(text)
 
 
+def _fold(args: argparse.Namespace, out: Path, size: int | None) -> int:
+    from voxfab.render import save_fold_animation
+
+    if args.shape is not None:
+        raise InvalidShapeError("render --fold: takes no SHAPE, only the net file")
+    if out.suffix.lower() != ".gif":
+        raise UnknownFormatError(f"{out}: a fold animation is written as .gif, not {out.suffix.lower() or 'no extension'!r}")
+    net = _read_net(args.fold)
+    frames = save_fold_animation(net, out, steps=args.steps, view=args.view, size=size or 400)
+    print_json({"output": str(out), "kind": "fold", "faces": net.face_count, "frames": frames, "view": args.view})
+    return 0
+
+
 def run(args: argparse.Namespace) -> int:
     """Draw the requested picture through the pictures pipeline and print a JSON summary."""
     from voxfab import render
@@ -97,6 +114,8 @@ def run(args: argparse.Namespace) -> int:
         o = options_from_args(render.PictureOptions, args, size=args.size if args.size is not None else 200)
         return _contact_sheet(args, out, o.size, o.background)
     o = options_from_args(render.PictureOptions, args)
+    if args.fold is not None:
+        return _fold(args, out, args.size)
     if args.shape is None:
         raise InvalidShapeError("render: SHAPE is required (a file or a repository name)")
     picture = _picture(args, out, args.net is not None)

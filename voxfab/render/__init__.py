@@ -8,6 +8,7 @@
 * :func:`contact_sheet`, :func:`repository_contact_sheet` — many shapes by volume with names.
 * :func:`render_animation` — the animation pipeline (a tube's turning profile); :func:`tube_frames`
   and :func:`save_tube_animation` for its frames and GIF.
+* :func:`save_fold_animation` — a net folding up from the flat sheet to the shape (:func:`fold_frames`).
 * :func:`render_pictures` — the pictures pipeline of the recipe output ``pictures``, the studio and
   ``voxfab render``: options :class:`PictureOptions`, files :class:`Picture`.
 """
@@ -24,6 +25,7 @@ from ._animate import (
     turntable_frames,
 )
 from ._contact_sheet import contact_sheet, repository_contact_sheet, sheet_layout
+from ._fold import fold_angles, fold_frames, save_fold_animation
 from ._image import gif_bytes, pdf_bytes, png_bytes, save_picture
 from ._net import DEFAULT_STYLES, LineStyle, net_picture
 from ._options import AnimationOptions, PictureOptions
@@ -62,6 +64,9 @@ __all__ = [
     "save_turntable",
     "save_animation",
     "render_animation",
+    "fold_frames",
+    "fold_angles",
+    "save_fold_animation",
     "save_tube_animation",
     "tube_frames",
     "contact_sheet",
