@@ -174,6 +174,8 @@ def _slices_download(download: str, values: Mapping[str, Any]) -> dict[str, Any]
         table["thickness"] = values["thickness"]
     if values.get("plate_sheet") is not None:
         table["sheet"] = values["plate_sheet"]
+    if values.get("style") not in (None, "stacked"):  # stacked is the default construction
+        table["style"] = values["style"]
     return table
 
 

@@ -214,6 +214,29 @@ def _one(job: Job, name: str, paths: list[Path]) -> None:
     job.files.append((f"{stem}.zip", _zip(job.folder, paths, job.folder / f"{stem}.zip")))
 
 
+#: Most triangles of an assembly sent to the page's 3D view.
+MAX_VIEW_TRIANGLES = 200_000
+
+
+def assembly_triangles(path: Path) -> dict[str, Any]:
+    """The plates of an ``assembly.3mf`` as flat triangle lists (mm), one per plate, for the page's 3D view."""
+    import trimesh
+
+    scene = trimesh.load(path, force="scene")
+    plates = []
+    total = 0
+    for node in sorted(scene.graph.nodes_geometry):
+        transform, geometry_name = scene.graph[node]
+        mesh = scene.geometry[geometry_name]
+        tris = trimesh.transform_points(np.asarray(mesh.vertices), transform)[np.asarray(mesh.faces)]
+        name = node
+        total += len(tris)
+        if total > MAX_VIEW_TRIANGLES:
+            raise InvalidShapeError(f"assembly: over {MAX_VIEW_TRIANGLES:,} triangles to show")
+        plates.append({"name": str(name), "triangles": np.round(tris.reshape(-1), 3).tolist()})
+    return {"plates": plates}
+
+
 def download_settings(artefact: str, values: dict[str, Any]) -> Any:
     """The checked settings of one download, by the output's own options dataclass (as a recipe's)."""
     from voxfab.fabricate import output_for_download
@@ -246,6 +269,9 @@ def make_files(job: Job, grid: np.ndarray, *, artefact: str, title: str, pitch: 
         if folder is not None:
             shutil.rmtree(folder, ignore_errors=True)
     job.result["warnings"] = list(made.warnings)
+    assembly = next((out / f.path for f in made.files if f.path.endswith("assembly.3mf")), None)
+    if assembly is not None:
+        job.result["assembly"] = assembly_triangles(assembly)
     stem_of, ext = artefact.rsplit(".", 1)
     if ext == "zip":  # the whole folder the output wrote (the plates and their sheets)
         files = [out / f.path for f in made.files]

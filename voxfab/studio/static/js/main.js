@@ -360,7 +360,7 @@ async function make(artefact) {
   const body = {grid: state.shape.pack(), artefact, pitch: Number($('#pitch').value),
     title: state.name || $('#recipe-name').value || 'studio',
     options: {face_mm: face ? Number(face) : null, sheet: $('#net-sheet').value, thickness: Number($('#thickness').value),
-      timeout: Number($('#net-timeout').value)},
+      timeout: Number($('#net-timeout').value), style: $('#plate-style').value, plate_sheet: $('#plate-sheet').value},
     net: state.gallery && state.chosen !== null ? {job: state.gallery.job, index: state.chosen} : null,
     shape: artefact === 'animation.gif' ? state.drawn : undefined};
   try {
@@ -375,10 +375,12 @@ async function make(artefact) {
       $('#downloads').prepend(li);
       a.click();
     }
+    if (s.result && s.result.assembly) viewer.setMesh(s.result.assembly.plates);
     say(`${artefact}: ${s.files.map((f) => f.name).join(', ')} in ${s.seconds.toFixed(1)} s`, true);
   } catch (e) { say(e.message); } finally { progressDone(); }
 }
 $$('[data-make]').forEach((b) => b.addEventListener('click', () => make(b.dataset.make)));
+$('#show-shape').addEventListener('click', () => viewer.setGrid(state.shape));
 
 // --- tabs ---------------------------------------------------------------------------------------
 
