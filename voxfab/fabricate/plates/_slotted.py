@@ -414,8 +414,8 @@ def make_interlocked(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.
     b_labels = [p.text for p in plates if p.family == "B"]
     w = _AXES[3 - _AXES.index(axes[0]) - _AXES.index(axes[1])]
     steps = (
-        f"stand the A plates ({', '.join(a_labels)}) across {axes[0]}, slots open towards +{w}",
-        f"slide the B plates ({', '.join(b_labels)}) down onto them along {w}, slots first, "
+        f"stand the A plates ({' '.join(a_labels)}) across {axes[0]} with their slots open towards +{w}",
+        f"slide the B plates ({' '.join(b_labels)}) down onto them along {w} slots first: "
         "each slot onto the plate whose label it carries",
     )
     kept_crossings = tuple((a, b) for a, b in crossings if a in kept and b in kept)
