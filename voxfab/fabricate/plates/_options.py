@@ -63,11 +63,14 @@ class PlateOptions(Options):
     step: bool = option(False, help="also write the plate stack as STEP and STL (needs voxfab[cad])")
 
     def check(self) -> None:
-        """The margins must leave room on the sheet."""
+        """The margins must leave room on the sheet; STEP is for the stacked style."""
         from voxfab._shared.options import OptionError
 
         from ._nest import parse_sheet
 
+        if self.step and self.style != "stacked":
+            raise OptionError("step", f"STEP and STL are written for the stacked style only, not {self.style}; "
+                                      "assembly.3mf holds the plates of every style")
         w, h = parse_sheet(self.sheet)
         if min(w, h) <= 2 * self.margin:
             raise OptionError("sheet", f"{self.sheet} leaves no room inside a {self.margin:g} mm margin")

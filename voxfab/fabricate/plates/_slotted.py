@@ -533,8 +533,9 @@ def make_radial(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.0, co
     kept = {d.text for d in drafts}
     plates = tuple(_finish(d, n, "radial", thickness, pitch, kept) for n, d in enumerate(drafts, start=1))
     labels = [p.text for p in plates]
-    steps = (f"stand {labels[0]} upright, its hub slot open at the top",
-             *(f"drop {b} from above onto {a} at the hub, {b}'s lower slot over {a}" for a, b in zip(labels, labels[1:])))
+    steps = (f"stand {labels[0]} upright with its hub slot open at the top",
+             *(f"drop {b} from above onto {a} at the hub: the lower slot of {b} over {a}"
+               for a, b in zip(labels, labels[1:])))
     crossings = tuple((a, b) for a, b in zip(labels, labels[1:]))
     return Construction("radial", pitch, thickness, clearance, plates, crossings, (), tuple(left_out),
                         tuple(d.text for d in drafts if d.trimmed), tuple(float(s * pitch) for s in g.shape), steps)
