@@ -154,17 +154,22 @@ def _unit(axis: int) -> tuple[float, float, float]:
     return (e[0], e[1], e[2])
 
 
-def plane_layers(layers: int, count: int, pitch: float, interval: float) -> list[int]:
+def plane_layers(layers: int, count: int, pitch: float, interval: float, thickness: float = 0.0) -> list[int]:
     """Voxel layers (0-based) whose middles carry a family's plates, spread evenly.
 
     ``count`` plates, or when 0 one per ``interval`` mm of the shape's extent
     (at least one).  Planes sit at layer middles, so a plate no thicker than a
-    voxel lies inside one voxel layer.
+    voxel lies inside one voxel layer; a plane nearer than ``thickness`` to the
+    one before is dropped, so plates of a family never overlap.
     """
     n = count if count > 0 else max(1, int(math.floor(layers * pitch / interval + 1e-9)))
     n = min(n, layers)
     picks = np.round((np.arange(n) + 0.5) * layers / n - 0.5).astype(int)
-    return sorted(set(int(i) for i in np.clip(picks, 0, layers - 1)))
+    kept: list[int] = []
+    for i in sorted(set(int(i) for i in np.clip(picks, 0, layers - 1))):
+        if not kept or (i - kept[-1]) * pitch > thickness + 1e-9:
+            kept.append(i)
+    return kept
 
 
 def slab_section(grid: npt.NDArray[np.bool_], axis: int, centre: float, pitch: float,
@@ -221,7 +226,7 @@ def _interlocked_drafts(grid: npt.NDArray[np.bool_], axes: str, pitch: float, th
     for f, name in enumerate("AB"):
         a = _AXES.index(axes[f])
         others = [k for k in range(3) if k != a]
-        layers = plane_layers(grid.shape[a], count, pitch, interval)
+        layers = plane_layers(grid.shape[a], count, pitch, interval, thickness)
         for n, i in enumerate(layers, start=1):
             centre = (i + 0.5) * pitch
             section = slab_section(grid, a, centre, pitch, thickness)
@@ -260,23 +265,46 @@ def _slot_box(along: int, centre: float, width: float, a: float, b: float) -> ob
     return shapely.box(lo, centre - width / 2, hi, centre + width / 2)
 
 
+def _height(d: _Draft, w: int) -> float:
+    """Centre of a plate's section along the crossing axis ``w``."""
+    c = d.body.centroid
+    return float((c.x, c.y)[[k for k in range(3) if k != d.axis].index(w)])
+
+
 def _join_interlocked(fam_a: list[_Draft], fam_b: list[_Draft], width: float, pitch: float,
-                      moved: list[str]) -> list[tuple[str, str]]:
-    """Cut the half-lap slots of every crossing; family B slides down onto family A."""
+                      moved: list[str]) -> tuple[list[tuple[str, str]], dict[str, tuple[float, int, int]]]:
+    """Cut the half-lap slots of every crossing.
+
+    Plates go in one after another, each lowered along the crossing axis onto
+    those already in place, lower sections first (family A first among equals):
+    at a crossing the earlier plate is slotted from the top, the later one from
+    the bottom.  Ordering by one key keeps the order free of cycles, and a low
+    piece (the foot of a section) goes in under a tall plate, a high one (a
+    rim) over it, so neither slot has to run the full height of the tall plate.
+
+    Returns
+    -------
+    crossings : list of (str, str)
+        Earlier plate first.
+    keys : dict
+        Plate label → its place in the assembly order.
+    """
     import shapely
 
+    w = 3 - fam_a[0].axis - fam_b[0].axis if fam_a and fam_b else 2
+    keys = {d.text: (round(_height(d, w), 6), f, i) for f, fam in enumerate((fam_a, fam_b)) for i, d in enumerate(fam)}
     crossings = []
     for pa in fam_a:
         for pb in fam_b:
+            lower, upper = (pa, pb) if keys[pa.text] < keys[pb.text] else (pb, pa)
             # the frame axis of each plate that runs along the other's normal
-            a_frame = [k for k in range(3) if k != pa.axis]
-            b_frame = [k for k in range(3) if k != pb.axis]
-            a_along, b_along = a_frame.index(pb.axis), b_frame.index(pa.axis)
-            za = _band(pa.body, a_along, pb.offset - width / 2, pb.offset + width / 2)
-            zb = _band(pb.body, b_along, pa.offset - width / 2, pa.offset + width / 2)
-            if za is None or zb is None:
+            lo_along = [k for k in range(3) if k != lower.axis].index(upper.axis)
+            up_along = [k for k in range(3) if k != upper.axis].index(lower.axis)
+            zl = _band(lower.body, lo_along, upper.offset - width / 2, upper.offset + width / 2)
+            zu = _band(upper.body, up_along, lower.offset - width / 2, lower.offset + width / 2)
+            if zl is None or zu is None:
                 continue
-            z0, z1 = max(za[0], zb[0]), min(za[1], zb[1])
+            z0, z1 = max(zl[0], zu[0]), min(zl[1], zu[1])
             if z1 - z0 <= 1e-9:
                 continue
             middle = (z0 + z1) / 2
@@ -285,30 +313,45 @@ def _join_interlocked(fam_a: list[_Draft], fam_b: list[_Draft], width: float, pi
             tries = [middle] + [middle + s * d for s in steps for d in (1, -1) if z0 < middle + s * d < z1]
             chosen = None
             for zm in tries:
-                cut_a = shapely.difference(pa.body, _slot_box(a_along, pb.offset, width, zm, za[1]))
-                cut_b = shapely.difference(pb.body, _slot_box(b_along, pa.offset, width, zb[0], zm))
-                if _whole(cut_a) and _whole(cut_b):
-                    chosen = (zm, cut_a, cut_b)
+                cut_l = shapely.difference(lower.body, _slot_box(lo_along, upper.offset, width, zm, zl[1]))
+                cut_u = shapely.difference(upper.body, _slot_box(up_along, lower.offset, width, zu[0], zm))
+                if _whole(cut_l) and _whole(cut_u):
+                    chosen = (zm, cut_l, cut_u)
                     break
             if chosen is None:
                 zm = middle
-                cut_a = shapely.difference(pa.body, _slot_box(a_along, pb.offset, width, zm, za[1]))
-                cut_b = shapely.difference(pb.body, _slot_box(b_along, pa.offset, width, zb[0], zm))
-                cut_a, lost_a = _single(cut_a)
-                cut_b, lost_b = _single(cut_b)
-                pa.trimmed |= lost_a
-                pb.trimmed |= lost_b
-                chosen = (zm, cut_a, cut_b)
-            zm, pa.body, pb.body = chosen
+                cut_l, lost_l = _single(shapely.difference(lower.body, _slot_box(lo_along, upper.offset, width, zm,
+                                                                                 zl[1])))
+                cut_u, lost_u = _single(shapely.difference(upper.body, _slot_box(up_along, lower.offset, width,
+                                                                                 zu[0], zm)))
+                lower.trimmed |= lost_l
+                upper.trimmed |= lost_u
+                chosen = (zm, cut_l, cut_u)
+            zm, lower.body, upper.body = chosen
             is_moved = bool(abs(zm - middle) > 1e-9)
             if is_moved:
-                moved.append(f"{pa.text}/{pb.text}")
+                moved.append(f"{lower.text}/{upper.text}")
             # the slot runs along the crossing axis, the frame axis other than ``along``
-            pa.slots.append(Slot(pb.offset, width, za[1], zm, za[1] - zm, "top", pb.text, is_moved, "uv"[1 - a_along]))
-            pb.slots.append(Slot(pa.offset, width, zb[0], zm, zm - zb[0], "bottom", pa.text, is_moved,
-                                 "uv"[1 - b_along]))
-            crossings.append((pa.text, pb.text))
-    return crossings
+            lower.slots.append(Slot(upper.offset, width, zl[1], zm, zl[1] - zm, "top", upper.text, is_moved,
+                                    "uv"[1 - lo_along]))
+            upper.slots.append(Slot(lower.offset, width, zu[0], zm, zm - zu[0], "bottom", lower.text, is_moved,
+                                    "uv"[1 - up_along]))
+            crossings.append((lower.text, upper.text))
+    return crossings, keys
+
+
+def _waves(order: list[str], crossings: list[tuple[str, str]]) -> list[list[str]]:
+    """Plates grouped by when they can go in: each wave slides onto the waves before it."""
+    wave: dict[str, int] = {}
+    below: dict[str, list[str]] = {}
+    for a, b in crossings:
+        below.setdefault(b, []).append(a)
+    for t in order:  # the order puts every plate after those it is lowered onto
+        wave[t] = 1 + max((wave[a] for a in below.get(t, []) if a in wave), default=-1)
+    groups: list[list[str]] = [[] for _ in range(max(wave.values(), default=-1) + 1)]
+    for t in order:
+        groups[wave[t]].append(t)
+    return groups
 
 
 def _connected(drafts: list[_Draft], crossings: list[tuple[str, str]]) -> tuple[list[_Draft], list[str]]:
@@ -403,22 +446,20 @@ def make_interlocked(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.
                                 "use fewer plates per family or a larger interval")
     moved: list[str] = []
     width = thickness + clearance
-    crossings = _join_interlocked(fam_a, fam_b, width, pitch, moved)
+    crossings, keys = _join_interlocked(fam_a, fam_b, width, pitch, moved)
     keep, left_out = _connected(fam_a + fam_b, crossings)
     if not keep or not crossings:
         raise FabricationError("interlocked: no two plates cross; use more plates per family or other axes")
     kept = {d.text for d in keep}
-    ordered = [d for d in keep if d.family == "A"] + [d for d in keep if d.family == "B"]
+    ordered = sorted(keep, key=lambda d: keys[d.text])
     plates = tuple(_finish(d, n, "interlocked", thickness, pitch, kept) for n, d in enumerate(ordered, start=1))
-    a_labels = [p.text for p in plates if p.family == "A"]
-    b_labels = [p.text for p in plates if p.family == "B"]
     w = _AXES[3 - _AXES.index(axes[0]) - _AXES.index(axes[1])]
-    steps = (
-        f"stand the A plates ({' '.join(a_labels)}) across {axes[0]} with their slots open towards +{w}",
-        f"slide the B plates ({' '.join(b_labels)}) down onto them along {w} slots first: "
-        "each slot onto the plate whose label it carries",
-    )
     kept_crossings = tuple((a, b) for a, b in crossings if a in kept and b in kept)
+    waves = _waves([p.text for p in plates], list(kept_crossings))
+    steps = (f"stand {' '.join(waves[0])} upright (normals along {axes[0]} and {axes[1]}) with their slots "
+             f"open towards +{w}",
+             *(f"lower {' '.join(group)} along -{w} onto the plates in place: each lower slot onto the plate "
+               "whose label it carries" for group in waves[1:]))
     return Construction("interlocked", pitch, thickness, clearance, plates, kept_crossings,
                         tuple(m for m in moved if set(m.split("/")) <= kept), tuple(left_out),
                         tuple(d.text for d in keep if d.trimmed), tuple(float(s * pitch) for s in g.shape), steps)
