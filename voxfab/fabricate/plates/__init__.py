@@ -142,7 +142,7 @@ def make_slices(
     min_width: float = 1.0,
     style: str = "stacked",
     axes: str = "xy",
-    count: int = 0,
+    count: int = 5,
     interval: float = 12.0,
     radial_plates: int = 4,
     clearance: float = 0.1,

@@ -39,7 +39,7 @@ class PlateOptions(Options):
     axis: str = option("z", help="slicing axis of the stacked style; plates stack along it", choices=("x", "y", "z"))
     axes: str = option("xy", help="interlocked: normals of family A and family B (they cross along the third axis)",
                        choices=("xy", "yx", "xz", "zx", "yz", "zy"))
-    count: int = option(0, help="interlocked: plates per family (0: one every interval)", low=0, high=64)
+    count: int = option(5, help="interlocked: plates per family (0: one every interval)", low=0, high=64)
     interval: float = option(12.0, help="interlocked: distance between the plates of a family", unit="mm",
                              low=1.0, high=1000.0)
     radial_plates: int = option(4, help="radial: plates fanned at equal angles about the axis", low=2,

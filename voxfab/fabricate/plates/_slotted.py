@@ -394,7 +394,8 @@ def _finish(d: _Draft, number: int, style: str, thickness: float, pitch: float, 
         region = shapely.difference(shapely.intersection(d.body, near), taken)
         if region.is_empty or region.area <= 0:
             continue
-        mark = place_label(s.partner, _single(region)[0], shapely.Polygon(), pitch=pitch, clearance=clearance)
+        # in parentheses, so a partner's label never reads as this plate's own
+        mark = place_label(f"({s.partner})", _single(region)[0], shapely.Polygon(), pitch=pitch, clearance=clearance)
         strokes.extend(mark.strokes)
         if mark.strokes:
             taken = shapely.union(taken, shapely.box(*shapely.MultiLineString(
@@ -410,7 +411,7 @@ def _finish(d: _Draft, number: int, style: str, thickness: float, pitch: float, 
 
 
 def make_interlocked(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.0, axes: str = "xy",
-                     count: int = 0, interval: float = 12.0, clearance: float = 0.1) -> Construction:
+                     count: int = 5, interval: float = 12.0, clearance: float = 0.1) -> Construction:
     """Two families of plates slotted into each other at right angles (a waffle, or sliceform).
 
     Parameters
