@@ -87,6 +87,10 @@ def _check(folder, shape: VoxelShape, thickness: float, kerf: float) -> dict:
     plates = report["plates_list"]
     labels = [p["label"] for p in plates]
     assert sorted(meshes) == sorted(labels) and len(meshes) == report["plates"] > 1
+    # one scale: the assembly fills the print's box (origin at the shape's minimum corner, z up)
+    size = np.array(report["size"])
+    bounds = np.array([m.bounds for m in meshes.values()])
+    assert np.all(bounds[:, 0] >= -1e-4) and np.all(bounds[:, 1] <= size + 1e-4)
     solid = _solid(shape)
     solids = {}
     for p in plates:
@@ -244,3 +248,19 @@ def test_assembly_order_lowers_every_plate_onto_plates_already_in_place(shapes, 
                 assert step_of[s["partner"]] > step_of[p["label"]]
     pdf = (tmp_path / "s" / "assembly.pdf").read_bytes()
     assert pdf.startswith(b"%PDF") and pdf.count(b"/Type /Page") - pdf.count(b"/Type /Pages") == 1
+
+
+def test_stacked_style_writes_its_assembly_too(shapes, tmp_path) -> None:
+    shape = shapes["overhang"]
+    fabricate_plates(shape, PlateOptions(thickness=4.0), tmp_path / "s", name="o")
+    report = json.loads((tmp_path / "s" / "plates.json").read_text())
+    scene = trimesh.load(tmp_path / "s" / "assembly.3mf", process=False, force="scene")
+    assert sorted(scene.geometry) == sorted(p["label"] for p in report["plates_list"])
+    solid = _solid(shape)
+    for p in report["plates_list"]:
+        mesh = scene.geometry[p["label"]]
+        z = np.asarray(mesh.vertices)[:, 2]
+        assert (z.min(), z.max()) == pytest.approx((p["z"], p["z"] + 4.0))
+        # dowel holes are 64-gons in the solid and exact circles in the report
+        assert mesh.volume == pytest.approx(p["area"] * 4.0, rel=2e-3)
+        assert (_manifold(mesh) - solid).volume() < 1e-3
