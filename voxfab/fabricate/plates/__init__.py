@@ -177,12 +177,14 @@ def make_slices(
     if style in ("interlocked", "radial"):
         if style == "interlocked":
             construction = make_interlocked(grid, pitch=pitch, thickness=thickness, axes=axes, count=count,
-                                            interval=interval, clearance=clearance)
+                                            interval=interval, clearance=clearance,
+                                            min_width=max(min_width, 2.0 * kerf))
         else:
             construction = make_radial(grid, pitch=pitch, thickness=thickness, count=radial_plates,
-                                       clearance=clearance)
+                                       clearance=clearance, min_width=max(min_width, 2.0 * kerf))
         sheets = nest_plates(construction.plates, sheet=sheet, margin=margin, spacing=spacing, kerf=kerf)
-        return Slices(None, sheets, make_construction_report(construction, sheets, kerf=kerf), construction)
+        report = make_construction_report(construction, sheets, kerf=kerf, min_width=min_width)
+        return Slices(None, sheets, report, construction)
     if style != "stacked":
         from voxfab.errors import InvalidShapeError
 

@@ -197,6 +197,9 @@ class ConstructionReport:
         Sections left out because they cross no plate of the construction.
     trimmed : tuple of str
         Plates that lost a part a slot cut off.
+    thin : tuple of str
+        Plates with a part narrower than ``min_width`` (a strip beside a slot, a thin wall).
+    min_width : float
     labels_clipped : int
     steps : tuple of str
         The assembly order.
@@ -220,19 +223,28 @@ class ConstructionReport:
     moved: tuple[str, ...]
     left_out: tuple[str, ...]
     trimmed: tuple[str, ...]
+    thin: tuple[str, ...]
+    min_width: float
     labels_clipped: int
     steps: tuple[str, ...]
 
     def to_json(self) -> dict[str, Any]:
         """The report as a JSON-ready dict (with a ``format`` key)."""
         data = dataclasses.asdict(self)
-        for key in ("size", "moved", "left_out", "trimmed", "steps"):
+        for key in ("size", "moved", "left_out", "trimmed", "thin", "steps"):
             data[key] = list(data[key])
         return {"format": FORMAT, **data}
 
 
-def make_construction_report(construction: Any, sheets: tuple[Sheet, ...], *, kerf: float = 0.0) -> ConstructionReport:
-    """Build the report of a slotted construction nested on ``sheets``."""
+def make_construction_report(construction: Any, sheets: tuple[Sheet, ...], *, kerf: float = 0.0,
+                             min_width: float = 0.0) -> ConstructionReport:
+    """Build the report of a slotted construction nested on ``sheets``.
+
+    ``min_width`` is the narrowest cuttable feature in mm; ``2 × kerf`` is used when larger.
+    """
+    from ._stack import _is_thin
+
+    narrow = max(min_width, 2.0 * kerf)
     material = sum(p.area for p in construction.plates)
     width = sheets[0].width if sheets else 0.0
     height = sheets[0].height if sheets else 0.0
@@ -257,6 +269,8 @@ def make_construction_report(construction: Any, sheets: tuple[Sheet, ...], *, ke
         moved=construction.moved,
         left_out=construction.left_out,
         trimmed=construction.trimmed,
+        thin=tuple(p.text for p in construction.plates if narrow > 0 and _is_thin(p.outline, narrow)),
+        min_width=_r(narrow),
         labels_clipped=sum(not p.label.complete for p in construction.plates),
         steps=construction.steps,
     )
@@ -272,6 +286,8 @@ def construction_warnings(report: ConstructionReport) -> list[str]:
         out.append(f"{len(report.trimmed)} plate(s) lost a part that a slot cut off: {_ids(report.trimmed)}")
     if report.left_out:
         out.append(f"{len(report.left_out)} section(s) left out, they cross no other plate: {_ids(report.left_out)}")
+    if report.thin:
+        out.append(f"{len(report.thin)} plate(s) narrower than {report.min_width:g} mm somewhere: {_ids(report.thin)}")
     if report.labels_clipped:
         out.append(f"{report.labels_clipped} plate label(s) clipped: the plate is too small for the text")
     return out

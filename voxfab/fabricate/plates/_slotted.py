@@ -272,7 +272,8 @@ def _height(d: _Draft, w: int) -> float:
 
 
 def _join_interlocked(fam_a: list[_Draft], fam_b: list[_Draft], width: float, pitch: float,
-                      moved: list[str]) -> tuple[list[tuple[str, str]], dict[str, tuple[float, int, int]]]:
+                      moved: list[str]) -> tuple[list[tuple[_Draft, _Draft, float, float]],
+                                                 dict[str, tuple[float, int, int]]]:
     """Cut the half-lap slots of every crossing.
 
     Plates go in one after another, each lowered along the crossing axis onto
@@ -284,7 +285,7 @@ def _join_interlocked(fam_a: list[_Draft], fam_b: list[_Draft], width: float, pi
 
     Returns
     -------
-    crossings : list of (str, str)
+    crossings : list of (lower, upper, slot end height, crossing position)
         Earlier plate first.
     keys : dict
         Plate label → its place in the assembly order.
@@ -336,7 +337,7 @@ def _join_interlocked(fam_a: list[_Draft], fam_b: list[_Draft], width: float, pi
                                     "uv"[1 - lo_along]))
             upper.slots.append(Slot(lower.offset, width, zu[0], zm, zm - zu[0], "bottom", lower.text, is_moved,
                                     "uv"[1 - up_along]))
-            crossings.append((lower.text, upper.text))
+            crossings.append((lower, upper, zm, upper.offset))
     return crossings, keys
 
 
@@ -376,9 +377,53 @@ def _connected(drafts: list[_Draft], crossings: list[tuple[str, str]]) -> tuple[
     return keep, [d.text for d in drafts if find(d.text) != best]
 
 
+def _open(d: _Draft, width: float) -> None:
+    """Remove the strips narrower than ``width`` that slots leave beside a voxel step.
+
+    An opening by a square keeps every part of a rectilinear outline at least
+    ``width`` wide as it is; a plate it cuts in two keeps its largest part.
+    """
+    import shapely
+
+    if width <= 0:
+        return
+    opened = d.body.buffer(-width / 2, join_style="mitre").buffer(width / 2, join_style="mitre")
+    if opened.is_empty or d.body.difference(opened).area <= 1e-9 * d.body.area:
+        return
+    # the opening is inside the body up to rounding: clip it, so no plate grows
+    body, lost = _single(shapely.intersection(d.body, opened))
+    d.body = shapely.simplify(body, 0.0)
+    d.trimmed |= lost
+
+
+def _still_joined(drafts: list[_Draft], joints: list[tuple[_Draft, _Draft, float, float]], width: float,
+                  min_width: float) -> list[tuple[str, str]]:
+    """Open every plate (:func:`_open`), then the crossings whose plates still meet at the slot end.
+
+    ``joints`` holds ``(lower, upper, height of the slot ends, position of the crossing)``; a
+    crossing holds while the lower plate reaches up to the slot end inside the crossing and
+    the upper one down to it.  The slots of a crossing that no longer holds are dropped.
+    """
+    for d in drafts:
+        _open(d, min_width)
+    held = []
+    for lower, upper, zm, _ in joints:
+        lo_along = [k for k in range(3) if k != lower.axis].index(upper.axis) if lower.axis != upper.axis else 0
+        up_along = [k for k in range(3) if k != upper.axis].index(lower.axis) if lower.axis != upper.axis else 0
+        zl = _band(lower.body, lo_along, upper.offset - width / 2, upper.offset + width / 2)
+        zu = _band(upper.body, up_along, lower.offset - width / 2, lower.offset + width / 2)
+        if zl is not None and zu is not None and zl[1] >= zm - 1e-6 and zu[0] <= zm + 1e-6:
+            held.append((lower.text, upper.text))
+        else:
+            lower.slots = [sl for sl in lower.slots if sl.partner != upper.text]
+            upper.slots = [sl for sl in upper.slots if sl.partner != lower.text]
+    return held
+
+
 def _finish(d: _Draft, number: int, style: str, thickness: float, pitch: float, kept: set[str]) -> SlottedPlate:
     """Freeze a draft into a plate with its label and its partners' labels engraved."""
     import shapely
+
 
     clearance = max(0.1 * pitch, 0.2)
     slots = tuple(s for s in d.slots if s.partner in kept)
@@ -411,7 +456,8 @@ def _finish(d: _Draft, number: int, style: str, thickness: float, pitch: float, 
 
 
 def make_interlocked(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.0, axes: str = "xy",
-                     count: int = 5, interval: float = 12.0, clearance: float = 0.1) -> Construction:
+                     count: int = 5, interval: float = 12.0, clearance: float = 0.1,
+                     min_width: float = 1.0) -> Construction:
     """Two families of plates slotted into each other at right angles (a waffle, or sliceform).
 
     Parameters
@@ -430,6 +476,8 @@ def make_interlocked(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.
         Distance in mm between the plates of a family when ``count`` is 0.
     clearance : float
         Slot width beyond the thickness, for the fit, in mm.
+    min_width : float
+        Narrowest strip in mm kept beside a slot; narrower ones are cut away.
 
     Returns
     -------
@@ -447,7 +495,8 @@ def make_interlocked(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.
                                 "use fewer plates per family or a larger interval")
     moved: list[str] = []
     width = thickness + clearance
-    crossings, keys = _join_interlocked(fam_a, fam_b, width, pitch, moved)
+    joints, keys = _join_interlocked(fam_a, fam_b, width, pitch, moved)
+    crossings = _still_joined(fam_a + fam_b, joints, width, min_width)
     keep, left_out = _connected(fam_a + fam_b, crossings)
     if not keep or not crossings:
         raise FabricationError("interlocked: no two plates cross; use more plates per family or other axes")
@@ -507,7 +556,7 @@ def radial_section(layers: list[object | None], centre: tuple[float, float], ang
 
 
 def make_radial(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.0, count: int = 4,
-                clearance: float = 0.1) -> Construction:
+                clearance: float = 0.1, min_width: float = 1.0) -> Construction:
     """``count`` vertical plates fanned at equal angles about the axis through the middle of the footprint.
 
     The plates meet at the hub, the column where they all cross.  The hub's
@@ -518,6 +567,7 @@ def make_radial(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.0, co
     a plain half-lap (one slotted from the top, one from the bottom).  The
     hub slot is as wide as two plates at the smallest angle need:
     ``thickness / 2 · cot(90° / count)`` each side, plus half the clearance.
+    Strips narrower than ``min_width`` mm beside a slot are cut away.
 
     Returns
     -------
@@ -572,12 +622,18 @@ def make_radial(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.0, co
             d.slots.append(Slot(0.0, width, lo, float(tiers[k]), float(tiers[k]) - lo, "bottom",
                                 drafts[k - 1].text))
         d.body, d.trimmed = _single(d.body)
-    kept = {d.text for d in drafts}
-    plates = tuple(_finish(d, n, "radial", thickness, pitch, kept) for n, d in enumerate(drafts, start=1))
+    joints = [(drafts[k], drafts[k + 1], float(tiers[k + 1]), 0.0) for k in range(count - 1)]
+    held = _still_joined(drafts, joints, width, min_width)
+    keep, dropped = _connected(drafts, held)
+    if len(keep) < 2:
+        raise FabricationError("radial: the hub is too thin to join the plates; use fewer or thinner plates")
+    left_out.extend(dropped)
+    kept = {d.text for d in keep}
+    plates = tuple(_finish(d, n, "radial", thickness, pitch, kept) for n, d in enumerate(keep, start=1))
     labels = [p.text for p in plates]
     steps = (f"stand {labels[0]} upright with its hub slot open at the top",
              *(f"drop {b} from above onto {a} at the hub: the lower slot of {b} over {a}"
                for a, b in zip(labels, labels[1:])))
-    crossings = tuple((a, b) for a, b in zip(labels, labels[1:]))
+    crossings = tuple((a, b) for a, b in held if a in kept and b in kept)
     return Construction("radial", pitch, thickness, clearance, plates, crossings, (), tuple(left_out),
-                        tuple(d.text for d in drafts if d.trimmed), tuple(float(s * pitch) for s in g.shape), steps)
+                        tuple(d.text for d in keep if d.trimmed), tuple(float(s * pitch) for s in g.shape), steps)
