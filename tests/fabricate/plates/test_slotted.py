@@ -180,6 +180,9 @@ def test_slots_are_thickness_plus_clearance_and_kerf_true_on_the_sheet(shapes, t
     for plate in construction.plates:
         for slot in plate.slots:
             assert slot.width == pytest.approx(3.2)
+            # the slot is cut out of the plate: its box holds no material
+            assert slot.box().area == pytest.approx(3.2 * slot.depth)
+            assert shapely.intersection(plate.outline, slot.box()).area == pytest.approx(0.0, abs=1e-9)
     # crossing pairs: the depths of a pair meet at one height, and add up to the crossing's height
     by = {p.text: p for p in construction.plates}
     for a, b in construction.crossings:
