@@ -267,3 +267,13 @@ def test_stacked_style_writes_its_assembly_too(shapes, tmp_path) -> None:
         # dowel holes are 64-gons in the solid and exact circles in the report
         assert mesh.volume == pytest.approx(p["area"] * 4.0, rel=2e-3)
         assert (_manifold(mesh) - solid).volume() < 1e-3
+
+
+@pytest.mark.parametrize("axes", ["yz", "zx"])
+def test_other_axes_cross_along_the_third(shapes, tmp_path, axes) -> None:
+    shape = shapes["queen"]
+    fabricate_plates(shape, PlateOptions(style="interlocked", axes=axes, count=4), tmp_path / "s", name="q")
+    report = _check(tmp_path / "s", shape, 3.0, 0.0)
+    assert {p["plane"]["axis"] for p in report["plates_list"]} == set(axes)
+    third = ({"x", "y", "z"} - set(axes)).pop()
+    assert f"+{third}" in report["steps"][0]
