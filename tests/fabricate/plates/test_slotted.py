@@ -11,7 +11,6 @@ import pytest
 import shapely
 from _plate_checks import check_written, construction_shapes
 
-from voxfab.errors import FabricationError
 from voxfab.fabricate.plates import PlateOptions, fabricate_plates, make_interlocked, make_radial
 
 
@@ -21,7 +20,7 @@ def shapes():
 
 
 CASES = [(name, style, t) for name in ("ball", "torus", "overhang", "queen", "vase")
-         for style in ("interlocked", "radial") for t in (3.0, 6.0) if not (name == "torus" and style == "radial")]
+         for style in ("interlocked", "radial") for t in (3.0, 6.0)]
 
 
 @pytest.mark.parametrize(("name", "style", "thickness"), CASES)
@@ -36,13 +35,27 @@ def test_written_construction_is_flat_disjoint_inside_connected_and_cut(shapes, 
     assert report["style"] == style and report["thickness"] == thickness
     for p in report["plates_list"]:
         assert p["style"] == style
-        assert ("angle" in p["plane"]) == (style == "radial")
+        assert ("angle" in p["plane"]) == (style == "radial" and p["family"] == "R")
 
 
-def test_torus_has_no_hub_for_radial_plates(shapes, tmp_path) -> None:
-    with pytest.raises(FabricationError, match="runs through no solid"):
-        fabricate_plates(shapes["torus"], PlateOptions(style="radial"), tmp_path / "s", name="torus")
-    assert not (tmp_path / "s").exists()
+def test_torus_radial_pieces_are_locked_by_a_flat_ring(shapes) -> None:
+    """No solid on the axis: a ring at the fullest layer takes every radial piece, slotted from outside."""
+    c = make_radial(shapes["torus"].grid, pitch=4.0, thickness=3.0, count=4)
+    ring, *pieces = c.plates
+    assert ring.text == "H1" and ring.family == "H" and ring.axis == "z"
+    assert len(pieces) == 8 and all(p.family == "R" for p in pieces)
+    assert c.crossings == tuple(("H1", p.text) for p in pieces)
+    assert sorted(s.partner for s in ring.slots) == sorted(p.text for p in pieces)
+    for p in pieces:
+        (slot,) = p.slots
+        # the piece's slot opens towards the axis, the ring's away from it, and they meet
+        ring_slot = next(s for s in ring.slots if s.partner == p.text)
+        assert abs(slot.end) == pytest.approx(abs(ring_slot.end))
+        assert abs(slot.edge) < abs(slot.end) < abs(ring_slot.edge)
+    bars = np.zeros((9, 9, 3), bool)
+    bars[0, :, 0] = bars[8, :, 2] = True  # two bars at different heights: the ring is the lower one
+    two = make_radial(bars, pitch=4.0, thickness=3.0, count=2)
+    assert [p.text for p in two.plates] == ["H1", "R1-1"] and two.left_out == ("R1-2",)
 
 
 def test_slots_are_thickness_plus_clearance_and_kerf_true_on_the_sheet(shapes, tmp_path) -> None:

@@ -215,7 +215,8 @@ def _slotted_json(result: Slices, name: str) -> dict:
     plates = []
     for p in result.construction.plates:
         sheet_index, part = where[p.number]
-        plane = {"angle": _r(p.angle)} if p.style == "radial" else {"axis": p.axis, "offset": _r(p.offset)}
+        flat = p.style != "radial" or p.family == "H"  # a radial construction's ring lies flat
+        plane = {"axis": p.axis, "offset": _r(p.offset)} if flat else {"angle": _r(p.angle)}
         plates.append({
             "number": p.number,
             "style": p.style,

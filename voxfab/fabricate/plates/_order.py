@@ -49,6 +49,8 @@ def _wrap(text: str, height: float, width: float) -> list[str]:
 
 def _view_axis(construction: Construction) -> int:
     """The axis the plan looks along: the one every plate contains (the crossing axis)."""
+    if construction.style == "radial":
+        return 2
     normals = np.array([np.abs(p.normal) for p in construction.plates])
     return int(np.argmin(normals.max(axis=0)))
 

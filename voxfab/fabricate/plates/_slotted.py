@@ -56,7 +56,9 @@ class Slot:
     moved : bool
         Whether the slot end left the crossing's middle to keep a plate whole.
     runs : str
-        The frame axis the slot runs along (``"v"``, or ``"u"`` when the crossing axis is the plate's u).
+        The frame axis the slot runs along (``"v"``, or ``"u"`` when the crossing axis is the plate's u),
+        or ``"radial"`` for a ring's slot: it runs from ``centre`` at ``position`` degrees, ``edge``
+        and ``end`` being signed distances from ``centre`` along that direction.
     """
 
     position: float
@@ -68,9 +70,12 @@ class Slot:
     partner: str
     moved: bool = False
     runs: str = "v"
+    centre: tuple[float, float] = (0.0, 0.0)
 
     def box(self) -> object:
-        """The slot as a shapely rectangle in the plate's frame."""
+        """The slot as a shapely polygon in the plate's frame."""
+        if self.runs == "radial":
+            return _radial_box(self.centre, self.position, self.width, self.edge, self.end)
         return _slot_box(0 if self.runs == "v" else 1, self.position, self.width, self.edge, self.end)
 
 
@@ -271,6 +276,18 @@ def _height(d: _Draft, w: int) -> float:
     return float((c.x, c.y)[[k for k in range(3) if k != d.axis].index(w)])
 
 
+def _radial_box(centre: tuple[float, float], angle: float, width: float, a: float, b: float) -> object:
+    """Rectangle ``width`` wide along the direction ``angle`` (degrees) from ``centre``, at distances ``a..b``."""
+    import shapely
+
+    t = math.radians(angle)
+    d = np.array([math.cos(t), math.sin(t)])
+    n = np.array([-d[1], d[0]]) * width / 2
+    c = np.asarray(centre, dtype=np.float64)
+    lo, hi = sorted((a, b))
+    return shapely.Polygon([c + d * lo - n, c + d * hi - n, c + d * hi + n, c + d * lo + n])
+
+
 def _join_interlocked(fam_a: list[_Draft], fam_b: list[_Draft], width: float, pitch: float,
                       moved: list[str]) -> tuple[list[tuple[_Draft, _Draft, float, float]],
                                                  dict[str, tuple[float, int, int]]]:
@@ -432,10 +449,8 @@ def _finish(d: _Draft, number: int, style: str, thickness: float, pitch: float, 
     taken = shapely.union_all([shapely.box(*shapely.LineString(s).bounds).buffer(clearance) for s in strokes
                                if len(s) > 1]) if strokes else shapely.Polygon()
     for s in slots:
-        # the partner's label just past the slot's end, where the partner's edge meets this plate
-        reach = 2.0 * pitch
-        end = s.end - reach if s.side == "top" else s.end
-        near = shapely.box(s.position - 1.5 * s.width - pitch, end, s.position + 1.5 * s.width + pitch, end + reach)
+        # the partner's label beside the slot, nearest its end where the partner's edge meets this plate
+        near = s.box().buffer(2.0 * pitch, join_style="mitre")
         region = shapely.difference(shapely.intersection(d.body, near), taken)
         if region.is_empty or region.area <= 0:
             continue
@@ -588,18 +603,22 @@ def make_radial(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.0, co
     half = thickness / 2 / math.tan(math.pi / (2 * count)) + clearance / 2
     drafts: list[_Draft] = []
     left_out: list[str] = []
-    for k in range(count):
+    sections = [radial_section(layers, centre, 180.0 * k / count, reach, thickness, pitch) for k in range(count)]
+    hub_box = shapely.box(-half, -1.0, half, nz * pitch + 1.0)
+    if not any(p.intersects(hub_box) for sec in sections for p in getattr(sec, "geoms", [sec]) if not p.is_empty):
+        # the axis runs through no solid (a ring, a torus): a flat ring plate locks the radial pieces
+        return _ring_radial(g, sections, centre, reach, pitch=pitch, thickness=thickness, clearance=clearance,
+                            min_width=min_width)
+    for k, section in enumerate(sections):
         angle = 180.0 * k / count
         text = f"R{k + 1}"
-        section = radial_section(layers, centre, angle, reach, thickness, pitch)
-        hub = [p for p in getattr(section, "geoms", [section])
-               if not p.is_empty and p.intersects(shapely.box(-half, -1.0, half, nz * pitch + 1.0))]
+        hub = [p for p in getattr(section, "geoms", [section]) if not p.is_empty and p.intersects(hub_box)]
         others = [p for p in getattr(section, "geoms", [section]) if not p.is_empty and p not in hub]
         left_out.extend(f"{text} piece at r = {p.bounds[0]:.1f}..{p.bounds[2]:.1f} mm" for p in others)
         if len(hub) != 1:
             raise FabricationError(
-                "radial: the axis through the middle of the footprint runs through no solid"
-                if not hub else f"radial: plate {text} meets the axis in {len(hub)} separate parts")
+                f"radial: plate {text} misses the hub" if not hub
+                else f"radial: plate {text} meets the axis in {len(hub)} separate parts")
         a = math.radians(angle)
         drafts.append(_Draft(text, "R", 2, 0.0, angle, (centre[0], centre[1], 0.0),
                              (math.cos(a), math.sin(a), 0.0), (0.0, 0.0, 1.0),
@@ -637,3 +656,108 @@ def make_radial(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.0, co
     crossings = tuple((a, b) for a, b in held if a in kept and b in kept)
     return Construction("radial", pitch, thickness, clearance, plates, crossings, (), tuple(left_out),
                         tuple(d.text for d in keep if d.trimmed), tuple(float(s * pitch) for s in g.shape), steps)
+
+
+def _ring_radial(g: npt.NDArray[np.bool_], sections: list[object], centre: tuple[float, float], reach: float, *,
+                 pitch: float, thickness: float, clearance: float, min_width: float) -> Construction:
+    """Radial pieces locked by a flat ring, for a shape with no solid on its axis.
+
+    The ring ``H1`` is the section of the solid at the voxel layer with the
+    most cells.  Each radial piece meets it along a line pointing away from
+    the axis, and the pair is half-lapped across that line: the piece is
+    slotted from its edge nearer the axis, the ring from its outer edge, each
+    to the middle of the stretch they share.  Lay the ring flat, then slide
+    every piece onto it towards the axis; pieces never meet one another.
+    """
+    import shapely
+
+    counts = g.sum(axis=(0, 1))
+    layer = int(np.argmax(counts))
+    zc = (layer + 0.5) * pitch
+    cells = slab_section(g, 2, zc, pitch, thickness)
+    labels, n = label_layer(cells)
+    if n == 0:
+        raise FabricationError("radial: the axis runs through no solid, and no layer can carry a ring to join at")
+    sizes = np.bincount(labels.ravel())[1:]
+    ring = scaled(cells_outline(np.argwhere(labels == int(np.argmax(sizes)) + 1)), pitch)
+    ring_draft = _Draft("H1", "H", 2, zc, 0.0, (0.0, 0.0, zc), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0),
+                        shapely.orient_polygons(ring), int(sizes.max()))
+    width = thickness + clearance
+    pieces: list[_Draft] = []
+    joints: list[tuple[_Draft, float, float, float]] = []  # piece, side, slot end (distance), angle
+    left_out: list[str] = [f"H1 piece {k}" for k in range(2, n + 1)] if n > 1 else []
+    moved: list[str] = []
+    for k, section in enumerate(sections):
+        angle = 180.0 * k / len(sections)
+        a = math.radians(angle)
+        parts = sorted((p for p in getattr(section, "geoms", [section]) if not p.is_empty),
+                       key=lambda p: (p.centroid.x, p.centroid.y))
+        for j, part in enumerate(parts, start=1):
+            pieces.append(_Draft(f"R{k + 1}-{j}", "R", 2, 0.0, angle, (centre[0], centre[1], 0.0),
+                                 (math.cos(a), math.sin(a), 0.0), (0.0, 0.0, 1.0), shapely.orient_polygons(part),
+                                 int(round(part.area / pitch ** 2))))
+    for d in pieces:
+        side = 1.0 if d.body.centroid.x > 0 else -1.0
+        band = _band(d.body, 1, zc - width / 2, zc + width / 2)
+        strip = _radial_box(centre, d.angle, width, 0.0, side * reach)
+        on_ring = shapely.intersection(ring_draft.body, strip)
+        if band is None or on_ring.is_empty or on_ring.area <= 0:
+            continue
+        rho = (shapely.get_coordinates(on_ring) - np.asarray(centre)) @ np.array(d.u_dir[:2]) * side
+        p0, p1 = sorted((band[0] * side, band[1] * side))
+        q0, q1 = float(rho.min()), float(rho.max())
+        lo, hi = max(p0, q0), min(p1, q1)
+        if hi - lo <= 1e-9:
+            continue
+        middle = (lo + hi) / 2
+        steps = np.arange(1, int((hi - lo) / pitch * 2) + 1) * pitch / 2
+        chosen = None
+        for m in [middle] + [middle + st * sg for st in steps for sg in (1, -1) if lo < middle + st * sg < hi]:
+            cut_p = shapely.difference(d.body, _slot_box(1, zc, width, side * p0, side * m))
+            cut_r = shapely.difference(ring_draft.body, _radial_box(centre, d.angle, width, side * m, side * q1))
+            if _whole(cut_p) and _whole(cut_r):
+                chosen = (m, cut_p, cut_r)
+                break
+        if chosen is None:
+            m = middle
+            cut_p, lost_p = _single(shapely.difference(d.body, _slot_box(1, zc, width, side * p0, side * m)))
+            cut_r, lost_r = _single(shapely.difference(ring_draft.body,
+                                                       _radial_box(centre, d.angle, width, side * m, side * q1)))
+            d.trimmed |= lost_p
+            ring_draft.trimmed |= lost_r
+            chosen = (m, cut_p, cut_r)
+        m, d.body, ring_draft.body = chosen
+        is_moved = bool(abs(m - middle) > 1e-9)
+        if is_moved:
+            moved.append(f"H1/{d.text}")
+        d.slots.append(Slot(zc, width, side * p0, side * m, m - p0, "inner", "H1", is_moved, "u"))
+        ring_draft.slots.append(Slot(d.angle, width, side * q1, side * m, q1 - m, "outer", d.text, is_moved,
+                                     "radial", centre))
+        joints.append((d, side, m, d.angle))
+    for d in [ring_draft, *pieces]:
+        _open(d, min_width)
+    held = []
+    for d, side, m, angle in joints:
+        band = _band(d.body, 1, zc - width / 2, zc + width / 2)
+        on_ring = shapely.intersection(ring_draft.body, _radial_box(centre, angle, width, 0.0, side * reach))
+        ok = band is not None and not on_ring.is_empty and on_ring.area > 0
+        if ok:
+            rho = (shapely.get_coordinates(on_ring) - np.asarray(centre)) @ np.array(d.u_dir[:2]) * side
+            ok = min(band[0] * side, band[1] * side) <= m + 1e-6 and float(rho.max()) >= m - 1e-6
+        if ok:
+            held.append(("H1", d.text))
+        else:
+            d.slots = [sl for sl in d.slots if sl.partner != "H1"]
+            ring_draft.slots = [sl for sl in ring_draft.slots if sl.partner != d.text]
+    keep, dropped = _connected([ring_draft, *pieces], held)
+    if ring_draft not in keep or len(keep) < 2:
+        raise FabricationError("radial: the axis runs through no solid, and no radial piece crosses a ring")
+    left_out.extend(dropped)
+    kept = {d.text for d in keep}
+    plates = tuple(_finish(d, i, "radial", thickness, pitch, kept) for i, d in enumerate(keep, start=1))
+    labels = [p.text for p in plates if p.text != "H1"]
+    steps = ("lay the ring H1 flat with its slots open towards the outside",
+             f"slide {' '.join(labels)} onto H1 towards the axis: the slot of each piece over the ring "
+             "where the ring's slot carries its label")
+    return Construction("radial", pitch, thickness, clearance, plates, tuple(held), tuple(moved), tuple(left_out),
+                        tuple(d.text for d in keep if d.trimmed), tuple(float(v * pitch) for v in g.shape), steps)
