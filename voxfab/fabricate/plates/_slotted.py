@@ -758,6 +758,6 @@ def _ring_radial(g: npt.NDArray[np.bool_], sections: list[object], centre: tuple
     labels = [p.text for p in plates if p.text != "H1"]
     steps = ("lay the ring H1 flat with its slots open towards the outside",
              f"slide {' '.join(labels)} onto H1 towards the axis: the slot of each piece over the ring "
-             "where the ring's slot carries its label")
+             "at the ring slot engraved with its label")
     return Construction("radial", pitch, thickness, clearance, plates, tuple(held), tuple(moved), tuple(left_out),
                         tuple(d.text for d in keep if d.trimmed), tuple(float(v * pitch) for v in g.shape), steps)
