@@ -35,6 +35,8 @@ def test_written_construction_is_flat_disjoint_inside_connected_and_cut(shapes, 
     assert report["style"] == style and report["thickness"] == thickness
     for p in report["plates_list"]:
         assert p["style"] == style
+        assert {"family", "plane", "label", "sheet", "turns", "offset", "slots"} <= set(p)
+        assert all({"position", "width", "depth", "partner"} <= set(sl) for sl in p["slots"])
         assert ("angle" in p["plane"]) == (style == "radial" and p["family"] == "R")
 
 
