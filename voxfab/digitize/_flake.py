@@ -214,14 +214,31 @@ def solid(
     return s | inside
 
 
+def check_arc(arc: Sequence[float]) -> tuple[float, float]:
+    """``(start, end)`` in radians from an arc in degrees with ``start < end <= start + 360``."""
+    try:
+        start, end = (float(v) for v in arc)
+    except (TypeError, ValueError):
+        raise InvalidShapeError(f"arc: expected two angles [start, end] in degrees, got {arc!r}") from None
+    if not (np.isfinite(start) and np.isfinite(end) and start < end <= start + 360.0):
+        raise InvalidShapeError(f"arc: expected finite angles with start < end <= start + 360, got {arc!r}")
+    return float(np.radians(start)), float(np.radians(end))
+
+
 #: Bisection steps that locate where a flake segment crosses an end of an open arc.
 _CROP_STEPS = 48
 
 
 def _in_sector(a: np.ndarray, b: np.ndarray, start: float, span: float) -> np.ndarray:
-    """Points ``(a, b)`` of the plane whose angle lies in ``[start, start + span]`` (the origin counts as inside)."""
-    rel = np.mod(np.arctan2(b, a) - start, 2 * np.pi)
-    return (rel <= span + 1e-12) | ((a == 0) & (b == 0))
+    """Points ``(a, b)`` of the plane whose angle lies in ``[start, start + span]``.
+
+    The origin counts as inside, and so does NaN: a point with no plane
+    coordinates lies outside the field's support, where ``f`` has its one
+    fixed outside value for every arc alike.
+    """
+    with np.errstate(invalid="ignore"):
+        rel = np.mod(np.arctan2(b, a) - start, 2 * np.pi)
+    return (rel <= span + 1e-12) | ((a == 0) & (b == 0)) | np.isnan(a) | np.isnan(b)
 
 
 def digitize_sector(
@@ -243,8 +260,15 @@ def digitize_sector(
     generatrix crop the flake to its slab. The crossing is located by the same
     bisection for every sector sharing that ray, so two arcs meeting at a ray
     test the very same point there: a voxel whose full flake shows both signs
-    shows both signs within one of the two arcs, and the union of the two
-    digitizations contains the digitization of the closed curve.
+    shows both signs within one of the two arcs.
+
+    A voxel is kept when its cropped flake shows both signs *and* its full
+    flake does (``f`` is the field of the whole closed curve, defined beyond
+    the arc). The cut points are test points the closed curve's flake test
+    never sees, so the cropped test alone can find a double crossing of one
+    flake segment that the closed test misses; requiring the full flake's sign
+    change as well makes the digitization morphological: the arcs of a closed
+    curve, split at shared rays, give together exactly its digitization.
 
     Returns
     -------
@@ -259,6 +283,7 @@ def digitize_sector(
     centre = [np.broadcast_to(a, shp).reshape(-1) for a in axes]
     le = np.zeros(centre[0].shape, dtype=bool)
     ge = np.zeros_like(le)
+    full_le, full_ge = np.zeros_like(le), np.zeros_like(le)
 
     def mark(where: np.ndarray, pts: Sequence[np.ndarray]) -> None:
         if not len(where):
@@ -279,6 +304,10 @@ def digitize_sector(
         ta, tb = planar(*tip)
         ta, tb = np.broadcast_to(ta, le.shape), np.broadcast_to(tb, le.shape)
         mark(np.flatnonzero(_in_sector(ta, tb, start, span)), tip)
+        val = np.broadcast_to(np.asarray(f(*tip), dtype=np.float64), le.shape)
+        val = np.where(np.isnan(val), 1.0, val)
+        full_le |= val <= 0
+        full_ge |= val >= 0
         for c, s in rays:
             phi0, phi1 = c * cb - s * ca, c * tb - s * ta
             sel = np.flatnonzero((phi0 * phi1 <= 0) & ~((phi0 == 0) & (phi1 == 0)) & (phi0 != 0))
@@ -298,4 +327,4 @@ def digitize_sector(
             for d in range(n):
                 pts[d][sel] = cut[d]
             mark(sel[on_ray], pts)
-    return (le & ge).reshape(shp)
+    return (le & ge & full_le & full_ge).reshape(shp)

@@ -35,8 +35,8 @@ from voxfab.errors import InvalidShapeError
 from ._curves import BITMAP_SUFFIXES, DRAWING_SUFFIXES, Curve2D, estimate_bounds, load_curve, star_radius
 from ._expr import Expression, compile_expression
 from ._fit import Field, Mode, fit
+from ._flake import check_arc, digitize_sector, flake_vertices, half_coordinates
 from ._flake import digitize as flake_digitize
-from ._flake import digitize_sector, flake_vertices, half_coordinates
 
 __all__ = [
     "RevolutionCurve",
@@ -437,17 +437,6 @@ def _runs_digitizer(curve: RevolutionCurve, runs: list[Run]) -> Callable[..., tu
     return digitizer
 
 
-def _check_arc(arc: Sequence[float]) -> tuple[float, float]:
-    """``(start, end)`` in radians from an arc in degrees with ``start < end <= start + 360``."""
-    try:
-        start, end = (float(v) for v in arc)
-    except (TypeError, ValueError):
-        raise InvalidShapeError(f"arc: expected two angles [start, end] in degrees, got {arc!r}") from None
-    if not (np.isfinite(start) and np.isfinite(end) and start < end <= start + 360.0):
-        raise InvalidShapeError(f"arc: expected finite angles with start < end <= start + 360, got {arc!r}")
-    return float(np.radians(start)), float(np.radians(end))
-
-
 def _sector_digitizer(
     f: Callable[..., np.ndarray], rc: RevolutionCurve, arc: tuple[float, float]
 ) -> Callable[..., tuple[np.ndarray, np.ndarray]]:
@@ -533,7 +522,7 @@ def revolution_field(
         lo = np.append(rc.lo * rho_max, z0)
         hi = np.append(rc.hi * rho_max, z1)
         if arc is not None:
-            return Field(None, lo, hi, "open surface of revolution", _sector_digitizer(f, rc, _check_arc(arc)))
+            return Field(None, lo, hi, "open surface of revolution", _sector_digitizer(f, rc, check_arc(arc)))
         return Field(f, lo, hi, "surface of revolution")
     if arc is not None:
         raise InvalidShapeError("arc: an open curve of revolution needs a region generatrix (expression, closed drawing or bitmap)")
