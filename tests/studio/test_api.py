@@ -507,3 +507,16 @@ def test_a_seed_that_runs_out_of_time_is_skipped(client, monkeypatch):
     monkeypatch.setattr(engine, "unfold", never)
     s = wait_job(client, client.post("/api/nets", json={"grid": pack(g), "count": 2, "timeout": 5}).json()["job"])
     assert s["state"] == "error" and s["message"] == "no one-piece net in 1 s"
+
+
+def test_open_curve_of_revolution_in_the_studio(client):
+    ring = {"kind": "expr", "text": "(x-2)^2 + y^2 - 0.64"}
+    closed = grid_of(client.post("/api/preview", json=rev(CIRCLE, ring, mode="surface")).json())
+    r = client.post("/api/preview", json=rev(CIRCLE, ring, mode="surface", arc=[0, 180]))
+    assert r.status_code == 200, r.text
+    half = grid_of(r.json())
+    assert 0.3 * closed.sum() < half.sum() < 0.7 * closed.sum()
+    r = client.post("/api/preview", json=rev(CIRCLE, ring, arc=[0, 180]))
+    assert r.status_code == 400 and 'mode = "surface"' in r.json()["error"]
+    r = client.post("/api/preview", json=rev(CIRCLE, ring, mode="surface", arc=[0, "a"]))
+    assert r.status_code == 400 and "shape.arc" in r.json()["error"]
