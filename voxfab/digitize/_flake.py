@@ -303,11 +303,13 @@ def digitize_sector(
         tip = [centre[d] + v[d] * stp[d] for d in range(n)]
         ta, tb = planar(*tip)
         ta, tb = np.broadcast_to(ta, le.shape), np.broadcast_to(tb, le.shape)
-        mark(np.flatnonzero(_in_sector(ta, tb, start, span)), tip)
         val = np.broadcast_to(np.asarray(f(*tip), dtype=np.float64), le.shape)
         val = np.where(np.isnan(val), 1.0, val)
         full_le |= val <= 0
         full_ge |= val >= 0
+        kept = _in_sector(ta, tb, start, span)
+        le |= kept & (val <= 0)
+        ge |= kept & (val >= 0)
         for c, s in rays:
             phi0, phi1 = c * cb - s * ca, c * tb - s * ta
             sel = np.flatnonzero((phi0 * phi1 <= 0) & ~((phi0 == 0) & (phi1 == 0)) & (phi0 != 0))
