@@ -5,7 +5,9 @@ digitizer) plus the bounding box of the shape in model units. :func:`fit`
 chooses the scale so that the digitized shape's longest extent is exactly
 ``size`` voxels (by bracketing and bisection on the scale, since flake
 thickness and rounding make the extent only roughly proportional to the scale),
-and centres it in a ``size``³ grid.
+and centres it in a ``size``³ grid. With ``scale`` and ``center`` the placement
+is fixed instead (:func:`fixed_fit`): the model point ``center`` sits at the
+grid's middle, so separate pieces of one shape keep their relative places.
 """
 
 from __future__ import annotations
