@@ -532,3 +532,16 @@ def test_make_plates_in_a_style_and_see_the_assembly(client, style):
     r = client.post("/api/make", json={"grid": pack(queen), "artefact": "plates.zip",
                                        "options": {"style": "woven"}})
     assert r.status_code == 400 and "style" in r.json()["error"]
+
+
+def test_open_curve_of_revolution_in_the_studio(client):
+    ring = {"kind": "expr", "text": "(x-2)^2 + y^2 - 0.64"}
+    closed = grid_of(client.post("/api/preview", json=rev(CIRCLE, ring, mode="surface")).json())
+    r = client.post("/api/preview", json=rev(CIRCLE, ring, mode="surface", arc=[0, 180]))
+    assert r.status_code == 200, r.text
+    half = grid_of(r.json())
+    assert 0.3 * closed.sum() < half.sum() < 0.7 * closed.sum()
+    r = client.post("/api/preview", json=rev(CIRCLE, ring, arc=[0, 180]))
+    assert r.status_code == 400 and 'mode = "surface"' in r.json()["error"]
+    r = client.post("/api/preview", json=rev(CIRCLE, ring, mode="surface", arc=[0, "a"]))
+    assert r.status_code == 400 and "shape.arc" in r.json()["error"]
