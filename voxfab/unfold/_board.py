@@ -273,7 +273,10 @@ def seam_update(link, face, half, board, cnt, h):
 
     A seam is a cut edge between two placed faces whose sides do not meet in
     the plane (those are left uncut); it has no tab room when the cells beyond
-    its edge on both sides hold faces.
+    its edge on both sides hold faces.  A wall is room: the sheet keeps a tab's
+    depth free all round the box.  A seam to a face of another piece (excluded)
+    needs room on the copy of its lower face: the other piece, laid out on its
+    own board, sees the seam from the higher face and leaves it to this one.
     """
     a = h >> 2
     k = h & 3
@@ -281,12 +284,15 @@ def seam_update(link, face, half, board, cnt, h):
     kc = link[a, NE, k]
     hc = 4 * c + kc
     bad = False
-    if face[a, POS] >= 0 and face[c, POS] >= 0 and face[c, PAR] != a and face[a, PAR] != c:
+    if face[a, POS] >= 0 and face[c, POS] == -3:
+        if a < c:
+            bad = board[face[a, POS] + cnt[C_OFF + ((k + face[a, ROT]) & 3)]] >= 0
+    elif face[a, POS] >= 0 and face[c, POS] >= 0 and face[c, PAR] != a and face[a, PAR] != c:
         s = (k + face[a, ROT]) & 3
         ca = face[a, POS] + cnt[C_OFF + s]
         if ca != face[c, POS] or face[c, ROT] != ((s + 2 - kc) & 3):
             cc = face[c, POS] + cnt[C_OFF + ((kc + face[c, ROT]) & 3)]
-            bad = board[ca] != -1 and board[cc] != -1
+            bad = board[ca] >= 0 and board[cc] >= 0
     _set(half, cnt, SL, SP, C_NBAD, h if h < hc else hc, bad)
 
 

@@ -64,6 +64,13 @@ _BRANCH_TRIES = 24
 #: pieces="auto": pairs of neighbouring pieces tried for a join (once the
 #: size rule holds).
 _JOIN_TRIES = 24
+#: pieces="auto" in a box: faces of a piece as a share of the box's cells.  The
+#: cells left free take the glue tabs (up to four each, one from every side),
+#: so a denser piece leaves seams without room.
+_PIECE_SHARE = 0.5
+#: Tries (each a fixed budget of growth steps) to lay one piece in its box
+#: before it is cut in two.
+_PIECE_TRIES = 3
 
 
 class Strategy(enum.StrEnum):
@@ -662,10 +669,17 @@ def _partition(job: _Job, faces: npt.NDArray[np.int64]) -> list[tuple[_Board, np
     group must not be cut) each piece is instead the largest net that
     ruin-and-recreate packs into the box from the faces left over.
     """
-    pieces = _tree_pieces(job, faces) if job.constraints is None and job.fit is not None else None
-    if pieces is None:
-        pieces = _greedy_pieces(job, faces)
-    return _balance(job, _merge_small(job, pieces))
+    if job.constraints is None and job.fit is not None:
+        # Two ways to cut, the fewer pieces kept: slabs give straight cuts and
+        # room for tabs; branches of a free net suit boxes too small for a slab.
+        slabs = _sheet_pieces(job, faces)
+        branches = _tree_pieces(job, faces)
+        if branches is not None:
+            branches = _merge_small(job, branches)
+            if len(branches) < len(slabs):
+                return _balance(job, branches)
+        return _balance(job, slabs)
+    return _balance(job, _merge_small(job, _greedy_pieces(job, faces)))
 
 
 def _fold_tree(faces: npt.NDArray[np.int64], par: npt.NDArray[np.int64]) -> tuple[int, dict[int, list[int]], list[int]]:
@@ -1052,3 +1066,113 @@ def _check_count(count: object) -> int:
     if not isinstance(count, (int, np.integer)) or isinstance(count, bool) or count < 1:
         raise InvalidShapeError(f"count: expected an integer >= 1, got {count!r}")
     return int(count)
+
+
+def _sweep_regions(sg: SurfaceGraph, faces: npt.NDArray[np.int64], k: int) -> list[npt.NDArray[np.int64]]:
+    """``faces`` cut into about ``k`` slabs of equal size across one axis, each slab's connected parts apart.
+
+    Slabs end between two layers of face centres, so each cut runs along a
+    straight line of voxel edges round the shape; of the three axes the one
+    whose cuts are shortest (fewest seams between slabs) wins.
+    """
+    centre = sg.corners[faces].mean(axis=1)
+    best: tuple[int, list[npt.NDArray[np.int64]]] | None = None
+    for axis in range(3):
+        # Face centres lie on half-integer layers: doubled, they are integers.
+        level = np.rint(2 * centre[:, axis]).astype(np.int64)
+        levels, counts = np.unique(level, return_counts=True)
+        cum = np.cumsum(counts)
+        cuts = [int(levels[np.argmin(np.abs(cum - faces.size * t / k))]) for t in range(1, k)]
+        slab = np.searchsorted(np.array(sorted(set(cuts)), dtype=np.int64), level, side="left")
+        if k > 1 and slab.max() == slab.min():
+            continue  # the faces lie in one layer across this axis
+        owner = np.full(sg.face_count, -1, dtype=np.int64)
+        owner[faces] = slab
+        nb = owner[sg.neighbor[faces]]
+        seams = int(np.count_nonzero((nb >= 0) & (nb != slab[:, None])))
+        if best is None or seams < best[0]:
+            parts = [p for s in np.unique(slab).tolist() for p in _surface_parts(sg, faces[slab == s])]
+            best = (seams, parts)
+    if best is None:
+        return _surface_parts(sg, faces)
+    return best[1]
+
+
+def _merge_parts(sg: SurfaceGraph, parts: list[npt.NDArray[np.int64]], least: int) -> list[npt.NDArray[np.int64]]:
+    """Parts under ``least`` faces joined to the neighbouring part they share most edges with."""
+    parts = [p for p in parts if p.size]
+    while len(parts) > 1:
+        sizes = [int(p.size) for p in parts]
+        q = int(np.argmin(sizes))
+        if sizes[q] >= least:
+            break
+        owner = np.full(sg.face_count, -1, dtype=np.int64)
+        for t, p in enumerate(parts):
+            owner[p] = t
+        near = owner[sg.neighbor[parts[q]].ravel()]
+        near = near[(near >= 0) & (near != q)]
+        if near.size == 0:
+            break  # a separate surface: it stays a piece of its own
+        r = int(np.bincount(near).argmax())
+        joined = np.sort(np.concatenate([parts[q], parts[r]]))
+        parts = [p for t, p in enumerate(parts) if t not in (q, r)] + [joined]
+    return parts
+
+
+def _lay_in_box(job: _Job, faces: npt.NDArray[np.int64], tries: int) -> _Board | None:
+    """A net of ``faces`` grown inside the fit box (either way round), or None within ``tries`` tries."""
+    n = int(faces.size)
+    p = job.growth(n)
+    boxes = _orientations(job.fit)
+    for t in range(tries):
+        trial = _Board(job.sg, faces, [job.seed, 5000 + n, t], boxes[t % len(boxes)], None, job.sg.face_count)
+        if trial.grow(p, math.inf, _FIT_STEPS_PER_FACE * n):
+            return trial
+    return None
+
+
+def _sheet_pieces(job: _Job, faces: npt.NDArray[np.int64]) -> list[tuple[_Board, npt.NDArray[np.int64]]]:
+    """Pieces of about :data:`_PIECE_SHARE` of the box each, cut along straight runs of seams.
+
+    The surface is cut into slabs across its best axis (:func:`_sweep_regions`),
+    each slab's parts apart and the tiny ones joined to a neighbour; a part
+    that does not grow inside the box is cut in two the same way.  Every piece
+    is laid in the box from the start, with room left round it for its tabs.
+    """
+    w, h = job.fit
+    target = max(_PIECE_SHARE * w * h, 1.0)
+    least = max(1, int(_MIN_SHARE * target))
+    k = max(1, math.ceil(faces.size / target))
+    queue = _merge_parts(job.sg, _sweep_regions(job.sg, faces, k), least)
+    pieces: list[tuple[_Board, npt.NDArray[np.int64]]] = []
+    while queue:
+        part = queue.pop(0)
+        board = _lay_in_box(job, part, _PIECE_TRIES) if part.size <= w * h else None
+        if board is not None:
+            pieces.append((board, part))
+            continue
+        if part.size == 1:
+            raise UnfoldError(f"no piece fits {w}x{h} cells: the box is too small for a single face")
+        halves = _merge_parts(job.sg, _sweep_regions(job.sg, part, 2), max(1, part.size // 10))
+        if len(halves) < 2 or min(int(p.size) for p in halves) * 4 < part.size:
+            # A ring, or a cut that would shave a sliver: halve the walk instead.
+            halves = _split_in_two(job.sg, part)
+        queue[:0] = halves
+    return pieces
+
+
+def _split_in_two(sg: SurfaceGraph, faces: npt.NDArray[np.int64]) -> list[npt.NDArray[np.int64]]:
+    """``faces`` (connected, in one layer) as the first and second half of a breadth-first walk."""
+    inside = np.zeros(sg.face_count, dtype=bool)
+    inside[faces] = True
+    seen = {int(faces[0])}
+    walk = [int(faces[0])]
+    for f in walk:
+        for g in sg.neighbor[f].tolist():
+            if inside[g] and g not in seen:
+                seen.add(g)
+                walk.append(g)
+    half = len(walk) // 2
+    first = np.sort(np.array(walk[:half], dtype=np.int64))
+    return [first] + _surface_parts(sg, np.setdiff1d(faces, first))
+

@@ -159,7 +159,8 @@ def test_pieces_packed_on_sheets_write_numbered_files(tmp_path: Path) -> None:
         assert result.files == [str(tmp_path / f"box.sheet-{i}.{ext}") for i in range(1, n + 1)]
         assert any(w.startswith(f"net split into {len(pieces)} pieces") for w in result.warnings)
     write_net_drawing(g, pieces, tmp_path / "box.pdf", options, title="box")
-    assert (tmp_path / "box.pdf").read_bytes().count(b"/Type /Page ") == n
+    # The sheets, after the assembly page.
+    assert (tmp_path / "box.pdf").read_bytes().count(b"/Type /Page ") == n + 1
     assert not (tmp_path / "box.svg").exists()
 
 

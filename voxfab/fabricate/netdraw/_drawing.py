@@ -13,6 +13,7 @@ from voxfab.errors import InvalidShapeError
 from voxfab.shape import SurfaceGraph, surface_graph
 from voxfab.unfold import Net
 
+from ._assembly import assembly_page, gluing_order, number_faces, number_text, piece_joins, piece_name
 from ._geometry import NetEdges, check_net, classify_edges, merge_unit_segments, trace_outlines
 from ._labels import label_length, seam_labels
 from ._legible import LABEL_ADVANCE, NUMBER_INSET, legibility_problem, number_height, number_start
@@ -106,6 +107,15 @@ class Drawing:
         the faces could not carry it).
     title : str
         The title printed on the sheets (without sheet numbers).
+    face_piece : (F,) int ndarray
+        0-based piece of each face (all 0 for a one-piece net); piece ``i`` is
+        printed ``(i + 1)``.
+    joins : tuple of (int, int)
+        0-based pieces that share seams.
+    order : tuple of int
+        0-based pieces in gluing order (largest first, each next joining those built).
+    number_at : tuple of (int, (2,) ndarray)
+        Per piece, its sheet (0-based) and the centre in mm of the face carrying its number.
     """
 
     sheets: tuple[Sheet, ...]
@@ -126,10 +136,32 @@ class Drawing:
     label_wanted: float
     numbers: bool
     title: str
+    face_piece: npt.NDArray[np.int64]
+    joins: tuple[tuple[int, int], ...]
+    order: tuple[int, ...]
+    number_at: tuple[tuple[int, npt.NDArray[np.float64]], ...]
 
-    def document(self) -> Document:
-        """The sheets as a :class:`voxfab.drawing.Drawing` for the backends."""
-        return Document(tuple(s.page(self.title) for s in self.sheets), self.title)
+    def document(self, *, assembly: bool = False) -> Document:
+        """The sheets as a :class:`voxfab.drawing.Drawing` for the backends.
+
+        With ``assembly`` (printed nets of several pieces), an assembly page
+        (:meth:`assembly_page`) comes first.
+        """
+        pages = tuple(s.page(self.title) for s in self.sheets)
+        if assembly and self.pieces > 1:
+            pages = (self.assembly_page(),) + pages
+        return Document(pages, self.title)
+
+    def assembly_page(self, margin: float = 10.0) -> Page:
+        """A map of every sheet with its pieces' numbers, which pieces join which, and the gluing order."""
+        maps = []
+        for s, sheet in enumerate(self.sheets):
+            cut = sheet.layers["CUT"]
+            outline = Polylines(cut.points, cut.offsets, cut.closed)
+            maps.append((sheet.width, sheet.height, outline,
+                         [(p, c) for p, (ps, c) in enumerate(self.number_at) if ps == s]))
+        size = (self.sheets[0].width, self.sheets[0].height)
+        return assembly_page(maps, list(self.joins), list(self.order), size, margin, self.title)
 
     @property
     def seam_labels(self) -> list[str]:
@@ -171,6 +203,8 @@ class Drawing:
         lines.append(
             f"{self.seams} glued seams; {int(self.tab_seams.sum())} tabs ({self.tab_height:.1f} mm deep){numbers}"
         )
+        if self.pieces > 1:
+            lines.append("gluing order: " + " ".join(piece_name(i + 1) for i in self.order))
         if self.tab_elsewhere.any():
             lines.append(f"{int(self.tab_elsewhere.sum())} seams to other pieces take their tabs there")
         fc = self.fold_counts
@@ -253,7 +287,8 @@ def draw_net(grid: npt.ArrayLike, net: Net, *, options: DrawingOptions | None = 
     opts = options or DrawingOptions()
     graph = surface_graph(grid)
     check_net(graph, net)
-    return _draw(graph, net, plan_sheets(net.corners2d, opts), opts, name=name, pieces=1)
+    return _draw(graph, net, plan_sheets(net.corners2d, opts), opts, name=name,
+                 face_piece=np.zeros(net.face_count, dtype=np.int64))
 
 
 def draw_pieces(grid: npt.ArrayLike, pieces: list[Net], *, options: DrawingOptions | None = None,
@@ -296,12 +331,14 @@ def draw_pieces(grid: npt.ArrayLike, pieces: list[Net], *, options: DrawingOptio
         folds=np.concatenate([p.folds.reshape(-1, 2) + c for p, c in zip(pieces, counts[:-1])]),
         seed=pieces[0].seed, strategy=pieces[0].strategy, filled=pieces[0].filled,
     )
-    return _draw(graph, combined, plan, opts, name=name, pieces=len(pieces))
+    face_piece = np.repeat(np.arange(len(pieces)), [p.face_count for p in pieces])
+    return _draw(graph, combined, plan, opts, name=name, face_piece=face_piece)
 
 
 def _draw(graph: SurfaceGraph, net: Net, plan: SheetPlan, opts: DrawingOptions, *, name: str,
-          pieces: int) -> Drawing:
-    """Draw ``net`` (a whole net, a piece, or pieces side by side) on the sheets of ``plan``."""
+          face_piece: npt.NDArray[np.int64]) -> Drawing:
+    """Draw ``net`` (a whole net, a piece, or pieces side by side, ``face_piece`` saying which) on ``plan``."""
+    pieces = int(face_piece.max(initial=0)) + 1
     edges = classify_edges(graph, net, plan.corners2d)
     fs = plan.face_sheet
     joined = edges.joined
@@ -337,9 +374,14 @@ def _draw(graph: SurfaceGraph, net: Net, plan: SheetPlan, opts: DrawingOptions, 
         for kind, t in (("mountain", 1), ("valley", -1), ("flat", 0))
     }
     title = f"{name}  FACES {p:g} MM  SEED {net.seed}".strip()
+    joins = piece_joins(face_piece, sides)
+    order = gluing_order(np.bincount(face_piece, minlength=pieces).tolist(), joins)
+    at = number_faces(face_piece, joined)
+    number_at = tuple((int(fs[f]), pos[f].mean(axis=0)) for f in at.tolist())
     sheets = tuple(
         _draw_sheet(s, plan, edges, joined, sides, seam_type, tabs, opts, label_h, title, pos, shared,
-                    seam_labels(numbers.tolist(), chars), elsewhere)
+                    seam_labels(numbers.tolist(), chars), elsewhere,
+                    [(piece_name(i + 1), c) for i, (ps, c) in enumerate(number_at) if ps == s] if pieces > 1 else [])
         for s in range(plan.count)
     )
     return Drawing(
@@ -350,6 +392,7 @@ def _draw(graph: SurfaceGraph, net: Net, plan: SheetPlan, opts: DrawingOptions, 
         closed_in_plane=int(np.count_nonzero(edges.closed_in_plane & edges.canonical())),
         pieces=pieces, label_height=float(label_h), tab_height=float(tab_h) if opts.tabs else 0.0,
         label_wanted=float(opts.label_height), numbers=bool(opts.numbers), title=title,
+        face_piece=face_piece, joins=tuple(joins), order=tuple(order), number_at=number_at,
     )
 
 
@@ -357,7 +400,7 @@ def _draw_sheet(
     s: int, plan: SheetPlan, edges: NetEdges, joined: npt.NDArray[np.bool_], sides: npt.NDArray[np.int64],
     seam_type: npt.NDArray[np.int64], tabs: TabPlan, opts: DrawingOptions, label_h: float, title: str,
     pos: npt.NDArray[np.float64], shared: npt.NDArray[np.bool_], labels: list[str],
-    elsewhere: npt.NDArray[np.bool_],
+    elsewhere: npt.NDArray[np.bool_], piece_numbers: list[tuple[str, npt.NDArray[np.float64]]],
 ) -> Sheet:
     p = plan.pitch
     fs = plan.face_sheet
@@ -433,6 +476,9 @@ def _draw_sheet(
                                               advance=LABEL_ADVANCE))
     layers["LABEL"].append(Polylines.from_segments(np.concatenate([m[0] for m in marks]),
                                                    np.concatenate([m[1] for m in marks])))
+    if piece_numbers:
+        layers["LABEL"].append(number_text([t for t, _ in piece_numbers], np.array([c for _, c in piece_numbers]),
+                                           p, label_h))
     heading = title + (f"  SHEET {s + 1}/{plan.count}" if plan.count > 1 else "")
     if heading and opts.heading:
         x0, _, x1, _ = plan.area

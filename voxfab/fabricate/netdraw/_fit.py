@@ -125,12 +125,14 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
         if len(found) < count:
             notes.append(f"{len(found)} distinct nets found of the {count} asked for")
         return SheetNets([[n] for n in found], options, notes)
-    try:
-        return SheetNets([[unfold(grid, rng=rng, fit=fit, **search)]], options, notes)
-    except UnfoldError as err:
-        if pieces != "auto":
-            extent = _measured_extent(err, grid, rng, search)
-            raise fit_error(extent, options, float(options.pitch), what="the most compact net found") from None
+    # With pieces allowed, a surface larger than the sheet goes straight to the split.
+    if pieces != "auto" or faces <= fit[0] * fit[1]:
+        try:
+            return SheetNets([[unfold(grid, rng=rng, fit=fit, **search)]], options, notes)
+        except UnfoldError as err:
+            if pieces != "auto":
+                extent = _measured_extent(err, grid, rng, search)
+                raise fit_error(extent, options, float(options.pitch), what="the most compact net found") from None
     nets = unfold(grid, rng=rng, fit=fit, pieces="auto", **search)
     return SheetNets([list(nets)], options, notes)
 

@@ -22,6 +22,9 @@ SHEETS: dict[str, tuple[float, float]] = {
     "A2": (420.0, 594.0),
     "A1": (594.0, 841.0),
     "A0": (841.0, 1189.0),
+    # Desktop cutters' 12 x 12 inch mat and a small laser cutter's bed.
+    "mat12": (305.0, 305.0),
+    "laser": (495.0, 279.0),
 }
 
 #: Largest sheet side accepted, mm (the largest laser beds and cutting services stay under 3 m).

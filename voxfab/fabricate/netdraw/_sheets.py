@@ -3,8 +3,8 @@
 A net goes on one sheet, turned a quarter turn when that fits better; when it
 does not fit, :class:`SheetFitError` says the largest face size at which it
 fits this sheet and the smallest standard sheet that takes it at this face
-size.  Several pieces (``--pieces auto``) are packed by their bounding boxes
-on as few sheets as possible.
+size.  Several pieces (``--pieces auto``) are packed cell by cell, turned by
+quarter turns, on as few sheets as possible.
 """
 
 from __future__ import annotations
@@ -19,9 +19,6 @@ from voxfab.errors import InvalidShapeError, UnfoldError
 
 from ._legible import tab_depth
 from ._options import SHEETS, DrawingOptions
-
-#: Empty cells between packed pieces: their tabs (under half a face high) never meet.
-PIECE_GAP = 1
 
 
 class SheetFitError(UnfoldError):
@@ -196,11 +193,56 @@ def plan_sheets(corners2d: npt.NDArray[np.int64], options: DrawingOptions, *, wh
                      options.sheet_size)
 
 
+def _quarter_turns(c: npt.NDArray[np.int64], turns: int) -> npt.NDArray[np.int64]:
+    """``c`` turned ``turns`` quarter turns counter-clockwise, moved to start at cell (0, 0)."""
+    for _ in range(turns % 4):
+        c = np.stack([-c[..., 1], c[..., 0]], axis=-1)
+    return c - c.reshape(-1, 2).min(axis=0)
+
+
+def _mask(corners: npt.NDArray[np.int64]) -> npt.NDArray[np.bool_]:
+    """``(w, h)`` cells covered by the faces at ``corners`` (n, 4, 2), which start at cell (0, 0)."""
+    cells = corners.min(axis=1)
+    w, h = corners.reshape(-1, 2).max(axis=0)
+    m = np.zeros((int(w), int(h)), dtype=bool)
+    m[cells[:, 0], cells[:, 1]] = True
+    return m
+
+
+def _grown(mask: npt.NDArray[np.bool_]) -> npt.NDArray[np.bool_]:
+    """``mask`` and the cells beside it across an edge: where no face of another piece may lie."""
+    g = mask.copy()
+    g[1:] |= mask[:-1]
+    g[:-1] |= mask[1:]
+    g[:, 1:] |= mask[:, :-1]
+    g[:, :-1] |= mask[:, 1:]
+    return g
+
+
+def _free_offsets(blocked: npt.NDArray[np.bool_], mask: npt.NDArray[np.bool_]) -> npt.NDArray[np.int64]:
+    """``(k, 2)`` offsets at which ``mask`` meets no blocked cell of a sheet, bottom row first."""
+    from numpy.lib.stride_tricks import sliding_window_view
+
+    w, h = mask.shape
+    if w > blocked.shape[0] or h > blocked.shape[1]:
+        return np.zeros((0, 2), dtype=np.int64)
+    windows = sliding_window_view(blocked, (w, h))
+    hits = np.einsum("xyij,ij->xy", windows.astype(np.int32), mask.astype(np.int32))
+    ox, oy = np.nonzero(hits == 0)
+    order = np.lexsort((ox, oy))
+    return np.stack([ox[order], oy[order]], axis=1).astype(np.int64)
+
+
 def pack_pieces(pieces: list[npt.NDArray[np.int64]], options: DrawingOptions) -> tuple[SheetPlan, list[npt.NDArray[np.int64]]]:
     """Pack several pieces (their ``(n_i, 4, 2)`` corners in cells) on as few sheets as possible.
 
-    Bounding boxes, a quarter turn allowed, go into sheets of :func:`sheet_cells`
-    with :data:`PIECE_GAP` empty cells between pieces (rectpack, largest first).
+    The sheet is a raster of face cells (:func:`sheet_cells`, a tab's depth
+    kept free all round).  The pieces go largest first, each in the first sheet
+    that takes it, turned by the quarter turn and moved to the spot that keeps
+    the sheet's filled rows lowest (then leftmost).  A piece's faces never lie
+    on or beside (across an edge) a cell of another piece: every cell beside a
+    piece stays free paper for its tabs, which go up to four to a cell, one
+    from each side, without touching.
 
     Returns
     -------
@@ -214,36 +256,54 @@ def pack_pieces(pieces: list[npt.NDArray[np.int64]], options: DrawingOptions) ->
     SheetFitError
         When a piece alone does not fit a sheet.
     """
-    import rectpack
-
     extents = [extent_of(c) for c in pieces]
     pitch = auto_face_size(max(extents, key=lambda e: e[0] * e[1]), options)
     cw, ch = sheet_cells(options, pitch)
     for e in extents:
         if fits(e, options, pitch) is None:
             raise fit_error(e, options, pitch, what="a piece")
-    packer = rectpack.newPacker(mode=rectpack.PackingMode.Offline, bin_algo=rectpack.PackingBin.BFF,
-                                pack_algo=rectpack.MaxRectsBssf, sort_algo=rectpack.SORT_AREA, rotation=True)
-    for i, (ex, ey) in enumerate(extents):
-        packer.add_rect(ex + PIECE_GAP, ey + PIECE_GAP, rid=i)
-    packer.add_bin(cw + PIECE_GAP, ch + PIECE_GAP, count=len(pieces))
-    packer.pack()
-    where = {rid: (b, x, y, w, h) for b, x, y, w, h, rid in packer.rect_list()}
-    # Sheets renumbered in order of first use; sheet s holds columns from s * stride on.
-    used = sorted({b for b, *_ in where.values()})
-    stride = cw + 2 * PIECE_GAP + 1
-    placed, sheets = [], []
-    for i, c in enumerate(pieces):
-        b, x, y, w, _ = where[i]
-        s = used.index(b)
-        turned = _turned(c, (w - PIECE_GAP) != extents[i][0] or (extents[i][0] == extents[i][1] and False))
-        placed.append(turned + (s * stride + x, y))
-        sheets.append(np.full(c.shape[0], s, dtype=np.int64))
+    blocked: list[npt.NDArray[np.bool_]] = []
+    where: dict[int, tuple[int, npt.NDArray[np.int64]]] = {}
+    order = sorted(range(len(pieces)), key=lambda i: (-pieces[i].shape[0], i))
+    for i in order:
+        base = pieces[i] - pieces[i].reshape(-1, 2).min(axis=0)
+        turns = [_quarter_turns(base, t) for t in range(4)]
+        masks = [_mask(c) for c in turns]
+        spot = None
+        for s in range(len(blocked) + 1):
+            if s == len(blocked):
+                blocked.append(np.zeros((cw, ch), dtype=bool))
+            best = None
+            for t, m in enumerate(masks):
+                offsets = _free_offsets(blocked[s], m)
+                if offsets.shape[0] == 0:
+                    continue
+                tops = offsets[:, 1] + m.shape[1]
+                j = int(np.lexsort((offsets[:, 0] + m.shape[0], tops))[0])
+                key = (int(tops[j]), int(offsets[j, 0] + m.shape[0]), t)
+                if best is None or key < best[0]:
+                    best = (key, t, offsets[j])
+            if best is not None:
+                spot = (s, best[1], best[2])
+                break
+        assert spot is not None  # a piece that fits the sheet fits an empty one
+        s, t, (ox, oy) = spot
+        m = masks[t]
+        grown = _grown(np.pad(m, 1))
+        x0c, y0c = int(ox) - 1, int(oy) - 1
+        gx0, gy0 = max(x0c, 0), max(y0c, 0)
+        gx1, gy1 = min(x0c + grown.shape[0], cw), min(y0c + grown.shape[1], ch)
+        blocked[s][gx0:gx1, gy0:gy1] |= grown[gx0 - x0c:gx1 - x0c, gy0 - y0c:gy1 - y0c]
+        where[i] = (s, turns[t] + (int(ox), int(oy)))
+    # Sheet s holds columns from s * stride on, so no two sheets share a cell.
+    stride = cw + 2
+    placed = [where[i][1] + (where[i][0] * stride, 0) for i in range(len(pieces))]
+    sheets = [np.full(c.shape[0], where[i][0], dtype=np.int64) for i, c in enumerate(pieces)]
     x0, y0, x1, y1 = drawable_area(options)
     pad = tab_depth(options, pitch)
     left = x0 + pad + (x1 - x0 - 2 * pad - cw * pitch) / 2
     bottom = y0 + pad + (y1 - y0 - 2 * pad - ch * pitch) / 2
-    origin = np.array([[left - s * stride * pitch, bottom] for s in range(len(used))], dtype=np.float64)
+    origin = np.array([[left - s * stride * pitch, bottom] for s in range(len(blocked))], dtype=np.float64)
     plan = SheetPlan(pitch, False, np.concatenate(placed), np.concatenate(sheets), origin, (x0, y0, x1, y1),
                      options.sheet_size)
     return plan, placed

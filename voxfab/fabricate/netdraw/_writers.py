@@ -24,4 +24,6 @@ def write(drawing: Drawing, path: Path, options: DrawingOptions) -> list[str]:
     """
     opts = WriteOptions(styles=options.styles, lines=Lines(options.svg_lines), dxf_version=options.dxf_version,
                         legend=Legend(y=float(options.margin) + 1.0), creator="voxfab net")
-    return write_drawing(drawing.document(), path, opts)
+    # A printed net of several pieces opens with its assembly page; laser files hold sheets only.
+    assembly = path.suffix.lower() == ".pdf"
+    return write_drawing(drawing.document(assembly=assembly), path, opts)

@@ -1,0 +1,92 @@
+"""Pieces packed on sheets, checked from the written files only: JSON pieces, DXF sheets, the PDF."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from voxfab.fabricate.netdraw import DrawingOptions, NetOptions, fabricate_net
+from voxfab.shape import VoxelShape, examples, surface_graph
+from voxfab.unfold import Net, validate
+
+
+def _queen() -> np.ndarray:
+    from voxfab.recipe import load_recipe
+    from voxfab.recipe._build import make_shape
+
+    return make_shape(load_recipe(Path(__file__).parents[3] / "recipes/chess/queen.toml")).grid
+
+
+def _rings(path: Path) -> list[np.ndarray]:
+    import ezdxf
+
+    out = []
+    for e in ezdxf.readfile(path).modelspace():
+        if e.dxf.layer == "CUT" and e.dxftype() in ("POLYLINE", "LWPOLYLINE") and e.is_closed:
+            pts = [tuple(v.dxf.location)[:2] for v in e.vertices] if e.dxftype() == "POLYLINE" else \
+                [tuple(p)[:2] for p in e.get_points()]
+            out.append(np.array(pts))
+    return out
+
+
+CASES = [
+    ("ball r=6", lambda: examples.ball(6), 10.0, "A4"),
+    ("ball r=6 on the mat", lambda: examples.ball(6), 12.0, "mat12"),
+    ("queen", _queen, 8.6, "mat12"),
+]
+
+
+@pytest.mark.parametrize(("name", "make", "face", "sheet"), CASES, ids=[c[0] for c in CASES])
+def test_pieces_on_sheets_read_back_from_the_files(tmp_path: Path, name, make, face, sheet) -> None:
+    import shapely
+
+    grid = make()
+    drawing = DrawingOptions(pitch=face, sheet=sheet, label_height=2.0)
+    made = fabricate_net(VoxelShape(grid), NetOptions(face_size=face, pieces="auto", fill=True,
+                                                        formats=("dxf", "pdf")),
+                         drawing, tmp_path, name=name, seed=1)
+    pieces = [Net.from_json(p.read_text()) for p in sorted(tmp_path.glob("net.piece-*.json"))]
+    assert len(pieces) > 1, "the surface is larger than the sheet"
+    sg = surface_graph(grid)
+    # Every face of the surface exactly once across the pieces, and the pieces refold to it.
+    keys = [(tuple(v), tuple(n)) for p in pieces for v, n in zip(p.voxel.tolist(), p.normal.tolist())]
+    assert len(keys) == len(set(keys)) == sg.face_count
+    assert validate(grid, pieces).ok
+    # Each sheet: one closed outline per piece on it, none meeting another, all inside the margin.
+    sheets = sorted(tmp_path.glob("net.sheet-*.dxf"))
+    assert len(sheets) == made.report["sheets"]
+    w, h = drawing.sheet_size
+    m = drawing.margin
+    outer = 0
+    for path in sheets:
+        polys = [shapely.Polygon(r) for r in _rings(path)]
+        shells = [p for p in polys if not any(q.contains(p) for q in polys if q is not p)]
+        outer += len(shells)
+        for i, a in enumerate(shells):
+            x0, y0, x1, y1 = a.bounds
+            assert x0 >= m - 1e-6 and y0 >= m - 1e-6 and x1 <= w - m + 1e-6 and y1 <= h - m + 1e-6
+            for b in shells[i + 1:]:
+                assert a.intersection(b).area < 1e-6
+    assert outer == len(pieces)
+    # Seams marked for tape instead of a tab: a few at most (the goal is none).
+    marked = [int(line.split()[0]) for line in made.warnings if "without room for a tab" in line]
+    assert sum(marked) <= 0.01 * sg.face_count
+    # The PDF: an assembly page, then the sheets.
+    assert (tmp_path / "net.pdf").read_bytes().count(b"/Type /Page ") == len(sheets) + 1
+
+
+def test_quarter_turns_pack_two_pieces_on_one_sheet() -> None:
+    from voxfab.fabricate.netdraw._sheets import pack_pieces
+
+    # Two L-shaped strips of 6 x 2 cells on a sheet 9 cells wide: only turned do they share it.
+    strip = np.array([[[x, y], [x + 1, y], [x + 1, y + 1], [x, y + 1]] for x in range(2) for y in range(6)])
+    opts = DrawingOptions(pitch=20.0, sheet="210x170", margin=5.0)
+    plan, placed = pack_pieces([strip, strip.copy()], opts)
+    assert plan.count == 1
+    cells = [set(map(tuple, c.min(axis=1).tolist())) for c in placed]
+    assert not cells[0] & cells[1]
+    # No face of one piece beside a face of the other across an edge: the cell between keeps their tabs.
+    near = {(x + dx, y + dy) for x, y in cells[0] for dx, dy in ((1, 0), (-1, 0), (0, 1), (0, -1))}
+    assert not near & cells[1]
