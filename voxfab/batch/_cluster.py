@@ -169,6 +169,8 @@ def connect(scheduler: str | None, workers: int, dashboard: str | None, timeout:
         return Cluster(client, None, len(client.scheduler_info()["workers"]))
     # One thread per process: the builds hold the GIL (numpy, shapely, PIL) and each
     # worker gets its own memory, which the dashboard shows per worker.
+    # Only critical logs: a worker stopped by Ctrl-C or SIGTERM logs its lost heartbeat as an
+    # error with a traceback, which is no news to the user who stopped it.
     cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
-                           dashboard_address=dashboard, silence_logs=40)
+                           dashboard_address=dashboard, silence_logs=50)
     return Cluster(Client(cluster, timeout=timeout), cluster, workers)
