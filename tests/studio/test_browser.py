@@ -37,6 +37,7 @@ def wait(driver, predicate, timeout=30.0, what="condition"):
 def open_page(driver, server):
     driver.get(server["url"] + "/")
     wait(driver, lambda d: d.find_element("id", "volume").get_attribute("data-volume"), what="first preview")
+    wait(driver, lambda d: d.find_element("id", "make-buttons").get_attribute("data-ready"), what="the Make buttons")
 
 
 def tab(driver, name):

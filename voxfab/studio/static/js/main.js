@@ -382,7 +382,23 @@ async function make(artefact) {
     say(`${artefact}: ${s.files.map((f) => f.name).join(', ')} in ${s.seconds.toFixed(1)} s`, true);
   } catch (e) { say(e.message); } finally { progressDone(); }
 }
-$$('[data-make]').forEach((b) => b.addEventListener('click', () => make(b.dataset.make)));
+// The Make buttons are the studio downloads of the table of outputs (the server's /api/info).
+const MAKE_LABELS = {'plates.zip': 'Plates', 'animation.gif': 'Tube animation GIF'};
+function makeLabel(name) {
+  const [stem, ext] = name.split('.');
+  return MAKE_LABELS[name] || `${stem[0].toUpperCase()}${stem.slice(1)} ${ext.toUpperCase()}`;
+}
+async function makeButtons() {
+  const info = await get('/api/info');
+  const box = $('#make-buttons');
+  for (const name of info.artefacts) {
+    const b = Object.assign(document.createElement('button'), {type: 'button', textContent: makeLabel(name)});
+    b.dataset.make = name;
+    b.addEventListener('click', () => make(name));
+    box.append(b);
+  }
+  box.dataset.ready = 'true';
+}
 $('#show-shape').addEventListener('click', () => viewer.setGrid(state.shape));
 
 // --- tabs ---------------------------------------------------------------------------------------
@@ -399,4 +415,4 @@ $$('#tabs button').forEach((b) => b.addEventListener('click', () => {
 
 recipeNote(); netNote();
 schedule(true);
-document.body.dataset.ready = 'true';
+makeButtons().then(() => { document.body.dataset.ready = 'true'; }, (e) => say(e.message));
