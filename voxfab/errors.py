@@ -15,6 +15,7 @@ __all__ = [
     "UnknownFormatError",
     "FormatError",
     "UnfoldError",
+    "NoNetExistsError",
     "RecipeError",
     "RepositoryError",
     "MissingDependencyError",
@@ -87,6 +88,24 @@ class UnfoldError(VoxfabError, RuntimeError):
     """Valid input for which no net was found (or none can exist)."""
 
 
+class NoNetExistsError(UnfoldError):
+    """A complete search proved that no one-piece net fits the box (not a time-out).
+
+    Attributes
+    ----------
+    box : (int, int)
+        The box in faces, ``(width, height)``.
+    """
+
+    def __init__(self, width: int, height: int) -> None:
+        super().__init__(f"no one-piece net of this shape fits {width}x{height} faces (proved)")
+        self.box = (width, height)
+
+    def __reduce__(self) -> tuple:
+        # Rebuilt from the box (batch workers pickle errors), not from the message.
+        return (type(self), self.box)
+
+
 class RecipeError(VoxfabError, ValueError):
     """A recipe with an unknown key, a wrong type or a bad value."""
 
@@ -135,4 +154,5 @@ EXIT_CODES: dict[type[VoxfabError], int] = {
     MissingDependencyError: 9,
     FabricationError: 10,
     LimitError: 12,
+    NoNetExistsError: 13,
 }

@@ -71,6 +71,7 @@ class Strategy(enum.StrEnum):
 
     DEFAULT = "default"
     PAPER = "paper"
+    EXACT = "exact"
 
 
 class Pieces(enum.StrEnum):
@@ -430,6 +431,7 @@ def unfold(
     pieces: str | Pieces = "one",
     compact: bool = False,
     constraints: EdgeConstraints | None = None,
+    min_box: bool = False,
 ) -> Net | list[Net]:
     """Find a net of a voxel shape: its surface cut along voxel edges and laid flat.
 
@@ -440,11 +442,15 @@ def unfold(
     rng : int or numpy Generator
         Seed.  The same int seed gives the identical net (unless the search runs
         into ``timeout``); different seeds give different nets.
-    strategy : {"default", "paper"}
+    strategy : {"default", "paper", "exact"}
         ``"default"``: ruin-and-recreate growth (a dead end removes the subtree on
         the blocking cell and lays the blocked face there), then tab-room
         repair.  ``"paper"``: the published random growth with leaf swaps,
-        subtree drops and restarts, for comparison.
+        subtree drops and restarts, for comparison.  ``"exact"``: a complete
+        search (CP-SAT, needs the ``ortools`` package) inside ``fit``, or for the
+        least-area box with ``min_box``: it finds a net or proves that none
+        exists (:class:`~voxfab.errors.NoNetExistsError`); the same net on every
+        run, whatever ``rng``, and no tab-room repair.
     timeout : float
         Budget in seconds for the whole call.
     fit : (int, int) or None
@@ -474,6 +480,9 @@ def unfold(
     constraints : EdgeConstraints, optional
         Edges to cut (never folds) and edges to keep (always folds: the faces
         they join move as one rigid group during the search).
+    min_box : bool
+        Exact strategy only, instead of ``fit``: the net whose bounding box has
+        the least area, every smaller area proved to have none.
 
     Returns
     -------
@@ -482,6 +491,8 @@ def unfold(
 
     Raises
     ------
+    NoNetExistsError
+        Exact strategy: no one-piece net fits ``fit`` (proved).
     NoFitError
         No one-piece net fits ``fit`` within the budget; ``best_extent`` gives
         the most compact layout found.
@@ -495,6 +506,7 @@ def unfold(
     strat = check_choice(strategy, Strategy, name="strategy")
     mode = check_choice(pieces, Pieces, name="pieces")
     fit = _check_fit(fit)
+    _check_exact(strat, mode, fit, compact, min_box)
     if not float(timeout) > 0:
         raise InvalidShapeError(f"timeout: expected a positive number of seconds, got {timeout!r}")
     seed = _seed_of(rng)
@@ -508,6 +520,11 @@ def unfold(
     _check_groups_fit(resolved, fit)
     job = _Job(g, sg, seed, strat, fit, tab_aware, compact, deadline, float(timeout), constraints)
     parts = _surface_parts(sg)
+    if strat is Strategy.EXACT:
+        if len(parts) > 1:
+            _refuse_parts(g, len(parts))
+        check_one_piece(sg, resolved)
+        return dataclasses.replace(_exact_piece(job, parts[0], resolved, min_box), filled=fill)
     if mode is Pieces.ONE:
         if len(parts) > 1:
             _refuse_parts(g, len(parts))
@@ -520,6 +537,37 @@ def unfold(
                                        deadline=time.monotonic() + remaining / (len(parts) - t))
         nets.extend(_pieces(part_job, part))
     return [dataclasses.replace(n, filled=fill) for n in nets]
+
+
+def _check_exact(strat: Strategy, mode: Pieces, fit: tuple[int, int] | None, compact: bool,
+                 min_box: bool) -> None:
+    """Refuse options the exact strategy has no meaning for, before any work."""
+    if strat is not Strategy.EXACT:
+        if min_box:
+            raise InvalidShapeError("min_box (CLI --min-box) needs strategy 'exact'")
+        return
+    if mode is not Pieces.ONE:
+        raise InvalidShapeError("strategy 'exact' finds one-piece nets only: pieces must be 'one'")
+    if compact:
+        raise InvalidShapeError("strategy 'exact': use min_box (CLI --min-box) for the most compact net, "
+                                "not compact")
+    if (fit is None) == (not min_box):
+        raise InvalidShapeError("strategy 'exact' needs a box: fit=(W, H) (CLI --box WxH) or min_box "
+                                "(CLI --min-box), one of the two")
+
+
+def _exact_piece(job: _Job, faces: npt.NDArray[np.int64], resolved: Resolved | None, min_box: bool) -> Net:
+    """The exact strategy's net of one surface part (no seed: recorded as 0)."""
+    from ._exact import exact_layout, min_box_layout
+
+    with meter(1, desc="net: exact search") as bar:
+        if min_box:
+            lay = min_box_layout(job.sg, faces, resolved, job.deadline)
+        else:
+            lay = exact_layout(job.sg, faces, resolved, job.fit, job.deadline)
+        bar.update()
+    net = build_net(job.sg, faces, lay.cell, lay.rot, lay.parent, seed=0, strategy=Strategy.EXACT.value)
+    return dataclasses.replace(net, seams_without_tab_room=count_without_tab_room(job.grid, net))
 
 
 def _check_groups_fit(resolved: Resolved | None, fit: tuple[int, int] | None) -> None:
@@ -1016,6 +1064,8 @@ def unfold_many(
         raise InvalidShapeError(f"budget: expected a positive number of seconds, got {budget!r}")
     if options.get("pieces", "one") != "one":
         raise InvalidShapeError("unfold_many: pieces must be 'one'")
+    if str(options.get("strategy", "default")) == Strategy.EXACT.value:
+        raise InvalidShapeError("strategy 'exact' gives one net, the same every run: ask for one net")
     gen = np.random.default_rng(_seed_of(rng))
     end = time.monotonic() + float(budget)
     timeout = float(options.pop("timeout", 60.0))  # type: ignore[arg-type]
