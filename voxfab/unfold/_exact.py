@@ -23,7 +23,7 @@ import numpy.typing as npt
 from voxfab.errors import MissingDependencyError, NoNetExistsError, UnfoldError
 from voxfab.shape import SurfaceGraph
 
-from ._constraints import CUT, KEEP, Resolved, _SIDE_STEP
+from ._constraints import _SIDE_STEP, CUT, KEEP, Resolved
 
 __all__ = ["ExactLayout", "exact_layout", "min_box_layout"]
 
