@@ -15,6 +15,7 @@ __all__ = [
     "UnknownFormatError",
     "FormatError",
     "UnfoldError",
+    "NoNetError",
     "NoNetExistsError",
     "RecipeError",
     "RepositoryError",
@@ -106,6 +107,10 @@ class NoNetExistsError(UnfoldError):
         return (type(self), self.box)
 
 
+class NoNetError(UnfoldError):
+    """Proved: no net exists under the constraints given (a result, not a failure to find one)."""
+
+
 class RecipeError(VoxfabError, ValueError):
     """A recipe with an unknown key, a wrong type or a bad value."""
 
@@ -154,5 +159,6 @@ EXIT_CODES: dict[type[VoxfabError], int] = {
     MissingDependencyError: 9,
     FabricationError: 10,
     LimitError: 12,
+    NoNetError: 13,
     NoNetExistsError: 13,
 }

@@ -482,7 +482,8 @@ def unfold(
         they join move as one rigid group during the search).
     min_box : bool
         Exact strategy only, instead of ``fit``: the net whose bounding box has
-        the least area, every smaller area proved to have none.
+        the least area, every smaller area proved to have none (``compact``
+        without ``fit`` means the same to the exact strategy).
 
     Returns
     -------
@@ -506,7 +507,7 @@ def unfold(
     strat = check_choice(strategy, Strategy, name="strategy")
     mode = check_choice(pieces, Pieces, name="pieces")
     fit = _check_fit(fit)
-    _check_exact(strat, mode, fit, compact, min_box)
+    min_box = _check_exact(strat, mode, fit, compact, min_box)
     if not float(timeout) > 0:
         raise InvalidShapeError(f"timeout: expected a positive number of seconds, got {timeout!r}")
     seed = _seed_of(rng)
@@ -540,20 +541,27 @@ def unfold(
 
 
 def _check_exact(strat: Strategy, mode: Pieces, fit: tuple[int, int] | None, compact: bool,
-                 min_box: bool) -> None:
-    """Refuse options the exact strategy has no meaning for, before any work."""
+                 min_box: bool) -> bool:
+    """Refuse options the exact strategy has no meaning for, before any work; return ``min_box``.
+
+    ``compact`` without a box asks the exact strategy for the least-area box
+    (what compactness means to it), so callers that shrink a net (the sheet's
+    automatic face size) work with it unchanged.
+    """
     if strat is not Strategy.EXACT:
         if min_box:
             raise InvalidShapeError("min_box (CLI --min-box) needs strategy 'exact'")
-        return
+        return False
     if mode is not Pieces.ONE:
         raise InvalidShapeError("strategy 'exact' finds one-piece nets only: pieces must be 'one'")
-    if compact:
-        raise InvalidShapeError("strategy 'exact': use min_box (CLI --min-box) for the most compact net, "
-                                "not compact")
-    if (fit is None) == (not min_box):
+    if fit is not None and min_box:
+        raise InvalidShapeError("strategy 'exact': give a box (fit, CLI --box WxH) or min_box (CLI --min-box), "
+                                "not both")
+    min_box = min_box or (compact and fit is None)
+    if fit is None and not min_box:
         raise InvalidShapeError("strategy 'exact' needs a box: fit=(W, H) (CLI --box WxH) or min_box "
-                                "(CLI --min-box), one of the two")
+                                "(CLI --min-box)")
+    return min_box
 
 
 def _exact_piece(job: _Job, faces: npt.NDArray[np.int64], resolved: Resolved | None, min_box: bool) -> Net:
