@@ -15,7 +15,6 @@ __all__ = [
     "UnknownFormatError",
     "FormatError",
     "UnfoldError",
-    "NoNetError",
     "NoNetExistsError",
     "RecipeError",
     "RepositoryError",
@@ -107,10 +106,6 @@ class NoNetExistsError(UnfoldError):
         return (type(self), self.box)
 
 
-class NoNetError(UnfoldError):
-    """Proved: no net exists under the constraints given (a result, not a failure to find one)."""
-
-
 class RecipeError(VoxfabError, ValueError):
     """A recipe with an unknown key, a wrong type or a bad value."""
 
@@ -159,6 +154,5 @@ EXIT_CODES: dict[type[VoxfabError], int] = {
     MissingDependencyError: 9,
     FabricationError: 10,
     LimitError: 12,
-    NoNetError: 13,
     NoNetExistsError: 13,
 }

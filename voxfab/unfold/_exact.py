@@ -1,274 +1,218 @@
-"""The exact unfolder: a CP-SAT model that finds a one-piece net or proves that none exists.
+"""The exact strategy: a complete search for a one-piece net inside a box, on CP-SAT.
 
-The model (OR-Tools CP-SAT, imported only here):
+Every face gets a cell ``(x, y)`` of the ``W x H`` box and a rotation ``r``;
+every surface edge may be a fold.  The folds must form a spanning tree of the
+face graph (each face but the root has exactly one parent, and depths grow
+along the tree, so there is no cycle), a fold forces the child's cell and
+rotation from its parent's (the rule of :func:`._constraints._groups`), and no
+two faces share a cell.  The solver either finds such an assignment, which is
+a net, or proves that none exists.
 
-- every face but a fixed root picks one parent across one of its edges; a
-  depth per face, larger than its parent's, forbids cycles, so the parent
-  choices form a spanning tree of the face graph (the folds);
-- every face gets a cell ``(x, y)`` inside the box and one of 4 rotations; a
-  fold puts the child on the cell across the parent's edge, turned so that the
-  shared edge coincides (the rule of :func:`voxfab.unfold._layout.build_net`);
-- no two faces share a cell (all different);
-- kept edges must meet in the plane, cut edges must not be folds and must not
-  close up in the plane;
-- a zipper: every vertex has at most two cut edges.  The cut edges of a net of
-  a closed surface are connected and reach every vertex, so this makes them one
-  path (and there is none when the surface has a handle).
-
-The solver runs with one worker and a fixed seed, so the same input gives the
-same net on every run.  INFEASIBLE is a proof that no net exists; a time-out
-is undecided, never reported as "none".
+The model is built in a fixed order and solved by one worker with a fixed
+seed, so the same shape and box give the same net on every run.
 """
 
 from __future__ import annotations
 
-import dataclasses
 import time
+from typing import NamedTuple
 
 import numpy as np
 import numpy.typing as npt
 
-from voxfab.errors import NoNetError, UnfoldError
+from voxfab.errors import MissingDependencyError, NoNetExistsError, UnfoldError
 from voxfab.shape import SurfaceGraph
 
-from ._constraints import CUT, KEEP, Resolved
-from ._layout import SIDE_STEP, build_net
-from ._net import Net
+from ._constraints import _SIDE_STEP, CUT, KEEP, Resolved
 
-__all__ = ["ExactOutcome", "decide", "smallest_box", "cut_edges_form_path"]
+__all__ = ["ExactLayout", "exact_layout", "min_box_layout"]
 
-#: Statuses of :class:`ExactOutcome`.
-FOUND, NONE, UNDECIDED = "found", "none", "undecided"
+#: The solver's seed: fixed, so that a run never depends on anything but the input.
+_SOLVER_SEED = 0
 
 
-@dataclasses.dataclass(frozen=True)
-class ExactOutcome:
-    """What the exact search decided for one box.
+class ExactLayout(NamedTuple):
+    """A net's layout over a surface's faces: cell (x, y), rotation and fold-tree parent (-1 root)."""
 
-    ``status`` is ``"found"`` (``net`` holds the net), ``"none"`` (proved: no
-    net exists under the constraints) or ``"undecided"`` (the time ran out).
+    cell: npt.NDArray[np.int64]
+    rot: npt.NDArray[np.int64]
+    parent: npt.NDArray[np.int64]
+    box: tuple[int, int]
+
+
+class Undecided(UnfoldError):
+    """The budget ran out before the solver found a net or proved that none exists."""
+
+
+def _cp_model():  # noqa: ANN202 - the ortools module
+    try:
+        from ortools.sat.python import cp_model
+    except ImportError:
+        raise MissingDependencyError("ortools", "the exact unfolding strategy") from None
+    return cp_model
+
+
+def _arcs(sg: SurfaceGraph, faces: npt.NDArray[np.int64]) -> list[tuple[int, int, int, int]]:
+    """Every half-edge ``(a, k, b, kb)`` between two faces of ``faces``: face a's edge k is face b's edge kb."""
+    inside = np.zeros(sg.face_count, dtype=bool)
+    inside[faces] = True
+    out = []
+    for a in faces.tolist():
+        for k in range(4):
+            b = int(sg.neighbor[a, k])
+            if b >= 0 and inside[b]:
+                out.append((a, k, b, int(sg.neighbor_edge[a, k])))
+    return out
+
+
+def exact_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], resolved: Resolved | None,
+                 box: tuple[int, int], deadline: float) -> ExactLayout:
+    """Lay ``faces`` out as one net inside ``box``, or prove that no such net exists.
+
+    Parameters
+    ----------
+    sg : SurfaceGraph
+    faces : (P,) int ndarray
+        The faces of one connected surface part, increasing.
+    resolved : Resolved or None
+        Edge constraints: cut edges are never folds (nor meet in the plane, which
+        would make them folds), kept edges always are.
+    box : (int, int)
+        ``W x H`` cells.  A net turned by a quarter turn is still a net, so this
+        also decides the ``H x W`` box.
+    deadline : float
+        ``time.monotonic()`` at which the solver gives up.
+
+    Raises
+    ------
+    NoNetExistsError
+        The solver proved that no one-piece net fits the box.
+    Undecided
+        The deadline came first.
     """
-
-    status: str
-    net: Net | None
-    box: tuple[int, int] | None
-    seconds: float
-
-
-def _vertex_edges(sg: SurfaceGraph) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64], npt.NDArray[np.int64]]:
-    """Each undirected surface edge once: its half (face, edge), and its two vertex ids."""
-    f = sg.face_count
-    a = np.repeat(np.arange(f), 4)
-    k = np.tile(np.arange(4), f)
-    b = sg.neighbor[a, k]
-    kb = sg.neighbor_edge[a, k]
-    first = (a < b) | ((a == b) & (k < kb))
-    a, k = a[first], k[first]
-    va = sg.vertex[a, k]
-    vb = sg.vertex[a, (k + 1) % 4]
-    return np.stack([a, k], axis=1), va, vb
-
-
-def cut_edges_form_path(sg: SurfaceGraph, net: Net) -> bool:
-    """Whether the cut edges of a one-piece net (surface edges that are not folds) form one simple path."""
-    halves, va, vb = _vertex_edges(sg)
-    folded = {(min(i, j), max(i, j)) for i, j in net.folds.tolist()}
-    cut = [t for t, (a, k) in enumerate(halves.tolist())
-           if (min(a, int(sg.neighbor[a, k])), max(a, int(sg.neighbor[a, k]))) not in folded]
-    if not cut:
-        return False
-    u, v = va[cut], vb[cut]
-    if (u == v).any():
-        return False
-    nodes, inv = np.unique(np.concatenate([u, v]), return_inverse=True)
-    deg = np.bincount(inv, minlength=nodes.size)
-    if deg.max() > 2 or len(cut) != nodes.size - 1:
-        return False
-    # A forest with one edge fewer than its vertices is one tree: check it is connected.
-    label = np.arange(nodes.size)
-    iu, iv = inv[: len(cut)], inv[len(cut):]
-    for _ in range(nodes.size):
-        low = np.minimum(label[iu], label[iv])
-        new = label.copy()
-        np.minimum.at(new, iu, low)
-        np.minimum.at(new, iv, low)
-        if np.array_equal(new, label):
-            break
-        label = new
-    return bool((label == label[0]).all())
-
-
-def _solve(sg: SurfaceGraph, box: tuple[int, int], resolved: Resolved | None, zipper: bool,
-           deadline: float, banned: list[npt.NDArray[np.int64]]) -> tuple[str, dict | None]:
-    """One CP-SAT run for one box; the layout of the net found, if any.
-
-    ``banned`` lists fold trees ruled out, as the parent edge of each face (-1 for the root).
-    """
-    from ortools.sat.python import cp_model
-
-    f = sg.face_count
     w, h = box
-    nb, ne = sg.neighbor, sg.neighbor_edge
+    n = int(faces.size)
+    if w * h < n:  # no model needed: the faces outnumber the cells
+        raise NoNetExistsError(w, h)
+    cp_model = _cp_model()
     m = cp_model.CpModel()
-    x = [m.NewIntVar(0, w - 1, f"x{i}") for i in range(f)]
-    y = [m.NewIntVar(0, h - 1, f"y{i}") for i in range(f)]
-    rot = [[m.NewBoolVar(f"r{i}_{r}") for r in range(4)] for i in range(f)]
-    for i in range(f):
+    local = {f: i for i, f in enumerate(faces.tolist())}
+    x = [m.NewIntVar(0, w - 1, f"x{i}") for i in range(n)]
+    y = [m.NewIntVar(0, h - 1, f"y{i}") for i in range(n)]
+    rot = [[m.NewBoolVar(f"r{i}_{r}") for r in range(4)] for i in range(n)]
+    for i in range(n):
         m.AddExactlyOne(rot[i])
-    depth = [m.NewIntVar(0, f - 1, f"d{i}") for i in range(f)]
-    # Rotating a whole net keeps it a net: the root's turn is fixed up to the
-    # box's own symmetries (a half turn keeps W x H, a quarter turn only a square).
-    m.Add(depth[0] == 0)
-    m.AddBoolOr([rot[0][0]] if w == h else [rot[0][0], rot[0][1]])
-    edge = resolved.edge if resolved is not None else np.zeros((f, 4), dtype=np.int8)
-    parent = [[None] * 4 for _ in range(f)]
-    for i in range(1, f):
-        lits = []
-        for k in range(4):
-            p = int(nb[i, k])
-            if p == i or edge[i, k] == CUT:
-                continue
-            q = m.NewBoolVar(f"p{i}_{k}")
-            parent[i][k] = q
-            lits.append(q)
-            m.Add(depth[i] >= depth[p] + 1).OnlyEnforceIf(q)
-        m.AddExactlyOne(lits)
+    cell = [m.NewIntVar(0, w * h - 1, f"c{i}") for i in range(n)]
+    for i in range(n):
+        m.Add(cell[i] == x[i] * h + y[i])
+    m.AddAllDifferent(cell)
 
-    def meets(child: int, k: int, lit_list: list) -> None:
-        """Under ``lit_list``, face ``child`` lies across its edge ``k`` from its neighbour, edge to edge."""
-        p, kk = int(nb[child, k]), int(ne[child, k])
-        turn = (kk + 2 - k) % 4
+    # Symmetry: turning a whole net by a half turn (a quarter turn in a square
+    # box) keeps it in the box, so the root's rotation may be pinned.
+    root = 0
+    for r in (range(1, 4) if w == h else range(2, 4)):
+        m.Add(rot[root][r] == 0)
+
+    arcs = _arcs(sg, faces)
+    par = {}  # (a, k) -> literal "a is the parent of its neighbour across edge k"
+    depth = [m.NewIntVar(0, n - 1, f"d{i}") for i in range(n)]
+    m.Add(depth[root] == 0)
+    incoming: list[list] = [[] for _ in range(n)]
+    edge = resolved.edge if resolved is not None else None
+    for a, k, b, kb in arcs:
+        ia, ib = local[a], local[b]
+        p = m.NewBoolVar(f"p{ia}_{k}")
+        par[(a, k)] = p
+        incoming[ib].append(p)
+        if edge is not None and edge[a, k] == CUT:
+            m.Add(p == 0)
+        m.Add(depth[ib] == depth[ia] + 1).OnlyEnforceIf(p)
         for r in range(4):
-            s = (kk + r) % 4
-            on = [*lit_list, rot[p][r]]
-            m.Add(x[child] == x[p] + int(SIDE_STEP[s, 0])).OnlyEnforceIf(on)
-            m.Add(y[child] == y[p] + int(SIDE_STEP[s, 1])).OnlyEnforceIf(on)
-            m.AddImplication(rot[p][r], rot[child][(r + turn) % 4]).OnlyEnforceIf(lit_list)
+            s = (k + r) % 4  # the side of a's cell that edge k lies on
+            dx, dy = _SIDE_STEP[s]
+            m.Add(x[ib] == x[ia] + dx).OnlyEnforceIf([p, rot[ia][r]])
+            m.Add(y[ib] == y[ia] + dy).OnlyEnforceIf([p, rot[ia][r]])
+            m.AddBoolOr([p.Not(), rot[ia][r].Not(), rot[ib][(s + 2 - kb) % 4]])
+    for i in range(n):
+        if i == root:
+            m.Add(sum(incoming[i]) == 0)
+        else:
+            m.AddExactlyOne(incoming[i])
+    for a, k, b, kb in arcs:
+        if a > b:
+            continue
+        fold = [par[(a, k)], par[(b, kb)]]
+        if edge is not None and edge[a, k] == KEEP:
+            m.AddBoolOr(fold)
+        elif edge is not None and edge[a, k] == CUT:
+            _forbid_meeting(m, x, y, rot, local[a], k, local[b], kb)
+    m.Add(sum(par.values()) == n - 1)  # implied by the tree; it helps propagation
 
-    for i in range(1, f):
-        for k in range(4):
-            if parent[i][k] is not None:
-                meets(i, k, [parent[i][k]])
-    halves, va, vb = _vertex_edges(sg)
-    cut_lit = []
-    for a, k in halves.tolist():
-        b, kb = int(nb[a, k]), int(ne[a, k])
-        folds = [lit for lit in (parent[a][k], parent[b][kb]) if lit is not None]
-        if edge[a, k] == KEEP:
-            meets(b, kb, [])
-        elif edge[a, k] == CUT:
-            _never_meets(m, x, y, rot, a, k, b, kb)
-        cut = m.NewBoolVar(f"c{a}_{k}")
-        m.Add(sum(folds) + cut == 1)
-        cut_lit.append(cut)
-    if zipper:
-        for v in np.unique(np.concatenate([va, vb])).tolist():
-            around = [c for c, p, q in zip(cut_lit, va.tolist(), vb.tolist()) if p == v or q == v]
-            twice = [c for c, p, q in zip(cut_lit, va.tolist(), vb.tolist()) if p == v and q == v]
-            m.Add(sum(around) + sum(twice) <= 2)
-    m.AddAllDifferent([x[i] * h + y[i] for i in range(f)])
-    for par in banned:
-        m.AddBoolOr([parent[i][k].Not() for i in range(1, f) for k in range(4)
-                     if k == int(par[i])])
     solver = cp_model.CpSolver()
-    solver.parameters.num_workers = 1
-    solver.parameters.random_seed = 0
-    solver.parameters.max_time_in_seconds = max(deadline - time.monotonic(), 0.01)
+    prm = solver.parameters
+    prm.num_search_workers = 1  # one worker, one seed: the same search every run
+    prm.random_seed = _SOLVER_SEED
+    prm.max_time_in_seconds = max(deadline - time.monotonic(), 0.01)
     status = solver.Solve(m)
     if status == cp_model.INFEASIBLE:
-        return NONE, None
+        raise NoNetExistsError(w, h)
     if status not in (cp_model.OPTIMAL, cp_model.FEASIBLE):
-        return UNDECIDED, None
-    cell = np.array([[solver.Value(x[i]), solver.Value(y[i])] for i in range(f)], dtype=np.int64)
-    r = np.array([next(t for t in range(4) if solver.Value(rot[i][t])) for i in range(f)], dtype=np.int64)
-    par = np.full(f, -1, dtype=np.int64)
-    via = np.full(f, -1, dtype=np.int64)
-    for i in range(1, f):
-        for k in range(4):
-            if parent[i][k] is not None and solver.Value(parent[i][k]):
-                par[i], via[i] = nb[i, k], k
-    return FOUND, {"cell": cell, "rot": r, "par": par, "via": via}
+        raise Undecided(
+            f"undecided: the exact search ran out of time before it found a one-piece net of the "
+            f"{n}-face surface that fits {w}x{h} faces or proved that none exists; raise the timeout")
+    f = sg.face_count
+    cells = np.zeros((f, 2), dtype=np.int64)
+    rots = np.zeros(f, dtype=np.int64)
+    parent = np.full(f, -1, dtype=np.int64)
+    for i, face in enumerate(faces.tolist()):
+        cells[face] = (solver.Value(x[i]), solver.Value(y[i]))
+        rots[face] = next(r for r in range(4) if solver.BooleanValue(rot[i][r]))
+    for (a, k), p in par.items():
+        if solver.BooleanValue(p):
+            parent[int(sg.neighbor[a, k])] = a
+    return ExactLayout(cells, rots, parent, (w, h))
 
 
-def _never_meets(m, x, y, rot, a: int, k: int, b: int, kb: int) -> None:  # noqa: ANN001
-    """A cut edge must not close up in the plane (a slit), or the net would fold it."""
-    turn = (k + 2 - kb) % 4
+def _forbid_meeting(m, x, y, rot, ia: int, k: int, ib: int, kb: int) -> None:  # noqa: ANN001
+    """Keep the two sides of a cut edge from meeting in the plane (the cut would be a slit, i.e. a fold)."""
     for r in range(4):
         s = (k + r) % 4
-        dx, dy = int(SIDE_STEP[s, 0]), int(SIDE_STEP[s, 1])
-        off_x, off_y = m.NewBoolVar(""), m.NewBoolVar("")
-        m.Add(x[b] != x[a] + dx).OnlyEnforceIf(off_x)
-        m.Add(y[b] != y[a] + dy).OnlyEnforceIf(off_y)
-        m.AddBoolOr([off_x, off_y, rot[a][r].Not(), rot[b][(r + turn) % 4].Not()])
+        dx, dy = _SIDE_STEP[s]
+        # Where b must not be: the cell across side s, turned so that the edge lines up.
+        ex, ey = m.NewBoolVar(""), m.NewBoolVar("")
+        m.Add(x[ib] == x[ia] + dx).OnlyEnforceIf(ex)
+        m.Add(x[ib] != x[ia] + dx).OnlyEnforceIf(ex.Not())
+        m.Add(y[ib] == y[ia] + dy).OnlyEnforceIf(ey)
+        m.Add(y[ib] != y[ia] + dy).OnlyEnforceIf(ey.Not())
+        m.AddBoolOr([rot[ia][r].Not(), ex.Not(), ey.Not(), rot[ib][(s + 2 - kb) % 4].Not()])
 
 
-def decide(sg: SurfaceGraph, box: tuple[int, int], resolved: Resolved | None, *, zipper: bool,
-           timeout: float) -> ExactOutcome:
-    """Find a net of the whole surface ``sg`` inside ``box`` (either way round), or prove there is none.
+def min_box_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], resolved: Resolved | None,
+                   deadline: float) -> ExactLayout:
+    """The net whose bounding box has the least area, that area proved minimal.
 
-    A net that fits ``W x H`` turned a quarter fits ``H x W``, so one
-    orientation is searched.  With ``zipper`` a layout whose cut edges are
-    not one path once slits close up is ruled out and the search goes on, so
-    the answer stays exact.
+    Areas are tried from the face count upwards, each as every ``w x h`` with
+    ``w <= h``: the first area that has a net is the least, since every smaller
+    one was proved to have none.
+
+    Raises
+    ------
+    Undecided
+        The deadline came before an area was decided.
     """
-    start = time.monotonic()
-    deadline = start + timeout
-    w, h = box
-    if w * h < sg.face_count:
-        return ExactOutcome(NONE, None, box, 0.0)
-    banned: list[npt.NDArray[np.int64]] = []
+    n = int(faces.size)
+    area = n
     while True:
-        status, found = _solve(sg, (w, h), resolved, zipper, deadline, banned)
-        if status != FOUND:
-            return ExactOutcome(status, None, box, time.monotonic() - start)
-        net = build_net(sg, np.arange(sg.face_count), found["cell"], found["rot"], found["par"], seed=0,
-                        strategy="exact")
-        if not zipper or cut_edges_form_path(sg, net):
-            return ExactOutcome(FOUND, net, box, time.monotonic() - start)
-        banned.append(found["via"])
-
-
-def free_box(sg: SurfaceGraph) -> tuple[int, int]:
-    """A box that holds every net of the surface: a net of F cells spans at most F x F."""
-    return sg.face_count, sg.face_count
-
-
-def boxes_by_size(faces: int, limit: int) -> list[tuple[int, int]]:
-    """Boxes ``(w, h)``, ``w <= h``, of ``faces`` to ``limit`` cells, smallest area first, then shorter longer side."""
-    out = [(w, a // w) for a in range(faces, limit + 1) for w in range(1, int(a ** 0.5) + 1) if a % w == 0]
-    return sorted(out, key=lambda b: (b[0] * b[1], b[1]))
-
-
-@dataclasses.dataclass(frozen=True)
-class SmallestBox:
-    """The smallest box holding a one-piece net, and the smaller boxes proved empty."""
-
-    net: Net
-    box: tuple[int, int]
-    proved_empty: tuple[tuple[int, int], ...]
-
-
-def smallest_box(sg: SurfaceGraph, resolved: Resolved | None, *, zipper: bool, timeout: float) -> SmallestBox:
-    """Try boxes in order of area, then longer side, until one holds a net.
-
-    Raises NoNetError when no box at all holds one (the free search is
-    infeasible), UnfoldError when the time runs out before an answer.
-    """
-    deadline = time.monotonic() + timeout
-    f = sg.face_count
-    empty: list[tuple[int, int]] = []
-    for box in boxes_by_size(f, f * f):
-        left = deadline - time.monotonic()
-        if left <= 0:
-            break
-        out = decide(sg, box, resolved, zipper=zipper, timeout=left)
-        if out.status == FOUND:
-            return SmallestBox(out.net, box, tuple(empty))
-        if out.status == UNDECIDED:
-            break
-        empty.append(box)
-        if box[0] == f:
-            raise NoNetError(f"no one-piece net of the {f}-face surface exists (proved)")
-    done = f", {len(empty)} smaller boxes proved empty" if empty else ""
-    raise UnfoldError(f"undecided: the smallest box of the {f}-face surface was not found in {timeout:g} s{done}; "
-                      "raise the timeout")
+        for w in range(1, int(area ** 0.5) + 1):
+            if area % w:
+                continue
+            try:
+                return exact_layout(sg, faces, resolved, (w, area // w), deadline)
+            except NoNetExistsError:
+                continue
+            except Undecided:
+                raise Undecided(
+                    f"undecided: the exact search ran out of time at boxes of {area} faces "
+                    f"({w}x{area // w}): no one-piece net of the {n}-face surface has a smaller "
+                    "bounding box (proved); raise the timeout") from None
+        area += 1
