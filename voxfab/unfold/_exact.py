@@ -66,7 +66,7 @@ def _arcs(sg: SurfaceGraph, faces: npt.NDArray[np.int64]) -> list[tuple[int, int
 
 
 def exact_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], resolved: Resolved | None,
-                 box: tuple[int, int], deadline: float) -> ExactLayout:
+                 box: tuple[int, int], deadline: float, zipper: bool = False) -> ExactLayout:
     """Lay ``faces`` out as one net inside ``box``, or prove that no such net exists.
 
     Parameters
@@ -82,6 +82,11 @@ def exact_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], resolved: Resol
         also decides the ``H x W`` box.
     deadline : float
         ``time.monotonic()`` at which the solver gives up.
+    zipper : bool
+        The cut edges must form one path (an unzipping).  The cut edges of a
+        net of a closed surface are connected and reach every vertex, so at
+        most two cut edges per vertex makes them one path (and rules out every
+        net of a surface with a handle, whose cut edges hold a cycle).
 
     Raises
     ------
@@ -147,6 +152,8 @@ def exact_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], resolved: Resol
         elif edge is not None and edge[a, k] == CUT:
             _forbid_meeting(m, x, y, rot, local[a], k, local[b], kb)
     m.Add(sum(par.values()) == n - 1)  # implied by the tree; it helps propagation
+    if zipper:
+        _one_cut_path(m, sg, arcs, par)
 
     solver = cp_model.CpSolver()
     prm = solver.parameters
@@ -173,6 +180,20 @@ def exact_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], resolved: Resol
     return ExactLayout(cells, rots, parent, (w, h))
 
 
+def _one_cut_path(m, sg: SurfaceGraph, arcs: list, par: dict) -> None:  # noqa: ANN001
+    """At most two cut edges at every vertex of the surface (an edge is cut when neither side is the parent)."""
+    at: dict[int, list] = {}
+    for a, k, b, kb in arcs:
+        if a > b or (a == b and k > kb):
+            continue
+        cut = m.NewBoolVar("")
+        m.Add(par[(a, k)] + par[(b, kb)] + cut == 1)
+        for v in (int(sg.vertex[a, k]), int(sg.vertex[a, (k + 1) % 4])):
+            at.setdefault(v, []).append(cut)
+    for v in sorted(at):
+        m.Add(sum(at[v]) <= 2)
+
+
 def _forbid_meeting(m, x, y, rot, ia: int, k: int, ib: int, kb: int) -> None:  # noqa: ANN001
     """Keep the two sides of a cut edge from meeting in the plane (the cut would be a slit, i.e. a fold)."""
     for r in range(4):
@@ -188,12 +209,13 @@ def _forbid_meeting(m, x, y, rot, ia: int, k: int, ib: int, kb: int) -> None:  #
 
 
 def min_box_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], resolved: Resolved | None,
-                   deadline: float) -> ExactLayout:
+                   deadline: float, zipper: bool = False) -> ExactLayout:
     """The net whose bounding box has the least area, that area proved minimal.
 
     Areas are tried from the face count upwards, each as every ``w x h`` with
-    ``w <= h``: the first area that has a net is the least, since every smaller
-    one was proved to have none.
+    ``w <= h``, the shorter longer side first: the first box that has a net is
+    the least, since every smaller one was proved to have none.  Past ``n x n``
+    no larger box can help (a net of n faces spans at most n x n).
 
     Raises
     ------
@@ -202,12 +224,12 @@ def min_box_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], resolved: Res
     """
     n = int(faces.size)
     area = n
-    while True:
-        for w in range(1, int(area ** 0.5) + 1):
+    while area <= n * n:
+        for w in range(int(area ** 0.5), 0, -1):
             if area % w:
                 continue
             try:
-                return exact_layout(sg, faces, resolved, (w, area // w), deadline)
+                return exact_layout(sg, faces, resolved, (w, area // w), deadline, zipper)
             except NoNetExistsError:
                 continue
             except Undecided:
@@ -216,3 +238,4 @@ def min_box_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], resolved: Res
                     f"({w}x{area // w}): no one-piece net of the {n}-face surface has a smaller "
                     "bounding box (proved); raise the timeout") from None
         area += 1
+    raise NoNetExistsError(n, n)

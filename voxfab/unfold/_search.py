@@ -432,6 +432,7 @@ def unfold(
     compact: bool = False,
     constraints: EdgeConstraints | None = None,
     min_box: bool = False,
+    zipper: bool = False,
 ) -> Net | list[Net]:
     """Find a net of a voxel shape: its surface cut along voxel edges and laid flat.
 
@@ -480,6 +481,8 @@ def unfold(
     constraints : EdgeConstraints, optional
         Edges to cut (never folds) and edges to keep (always folds: the faces
         they join move as one rigid group during the search).
+    zipper : bool
+        Exact strategy only: the cut edges must form one path (an unzipping).
     min_box : bool
         Exact strategy only, instead of ``fit``: the net whose bounding box has
         the least area, every smaller area proved to have none (``compact``
@@ -508,6 +511,8 @@ def unfold(
     mode = check_choice(pieces, Pieces, name="pieces")
     fit = _check_fit(fit)
     min_box = _check_exact(strat, mode, fit, compact, min_box)
+    if zipper and strat is not Strategy.EXACT:
+        raise InvalidShapeError("zipper (CLI --zipper) needs strategy 'exact'")
     if not float(timeout) > 0:
         raise InvalidShapeError(f"timeout: expected a positive number of seconds, got {timeout!r}")
     seed = _seed_of(rng)
@@ -525,7 +530,7 @@ def unfold(
         if len(parts) > 1:
             _refuse_parts(g, len(parts))
         check_one_piece(sg, resolved)
-        return dataclasses.replace(_exact_piece(job, parts[0], resolved, min_box), filled=fill)
+        return dataclasses.replace(_exact_piece(job, parts[0], resolved, min_box, bool(zipper)), filled=fill)
     if mode is Pieces.ONE:
         if len(parts) > 1:
             _refuse_parts(g, len(parts))
@@ -564,15 +569,16 @@ def _check_exact(strat: Strategy, mode: Pieces, fit: tuple[int, int] | None, com
     return min_box
 
 
-def _exact_piece(job: _Job, faces: npt.NDArray[np.int64], resolved: Resolved | None, min_box: bool) -> Net:
+def _exact_piece(job: _Job, faces: npt.NDArray[np.int64], resolved: Resolved | None, min_box: bool,
+                 zipper: bool) -> Net:
     """The exact strategy's net of one surface part (no seed: recorded as 0)."""
     from ._exact import exact_layout, min_box_layout
 
     with meter(1, desc="net: exact search") as bar:
         if min_box:
-            lay = min_box_layout(job.sg, faces, resolved, job.deadline)
+            lay = min_box_layout(job.sg, faces, resolved, job.deadline, zipper)
         else:
-            lay = exact_layout(job.sg, faces, resolved, job.fit, job.deadline)
+            lay = exact_layout(job.sg, faces, resolved, job.fit, job.deadline, zipper)
         bar.update()
     net = build_net(job.sg, faces, lay.cell, lay.rot, lay.parent, seed=0, strategy=Strategy.EXACT.value)
     return dataclasses.replace(net, seams_without_tab_room=count_without_tab_room(job.grid, net))
