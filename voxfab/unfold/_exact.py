@@ -66,7 +66,8 @@ def _arcs(sg: SurfaceGraph, faces: npt.NDArray[np.int64]) -> list[tuple[int, int
 
 
 def exact_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], resolved: Resolved | None,
-                 box: tuple[int, int], deadline: float, zipper: bool = False) -> ExactLayout:
+                 box: tuple[int, int], deadline: float, zipper: bool = False,
+                 hint: ExactLayout | None = None) -> ExactLayout:
     """Lay ``faces`` out as one net inside ``box``, or prove that no such net exists.
 
     Parameters
@@ -87,6 +88,11 @@ def exact_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], resolved: Resol
         net of a closed surface are connected and reach every vertex, so at
         most two cut edges per vertex makes them one path (and rules out every
         net of a surface with a handle, whose cut edges hold a cycle).
+    hint : ExactLayout, optional
+        A net in the box found by a heuristic (the growth search, with a fixed
+        seed), given to the solver as a starting point: it is checked first, so
+        a net is confirmed in a fraction of the time a search from scratch
+        takes; a hint the model refuses is simply dropped.
 
     Raises
     ------
@@ -114,9 +120,11 @@ def exact_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], resolved: Resol
 
     # Symmetry: turning a whole net by a half turn (a quarter turn in a square
     # box) keeps it in the box, so the root's rotation may be pinned.
+    # (Not with a hint, which may be turned any way.)
     root = 0
-    for r in (range(1, 4) if w == h else range(2, 4)):
-        m.Add(rot[root][r] == 0)
+    if hint is None:
+        for r in (range(1, 4) if w == h else range(2, 4)):
+            m.Add(rot[root][r] == 0)
 
     arcs = _arcs(sg, faces)
     par = {}  # (a, k) -> literal "a is the parent of its neighbour across edge k"
@@ -159,8 +167,18 @@ def exact_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], resolved: Resol
     prm = solver.parameters
     prm.num_search_workers = 1  # one worker, one seed: the same search every run
     prm.random_seed = _SOLVER_SEED
-    prm.max_time_in_seconds = max(deadline - time.monotonic(), 0.01)
-    status = solver.Solve(m)
+    status = None
+    if hint is not None:
+        _add_hint(m, hint, faces, sg, (x, y, cell, rot, depth, par), h)
+        # First the hint alone: a check in well under a second.  A refusal says
+        # nothing about the box, so the full search follows.
+        prm.fix_variables_to_their_hinted_value = True
+        prm.max_time_in_seconds = max(deadline - time.monotonic(), 0.01)
+        status = solver.Solve(m)
+        prm.fix_variables_to_their_hinted_value = False
+    if status not in (cp_model.OPTIMAL, cp_model.FEASIBLE):
+        prm.max_time_in_seconds = max(deadline - time.monotonic(), 0.01)
+        status = solver.Solve(m)
     if status == cp_model.INFEASIBLE:
         raise NoNetExistsError(w, h)
     if status not in (cp_model.OPTIMAL, cp_model.FEASIBLE):
@@ -192,6 +210,38 @@ def _one_cut_path(m, sg: SurfaceGraph, arcs: list, par: dict) -> None:  # noqa: 
             at.setdefault(v, []).append(cut)
     for v in sorted(at):
         m.Add(sum(at[v]) <= 2)
+
+
+def _add_hint(m, hint: ExactLayout, faces: npt.NDArray[np.int64], sg: SurfaceGraph, var: tuple,  # noqa: ANN001
+              h: int) -> None:
+    """Give the solver a whole assignment: cells, rotations, parents and depths of ``hint``."""
+    x, y, cell, rot, depth, par = var
+    up = hint.parent
+    root = int(faces[0])
+    # The model's tree hangs from faces[0]: turn the hint's tree to hang from it too.
+    adj: dict[int, list[int]] = {}
+    for f in faces.tolist():
+        if up[f] >= 0:
+            adj.setdefault(f, []).append(int(up[f]))
+            adj.setdefault(int(up[f]), []).append(f)
+    parent = {root: -1}
+    level = {root: 0}
+    queue = [root]
+    for a in queue:
+        for c in adj.get(a, ()):
+            if c not in parent:
+                parent[c], level[c] = a, level[a] + 1
+                queue.append(c)
+    for i, f in enumerate(faces.tolist()):
+        cx, cy = (int(v) for v in hint.cell[f])
+        m.AddHint(x[i], cx)
+        m.AddHint(y[i], cy)
+        m.AddHint(cell[i], cx * h + cy)
+        m.AddHint(depth[i], level.get(f, 0))
+        for r in range(4):
+            m.AddHint(rot[i][r], int(hint.rot[f]) == r)
+    for (a, k), p in par.items():
+        m.AddHint(p, parent.get(int(sg.neighbor[a, k])) == a)
 
 
 def _forbid_meeting(m, x, y, rot, ia: int, k: int, ib: int, kb: int) -> None:  # noqa: ANN001

@@ -578,10 +578,38 @@ def _exact_piece(job: _Job, faces: npt.NDArray[np.int64], resolved: Resolved | N
         if min_box:
             lay = min_box_layout(job.sg, faces, resolved, job.deadline, zipper)
         else:
-            lay = exact_layout(job.sg, faces, resolved, job.fit, job.deadline, zipper)
+            hint = None if zipper else _growth_hint(job, faces, resolved)
+            lay = exact_layout(job.sg, faces, resolved, job.fit, job.deadline, zipper, hint)
         bar.update()
     net = build_net(job.sg, faces, lay.cell, lay.rot, lay.parent, seed=0, strategy=Strategy.EXACT.value)
     return dataclasses.replace(net, seams_without_tab_room=count_without_tab_room(job.grid, net))
+
+
+def _growth_hint(job: _Job, faces: npt.NDArray[np.int64], resolved: Resolved | None):  # noqa: ANN202
+    """A net in the box from ruin-and-recreate growth with seed 0, or None: the exact search's starting point.
+
+    A fixed seed and a fixed budget of growth steps in each orientation make
+    the hint (and so the exact result) the same on every run; only a clock
+    running out first could change it.
+    """
+    from ._exact import ExactLayout
+
+    n = int(faces.size)
+    w, h = job.fit
+    if w * h < n:
+        return None
+    for t, box in enumerate(_orientations((w, h))):
+        b = _Board(job.sg, faces, [0, t], box, resolved)
+        if not b.grow(_settings(Strategy.DEFAULT, n), job.deadline, _FIT_STEPS_PER_FACE * n):
+            continue
+        x, y = b.pos % b.width - 1, b.pos // b.width - 1  # inside the board's wall
+        rot, par = b.rot.copy(), b.par.copy()
+        if t == 1:  # grown in the box turned: turn the net back a quarter turn clockwise
+            x, y = y, h - 1 - x
+            rot = (rot + 3) % 4
+        cell = np.stack([x, y], axis=1)
+        return ExactLayout(cell, rot, par, (w, h))
+    return None
 
 
 def _check_groups_fit(resolved: Resolved | None, fit: tuple[int, int] | None) -> None:
