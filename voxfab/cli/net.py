@@ -111,6 +111,8 @@ def run(args: argparse.Namespace) -> int:
         check_output(p)  # before the search, which may take minutes
     drawings = [p for p in outputs if p.suffix.lower() != ".json"]
     _drawing_formats(drawings)
+    if search.zipper and (drawings or search.count > 1):
+        raise InvalidShapeError("--zipper: for one JSON net (NET.json) with --strategy exact")
     if search.min_box and (drawings or args.fit is not None):
         raise InvalidShapeError("--min-box: for JSON nets without --box (drawings fit their sheet)")
     if search.count > 1 and search.pieces != "one":
@@ -143,7 +145,7 @@ def run(args: argparse.Namespace) -> int:
                          f"within the {search.budget:g} s budget"])
     else:
         found = unfold(shape.grid, rng=args.seed, pieces=search.pieces, fit=_fit(args.fit, face_size),
-                       min_box=search.min_box, **options)
+                       min_box=search.min_box, zipper=search.zipper, **options)
         results = [found if isinstance(found, list) else [found]]
     grid = fill_cavities(shape.grid) if search.fill else shape.grid
     title = name or Path(args.shape).stem

@@ -42,6 +42,8 @@ class NetOptions(Options):
     compact: bool = option(False, help="prefer a small bounding box (slower)")
     min_box: bool = option(False, help="strategy exact: the net of least bounding-box area, every smaller "
                            "area proved to have none", recipe=False)
+    zipper: bool = option(False, help="strategy exact: the cut edges form one path (an unzipping), or a proof "
+                          "that no such net fits", recipe=False)
     fit: bool = option(True, help="kept for old recipes: drawn nets always fit their sheet", cli=False)
     formats: tuple[str, ...] = option(("svg", "dxf", "pdf"), help="drawings written beside net.json (png: a "
                                       "preview)", choices=("svg", "dxf", "pdf", "png"), cli=False)
