@@ -284,8 +284,8 @@ def min_box_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], resolved: Res
                 continue
             except Undecided:
                 raise Undecided(
-                    f"undecided: the exact search ran out of time at boxes of {area} faces "
-                    f"({w}x{area // w}): no one-piece net of the {n}-face surface has a smaller "
-                    "bounding box (proved); raise the timeout") from None
+                    f"undecided: the exact search ran out of time at the {w}x{area // w} box; "
+                    f"no box of fewer than {area} cells holds a one-piece net of the {n}-face "
+                    "surface (proved); raise the timeout") from None
         area += 1
     raise NoNetExistsError(n, n)
