@@ -573,6 +573,7 @@ def _exact_piece(job: _Job, faces: npt.NDArray[np.int64], resolved: Resolved | N
                  zipper: bool) -> Net:
     """The exact strategy's net of one surface part (no seed: recorded as 0)."""
     from ._exact import exact_layout, min_box_layout
+    from ._validate import validate
 
     with meter(1, desc="net: exact search") as bar:
         if min_box:
@@ -582,7 +583,11 @@ def _exact_piece(job: _Job, faces: npt.NDArray[np.int64], resolved: Resolved | N
             lay = exact_layout(job.sg, faces, resolved, job.fit, job.deadline, zipper, hint)
         bar.update()
     net = build_net(job.sg, faces, lay.cell, lay.rot, lay.parent, seed=0, strategy=Strategy.EXACT.value)
-    return dataclasses.replace(net, seams_without_tab_room=count_without_tab_room(job.grid, net))
+    # The independent refold: a net the model let through but the validator
+    # refuses would be a bug in the model, never a net to hand out.
+    net = dataclasses.replace(net, seams_without_tab_room=count_without_tab_room(job.grid, net))
+    validate(job.grid, net, constraints=job.constraints, strict=True)
+    return net
 
 
 def _growth_hint(job: _Job, faces: npt.NDArray[np.int64], resolved: Resolved | None):  # noqa: ANN202
