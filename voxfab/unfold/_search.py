@@ -593,9 +593,8 @@ def _exact_piece(job: _Job, faces: npt.NDArray[np.int64], resolved: Resolved | N
 def _growth_hint(job: _Job, faces: npt.NDArray[np.int64], resolved: Resolved | None):  # noqa: ANN202
     """A net in the box from ruin-and-recreate growth with seed 0, or None: the exact search's starting point.
 
-    A fixed seed and a fixed budget of growth steps in each orientation make
-    the hint (and so the exact result) the same on every run; only a clock
-    running out first could change it.
+    A fixed seed and a fixed budget of growth steps in each orientation (no
+    clock) make the hint, and so the exact result, the same on every run.
     """
     from ._exact import ExactLayout
 
@@ -605,7 +604,8 @@ def _growth_hint(job: _Job, faces: npt.NDArray[np.int64], resolved: Resolved | N
         return None
     for t, box in enumerate(_orientations((w, h))):
         b = _Board(job.sg, faces, [0, t], box, resolved)
-        if not b.grow(_settings(Strategy.DEFAULT, n), job.deadline, _FIT_STEPS_PER_FACE * n):
+        # Bounded by steps, not by the clock: a slow run must not change the hint.
+        if not b.grow(_settings(Strategy.DEFAULT, n), math.inf, _FIT_STEPS_PER_FACE * n):
             continue
         x, y = b.pos % b.width - 1, b.pos // b.width - 1  # inside the board's wall
         rot, par = b.rot.copy(), b.par.copy()
