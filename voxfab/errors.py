@@ -95,15 +95,20 @@ class NoNetExistsError(UnfoldError):
     ----------
     box : (int, int)
         The box in faces, ``(width, height)``.
+    why : str
+        The reason when it is known without a search (edge constraints that
+        leave no room), else empty.
     """
 
-    def __init__(self, width: int, height: int) -> None:
-        super().__init__(f"no one-piece net of this shape fits {width}x{height} faces (proved)")
+    def __init__(self, width: int, height: int, why: str = "") -> None:
+        text = f"no one-piece net of this shape fits {width}x{height} faces (proved)"
+        super().__init__(f"{text}: {why}" if why else text)
         self.box = (width, height)
+        self.why = why
 
     def __reduce__(self) -> tuple:
         # Rebuilt from the box (batch workers pickle errors), not from the message.
-        return (type(self), self.box)
+        return (type(self), (*self.box, self.why))
 
 
 class RecipeError(VoxfabError, ValueError):

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import itertools
+import pickle
 import subprocess
 import sys
 
@@ -232,6 +233,13 @@ def test_edge_constraints_are_obeyed_or_proved_impossible():
     with pytest.raises(NoNetExistsError):
         unfold(CUBE, rng=0, strategy="exact", fit=(3, 3), constraints=keep, timeout=30)
     assert validate(CUBE, _exact(CUBE, (3, 4), constraints=keep), constraints=keep).ok
+    # Proved without a search: the plus sign spans 3x3, wider than 2x5; a face cut off all round.
+    with pytest.raises(NoNetExistsError, match=r"fits 2x5 faces \(proved\): .*span 3x3") as info:
+        unfold(CUBE, rng=0, strategy="exact", fit=(2, 5), constraints=keep, timeout=30)
+    again = pickle.loads(pickle.dumps(info.value))
+    assert str(again) == str(info.value) and again.box == (2, 5)
+    with pytest.raises(NoNetExistsError, match="cut off"):
+        unfold(CUBE, rng=0, strategy="exact", fit=(3, 4), constraints=EdgeConstraints(cut=ring), timeout=30)
 
 
 def test_bad_options_are_refused():

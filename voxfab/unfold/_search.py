@@ -13,7 +13,7 @@ import numpy.typing as npt
 from voxfab._shared.progress import Meter, meter
 from voxfab._shared.rng import as_rng
 from voxfab._shared.validate import as_grid, check_choice
-from voxfab.errors import InvalidShapeError, UnfoldError
+from voxfab.errors import InvalidShapeError, NoNetExistsError, UnfoldError
 from voxfab.shape import SurfaceGraph, cavity_count, component_count, fill_cavities, surface_graph
 
 from ._constraints import EdgeConstraints, Resolved, check_one_piece, resolve
@@ -523,6 +523,12 @@ def unfold(
     deadline = time.monotonic() + float(timeout)
     sg = surface_graph(g)
     resolved = resolve(constraints, sg)  # every named edge must be on this surface
+    if strat is Strategy.EXACT and fit is not None:
+        try:  # each is a proof that no net fits the box, found without a search
+            _check_groups_fit(resolved, fit)
+            check_one_piece(sg, resolved)
+        except UnfoldError as exc:
+            raise NoNetExistsError(*fit, why=str(exc)) from None
     _check_groups_fit(resolved, fit)
     job = _Job(g, sg, seed, strat, fit, tab_aware, compact, deadline, float(timeout), constraints)
     parts = _surface_parts(sg)
