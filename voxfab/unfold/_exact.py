@@ -10,6 +10,12 @@ a net, or proves that none exists.
 
 The model is built in a fixed order and solved by one worker with a fixed
 seed, so the same shape and box give the same net on every run.
+
+Finding a net is where the model alone is weakest (a roomy box leaves the
+solver little to propagate), and where growth is strongest, so the caller may
+pass a growth net in the box as a hint: checked with every variable fixed, it
+is confirmed in a fraction of a second.  Proofs that no net exists get no help
+from it; they are what limits the size of surface this strategy decides.
 """
 
 from __future__ import annotations
