@@ -104,3 +104,22 @@ def test_usage_errors_are_one_line(args, pattern):
     assert r.returncode == 2
     assert len(r.stderr.splitlines()) == 1 and "usage:" not in r.stderr
     assert re.match(pattern, r.stderr) and r.stderr.rstrip().endswith("--help)")
+
+
+def test_build_open_curves_of_revolution_join_into_the_closed_one(tmp_path):
+    # two recipes with the two halves of the circle, same scale and center: their shapes join into the whole
+    import shutil
+    from pathlib import Path
+
+    shutil.copy(Path(__file__).resolve().parents[2] / "recipes" / "vase_generatrix.png", tmp_path)
+    keys = 'generatrix = "vase_generatrix.png"\nmode = "surface"\nk = 1\nscale = 0.2\ncenter = [0, 0, 59.5]\n'
+    for name, arc in (("whole", ""), ("first", "arc = [0, 180]\n"), ("second", "arc = [180, 360]\n")):
+        (tmp_path / f"{name}.toml").write_text(f'name = "{name}"\n[source]\nmaker = "revolution"\n{keys}{arc}')
+    r = voxfab("build", *(tmp_path / f"{n}.toml" for n in ("whole", "first", "second")), "-o", tmp_path / "out")
+    assert r.returncode == 0, r.stderr
+    whole, first, second = (np.load(tmp_path / "out" / n / "shape.npy") for n in ("whole", "first", "second"))
+    assert whole.sum() > 1000 and np.array_equal(first | second, whole) and not np.array_equal(first, whole)
+    (tmp_path / "bad.toml").write_text(f'name = "bad"\n[source]\nmaker = "revolution"\n{keys}arc = [180, 90]\n')
+    r = voxfab("build", tmp_path / "bad.toml", "-o", tmp_path / "out")
+    assert r.returncode != 0 and r.stderr.startswith("voxfab: error: arc:") and r.stderr.count("\n") == 1
+    assert not (tmp_path / "out" / "bad").exists()

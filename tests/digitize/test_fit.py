@@ -54,3 +54,33 @@ def test_bad_fit_options():
     with pytest.raises(InvalidShapeError, match="^k: expected an integer in 0..2"):
         fit(fld, k=3)
     assert np.any(fit(fld, k=2))
+
+
+def test_center_fixes_the_placement():
+    from voxfab.digitize import revolution
+
+    opts = dict(k=0, mode="surface", size=25, scale=4.0)
+    gen = "(x-2)^2 + y^2 - 0.64"
+    base = revolution("x^2 + y^2 - 1", gen, center=[0.0, 0.0, 0.0], **opts)
+    # moving the center by one voxel moves the shape by one voxel the other way, nothing else
+    moved = revolution("x^2 + y^2 - 1", gen, center=[0.25, 0.0, -0.5], **opts)
+    assert np.array_equal(moved[:-1, :, 2:], base[1:, :, :-2]) and not moved[-1].any()
+    # the fitted (scale-only) path recentres each shape on its own box: a half torus lands elsewhere
+    half_fixed = revolution("x^2 + y^2 - 1", gen, arc=[0, 180], center=[0.0, 0.0, 0.0], **opts)
+    half_fitted = revolution("x^2 + y^2 - 1", gen, arc=[0, 180], **opts)
+    assert np.all(half_fixed <= base)
+    assert not np.all(half_fitted <= base)
+
+
+def test_center_errors():
+    fld = implicit_field("x^2 + y^2 + z^2 - 1")
+    with pytest.raises(InvalidShapeError, match="needs scale"):
+        fit(fld, center=[0, 0, 0])
+    with pytest.raises(InvalidShapeError, match="center: expected 3 finite numbers"):
+        fit(fld, scale=5.0, center=[0, 0])
+    with pytest.raises(InvalidShapeError, match="center: expected 3 finite numbers"):
+        fit(fld, scale=5.0, center=[0, 0, float("inf")])
+    with pytest.raises(InvalidShapeError, match="reaches outside the 25-voxel grid"):
+        fit(fld, scale=11.0, center=[1.0, 0, 0])
+    with pytest.raises(InvalidShapeError, match="empty"):
+        fit(fld, scale=5.0, center=[20.0, 0, 0], size=5)

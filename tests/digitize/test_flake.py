@@ -179,3 +179,53 @@ def test_nan_is_outside():
 def test_bad_arguments_name_the_input(args, word):
     with pytest.raises(InvalidShapeError, match=word):
         surface(lambda *c: c[0], *args)
+
+
+@pytest.mark.parametrize("k", [0, 1, 2])
+def test_sector_crop_against_analytic_cut_points(k):
+    # torus R = 2, a = 0.8 cut to its half y >= 0: the end rays lie in the plane y = 0,
+    # where each flake half-segment's crossing has a closed form
+    def f(x, y, z):
+        return (np.hypot(x, y) - 2.0) ** 2 + z * z - 0.64
+
+    shape, origin, step = (29, 29, 13), np.array([-3.1, -3.05, -1.2]), 0.23
+    got = flake_mod.digitize_sector(f, lambda x, y, z: (x, y), (0.0, math.pi), shape, k, origin, step)
+    axes = np.meshgrid(*[origin[d] + np.arange(shape[d]) * step for d in range(3)], indexing="ij")
+    le, ge = np.zeros(shape, dtype=bool), np.zeros(shape, dtype=bool)
+    full_le, full_ge = np.zeros(shape, dtype=bool), np.zeros(shape, dtype=bool)
+    for v in flake_vertices(3, k):
+        tip = [axes[d] + v[d] * step for d in range(3)]
+        val = f(*tip)
+        full_le |= val <= 0
+        full_ge |= val >= 0
+        keep = tip[1] >= 0
+        le |= keep & (val <= 0)
+        ge |= keep & (val >= 0)
+        if v[1] != 0:
+            t = -axes[1] / (v[1] * step)
+            cut = [axes[d] + t * v[d] * step for d in range(3)]
+            ok = (t >= 0) & (t <= 1)
+            cval = f(cut[0], np.zeros(shape), cut[2])
+            le |= ok & (cval <= 0)
+            ge |= ok & (cval >= 0)
+    want = le & ge & full_le & full_ge
+    assert want.sum() > 200
+    assert np.array_equal(got, want)
+    # the half torus: nothing beyond half a voxel below its cut plane, both of its ends reached
+    ys = axes[1][got]
+    assert ys.min() >= -0.5 * step and ys.min() < step
+
+
+def test_full_sector_is_the_plain_flake_test():
+    def f(x, y, z):
+        return x * x + y * y + z * z - 9.0
+
+    s, _ = digitize(f, (15, 15, 15), 1, (-7, -7, -7), 1.0)
+    assert np.array_equal(flake_mod.digitize_sector(f, lambda x, y, z: (x, y), (1.0, 1.0 + 2 * math.pi),
+                                                   (15, 15, 15), 1, (-7, -7, -7), 1.0), s)
+
+
+@pytest.mark.parametrize("arc", [(10, 10), (0, 400), ("a", 1), (1,), (math.nan, 3)])
+def test_bad_arcs(arc):
+    with pytest.raises(InvalidShapeError, match="arc"):
+        flake_mod.check_arc(arc)

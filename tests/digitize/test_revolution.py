@@ -158,3 +158,48 @@ def test_4d_object_from_an_open_generatrix_and_its_slice():
     assert g4.shape == (15,) * 4 and np.array_equal(g4, g4.transpose(1, 0, 2, 3))
     g3 = revolution("x^2 + y^2 + z^2 - 1", pts, at=1.5)
     assert well_formed_reasons(g3) == []
+
+
+RECIPES = __import__("pathlib").Path(__file__).resolve().parents[2] / "recipes"
+
+
+@pytest.mark.parametrize("k", [0, 1, 2])
+@pytest.mark.parametrize(
+    ("generatrix", "scale", "center", "cuts"),
+    [
+        # the bundled vase's bitmap generatrix, the circle split into two half circles and at 30°/250°
+        ("vase_generatrix.png", 0.2, [0.0, 0.0, 59.5], (0, 180, 360)),
+        ("vase_generatrix.png", 0.2, [0.0, 0.0, 59.5], (30, 250, 390)),
+        # a torus, off the lattice
+        ("(x-2)^2 + y^2 - 0.64", 4.0, [0.1, -0.2, 0.05], (10, 200, 370)),
+    ],
+)
+def test_union_rule_open_curves_of_revolution(k, generatrix, scale, center, cuts):
+    opts = dict(k=k, mode="surface", size=25, scale=scale, center=center, base_dir=RECIPES)
+    whole = revolution("x^2 + y^2 - 1", generatrix, **opts)
+    first = revolution("x^2 + y^2 - 1", generatrix, arc=cuts[:2], **opts)
+    second = revolution("x^2 + y^2 - 1", generatrix, arc=cuts[1:], **opts)
+    assert whole.sum() > 800
+    assert np.array_equal(first | second, whole), (k, int((whole ^ (first | second)).sum()))
+    # each half is a real open surface: it leaves out much of the whole, and the halves share only their ends
+    for part in (first, second):
+        assert 0.2 * whole.sum() < part.sum() < 0.8 * whole.sum()
+    assert (first & second).sum() < 0.1 * whole.sum()
+
+
+def test_open_curve_of_revolution_lies_in_its_half():
+    grid = revolution("x^2 + y^2 - 1", "vase_generatrix.png", arc=[0, 180], k=0, mode="surface", size=25,
+                      scale=0.2, center=[0.0, 0.0, 59.5], base_dir=RECIPES)
+    ys = np.argwhere(grid)[:, 1]
+    # grid index 12 is y = 0, the cut plane: the flakes of the row below reach it only at their tips
+    assert ys.min() == 12 and np.count_nonzero(ys == 12) > 100
+    assert ys.max() > 20
+
+
+def test_open_curve_of_revolution_errors():
+    with pytest.raises(InvalidShapeError, match="surface"):
+        revolution("x^2 + y^2 - 1", "(x-2)^2 + y^2 - 0.64", arc=[0, 90], k=0, mode="solid", scale=4.0, center=[0, 0, 0])
+    with pytest.raises(InvalidShapeError, match="region generatrix"):
+        revolution("x^2 + y^2 - 1", [[1, 0], [1, 1]], arc=[0, 90], mode="surface", scale=4.0, center=[0, 0, 0])
+    with pytest.raises(InvalidShapeError, match="arc"):
+        revolution("x^2 + y^2 - 1", "(x-2)^2 + y^2 - 0.64", arc=[90, 0], mode="surface", scale=4.0, center=[0, 0, 0])

@@ -155,3 +155,45 @@ def test_open_profile_is_a_ribbon():
 
     ex = extents(g)
     assert ex[0] == 25 and max(ex[1], ex[2]) >= 15 and min(ex[1], ex[2]) <= 4
+
+
+TUBE_RECIPES = __import__("pathlib").Path(__file__).resolve().parents[2] / "recipes" / "tubes"
+
+
+@pytest.mark.parametrize("k", [0, 1, 2])
+@pytest.mark.parametrize(
+    ("spine", "profile", "radius", "twist", "scale", "cuts"),
+    [
+        # the bundled interlaced tubes: three disks swept along a circle with 480° of twist
+        (["cos(2*pi*t)", "sin(2*pi*t)", "0"], "three_disks.png", 0.42, 480.0, 8.0, (0, 180, 360)),
+        # a round profile along a wavy closed spine, split off its symmetry axes
+        (["3*cos(2*pi*t)", "3*sin(2*pi*t)", "0.5*sin(4*pi*t)"], "x^2 + y^2 - 1", 1.0, 0.0, 2.9, (20, 250, 380)),
+    ],
+)
+def test_union_rule_open_profiles(k, spine, profile, radius, twist, scale, cuts):
+    opts = dict(k=k, mode="surface", size=25, scale=scale, center=[0.01, -0.02, 0.03], radius=radius, twist=twist,
+                base_dir=TUBE_RECIPES)
+    whole = tube(spine, profile, **opts)
+    first = tube(spine, profile, arc=cuts[:2], **opts)
+    second = tube(spine, profile, arc=cuts[1:], **opts)
+    assert whole.sum() > 500
+    assert np.array_equal(first | second, whole), (k, int((whole ^ (first | second)).sum()))
+    for part in (first, second):
+        assert 0.2 * whole.sum() < part.sum() < 0.8 * whole.sum()
+
+
+def test_ribbon_is_one_half_of_a_torus():
+    # a planar spine circle keeps the profile's u axis in the spine's plane (radial), so the arc
+    # [90, 270] is the half of the round profile on one side of the spine: the inner or the outer
+    # half of the torus, within a voxel's flake of the spine circle on the other side
+    grid = tube(["3*cos(2*pi*t)", "3*sin(2*pi*t)", "0"], "x^2 + y^2 - 1", arc=[90, 270], k=0, mode="surface",
+                size=25, scale=2.9, center=[0.0, 0.0, 0.0])
+    idx = np.argwhere(grid)
+    r = np.hypot(idx[:, 0] - 12, idx[:, 1] - 12) / 2.9
+    assert grid.sum() > 300
+    assert (np.all(r <= 3.0 + 0.5 / 2.9 * 1.8) or np.all(r >= 3.0 - 0.5 / 2.9 * 1.8))
+
+
+def test_ribbon_needs_surface_mode():
+    with pytest.raises(InvalidShapeError, match="surface"):
+        tube(["3*cos(2*pi*t)", "3*sin(2*pi*t)", "0"], arc=[0, 90], mode="solid", scale=2.9, center=[0, 0, 0])

@@ -33,6 +33,9 @@ def test_the_surfaces_list_what_the_table_lists():
 
     assert artefacts() == [d for row in outputs().values() for d in row.downloads]
     assert {row.warm_group for row in outputs().values() if row.warm_group} <= set(GROUPS)
+    from voxfab.cli import COMMANDS
+
+    assert {row.command for row in outputs().values()} <= set(COMMANDS)
     readme = (RECIPES.parent / "README.md").read_text(encoding="utf-8")
     for row in outputs().values():
         assert f"[outputs.{row.name}]" in readme, row.name

@@ -507,3 +507,41 @@ def test_a_seed_that_runs_out_of_time_is_skipped(client, monkeypatch):
     monkeypatch.setattr(engine, "unfold", never)
     s = wait_job(client, client.post("/api/nets", json={"grid": pack(g), "count": 2, "timeout": 5}).json()["job"])
     assert s["state"] == "error" and s["message"] == "no one-piece net in 1 s"
+
+
+@pytest.mark.parametrize("style", ["interlocked", "radial"])
+def test_make_plates_in_a_style_and_see_the_assembly(client, style):
+    """The queen's plates in a slotted style: the zip is the CLI's, the 3D view gets every plate as assembled."""
+    from pathlib import Path
+
+    queen = make_shape(load_recipe(Path(__file__).resolve().parents[2] / "recipes" / "chess" / "queen.toml")).grid
+    r = client.post("/api/make", json={"grid": pack(queen), "artefact": "plates.zip", "pitch": 2.0, "title": "queen",
+                                       "options": {"thickness": 3.0, "style": style, "plate_sheet": "600x400"}})
+    assert r.status_code == 200, r.text
+    s = wait_job(client, r.json()["job"])
+    assert s["state"] == "done", s
+    archive = zipfile.ZipFile(io.BytesIO(client.get(f"/api/files/{r.json()['job']}/0").content))
+    report = json.loads(archive.read("slices/plates.json"))
+    plates = s["result"]["assembly"]["plates"]
+    assert "slices/assembly.3mf" in archive.namelist()
+    assert report["style"] == style and len(plates) == report["plates"] > 1
+    assert sorted(p["name"] for p in plates) == sorted(p["label"] for p in report["plates_list"])
+    # Every plate sits inside the queen's box (25 voxels at 2 mm) in the print's frame.
+    corners = np.concatenate([np.reshape(p["triangles"], (-1, 3)) for p in plates])
+    assert corners.min() >= -0.01 and corners.max() <= 50.01
+    r = client.post("/api/make", json={"grid": pack(queen), "artefact": "plates.zip",
+                                       "options": {"style": "woven"}})
+    assert r.status_code == 400 and "style" in r.json()["error"]
+
+
+def test_open_curve_of_revolution_in_the_studio(client):
+    ring = {"kind": "expr", "text": "(x-2)^2 + y^2 - 0.64"}
+    closed = grid_of(client.post("/api/preview", json=rev(CIRCLE, ring, mode="surface")).json())
+    r = client.post("/api/preview", json=rev(CIRCLE, ring, mode="surface", arc=[0, 180]))
+    assert r.status_code == 200, r.text
+    half = grid_of(r.json())
+    assert 0.3 * closed.sum() < half.sum() < 0.7 * closed.sum()
+    r = client.post("/api/preview", json=rev(CIRCLE, ring, arc=[0, 180]))
+    assert r.status_code == 400 and 'mode = "surface"' in r.json()["error"]
+    r = client.post("/api/preview", json=rev(CIRCLE, ring, mode="surface", arc=[0, "a"]))
+    assert r.status_code == 400 and "shape.arc" in r.json()["error"]

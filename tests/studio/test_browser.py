@@ -331,3 +331,29 @@ def test_polyline_closed_curve_of_revolution(server, browser):
     # a square section: the top layer is a filled square of the widest slice's side
     assert attr(browser, "wf", "data-well-formed") == "true"
     browser.save_screenshot(str(SHOTS / "polyline.png"))
+
+
+def test_interlocked_plates_from_the_make_tab_show_their_assembly(server, browser):
+    import zipfile
+
+    from selenium.webdriver.support.ui import Select
+
+    open_page(browser, server)
+    tab(browser, "make")
+    Select(browser.find_element("id", "plate-style")).select_by_value("interlocked")
+    version = int(attr(browser, "viewer", "data-version"))
+    browser.find_element("css selector", '[data-make="plates.zip"]').click()
+    plates = wait(browser, lambda d: int(attr(d, "viewer", "data-version")) > version
+                  and int(attr(d, "viewer", "data-plates") or 0), timeout=90, what="the assembled plates")
+    browser.save_screenshot(str(SHOTS / "plates-interlocked.png"))
+    archive = wait(browser, lambda d: next(iter(sorted(d.downloads.glob("*-plates.zip"))), None), timeout=60,
+                   what="the downloaded plates")
+    time.sleep(0.3)
+    import json
+
+    report = json.loads(zipfile.ZipFile(archive).read("slices/plates.json"))
+    assert report["style"] == "interlocked" and report["plates"] == plates >= 2
+    # Back to the shape: the viewer draws voxels again.
+    browser.find_element("id", "show-shape").click()
+    wait(browser, lambda d: int(attr(d, "viewer", "data-faces")) > 0 and int(attr(d, "viewer", "data-version"))
+         > version + 1, what="the shape again")

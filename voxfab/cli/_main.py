@@ -22,21 +22,18 @@ from typing import NoReturn
 from voxfab._version import __version__
 from voxfab.errors import EXIT_CODES, VoxfabError, VoxfabWarning, one_line
 
+
+def _commands() -> dict[str, str]:
+    from voxfab.fabricate import outputs
+
+    # The commands of the outputs come from the table of outputs, in its order.
+    made = dict.fromkeys(o.command for o in outputs().values() if o.command)
+    names = ["info", "convert", "repo", "build", *made, "studio", "explore", "batch", "warmup"]
+    return {name: f"voxfab.cli.{name}" for name in names}
+
+
 #: Subcommand name → module.
-COMMANDS: dict[str, str] = {
-    "info": "voxfab.cli.info",
-    "convert": "voxfab.cli.convert",
-    "repo": "voxfab.cli.repo",
-    "build": "voxfab.cli.build",
-    "mesh": "voxfab.cli.mesh",
-    "net": "voxfab.cli.net",
-    "slices": "voxfab.cli.slices",
-    "render": "voxfab.cli.render",
-    "studio": "voxfab.cli.studio",
-    "explore": "voxfab.cli.explore",
-    "batch": "voxfab.cli.batch",
-    "warmup": "voxfab.cli.warmup",
-}
+COMMANDS: dict[str, str] = _commands()
 
 
 class _Parser(argparse.ArgumentParser):

@@ -1,4 +1,4 @@
-"""``voxfab slices``: a shape as stacked laser-cut plates nested on sheets."""
+"""``voxfab slices``: a shape as laser-cut plates (stacked, interlocked or radial) nested on sheets."""
 
 from __future__ import annotations
 
@@ -15,7 +15,8 @@ from voxfab.cli._common import (
     print_warnings,
 )
 
-HELP = "slice a shape into stacked laser-cut plates with dowel holes, nested on sheets (DXF, SVG, PDF)"
+HELP = ("slice a shape into laser-cut plates, stacked with dowel holes or slotted (interlocked, radial), "
+        "nested on sheets (DXF, SVG, PDF, assembly.3mf)")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:

@@ -5,12 +5,14 @@ digitizer) plus the bounding box of the shape in model units. :func:`fit`
 chooses the scale so that the digitized shape's longest extent is exactly
 ``size`` voxels (by bracketing and bisection on the scale, since flake
 thickness and rounding make the extent only roughly proportional to the scale),
-and centres it in a ``size``³ grid.
+and centres it in a ``size``³ grid. With ``scale`` and ``center`` the placement
+is fixed instead (:func:`fixed_fit`): the model point ``center`` sits at the
+grid's middle, so separate pieces of one shape keep their relative places.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from enum import Enum
 
@@ -21,7 +23,7 @@ from voxfab.errors import InvalidShapeError
 
 from ._flake import digitize as flake_digitize
 
-__all__ = ["Field", "Placement", "Mode", "fit", "place", "render"]
+__all__ = ["Field", "Placement", "Mode", "fit", "fixed_fit", "fixed_placement", "place", "render"]
 
 #: Grid side of the preview fit used before fitting larger grids.
 _PREVIEW = 49
@@ -198,6 +200,53 @@ def fit_scale(fld: Field, *, k: int, mode: Mode | str, size: int, at: float | No
     )
 
 
+def fixed_placement(fld: Field, *, size: int, scale: float, center: Sequence[float], at: float | None = None) -> Placement:
+    """The placement at ``scale`` voxels per unit with model point ``center`` at the grid's middle.
+
+    The grid has a margin of :data:`_MARGIN` voxels on every side, so that a
+    shape reaching past the ``size`` window can be told apart from one that fits.
+    """
+    if not np.isfinite(scale) or scale <= 0:
+        raise InvalidShapeError(f"scale: expected a positive number of voxels per unit, got {scale!r}")
+    axes = fld.ndim - (1 if at is not None else 0)
+    try:
+        c = np.asarray(center, dtype=np.float64).reshape(-1)
+    except (TypeError, ValueError):
+        raise InvalidShapeError(f"center: expected {axes} numbers, got {center!r}") from None
+    if c.shape != (axes,) or not np.all(np.isfinite(c)):
+        raise InvalidShapeError(f"center: expected {axes} finite numbers (one per grid axis), got {center!r}")
+    step = 1.0 / float(scale)
+    g = size + 2 * _MARGIN
+    origin = c - ((g - 1) / 2.0) * step
+    if at is not None:
+        if fld.ndim < 4:
+            raise InvalidShapeError(f"at: {fld.name} is {fld.ndim}D; a slice position needs a 4D shape")
+        return Placement((*(g,) * axes, 1), np.append(origin, float(at)), step, size)
+    return Placement((g,) * axes, origin, step, size)
+
+
+#: Voxels rendered beyond each side of a fixed-placement grid, to detect a shape that does not fit.
+_MARGIN = 2
+
+
+def fixed_fit(
+    fld: Field, *, k: int, mode: Mode | str, size: int, scale: float, center: Sequence[float], at: float | None = None
+) -> np.ndarray:
+    """Digitize ``fld`` at a fixed placement (see :func:`fixed_placement`); the shape must lie inside the grid."""
+    p = fixed_placement(fld, size=size, scale=scale, center=center, at=at)
+    g = render(fld, p, k=k, mode=mode)
+    window = tuple(slice(_MARGIN, _MARGIN + size) for _ in range(g.ndim))
+    out = np.ascontiguousarray(g[window])
+    if int(out.sum()) != int(g.sum()):
+        raise InvalidShapeError(
+            f"center: at scale {scale} around {list(np.asarray(center, dtype=float))} {fld.name} "
+            f"reaches outside the {size}-voxel grid"
+        )
+    if not out.any():
+        raise InvalidShapeError(f"{fld.name}: the digitized shape is empty at scale {scale} around center {center!r}")
+    return out
+
+
 def fit(
     fld: Field,
     *,
@@ -206,6 +255,7 @@ def fit(
     size: int = 25,
     scale: float | None = None,
     at: float | None = None,
+    center: Sequence[float] | None = None,
 ) -> np.ndarray:
     """Digitize ``fld`` into a ``size``³ bool grid.
 
@@ -225,6 +275,11 @@ def fit(
     at : float, optional
         For a 4D field: the value of the last coordinate of the 3D slice
         (default: the middle of its range).
+    center : sequence of float, optional
+        With ``scale``: the model point at the middle of the grid (one
+        number per axis of the grid). The placement is then fixed: the shape
+        is neither cropped nor recentred, so pieces of one curve digitized
+        with the same ``scale`` and ``center`` land where the whole would.
 
     Returns
     -------
@@ -235,6 +290,10 @@ def fit(
         raise InvalidShapeError(f"size: expected an integer grid side in 2..256, got {size!r}")
     size = int(size)
     check_choice(mode, Mode, name="mode")
+    if center is not None:
+        if scale is None:
+            raise InvalidShapeError("center: a fixed placement needs scale (voxels per model unit) as well")
+        return fixed_fit(fld, k=k, mode=mode, size=size, scale=scale, center=center, at=at)
     if scale is None:
         _, g = fit_scale(fld, k=k, mode=mode, size=size, at=at)
     else:

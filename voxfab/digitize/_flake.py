@@ -212,3 +212,121 @@ def solid(
     """
     s, inside = digitize(f, shape, k, origin, step)
     return s | inside
+
+
+def check_arc(arc: Sequence[float]) -> tuple[float, float]:
+    """``(start, end)`` in radians from an arc in degrees with ``start < end <= start + 360``."""
+    try:
+        start, end = (float(v) for v in arc)
+    except (TypeError, ValueError):
+        raise InvalidShapeError(f"arc: expected two angles [start, end] in degrees, got {arc!r}") from None
+    if not (np.isfinite(start) and np.isfinite(end) and start < end <= start + 360.0):
+        raise InvalidShapeError(f"arc: expected finite angles with start < end <= start + 360, got {arc!r}")
+    return float(np.radians(start)), float(np.radians(end))
+
+
+#: Bisection steps that locate where a flake segment crosses an end of an open arc.
+_CROP_STEPS = 48
+
+
+def _in_sector(a: np.ndarray, b: np.ndarray, start: float, span: float) -> np.ndarray:
+    """Points ``(a, b)`` of the plane whose angle lies in ``[start, start + span]``.
+
+    The origin counts as inside, and so does NaN: a point with no plane
+    coordinates lies outside the field's support, where ``f`` has its one
+    fixed outside value for every arc alike.
+    """
+    with np.errstate(invalid="ignore"):
+        rel = np.mod(np.arctan2(b, a) - start, 2 * np.pi)
+    return (rel <= span + 1e-12) | ((a == 0) & (b == 0)) | np.isnan(a) | np.isnan(b)
+
+
+def digitize_sector(
+    f: ImplicitFunction,
+    planar: Callable[..., tuple[np.ndarray, np.ndarray]],
+    arc: tuple[float, float],
+    shape: Sequence[int],
+    k: int,
+    origin: npt.ArrayLike | None = None,
+    step: float | npt.ArrayLike = 1.0,
+) -> np.ndarray:
+    """k-flake surface of ``f = 0`` restricted to an angular sector, flakes cropped at its two end rays.
+
+    ``planar(*coords) -> (a, b)`` maps points to the plane in which the sector
+    ``arc = (start, end)`` (radians, ``start < end <= start + 2π``) is measured
+    about the origin. Each half-segment of a voxel's flake (centre to vertex)
+    keeps its vertex when the vertex lies in the sector; where it crosses an
+    end ray, the crossing point becomes a test vertex, as the ends of an open
+    generatrix crop the flake to its slab. The crossing is located by the same
+    bisection for every sector sharing that ray, so two arcs meeting at a ray
+    test the very same point there: a voxel whose full flake shows both signs
+    shows both signs within one of the two arcs.
+
+    A voxel is kept when its cropped flake shows both signs *and* its full
+    flake does (``f`` is the field of the whole closed curve, defined beyond
+    the arc). The cut points are test points the closed curve's flake test
+    never sees, so the cropped test alone can find a double crossing of one
+    flake segment that the closed test misses; requiring the full flake's sign
+    change as well makes the digitization morphological: the arcs of a closed
+    curve, split at shared rays, give together exactly its digitization.
+
+    Returns
+    -------
+    bool ndarray of ``shape``
+        The surface voxels.
+    """
+    shp, k, org, stp = _check_args(shape, k, origin, step)
+    n = len(shp)
+    start, end = (float(v) for v in arc)
+    span = end - start
+    axes = [(org[d] + np.arange(shp[d]) * stp[d]).reshape([-1 if e == d else 1 for e in range(n)]) for d in range(n)]
+    centre = [np.broadcast_to(a, shp).reshape(-1) for a in axes]
+    le = np.zeros(centre[0].shape, dtype=bool)
+    ge = np.zeros_like(le)
+    full_le, full_ge = np.zeros_like(le), np.zeros_like(le)
+
+    def mark(where: np.ndarray, pts: Sequence[np.ndarray]) -> None:
+        if not len(where):
+            return
+        val = np.broadcast_to(np.asarray(f(*[p[where] for p in pts]), dtype=np.float64), where.shape)
+        val = np.where(np.isnan(val), 1.0, val)
+        le[where] |= val <= 0
+        ge[where] |= val >= 0
+
+    rays = [(math.cos(t), math.sin(t)) for t in ((start, end) if span < 2 * np.pi - 1e-12 else ())]
+    ca, cb = planar(*centre)
+    ca, cb = np.broadcast_to(ca, le.shape), np.broadcast_to(cb, le.shape)
+    for c, s in rays:
+        # a voxel centre on an end ray is itself a crossing of every segment through it
+        mark(np.flatnonzero((c * cb - s * ca == 0) & (c * ca + s * cb >= 0)), centre)
+    for v in flake_vertices(n, k):
+        tip = [centre[d] + v[d] * stp[d] for d in range(n)]
+        ta, tb = planar(*tip)
+        ta, tb = np.broadcast_to(ta, le.shape), np.broadcast_to(tb, le.shape)
+        val = np.broadcast_to(np.asarray(f(*tip), dtype=np.float64), le.shape)
+        val = np.where(np.isnan(val), 1.0, val)
+        full_le |= val <= 0
+        full_ge |= val >= 0
+        kept = _in_sector(ta, tb, start, span)
+        le |= kept & (val <= 0)
+        ge |= kept & (val >= 0)
+        for c, s in rays:
+            phi0, phi1 = c * cb - s * ca, c * tb - s * ta
+            sel = np.flatnonzero((phi0 * phi1 <= 0) & ~((phi0 == 0) & (phi1 == 0)) & (phi0 != 0))
+            if not len(sel):
+                continue
+            lo_t, hi_t = np.zeros(len(sel)), np.ones(len(sel))
+            side = np.sign(phi0[sel])
+            for _ in range(_CROP_STEPS):
+                mid = 0.5 * (lo_t + hi_t)
+                ma, mb = planar(*[centre[d][sel] + mid * (v[d] * stp[d]) for d in range(n)])
+                same = np.sign(c * mb - s * ma) == side
+                lo_t, hi_t = np.where(same, mid, lo_t), np.where(same, hi_t, mid)
+            cut = [centre[d][sel] + hi_t * (v[d] * stp[d]) for d in range(n)]
+            xa, xb = planar(*cut)
+            on_ray = np.broadcast_to(c * xa + s * xb >= 0, sel.shape)
+            pts = [np.zeros(le.shape) for _ in range(n)]
+            for d in range(n):
+                pts[d][sel] = cut[d]
+            mark(sel[on_ray], pts)
+    return (le & ge & full_le & full_ge).reshape(shp)

@@ -32,14 +32,19 @@ def make_revolution(
     scale: float | None = None,
     at: float | None = None,
     z_range: list[float] | None = None,
+    arc: list[float] | None = None,
+    center: list[float] | None = None,
 ) -> np.ndarray:
     """Surface of revolution: ``curve`` (expression in x, y or x, y, z; SVG/JSON/CSV/PNG file) times ``generatrix``.
 
     An explicit generatrix ``x = g(y)`` spans the heights ``z_range`` (default ``[-1, 1]``).
+    ``arc = [start, end]`` (degrees) keeps only that open part of the curve: a swept surface.
+    ``center`` (with ``scale``) is the model point at the grid's middle.
     """
     return revolution(
         curve, generatrix, k=k, mode=mode, size=size, scale=scale, at=at, base_dir=Path(base_dir),
         curve_threshold=curve_threshold, generatrix_threshold=generatrix_threshold, axis=axis, z_range=z_range,
+        arc=arc, center=center,
     )
 
 
@@ -63,15 +68,21 @@ def make_tube(
     mode: ModeName = "solid",
     size: int = 25,
     scale: float | None = None,
+    arc: list[float] | None = None,
+    center: list[float] | None = None,
 ) -> np.ndarray:
-    """Swept tube: ``spine`` = [x(t), y(t), z(t)] expressions, a 3D point file or a point list; any 2D ``profile``."""
+    """Swept tube: ``spine`` = [x(t), y(t), z(t)] expressions, a 3D point file or a point list; any 2D ``profile``.
+
+    ``arc = [start, end]`` (degrees) keeps only that open part of the profile: a ribbon.
+    ``center`` (with ``scale``) is the model point at the grid's middle.
+    """
     spine_arg: object = spine
     if isinstance(spine, list) and spine and isinstance(spine[0], list):
         spine_arg = np.asarray(spine, dtype=np.float64)
     return tube(
         spine_arg, profile, radius=radius, twist=twist, phase=phase, frame=frame, cap=cap, closed=closed,
         t_min=t_min, t_max=t_max, samples=samples, k=k, mode=mode, size=size, scale=scale,
-        base_dir=Path(base_dir), threshold=threshold, stroke=stroke,
+        base_dir=Path(base_dir), threshold=threshold, stroke=stroke, arc=arc, center=center,
     )
 
 

@@ -35,8 +35,8 @@ from voxfab.errors import InvalidShapeError
 from ._curves import BITMAP_SUFFIXES, DRAWING_SUFFIXES, Curve2D, estimate_bounds, load_curve, star_radius
 from ._expr import Expression, compile_expression
 from ._fit import Field, Mode, fit
+from ._flake import check_arc, digitize_sector, flake_vertices, half_coordinates
 from ._flake import digitize as flake_digitize
-from ._flake import flake_vertices, half_coordinates
 
 __all__ = [
     "RevolutionCurve",
@@ -437,6 +437,27 @@ def _runs_digitizer(curve: RevolutionCurve, runs: list[Run]) -> Callable[..., tu
     return digitizer
 
 
+def _sector_digitizer(
+    f: Callable[..., np.ndarray], rc: RevolutionCurve, arc: tuple[float, float]
+) -> Callable[..., tuple[np.ndarray, np.ndarray]]:
+    """Digitizer of the surface swept by the part of ``rc`` within the angles ``arc`` (radians)."""
+
+    def planar(*coords: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return coords[0], coords[1]
+
+    def digitizer(
+        shape: tuple[int, ...], origin: np.ndarray, step: np.ndarray, k: int, *, interior: bool = True
+    ) -> tuple[np.ndarray, np.ndarray]:
+        if interior:
+            raise InvalidShapeError('arc: an open curve of revolution bounds no solid; use mode = "surface"')
+        if len(shape) != 3 or rc.dim != 2:
+            raise InvalidShapeError("arc: open curves of revolution make 3D shapes only")
+        surf = digitize_sector(f, planar, arc, shape, k, origin, step)
+        return surf, np.zeros_like(surf)
+
+    return digitizer
+
+
 def revolution_field(
     curve: str | Callable[..., npt.ArrayLike] | Curve2D | RevolutionCurve,
     generatrix: str | Callable[..., npt.ArrayLike] | Curve2D | np.ndarray | Sequence[Sequence[float]],
@@ -447,6 +468,7 @@ def revolution_field(
     axis: float | None = None,
     curve_dim: int | None = None,
     z_range: Sequence[float] | None = None,
+    arc: Sequence[float] | None = None,
 ) -> Field:
     """The continuous surface of revolution as a :class:`Field` (3D, or 4D for a 3D curve).
 
@@ -466,6 +488,11 @@ def revolution_field(
     z_range : (float, float), optional
         Heights ``y`` spanned by an explicit generatrix ``x = g(y)`` (default
         ``(-1, 1)``); not allowed with other generatrices.
+    arc : (float, float), optional
+        Make the curve of revolution open: only its part between the angles
+        ``start .. end`` (degrees, counter-clockwise from +x about the axis).
+        The result is the surface swept by that open curve (mode
+        ``"surface"`` only), its flakes cropped at the two end half-planes.
     """
     rc = curve if isinstance(curve, RevolutionCurve) else load_revolution_curve(
         curve, base_dir=base_dir, threshold=curve_threshold, dim=curve_dim
@@ -494,7 +521,11 @@ def revolution_field(
 
         lo = np.append(rc.lo * rho_max, z0)
         hi = np.append(rc.hi * rho_max, z1)
+        if arc is not None:
+            return Field(None, lo, hi, "open surface of revolution", _sector_digitizer(f, rc, check_arc(arc)))
         return Field(f, lo, hi, "surface of revolution")
+    if arc is not None:
+        raise InvalidShapeError("arc: an open curve of revolution needs a region generatrix (expression, closed drawing or bitmap)")
     runs = [r for p in polys for r in split_runs(p, name="generatrix")]
     rho_max = max(float(np.max(r.r)) for r in runs)
     if rho_max <= 0:
@@ -522,17 +553,20 @@ def revolution(
     axis: float | None = None,
     curve_dim: int | None = None,
     z_range: Sequence[float] | None = None,
+    arc: Sequence[float] | None = None,
+    center: Sequence[float] | None = None,
 ) -> np.ndarray:
     """Digital surface (or solid) of revolution fitted in a ``size``³ grid (``size``⁴ for a 3D curve).
 
     See :func:`revolution_field` for the sources and :func:`voxfab.digitize.fit`
-    for ``k``, ``mode``, ``size``, ``scale`` and ``at`` (3D slice of a 4D object).
+    for ``k``, ``mode``, ``size``, ``scale``, ``center`` (fixed placement) and
+    ``at`` (3D slice of a 4D object).
     """
     fld = revolution_field(
         curve, generatrix, base_dir=base_dir, curve_threshold=curve_threshold,
-        generatrix_threshold=generatrix_threshold, axis=axis, curve_dim=curve_dim, z_range=z_range,
+        generatrix_threshold=generatrix_threshold, axis=axis, curve_dim=curve_dim, z_range=z_range, arc=arc,
     )
-    return fit(fld, k=k, mode=mode, size=size, scale=scale, at=at)
+    return fit(fld, k=k, mode=mode, size=size, scale=scale, at=at, center=center)
 
 
 def slices(grid: npt.ArrayLike, axis: int = -1) -> Iterator[np.ndarray]:

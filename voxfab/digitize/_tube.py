@@ -31,6 +31,7 @@ from voxfab.errors import InvalidShapeError, LimitError, VoxfabError
 from ._curves import Curve2D, load_curve
 from ._expr import compile_expression
 from ._fit import Field, Mode, _extent, fit, fit_scale, render
+from ._flake import check_arc, digitize_sector
 
 __all__ = ["Frame", "Cap", "Spine", "load_spine", "spine_frames", "tube_field", "tube", "tube_rotations"]
 
@@ -253,6 +254,7 @@ def tube_field(
     twist: float = 0.0,
     phase: float = 0.0,
     cap: Cap | str = "flat",
+    arc: Sequence[float] | None = None,
 ) -> Field:
     """The swept tube as a :class:`Field`.
 
@@ -270,6 +272,11 @@ def tube_field(
         Constant rotation of the profile, degrees.
     cap : {"flat", "round"}
         Ends of an open spine.
+    arc : (float, float), optional
+        Make the profile open: only its part between the angles ``start ..
+        end`` (degrees, counter-clockwise in the profile plane, after twist and
+        phase). The result is the ribbon swept by that open profile (mode
+        ``"surface"`` only), its flakes cropped at the ribbon's two edges.
     """
     cp = check_choice(cap, Cap, name="cap")
     if not np.isfinite(radius) or radius <= 0:
@@ -345,11 +352,13 @@ def tube_field(
                 best = [np.where(better, a0, best[0]), np.where(better, traw, best[1]), np.where(better, dd, best[2])]
         return shape, sel, p, best[0], best[1]
 
-    def f(*coords: np.ndarray) -> np.ndarray:
+    def evaluate(coords: Sequence[np.ndarray]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The profile's value and the profile-plane coordinates (u, v) of points (NaN far from the spine)."""
         shape, sel, p, a0, raw = closest(coords)
         out = np.ones(shape)
+        us, vs = np.full(shape, np.nan), np.full(shape, np.nan)
         if not len(sel):
-            return out
+            return out, us, vs
         flat = out.reshape(-1)
         tt = np.clip(raw, 0.0, 1.0)
         a1 = (a0 + 1) % m
@@ -381,11 +390,32 @@ def tube_field(
         if cp is Cap.FLAT:
             val = np.where(beyond, np.maximum(val, w), val)
         flat[sel] = np.broadcast_to(val, sel.shape)
-        return out
+        us.reshape(-1)[sel] = uu
+        vs.reshape(-1)[sel] = vv
+        return out, us, vs
+
+    def f(*coords: np.ndarray) -> np.ndarray:
+        return evaluate(coords)[0]
 
     lo = x.min(axis=0) - radius
     hi = x.max(axis=0) + radius
-    return Field(f, lo, hi, "tube")
+    if arc is None:
+        return Field(f, lo, hi, "tube")
+    sector = check_arc(arc)
+
+    def planar(*coords: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        _, us, vs = evaluate(coords)
+        return us, vs
+
+    def digitizer(
+        shape: tuple[int, ...], origin: np.ndarray, step: np.ndarray, k: int, *, interior: bool = True
+    ) -> tuple[np.ndarray, np.ndarray]:
+        if interior:
+            raise InvalidShapeError('arc: an open profile sweeps a ribbon, which bounds no solid; use mode = "surface"')
+        surf = digitize_sector(f, planar, sector, shape, k, origin, step)
+        return surf, np.zeros_like(surf)
+
+    return Field(None, lo, hi, "ribbon", digitizer)
 
 
 def _build(
@@ -403,16 +433,19 @@ def _build(
     frame: Frame | str,
     threshold: float,
     stroke: float | None,
+    arc: Sequence[float] | None = None,
 ) -> Callable[[float], Field]:
     """Read the spine and the profile once; return the tube's field at a profile phase (degrees)."""
     pts, is_closed = load_spine(spine, base_dir=base_dir, t_min=t_min, t_max=t_max, samples=samples, closed=closed)
     sp = spine_frames(pts, is_closed, frame)
     pr = _profile(profile, base_dir=base_dir, threshold=threshold, stroke=stroke)
-    return functools.partial(_field_at_phase, sp, pr, radius, twist, cap)
+    return functools.partial(_field_at_phase, sp, pr, radius, twist, cap, arc)
 
 
-def _field_at_phase(sp: Spine, pr: Curve2D, radius: float, twist: float, cap: Cap | str, phase: float) -> Field:
-    return tube_field(sp, pr, radius=radius, twist=twist, phase=phase, cap=cap)
+def _field_at_phase(
+    sp: Spine, pr: Curve2D, radius: float, twist: float, cap: Cap | str, arc: Sequence[float] | None, phase: float
+) -> Field:
+    return tube_field(sp, pr, radius=radius, twist=twist, phase=phase, cap=cap, arc=arc)
 
 
 def tube(
@@ -435,6 +468,8 @@ def tube(
     base_dir: Path | None = None,
     threshold: float = 0.5,
     stroke: float | None = None,
+    arc: Sequence[float] | None = None,
+    center: Sequence[float] | None = None,
 ) -> np.ndarray:
     """Digital swept tube fitted in a ``size``³ grid.
 
@@ -443,13 +478,14 @@ def tube(
     is closed when its ends meet (or by ``closed``). ``profile``: any 2D curve
     source (:func:`voxfab.digitize.load_curve`), centred and normalised to
     largest radius 1, then scaled to ``radius``. Other options: see
-    :func:`tube_field` and :func:`voxfab.digitize.fit`.
+    :func:`tube_field` (``arc``: an open profile, a ribbon) and
+    :func:`voxfab.digitize.fit` (``center``: fixed placement).
     """
     field_at = _build(
         spine, profile, radius=radius, twist=twist, cap=cap, base_dir=base_dir, t_min=t_min, t_max=t_max,
-        samples=samples, closed=closed, frame=frame, threshold=threshold, stroke=stroke,
+        samples=samples, closed=closed, frame=frame, threshold=threshold, stroke=stroke, arc=arc,
     )
-    return fit(field_at(phase), k=k, mode=mode, size=size, scale=scale)
+    return fit(field_at(phase), k=k, mode=mode, size=size, scale=scale, center=center)
 
 
 def tube_rotations(
@@ -464,12 +500,12 @@ def tube_rotations(
 
     ``tube_options`` are the keywords of :func:`tube` (``radius``, ``twist``,
     ``frame``, ``cap``, ``size``, ...) but ``phase``, which each frame sets, and
-    ``scale``: every frame uses the scale and grid window fitted for the first
-    one, so the frames line up.
+    ``scale`` and ``center``: every frame uses the scale and grid window fitted
+    for the first one, so the frames line up.
     """
     if isinstance(steps, bool) or int(steps) != steps or steps < 1:
         raise InvalidShapeError(f"steps: expected a positive integer, got {steps!r}")
-    for own in ("phase", "scale"):
+    for own in ("phase", "scale", "center"):
         if own in tube_options:
             raise TypeError(f"tube_rotations() got an unexpected keyword argument {own!r}")
     # One declaration of the tube's keywords and defaults: tube's signature.
@@ -477,7 +513,7 @@ def tube_rotations(
     bound.apply_defaults()
     opts = dict(bound.arguments)
     k, mode, size = opts.pop("k"), opts.pop("mode"), opts.pop("size")
-    del opts["phase"], opts["scale"]
+    del opts["phase"], opts["scale"], opts["center"]
     field_at = _build(**opts)
     placement, g0 = fit_scale(field_at(0.0), k=k, mode=mode, size=size)
     start = []

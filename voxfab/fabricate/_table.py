@@ -106,6 +106,8 @@ class Output:
         ``warm(folder)``: a small run of the pipeline that compiles that group.
     kernels : tuple of (module, function)
         The compiled kernels of that group, to tell whether numba's cache holds them.
+    command : str, optional
+        The ``voxfab`` command that makes it alone (``voxfab mesh``, ``voxfab render``...).
     """
 
     name: str
@@ -121,6 +123,7 @@ class Output:
     warm_group: str | None = None
     warm: Callable[[Path], None] | None = None
     kernels: tuple[tuple[str, str], ...] = ()
+    command: str | None = None
 
     @property
     def keys(self) -> tuple[str, ...]:
@@ -290,10 +293,10 @@ def _table() -> dict[str, Output]:
     rows = [
         Output("animation", (OptionTable("voxfab.render:AnimationOptions", "animation"),),
                "voxfab.render:render_animation", ("animation.gif",), _run_animation,
-               downloads=("animation.gif",), download_table=_animation_download, maker="tube"),
+               downloads=("animation.gif",), download_table=_animation_download, maker="tube", command="render"),
         Output("mesh", (OptionTable("voxfab.fabricate.mesh:MeshOptions", "mesh"),),
                "voxfab.fabricate.mesh:fabricate_mesh", ("mesh.3mf", "mesh.stl", "mesh.obj", "mesh.glb", "mesh.json"),
-               _run_mesh, downloads=("mesh.3mf", "mesh.stl"), download_table=_mesh_download,
+               _run_mesh, downloads=("mesh.3mf", "mesh.stl"), download_table=_mesh_download, command="mesh",
                warm_group="print", warm=_warm_mesh,
                kernels=(("voxfab.fabricate.mesh._contact_scan", "contact_scan"),
                         ("voxfab.fabricate.mesh._rectangles", "rectangle_mesh"),
@@ -302,16 +305,16 @@ def _table() -> dict[str, Output]:
                        OptionTable("voxfab.fabricate.netdraw:DrawingOptions", "net-drawing", _DRAWING_HIDDEN)),
                "voxfab.fabricate.netdraw:fabricate_net", ("net.json", "net*.svg", "net*.dxf", "net*.pdf", "net*.png"),
                _run_net, parse=_parse_net, downloads=("net.svg", "net.dxf", "net.pdf", "net.json"),
-               download_table=_net_download, unfolds=True, warm_group="net", warm=_warm_net,
+               download_table=_net_download, unfolds=True, warm_group="net", warm=_warm_net, command="net",
                kernels=(("voxfab.unfold._growth", "grow"), ("voxfab.unfold._tabroom", "anneal"))),
         Output("pictures", (OptionTable("voxfab.render:PictureOptions", "pictures"),),
                "voxfab.render:render_pictures", ("render_*.png", "turntable.gif", "slices.png", "net_picture.png",
                                                  "triptych.png", "triptych.pdf"),
                _run_pictures, downloads=("triptych.png", "triptych.pdf"), download_table=_pictures_download,
-               unfolds=True),
+               unfolds=True, command="render"),
         Output("slices", (OptionTable("voxfab.fabricate.plates:PlateOptions", "slices"),),
                "voxfab.fabricate.plates:fabricate_plates", ("slices/*",), _run_slices,
-               downloads=("plates.zip",), download_table=_slices_download),
+               downloads=("plates.zip",), download_table=_slices_download, command="slices"),
     ]
     return {row.name: row for row in rows}
 

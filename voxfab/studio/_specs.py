@@ -160,6 +160,13 @@ def _common(spec: Mapping[str, Any], keys: dict[str, Any]) -> None:
             keys[key] = value
 
 
+def _arc(spec: Mapping[str, Any], keys: dict[str, Any]) -> None:
+    """``arc = [start, end]`` (degrees): the open part of the curve of revolution or of the profile."""
+    arc = spec.get("arc")
+    if arc is not None:
+        keys["arc"] = [_number(v, where="shape.arc") for v in _points([arc], 2, where="shape.arc")[0]]
+
+
 def source_keys(spec: Any) -> tuple[dict[str, Any], dict[str, bytes]]:
     """The ``[source]`` table (maker first) and input files of a drawn shape."""
     if not isinstance(spec, dict):
@@ -179,8 +186,10 @@ def source_keys(spec: Any) -> tuple[dict[str, Any], dict[str, bytes]]:
         if z_range is not None and spec["generatrix"].get("kind") == "expr":
             keys["z_range"] = [_number(v, where="shape.z_range") for v in _points([z_range], 2,
                                                                                   where="shape.z_range")[0]]
+        _arc(spec, keys)
     elif maker == "tube":
         keys["profile"] = _source(spec.get("profile"), "profile", files)
+        _arc(spec, keys)
         spine = spec.get("spine")
         if not isinstance(spine, dict):
             raise SpecError("shape.spine: expected an object with a 'kind'")

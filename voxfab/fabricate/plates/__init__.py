@@ -8,7 +8,13 @@ single-stroke labels where the next plate hides them and scores the next
 layer's outline.  :func:`nest_plates` packs the plates onto sheets, and the
 writers make one DXF (R12) and one SVG per sheet, an assembly PDF and,
 optionally, STEP and STL of the plate stack.  :func:`make_slices` runs it all
-and :func:`write_slices` writes the files with ``plates.json``.
+and :func:`write_slices` writes the files with ``plates.json`` and
+``assembly.3mf`` (the plates as assembled, in the print mesh's frame).
+
+Two slotted styles need no glue: ``interlocked`` (two families of plates
+half-lapped into each other, :func:`make_interlocked`) and ``radial`` (plates
+fanned about the vertical axis and joined at a tiered hub, :func:`make_radial`).
+They are nested, labelled and written by the same steps.
 """
 
 from __future__ import annotations
@@ -25,12 +31,22 @@ from voxfab._shared.typing import PathLike
 from voxfab.fabricate._outputs import Artefact, OutputFile
 from voxfab.shape import VoxelShape
 
+from ._assembly import assembly_3mf, write_assembly_3mf
 from ._dowels import Dowel, Joint, find_joints
 from ._labels import Label, text_strokes
 from ._nest import PlacedPart, Sheet, nest_plates, parse_sheet
 from ._options import PlateOptions
+from ._order import construction_pdf, write_construction_pdf
 from ._outline import Axis, Piece, slice_layers
-from ._report import PlatesReport, make_report, plate_warnings
+from ._report import (
+    ConstructionReport,
+    PlatesReport,
+    construction_warnings,
+    make_construction_report,
+    make_report,
+    plate_warnings,
+)
+from ._slotted import Construction, Slot, SlottedPlate, make_interlocked, make_radial
 from ._stack import Plate, PlateStack, make_plates
 from ._step import stack_compound, step_bytes, write_step, write_stl
 from .dxf import sheet_dxf, write_dxf
@@ -39,6 +55,18 @@ from .svg import sheet_svg, write_svg
 
 __all__ = [
     "Axis",
+    "Construction",
+    "ConstructionReport",
+    "Slot",
+    "SlottedPlate",
+    "assembly_3mf",
+    "construction_pdf",
+    "construction_warnings",
+    "make_construction_report",
+    "make_interlocked",
+    "make_radial",
+    "write_assembly_3mf",
+    "write_construction_pdf",
     "Dowel",
     "Joint",
     "Label",
@@ -76,11 +104,25 @@ __all__ = [
 
 @dataclasses.dataclass(frozen=True, eq=False)
 class Slices:
-    """A plate stack, its sheets and its report."""
+    """A plate stack or a slotted construction, its sheets and its report.
 
-    stack: PlateStack
+    ``stack`` is set for the stacked style, ``construction`` for the others.
+    """
+
+    stack: PlateStack | None
     sheets: tuple[Sheet, ...]
-    report: PlatesReport
+    report: PlatesReport | ConstructionReport
+    construction: Construction | None = None
+
+    @property
+    def plates(self) -> tuple[Plate, ...]:
+        """Every plate to cut."""
+        return self.stack.plates if self.stack is not None else self.construction.plates
+
+    @property
+    def style(self) -> str:
+        """``"stacked"``, ``"interlocked"`` or ``"radial"``."""
+        return "stacked" if self.stack is not None else self.construction.style
 
 
 def make_slices(
@@ -98,6 +140,12 @@ def make_slices(
     dowels_per_joint: int = 2,
     score: bool = True,
     min_width: float = 1.0,
+    style: str = "stacked",
+    axes: str = "xy",
+    count: int = 5,
+    interval: float = 12.0,
+    radial_plates: int = 4,
+    clearance: float = 0.1,
 ) -> Slices:
     """Slice a shape into plates and nest them onto sheets.
 
@@ -110,6 +158,12 @@ def make_slices(
         See :func:`make_plates`.
     sheet, margin, spacing, kerf
         See :func:`nest_plates`.
+    style : {'stacked', 'interlocked', 'radial'}
+        The construction.
+    axes, count, interval, clearance
+        Interlocked plates, see :func:`make_interlocked`.
+    radial_plates, clearance
+        Radial plates, see :func:`make_radial`.
 
     Returns
     -------
@@ -119,9 +173,25 @@ def make_slices(
         grid, default_pitch = shape.grid, shape.pitch
     else:
         grid, default_pitch = np.asarray(shape), 1.0
+    pitch = default_pitch if pitch is None else pitch
+    if style in ("interlocked", "radial"):
+        if style == "interlocked":
+            construction = make_interlocked(grid, pitch=pitch, thickness=thickness, axes=axes, count=count,
+                                            interval=interval, clearance=clearance,
+                                            min_width=max(min_width, 2.0 * kerf))
+        else:
+            construction = make_radial(grid, pitch=pitch, thickness=thickness, count=radial_plates,
+                                       clearance=clearance, min_width=max(min_width, 2.0 * kerf))
+        sheets = nest_plates(construction.plates, sheet=sheet, margin=margin, spacing=spacing, kerf=kerf)
+        report = make_construction_report(construction, sheets, kerf=kerf, min_width=min_width)
+        return Slices(None, sheets, report, construction)
+    if style != "stacked":
+        from voxfab.errors import InvalidShapeError
+
+        raise InvalidShapeError(f"style: expected stacked, interlocked or radial, got {style!r}")
     stack = make_plates(
         grid,
-        pitch=default_pitch if pitch is None else pitch,
+        pitch=pitch,
         axis=axis,
         thickness=thickness,
         dowel=dowel,
@@ -139,14 +209,49 @@ def _r(v: float) -> float:
     return round(float(v), 4) + 0.0
 
 
+def _slotted_json(result: Slices, name: str) -> dict:
+    """The report plus, per plate, its plane, where it is cut and its slots."""
+    where = {part.plate.number: (sheet.index, part) for sheet in result.sheets for part in sheet.parts}
+    plates = []
+    for p in result.construction.plates:
+        sheet_index, part = where[p.number]
+        flat = p.style != "radial" or p.family == "H"  # a radial construction's ring lies flat
+        plane = {"axis": p.axis, "offset": _r(p.offset)} if flat else {"angle": _r(p.angle)}
+        plates.append({
+            "number": p.number,
+            "style": p.style,
+            "family": p.family,
+            "plane": plane,
+            "label": p.label.text,
+            "area": _r(p.area),
+            "origin": [_r(v) for v in p.origin],
+            "u": [_r(v) for v in p.u_dir],
+            "v": [_r(v) for v in p.v_dir],
+            "sheet": sheet_index,
+            "turns": part.turns,
+            "inside": part.host,
+            "offset": [_r(v) for v in part.offset],
+            "slots": [{"position": _r(s.position), "width": _r(s.width), "depth": _r(s.depth),
+                       "edge": _r(s.edge), "end": _r(s.end), "side": s.side, "runs": s.runs,
+                       "partner": s.partner, "moved": s.moved} for s in p.slots],
+        })
+    return {**result.report.to_json(), "name": name, "plates_list": plates,
+            "crossings": [list(c) for c in result.construction.crossings]}
+
+
 def plates_json(result: Slices, *, name: str = "") -> dict:
-    """The report plus one record per plate (where it is cut) and per dowel."""
+    """The report plus one record per plate (where it is cut) and per dowel (stacked) or slot."""
+    if result.stack is None:
+        return _slotted_json(result, name)
     where = {part.plate.number: (sheet.index, part) for sheet in result.sheets for part in sheet.parts}
     plates = []
     for p in result.stack.plates:
         sheet_index, part = where[p.number]
         plates.append({
             "number": p.number,
+            "style": "stacked",
+            "family": "",
+            "plane": {"axis": result.stack.axis, "offset": _r(p.z + p.thickness / 2)},
             "label": p.label.text,
             "layer": p.layer,
             "voxel_layer": result.stack.sources[p.layer - 1],
@@ -186,9 +291,18 @@ def write_slices(result: Slices, folder: PathLike, *, name: str = "", step: bool
         files.append(OutputFile(f"{stem}.dxf", f"sheet {sheet.index} for laser cutting (DXF R12: CUT, SCORE, LABEL)"))
         write_svg(sheet, folder / f"{stem}.svg")
         files.append(OutputFile(f"{stem}.svg", f"sheet {sheet.index} for laser cutting (SVG, mm)"))
-    write_assembly_pdf(result.stack, folder / "assembly.pdf", title=name)
-    files.append(OutputFile("assembly.pdf", "assembly instructions: stack order as a grid of layers"))
-    if step:
+    if result.stack is not None:
+        write_assembly_pdf(result.stack, folder / "assembly.pdf", title=name)
+        files.append(OutputFile("assembly.pdf", "assembly instructions: stack order as a grid of layers"))
+        axis = result.stack.axis
+    else:
+        write_construction_pdf(result.construction, folder / "assembly.pdf", title=name)
+        files.append(OutputFile("assembly.pdf", "assembly instructions: the order of slotting and a plan view"))
+        axis = "z"
+    write_assembly_3mf(result.plates, folder / "assembly.3mf", axis=axis, name=name)
+    files.append(OutputFile("assembly.3mf", "the plates as assembled, one object per plate label (3MF, mm, "
+                                            "the print mesh's frame)"))
+    if step and result.stack is not None:
         compound = stack_compound(result.stack)
         write_step(result.stack, folder / "plates.step", compound=compound)
         files.append(OutputFile("plates.step", "3D plate stack (STEP, mm)"))
@@ -226,7 +340,7 @@ def fabricate_plates(shape: VoxelShape, options: PlateOptions, folder: PathLike,
 
     folder = Path(folder)
     check_output(folder, folder=True, parents=True, marker="plates.json")  # before any work
-    if options.step:
+    if options.step and options.style == "stacked":
         from voxfab._shared.deps import require_extra  # refuse before any work
 
         require_extra("cad", "step (STEP and STL of the plate stack)")
@@ -234,7 +348,10 @@ def fabricate_plates(shape: VoxelShape, options: PlateOptions, folder: PathLike,
         shape, axis=options.axis, thickness=options.thickness, sheet=options.sheet, margin=options.margin,
         spacing=options.spacing, kerf=options.kerf, dowel=options.dowel, dowel_margin=options.dowel_margin,
         dowels_per_joint=options.dowels_per_joint, score=options.score, min_width=options.min_width,
+        style=options.style, axes=options.axes, count=options.count, interval=options.interval,
+        radial_plates=options.radial_plates, clearance=options.clearance,
     )
     with atomic_dir(folder, marker="plates.json") as tmp:
         files = write_slices(result, tmp, name=name, step=options.step)
-    return Artefact(tuple(files), tuple(plate_warnings(result.report)), result.report.to_json())
+    warnings = plate_warnings(result.report) if result.stack is not None else construction_warnings(result.report)
+    return Artefact(tuple(files), tuple(warnings), result.report.to_json())

@@ -33,7 +33,19 @@ class PlateOptions(Options):
     a ``thickness`` other than the pitch resamples the layers.
     """
 
-    axis: str = option("z", help="slicing axis; plates stack along it", choices=("x", "y", "z"))
+    style: str = option("stacked", help="construction: stacked (glued layers), interlocked (two slotted "
+                        "families), radial (plates fanned about the vertical axis)",
+                        choices=("stacked", "interlocked", "radial"))
+    axis: str = option("z", help="slicing axis of the stacked style; plates stack along it", choices=("x", "y", "z"))
+    axes: str = option("xy", help="interlocked: normals of family A and family B (they cross along the third axis)",
+                       choices=("xy", "yx", "xz", "zx", "yz", "zy"))
+    count: int = option(5, help="interlocked: plates per family (0: one every interval)", low=0, high=64)
+    interval: float = option(12.0, help="interlocked: distance between the plates of a family", unit="mm",
+                             low=1.0, high=1000.0)
+    radial_plates: int = option(4, help="radial: plates fanned at equal angles about the axis", low=2,
+                                high=36)
+    clearance: float = option(0.1, help="interlocked, radial: slot width beyond the material thickness, for the fit",
+                              unit="mm", low=0.0, high=5.0)
     thickness: float = option(3.0, help="measured plate thickness", unit="mm", low=0.1, high=100.0)
     sheet: str = option("600x400", help="sheet (laser bed) size WIDTHxHEIGHT", unit="mm", check=sheet_problem,
                         metavar="WxH")
@@ -51,11 +63,14 @@ class PlateOptions(Options):
     step: bool = option(False, help="also write the plate stack as STEP and STL (needs voxfab[cad])")
 
     def check(self) -> None:
-        """The margins must leave room on the sheet."""
+        """The margins must leave room on the sheet; STEP is for the stacked style."""
         from voxfab._shared.options import OptionError
 
         from ._nest import parse_sheet
 
+        if self.step and self.style != "stacked":
+            raise OptionError("step", f"STEP and STL are written for the stacked style only, not {self.style}; "
+                                      "assembly.3mf holds the plates of every style")
         w, h = parse_sheet(self.sheet)
         if min(w, h) <= 2 * self.margin:
             raise OptionError("sheet", f"{self.sheet} leaves no room inside a {self.margin:g} mm margin")

@@ -171,3 +171,123 @@ def plate_warnings(report: PlatesReport) -> list[str]:
     if report.labels_clipped:
         out.append(f"{report.labels_clipped} plate label(s) clipped: the plate is too small for the text")
     return out
+
+
+@dataclasses.dataclass(frozen=True)
+class ConstructionReport:
+    """What an interlocked or radial construction takes to make, and what to watch for.
+
+    Lengths in mm, areas in mm².
+
+    Attributes
+    ----------
+    style : str
+        ``"interlocked"`` or ``"radial"``.
+    pitch, thickness, clearance, kerf : float
+    slot_width : float
+        Width of the slots as cut (the hub slots of a radial construction).
+    plates, crossings, sheets : int
+    sheet_width, sheet_height, material_area, sheet_area, material_fraction : float
+        As in :class:`PlatesReport`.
+    size : tuple of float
+        The shape's extents in mm, which the assembly fills.
+    moved : tuple of str
+        ``"plate/partner"`` crossings whose slots were moved off the middle to keep a plate whole.
+    left_out : tuple of str
+        Sections left out because they cross no plate of the construction.
+    trimmed : tuple of str
+        Plates that lost a part a slot cut off.
+    thin : tuple of str
+        Plates with a part narrower than ``min_width`` (a strip beside a slot, a thin wall).
+    min_width : float
+    labels_clipped : int
+    steps : tuple of str
+        The assembly order.
+    """
+
+    style: str
+    pitch: float
+    thickness: float
+    clearance: float
+    kerf: float
+    slot_width: float
+    plates: int
+    crossings: int
+    sheets: int
+    sheet_width: float
+    sheet_height: float
+    material_area: float
+    sheet_area: float
+    material_fraction: float
+    size: tuple[float, ...]
+    moved: tuple[str, ...]
+    left_out: tuple[str, ...]
+    trimmed: tuple[str, ...]
+    thin: tuple[str, ...]
+    min_width: float
+    labels_clipped: int
+    steps: tuple[str, ...]
+
+    def to_json(self) -> dict[str, Any]:
+        """The report as a JSON-ready dict (with a ``format`` key)."""
+        data = dataclasses.asdict(self)
+        for key in ("size", "moved", "left_out", "trimmed", "thin", "steps"):
+            data[key] = list(data[key])
+        return {"format": FORMAT, **data}
+
+
+def make_construction_report(construction: Any, sheets: tuple[Sheet, ...], *, kerf: float = 0.0,
+                             min_width: float = 0.0) -> ConstructionReport:
+    """Build the report of a slotted construction nested on ``sheets``.
+
+    ``min_width`` is the narrowest cuttable feature in mm; ``2 × kerf`` is used when larger.
+    """
+    from ._stack import _is_thin
+
+    narrow = max(min_width, 2.0 * kerf)
+    material = sum(p.area for p in construction.plates)
+    width = sheets[0].width if sheets else 0.0
+    height = sheets[0].height if sheets else 0.0
+    sheet_area = len(sheets) * width * height
+    slot = max((s.width for p in construction.plates for s in p.slots), default=0.0)
+    return ConstructionReport(
+        style=construction.style,
+        pitch=_r(construction.pitch),
+        thickness=_r(construction.thickness),
+        clearance=_r(construction.clearance),
+        kerf=_r(kerf),
+        slot_width=_r(slot),
+        plates=len(construction.plates),
+        crossings=len(construction.crossings),
+        sheets=len(sheets),
+        sheet_width=_r(width),
+        sheet_height=_r(height),
+        material_area=_r(material),
+        sheet_area=_r(sheet_area),
+        material_fraction=_r(material / sheet_area) if sheet_area else 0.0,
+        size=tuple(_r(s) for s in construction.size),
+        moved=construction.moved,
+        left_out=construction.left_out,
+        trimmed=construction.trimmed,
+        thin=tuple(p.text for p in construction.plates if narrow > 0 and _is_thin(p.outline, narrow)),
+        min_width=_r(narrow),
+        labels_clipped=sum(not p.label.complete for p in construction.plates),
+        steps=construction.steps,
+    )
+
+
+def construction_warnings(report: ConstructionReport) -> list[str]:
+    """What a maker must know before cutting a slotted construction, one line each."""
+    out = []
+    if report.moved:
+        out.append(f"{len(report.moved)} slot pair(s) moved off the crossing's middle to keep a plate whole: "
+                   f"{_ids(report.moved)}")
+    if report.trimmed:
+        out.append(f"{len(report.trimmed)} plate(s) lost a part that a slot cut off: {_ids(report.trimmed)}")
+    if report.left_out:
+        out.append(f"{len(report.left_out)} section(s) left out, they cross no other plate: {_ids(report.left_out)}")
+    if report.thin:
+        out.append(f"{len(report.thin)} plate(s) narrower than {report.min_width:g} mm somewhere: {_ids(report.thin)}")
+    if report.labels_clipped:
+        out.append(f"{report.labels_clipped} plate label(s) clipped: the plate is too small for the text")
+    return out

@@ -98,6 +98,9 @@ function currentSpec() {
   } else {
     Object.assign(spec, foci.spec(), {radius: Number($('#focal-radius').value)});
   }
+  if (maker !== 'focal' && $('#arc-open').checked) {
+    spec.arc = [Number($('#arc-start').value), Number($('#arc-end').value)];
+  }
   return spec;
 }
 
@@ -148,7 +151,7 @@ $('#maker').addEventListener('change', () => {
   for (const m of ['revolution', 'tube', 'focal']) $(`#maker-${m}`).classList.toggle('hidden', m !== $('#maker').value);
   schedule(true);
 });
-for (const id of ['#k', '#mode', '#z-lo', '#z-hi', '#frame', '#radius', '#twist', '#spine-x', '#spine-y', '#spine-z',
+for (const id of ['#k', '#mode', '#arc-open', '#arc-start', '#arc-end', '#z-lo', '#z-hi', '#frame', '#radius', '#twist', '#spine-x', '#spine-y', '#spine-z',
   '#focal-radius', '#spine-rise', '#spine-closed']) {
   $(id).addEventListener('change', () => schedule(true));
 }

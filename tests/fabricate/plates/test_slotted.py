@@ -1,0 +1,130 @@
+"""Interlocked and radial plates, checked from the written files (see ``_plate_checks``).
+
+Each case writes the plates of one shape, style and material thickness, then
+reads ``assembly.3mf``, the sheets and ``plates.json`` back.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import shapely
+from _plate_checks import check_written, construction_shapes
+
+from voxfab.fabricate.plates import PlateOptions, fabricate_plates, make_interlocked, make_radial
+
+
+@pytest.fixture(scope="module")
+def shapes():
+    return construction_shapes()
+
+
+CASES = [(name, style, t) for name in ("ball", "torus", "overhang", "queen", "vase")
+         for style in ("interlocked", "radial") for t in (3.0, 6.0)]
+
+
+@pytest.mark.parametrize(("name", "style", "thickness"), CASES)
+def test_written_construction_is_flat_disjoint_inside_connected_and_cut(shapes, tmp_path, name, style,
+                                                                        thickness) -> None:
+    shape = shapes[name]
+    sheet = "1300x900" if name == "vase" else "600x400"
+    options = PlateOptions(style=style, thickness=thickness, sheet=sheet, count=4 if name == "vase" else 0)
+    made = fabricate_plates(shape, options, tmp_path / "slices", name=name)
+    assert {"assembly.3mf", "assembly.pdf", "plates.json"} <= {f.path for f in made.files}
+    report = check_written(tmp_path / "slices", shape, thickness, 0.0)
+    assert report["style"] == style and report["thickness"] == thickness
+    for p in report["plates_list"]:
+        assert p["style"] == style
+        assert {"family", "plane", "label", "sheet", "turns", "offset", "slots"} <= set(p)
+        assert all({"position", "width", "depth", "partner"} <= set(sl) for sl in p["slots"])
+        assert ("angle" in p["plane"]) == (style == "radial" and p["family"] == "R")
+
+
+def test_torus_radial_pieces_are_locked_by_a_flat_ring(shapes) -> None:
+    """No solid on the axis: a ring at the fullest layer takes every radial piece, slotted from outside."""
+    c = make_radial(shapes["torus"].grid, pitch=4.0, thickness=3.0, count=4)
+    ring, *pieces = c.plates
+    assert ring.text == "H1" and ring.family == "H" and ring.axis == "z"
+    assert len(pieces) == 8 and all(p.family == "R" for p in pieces)
+    assert c.crossings == tuple(("H1", p.text) for p in pieces)
+    assert sorted(s.partner for s in ring.slots) == sorted(p.text for p in pieces)
+    for p in pieces:
+        (slot,) = p.slots
+        # the piece's slot opens towards the axis, the ring's away from it, and they meet
+        ring_slot = next(s for s in ring.slots if s.partner == p.text)
+        assert abs(slot.end) == pytest.approx(abs(ring_slot.end))
+        assert abs(slot.edge) < abs(slot.end) < abs(ring_slot.edge)
+    bars = np.zeros((9, 9, 3), bool)
+    bars[0, :, 0] = bars[8, :, 2] = True  # two bars at different heights: the ring is the lower one
+    two = make_radial(bars, pitch=4.0, thickness=3.0, count=2)
+    assert [p.text for p in two.plates] == ["H1", "R1-1"] and two.left_out == ("R1-2",)
+
+
+def test_slots_are_thickness_plus_clearance_and_kerf_true_on_the_sheet(shapes, tmp_path) -> None:
+    shape = shapes["queen"]
+    options = PlateOptions(style="interlocked", thickness=3.0, clearance=0.2, kerf=0.15)
+    fabricate_plates(shape, options, tmp_path / "s", name="queen")
+    report = check_written(tmp_path / "s", shape, 3.0, 0.15)
+    assert report["slot_width"] == pytest.approx(3.2)
+    construction = make_interlocked(shape.grid, pitch=shape.pitch, thickness=3.0, clearance=0.2)
+    for plate in construction.plates:
+        for slot in plate.slots:
+            assert slot.width == pytest.approx(3.2)
+            # the slot is cut out of the plate: its box holds no material
+            assert slot.box().area == pytest.approx(3.2 * slot.depth)
+            assert shapely.intersection(plate.outline, slot.box()).area == pytest.approx(0.0, abs=1e-9)
+    # crossing pairs: the depths of a pair meet at one height, and add up to the crossing's height
+    by = {p.text: p for p in construction.plates}
+    for a, b in construction.crossings:
+        sa = next(s for s in by[a].slots if s.partner == b)
+        sb = next(s for s in by[b].slots if s.partner == a)
+        assert (sa.side, sb.side) == ("top", "bottom")
+        assert sa.end == pytest.approx(sb.end)
+        assert sa.depth + sb.depth == pytest.approx(sa.edge - sb.edge)
+    # on the sheet the slot is drawn one kerf narrower: the laser's kerf brings it back to 3.2 mm
+    from voxfab.fabricate.plates import nest_plates
+
+    sheets = nest_plates(construction.plates, sheet="600x400", kerf=0.15)
+    part, slot = next((pt, sl) for sh in sheets for pt in sh.parts for sl in pt.plate.slots if sl.depth > 2)
+    drawn = shapely.Polygon(part.cut[0], part.cut[1:])
+    v = slot.end + 0.5 if slot.side == "top" else slot.end - 0.5  # just inside the slot
+    probe = shapely.LineString(part.place([[slot.position - 3, v], [slot.position + 3, v]]))
+    centre = shapely.Point(part.place([[slot.position, v]])[0])
+    gap = probe.difference(drawn)
+    pieces = [g for g in getattr(gap, "geoms", [gap]) if shapely.distance(g, centre) < 1e-9]
+    assert pieces and pieces[0].length == pytest.approx(3.2 - 0.15, abs=1e-6)
+
+
+def test_radial_hub_tiers_stack_bottom_up(shapes) -> None:
+    shape = shapes["queen"]
+    c = make_radial(shape.grid, pitch=shape.pitch, thickness=3.0, count=4)
+    assert [p.angle for p in c.plates] == [0.0, 45.0, 90.0, 135.0]
+    assert c.crossings == (("R1", "R2"), ("R2", "R3"), ("R3", "R4"))
+    ends = [sorted(s.end for s in p.slots) for p in c.plates]
+    # plate k keeps the tier between its bottom slot's end and its top slot's end
+    assert ends[0][0] == pytest.approx(ends[1][0]) and ends[1][1] == pytest.approx(ends[2][0])
+    width = 3.0 / np.tan(np.pi / 8) + 0.1
+    assert all(s.width == pytest.approx(width) for p in c.plates for s in p.slots)
+    two = make_radial(shape.grid, pitch=shape.pitch, thickness=3.0, count=2)
+    (top,), (bottom,) = (p.slots for p in two.plates)
+    assert (top.side, bottom.side, top.width) == ("top", "bottom", pytest.approx(3.1))
+    assert top.end == pytest.approx(bottom.end)
+
+
+def test_same_inputs_same_bytes(shapes, tmp_path) -> None:
+    shape = shapes["overhang"]
+    for style in ("interlocked", "radial"):
+        a = fabricate_plates(shape, PlateOptions(style=style), tmp_path / f"a{style}", name="o")
+        fabricate_plates(shape, PlateOptions(style=style), tmp_path / f"b{style}", name="o")
+        for f in a.files:
+            assert (tmp_path / f"a{style}" / f.path).read_bytes() == (tmp_path / f"b{style}" / f.path).read_bytes()
+
+
+@pytest.mark.parametrize("axes", ["yz", "zx"])
+def test_other_axes_cross_along_the_third(shapes, tmp_path, axes) -> None:
+    shape = shapes["queen"]
+    fabricate_plates(shape, PlateOptions(style="interlocked", axes=axes, count=4), tmp_path / "s", name="q")
+    report = check_written(tmp_path / "s", shape, 3.0, 0.0)
+    assert {p["plane"]["axis"] for p in report["plates_list"]} == set(axes)
+    third = ({"x", "y", "z"} - set(axes)).pop()
+    assert f"+{third}" in report["steps"][0]

@@ -1,0 +1,763 @@
+"""Slotted constructions: interlocked (waffle) and radial plates that slide into each other.
+
+Every plate is the exact section of the voxel solid across its thickness: the
+solid swept by the plate holds the whole plate, so no plate sticks out of the
+shape.  Plates meet at *crossings*, where each gets a slot from opposite edges
+(half-lap): the plate slotted from the top keeps its material below the slot
+end, its partner slotted from the bottom keeps its material above, so the two
+never share volume and slide together along the crossing line.
+
+Geometry is in mm.  A plate's drawing frame ``(u, v)`` maps to the assembly
+frame (origin at the shape's minimum corner, z up, as the print mesh) by
+``origin + u·U + v·V``; the plate spans ``±thickness / 2`` along ``N = U × V``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import numpy.typing as npt
+
+from voxfab._shared.validate import as_grid, check_positive
+from voxfab.errors import FabricationError, InvalidShapeError
+from voxfab.shape import crop
+
+from ._labels import place_label
+from ._outline import cells_outline, label_layer, scaled
+from ._stack import Plate
+
+#: Most plates a slotted construction may have (each is a laser job and a slotting step).
+MAX_SLOTTED_PLATES = 400
+#: Most plates of a radial construction (at 36 the hub slot is 11.5 plate thicknesses wide).
+MAX_RADIAL_PLATES = 36
+_AXES = "xyz"
+
+
+@dataclasses.dataclass(frozen=True)
+class Slot:
+    """One half-lap slot of a plate, in the plate's frame (mm).
+
+    Attributes
+    ----------
+    position : float
+        ``u`` of the slot's centre line.
+    width : float
+        Slot width as cut (material thickness plus fit clearance, or the hub width).
+    edge, end : float
+        ``v`` where the slot opens (the plate's edge) and where it ends.
+    depth : float
+        ``|edge - end|``.
+    side : str
+        ``"top"`` (opens upwards, towards +v) or ``"bottom"``.
+    partner : str
+        Label of the plate that slides into this slot.
+    moved : bool
+        Whether the slot end left the crossing's middle to keep a plate whole.
+    runs : str
+        The frame axis the slot runs along (``"v"``, or ``"u"`` when the crossing axis is the plate's u),
+        or ``"radial"`` for a ring's slot: it runs from ``centre`` at ``position`` degrees, ``edge``
+        and ``end`` being signed distances from ``centre`` along that direction.
+    """
+
+    position: float
+    width: float
+    edge: float
+    end: float
+    depth: float
+    side: str
+    partner: str
+    moved: bool = False
+    runs: str = "v"
+    centre: tuple[float, float] = (0.0, 0.0)
+
+    def box(self) -> object:
+        """The slot as a shapely polygon in the plate's frame."""
+        if self.runs == "radial":
+            return _radial_box(self.centre, self.position, self.width, self.edge, self.end)
+        return _slot_box(0 if self.runs == "v" else 1, self.position, self.width, self.edge, self.end)
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class SlottedPlate(Plate):
+    """A plate of a slotted construction: its plane, its frame in the assembly and its slots.
+
+    ``outline`` is the section with the slots cut.  ``layer`` is the family
+    (1 = A, 2 = B; radial plates: 1), ``piece`` the plate's index in it.
+    """
+
+    style: str = "interlocked"
+    family: str = "A"
+    axis: str = "x"
+    offset: float = 0.0
+    angle: float = 0.0
+    origin: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    u_dir: tuple[float, float, float] = (1.0, 0.0, 0.0)
+    v_dir: tuple[float, float, float] = (0.0, 0.0, 1.0)
+    slots: tuple[Slot, ...] = ()
+    text: str = ""
+
+    @property
+    def id(self) -> str:
+        """The plate's label."""
+        return self.text
+
+    @property
+    def normal(self) -> npt.NDArray[np.float64]:
+        """``U × V``: the direction of the plate's thickness."""
+        return np.cross(self.u_dir, self.v_dir)
+
+    def to_assembly(self, uv: npt.ArrayLike, s: npt.ArrayLike) -> npt.NDArray[np.float64]:
+        """Map plate points ``(n, 2)`` and offsets ``s`` along the normal to assembly mm ``(n, 3)``."""
+        uv = np.asarray(uv, dtype=np.float64).reshape(-1, 2)
+        s = np.broadcast_to(np.asarray(s, dtype=np.float64), (len(uv),))
+        return (np.asarray(self.origin) + uv[:, :1] * np.asarray(self.u_dir) + uv[:, 1:] * np.asarray(self.v_dir)
+                + s[:, None] * self.normal)
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Construction:
+    """The plates of an interlocked or radial construction and what was found while making them.
+
+    Attributes
+    ----------
+    style : str
+    pitch, thickness, clearance : float
+    plates : tuple of SlottedPlate
+        In assembly order.
+    crossings : tuple of (str, str)
+        Plate label pairs joined by slots (top-slotted plate first).
+    moved : tuple of str
+        ``"label/partner"`` of slots moved or shortened to keep a plate whole.
+    left_out : tuple of str
+        Sections left out: they cross no plate of the construction (they would be loose).
+    trimmed : tuple of str
+        Plates that lost a part a slot cut off, although the slot was moved.
+    size : (float, float, float)
+        The shape's extents in mm.
+    steps : tuple of str
+        The assembly order, one instruction each.
+    """
+
+    style: str
+    pitch: float
+    thickness: float
+    clearance: float
+    plates: tuple[SlottedPlate, ...]
+    crossings: tuple[tuple[str, str], ...]
+    moved: tuple[str, ...]
+    left_out: tuple[str, ...]
+    trimmed: tuple[str, ...]
+    size: tuple[float, float, float]
+    steps: tuple[str, ...]
+
+
+def _unit(axis: int) -> tuple[float, float, float]:
+    e = [0.0, 0.0, 0.0]
+    e[axis] = 1.0
+    return (e[0], e[1], e[2])
+
+
+def plane_layers(layers: int, count: int, pitch: float, interval: float, thickness: float = 0.0) -> list[int]:
+    """Voxel layers (0-based) whose middles carry a family's plates, spread evenly.
+
+    ``count`` plates, or when 0 one per ``interval`` mm of the shape's extent
+    (at least one).  Planes sit at layer middles, so a plate no thicker than a
+    voxel lies inside one voxel layer; a plane nearer than ``thickness`` to the
+    one before is dropped, so plates of a family never overlap.
+    """
+    n = count if count > 0 else max(1, int(math.floor(layers * pitch / interval + 1e-9)))
+    n = min(n, layers)
+    picks = np.round((np.arange(n) + 0.5) * layers / n - 0.5).astype(int)
+    kept: list[int] = []
+    for i in sorted(set(int(i) for i in np.clip(picks, 0, layers - 1))):
+        if not kept or (i - kept[-1]) * pitch > thickness + 1e-9:
+            kept.append(i)
+    return kept
+
+
+def slab_section(grid: npt.NDArray[np.bool_], axis: int, centre: float, pitch: float,
+                 thickness: float) -> npt.NDArray[np.bool_]:
+    """Cells (of the two other axes, in order) filled in every voxel layer the plate's slab meets.
+
+    A plate of ``thickness`` centred at ``centre`` mm along ``axis`` covers those
+    cells inside the solid; a slab that leaves the grid has no section.
+    """
+    lo = int(math.floor((centre - thickness / 2) / pitch + 1e-9))
+    hi = int(math.ceil((centre + thickness / 2) / pitch - 1e-9)) - 1
+    if lo < 0 or hi >= grid.shape[axis]:
+        return np.zeros([grid.shape[a] for a in range(3) if a != axis], dtype=bool)
+    return np.take(grid, range(lo, hi + 1), axis=axis).all(axis=axis)
+
+
+def _single(geometry: object) -> tuple[object, bool]:
+    """The largest polygon of ``geometry`` and whether anything else was dropped."""
+    parts = [g for g in getattr(geometry, "geoms", [geometry]) if g.geom_type == "Polygon" and not g.is_empty]
+    if not parts:
+        return geometry, True
+    best = max(parts, key=lambda g: g.area)
+    return best, len(parts) > 1
+
+
+def _whole(geometry: object) -> bool:
+    return geometry.geom_type == "Polygon" and not geometry.is_empty
+
+
+@dataclasses.dataclass
+class _Draft:
+    """A plate under construction (mutable while slots are cut)."""
+
+    text: str
+    family: str
+    axis: int
+    offset: float
+    angle: float
+    origin: tuple[float, float, float]
+    u_dir: tuple[float, float, float]
+    v_dir: tuple[float, float, float]
+    body: object
+    cells: int
+    slots: list[Slot] = dataclasses.field(default_factory=list)
+    trimmed: bool = False
+
+
+def _interlocked_drafts(grid: npt.NDArray[np.bool_], axes: str, pitch: float, thickness: float, count: int,
+                        interval: float) -> tuple[list[_Draft], list[_Draft]]:
+    """The sections of both families, one draft per 4-connected piece of each plane."""
+    import shapely
+
+    fams: list[list[_Draft]] = [[], []]
+    for f, name in enumerate("AB"):
+        a = _AXES.index(axes[f])
+        others = [k for k in range(3) if k != a]
+        layers = plane_layers(grid.shape[a], count, pitch, interval, thickness)
+        for n, i in enumerate(layers, start=1):
+            centre = (i + 0.5) * pitch
+            section = slab_section(grid, a, centre, pitch, thickness)
+            labels, pieces = label_layer(section)
+            for k in range(1, pieces + 1):
+                mask = labels == k
+                text = f"{name}{n}" if pieces == 1 else f"{name}{n}-{k}"
+                outline = scaled(cells_outline(np.argwhere(mask)), pitch)
+                origin = [0.0, 0.0, 0.0]
+                origin[a] = centre
+                fams[f].append(_Draft(text, name, a, centre, 0.0, (origin[0], origin[1], origin[2]),
+                                      _unit(others[0]), _unit(others[1]), shapely.orient_polygons(outline),
+                                      int(mask.sum())))
+    return fams[0], fams[1]
+
+
+def _band(geometry: object, along: int, lo: float, hi: float) -> tuple[float, float] | None:
+    """Extent along the other frame axis of ``geometry`` inside the band ``lo..hi`` of frame axis ``along``."""
+    import shapely
+
+    x0, y0, x1, y1 = geometry.bounds
+    box = shapely.box(lo, y0 - 1, hi, y1 + 1) if along == 0 else shapely.box(x0 - 1, lo, x1 + 1, hi)
+    part = shapely.intersection(geometry, box)
+    if part.is_empty or part.area <= 0:
+        return None
+    b = part.bounds
+    return (b[1], b[3]) if along == 0 else (b[0], b[2])
+
+
+def _slot_box(along: int, centre: float, width: float, a: float, b: float) -> object:
+    import shapely
+
+    lo, hi = sorted((a, b))
+    if along == 0:
+        return shapely.box(centre - width / 2, lo, centre + width / 2, hi)
+    return shapely.box(lo, centre - width / 2, hi, centre + width / 2)
+
+
+def _height(d: _Draft, w: int) -> float:
+    """Centre of a plate's section along the crossing axis ``w``."""
+    c = d.body.centroid
+    return float((c.x, c.y)[[k for k in range(3) if k != d.axis].index(w)])
+
+
+def _radial_box(centre: tuple[float, float], angle: float, width: float, a: float, b: float) -> object:
+    """Rectangle ``width`` wide along the direction ``angle`` (degrees) from ``centre``, at distances ``a..b``."""
+    import shapely
+
+    t = math.radians(angle)
+    d = np.array([math.cos(t), math.sin(t)])
+    n = np.array([-d[1], d[0]]) * width / 2
+    c = np.asarray(centre, dtype=np.float64)
+    lo, hi = sorted((a, b))
+    return shapely.Polygon([c + d * lo - n, c + d * hi - n, c + d * hi + n, c + d * lo + n])
+
+
+def _join_interlocked(fam_a: list[_Draft], fam_b: list[_Draft], width: float, pitch: float,
+                      moved: list[str]) -> tuple[list[tuple[_Draft, _Draft, float, float]],
+                                                 dict[str, tuple[float, int, int]]]:
+    """Cut the half-lap slots of every crossing.
+
+    Plates go in one after another, each lowered along the crossing axis onto
+    those already in place, lower sections first (family A first among equals):
+    at a crossing the earlier plate is slotted from the top, the later one from
+    the bottom.  Ordering by one key keeps the order free of cycles, and a low
+    piece (the foot of a section) goes in under a tall plate, a high one (a
+    rim) over it, so neither slot has to run the full height of the tall plate.
+
+    Returns
+    -------
+    crossings : list of (lower, upper, slot end height, crossing position)
+        Earlier plate first.
+    keys : dict
+        Plate label → its place in the assembly order.
+    """
+    import shapely
+
+    w = 3 - fam_a[0].axis - fam_b[0].axis if fam_a and fam_b else 2
+    keys = {d.text: (round(_height(d, w), 6), f, i) for f, fam in enumerate((fam_a, fam_b)) for i, d in enumerate(fam)}
+    crossings = []
+    for pa in fam_a:
+        for pb in fam_b:
+            lower, upper = (pa, pb) if keys[pa.text] < keys[pb.text] else (pb, pa)
+            # the frame axis of each plate that runs along the other's normal
+            lo_along = [k for k in range(3) if k != lower.axis].index(upper.axis)
+            up_along = [k for k in range(3) if k != upper.axis].index(lower.axis)
+            zl = _band(lower.body, lo_along, upper.offset - width / 2, upper.offset + width / 2)
+            zu = _band(upper.body, up_along, lower.offset - width / 2, lower.offset + width / 2)
+            if zl is None or zu is None:
+                continue
+            z0, z1 = max(zl[0], zu[0]), min(zl[1], zu[1])
+            if z1 - z0 <= 1e-9:
+                continue
+            middle = (z0 + z1) / 2
+            # slot ends tried: the middle, then half-voxel steps outwards inside the crossing
+            steps = np.arange(1, int((z1 - z0) / pitch * 2) + 1) * pitch / 2
+            tries = [middle] + [middle + s * d for s in steps for d in (1, -1) if z0 < middle + s * d < z1]
+            chosen = None
+            for zm in tries:
+                cut_l = shapely.difference(lower.body, _slot_box(lo_along, upper.offset, width, zm, zl[1]))
+                cut_u = shapely.difference(upper.body, _slot_box(up_along, lower.offset, width, zu[0], zm))
+                if _whole(cut_l) and _whole(cut_u):
+                    chosen = (zm, cut_l, cut_u)
+                    break
+            if chosen is None:
+                zm = middle
+                cut_l, lost_l = _single(shapely.difference(lower.body, _slot_box(lo_along, upper.offset, width, zm,
+                                                                                 zl[1])))
+                cut_u, lost_u = _single(shapely.difference(upper.body, _slot_box(up_along, lower.offset, width,
+                                                                                 zu[0], zm)))
+                lower.trimmed |= lost_l
+                upper.trimmed |= lost_u
+                chosen = (zm, cut_l, cut_u)
+            zm, lower.body, upper.body = chosen
+            is_moved = bool(abs(zm - middle) > 1e-9)
+            if is_moved:
+                moved.append(f"{lower.text}/{upper.text}")
+            # the slot runs along the crossing axis, the frame axis other than ``along``
+            lower.slots.append(Slot(upper.offset, width, zl[1], zm, zl[1] - zm, "top", upper.text, is_moved,
+                                    "uv"[1 - lo_along]))
+            upper.slots.append(Slot(lower.offset, width, zu[0], zm, zm - zu[0], "bottom", lower.text, is_moved,
+                                    "uv"[1 - up_along]))
+            crossings.append((lower, upper, zm, upper.offset))
+    return crossings, keys
+
+
+def _waves(order: list[str], crossings: list[tuple[str, str]]) -> list[list[str]]:
+    """Plates grouped by when they can go in: each wave slides onto the waves before it."""
+    wave: dict[str, int] = {}
+    below: dict[str, list[str]] = {}
+    for a, b in crossings:
+        below.setdefault(b, []).append(a)
+    for t in order:  # the order puts every plate after those it is lowered onto
+        wave[t] = 1 + max((wave[a] for a in below.get(t, []) if a in wave), default=-1)
+    groups: list[list[str]] = [[] for _ in range(max(wave.values(), default=-1) + 1)]
+    for t in order:
+        groups[wave[t]].append(t)
+    return groups
+
+
+def _connected(drafts: list[_Draft], crossings: list[tuple[str, str]]) -> tuple[list[_Draft], list[str]]:
+    """The largest connected group of plates (by material area); the others are reported as left out."""
+    parent = {d.text: d.text for d in drafts}
+
+    def find(x: str) -> str:
+        while parent[x] != x:
+            parent[x] = parent[parent[x]]
+            x = parent[x]
+        return x
+
+    for a, b in crossings:
+        parent[find(a)] = find(b)
+    area: dict[str, float] = {}
+    for d in drafts:
+        area[find(d.text)] = area.get(find(d.text), 0.0) + d.body.area
+    if not area:
+        return [], []
+    best = max(sorted(area), key=lambda r: area[r])
+    keep = [d for d in drafts if find(d.text) == best]
+    return keep, [d.text for d in drafts if find(d.text) != best]
+
+
+def _open(d: _Draft, width: float) -> None:
+    """Remove the strips narrower than ``width`` that slots leave beside a voxel step.
+
+    An opening by a square keeps every part of a rectilinear outline at least
+    ``width`` wide as it is; a plate it cuts in two keeps its largest part.
+    """
+    import shapely
+
+    if width <= 0:
+        return
+    opened = d.body.buffer(-width / 2, join_style="mitre").buffer(width / 2, join_style="mitre")
+    if opened.is_empty or d.body.difference(opened).area <= 1e-9 * d.body.area:
+        return
+    # the opening is inside the body up to rounding: clip it, so no plate grows
+    body, lost = _single(shapely.intersection(d.body, opened))
+    d.body = shapely.simplify(body, 0.0)
+    d.trimmed |= lost
+
+
+def _still_joined(drafts: list[_Draft], joints: list[tuple[_Draft, _Draft, float, float]], width: float,
+                  min_width: float) -> list[tuple[str, str]]:
+    """Open every plate (:func:`_open`), then the crossings whose plates still meet at the slot end.
+
+    ``joints`` holds ``(lower, upper, height of the slot ends, position of the crossing)``; a
+    crossing holds while the lower plate reaches up to the slot end inside the crossing and
+    the upper one down to it.  The slots of a crossing that no longer holds are dropped.
+    """
+    for d in drafts:
+        _open(d, min_width)
+    held = []
+    for lower, upper, zm, _ in joints:
+        lo_along = [k for k in range(3) if k != lower.axis].index(upper.axis) if lower.axis != upper.axis else 0
+        up_along = [k for k in range(3) if k != upper.axis].index(lower.axis) if lower.axis != upper.axis else 0
+        zl = _band(lower.body, lo_along, upper.offset - width / 2, upper.offset + width / 2)
+        zu = _band(upper.body, up_along, lower.offset - width / 2, lower.offset + width / 2)
+        if zl is not None and zu is not None and zl[1] >= zm - 1e-6 and zu[0] <= zm + 1e-6:
+            held.append((lower.text, upper.text))
+        else:
+            lower.slots = [sl for sl in lower.slots if sl.partner != upper.text]
+            upper.slots = [sl for sl in upper.slots if sl.partner != lower.text]
+    return held
+
+
+def _finish(d: _Draft, number: int, style: str, thickness: float, pitch: float, kept: set[str]) -> SlottedPlate:
+    """Freeze a draft into a plate with its label and its partners' labels engraved."""
+    import shapely
+
+
+    clearance = max(0.1 * pitch, 0.2)
+    slots = tuple(s for s in d.slots if s.partner in kept)
+    label = place_label(d.text, d.body, shapely.Polygon(), pitch=pitch, clearance=clearance)
+    strokes = list(label.strokes)
+    taken = shapely.union_all([shapely.box(*shapely.LineString(s).bounds).buffer(clearance) for s in strokes
+                               if len(s) > 1]) if strokes else shapely.Polygon()
+    for s in slots:
+        # the partner's label beside the slot, nearest its end where the partner's edge meets this plate
+        near = s.box().buffer(2.0 * pitch, join_style="mitre")
+        region = shapely.difference(shapely.intersection(d.body, near), taken)
+        if region.is_empty or region.area <= 0:
+            continue
+        # in parentheses, so a partner's label never reads as this plate's own
+        mark = place_label(f"({s.partner})", _single(region)[0], shapely.Polygon(), pitch=pitch, clearance=clearance)
+        strokes.extend(mark.strokes)
+        if mark.strokes:
+            taken = shapely.union(taken, shapely.box(*shapely.MultiLineString(
+                [m for m in mark.strokes if len(m) > 1]).bounds).buffer(clearance))
+    label = dataclasses.replace(label, strokes=tuple(strokes))
+    return SlottedPlate(
+        number=number, layer=1 if d.family in ("A", "R") else 2, piece=number, copy=1,
+        outline=shapely.orient_polygons(d.body), holes=np.zeros((0, 2)), hole_diameter=0.0, z=0.0,
+        thickness=thickness, label=label, score=(), cells=d.cells, style=style, family=d.family,
+        axis=_AXES[d.axis], offset=d.offset, angle=d.angle, origin=d.origin, u_dir=d.u_dir, v_dir=d.v_dir,
+        slots=slots, text=d.text,
+    )
+
+
+def make_interlocked(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.0, axes: str = "xy",
+                     count: int = 5, interval: float = 12.0, clearance: float = 0.1,
+                     min_width: float = 1.0) -> Construction:
+    """Two families of plates slotted into each other at right angles (a waffle, or sliceform).
+
+    Parameters
+    ----------
+    grid : (X, Y, Z) bool array_like
+    pitch : float
+        Voxel edge in mm.
+    thickness : float
+        Measured material thickness in mm.
+    axes : str
+        Normals of family A and family B, e.g. ``"xy"``: A plates are
+        perpendicular to x, B plates to y, and they cross along the third axis.
+    count : int
+        Plates per family; 0 for one every ``interval`` mm.
+    interval : float
+        Distance in mm between the plates of a family when ``count`` is 0.
+    clearance : float
+        Slot width beyond the thickness, for the fit, in mm.
+    min_width : float
+        Narrowest strip in mm kept beside a slot; narrower ones are cut away.
+
+    Returns
+    -------
+    Construction
+        Family A stands; family B slides down onto it (B's slots open downwards).
+    """
+    pitch = check_positive(pitch, name="pitch")
+    thickness = check_positive(thickness, name="thickness")
+    if len(axes) != 2 or axes[0] == axes[1] or any(a not in _AXES for a in axes):
+        raise InvalidShapeError(f"axes: expected two different axes of x, y, z such as 'xy', got {axes!r}")
+    g = crop(as_grid(grid, name="shape"))
+    fam_a, fam_b = _interlocked_drafts(g, axes, pitch, thickness, count, interval)
+    if len(fam_a) + len(fam_b) > MAX_SLOTTED_PLATES:
+        raise InvalidShapeError(f"count: {len(fam_a) + len(fam_b)} plates, over the limit of {MAX_SLOTTED_PLATES}; "
+                                "use fewer plates per family or a larger interval")
+    moved: list[str] = []
+    width = thickness + clearance
+    joints, keys = _join_interlocked(fam_a, fam_b, width, pitch, moved)
+    crossings = _still_joined(fam_a + fam_b, joints, width, min_width)
+    keep, left_out = _connected(fam_a + fam_b, crossings)
+    if not keep or not crossings:
+        raise FabricationError("interlocked: no two plates cross; use more plates per family or other axes")
+    kept = {d.text for d in keep}
+    ordered = sorted(keep, key=lambda d: keys[d.text])
+    plates = tuple(_finish(d, n, "interlocked", thickness, pitch, kept) for n, d in enumerate(ordered, start=1))
+    w = _AXES[3 - _AXES.index(axes[0]) - _AXES.index(axes[1])]
+    kept_crossings = tuple((a, b) for a, b in crossings if a in kept and b in kept)
+    waves = _waves([p.text for p in plates], list(kept_crossings))
+    steps = (f"stand {' '.join(waves[0])} upright (normals along {axes[0]} and {axes[1]}) with their slots "
+             f"open towards +{w}",
+             *(f"lower {' '.join(group)} along -{w} onto the plates in place: each lower slot onto the plate "
+               "whose label it carries" for group in waves[1:]))
+    return Construction("interlocked", pitch, thickness, clearance, plates, kept_crossings,
+                        tuple(m for m in moved if set(m.split("/")) <= kept), tuple(left_out),
+                        tuple(d.text for d in keep if d.trimmed), tuple(float(s * pitch) for s in g.shape), steps)
+
+
+def radial_section(layers: list[object | None], centre: tuple[float, float], angle: float, reach: float,
+                   thickness: float, pitch: float) -> object:
+    """Exact section of the voxel solid by a vertical plate through ``centre`` at ``angle`` degrees.
+
+    In the plate's frame ``(r, z)``, ``r`` along ``(cos a, sin a)`` from the
+    axis: per voxel layer, the ``r`` where the plate's whole thickness lies
+    inside the layer.  The part of the plate's strip outside a layer is a set
+    of connected polygons; each one rules out the ``r`` of its projection.
+    """
+    import shapely
+
+    a = math.radians(angle)
+    d = np.array([math.cos(a), math.sin(a)])
+    n = np.array([math.sin(a), -math.cos(a)])
+    c = np.asarray(centre, dtype=np.float64)
+    corners = np.array([c - d * reach - n * thickness / 2, c + d * reach - n * thickness / 2,
+                        c + d * reach + n * thickness / 2, c - d * reach + n * thickness / 2])
+    strip = shapely.Polygon(corners)
+    boxes = []
+    for k, layer in enumerate(layers):
+        if layer is None:
+            continue
+        outside = shapely.difference(strip, layer)
+        bad = []
+        for part in getattr(outside, "geoms", [outside]):
+            if part.is_empty or part.area <= 0:
+                continue
+            r = (shapely.get_coordinates(part) - c) @ d
+            bad.append((float(r.min()), float(r.max())))
+        bad.sort()
+        start = -reach
+        for lo, hi in bad + [(reach, reach)]:
+            if lo > start + 1e-9:
+                boxes.append(shapely.box(start, k * pitch, lo, (k + 1) * pitch))
+            start = max(start, hi)
+    if not boxes:
+        return shapely.Polygon()
+    return shapely.simplify(shapely.union_all(boxes), 0.0)
+
+
+def make_radial(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.0, count: int = 4,
+                clearance: float = 0.1, min_width: float = 1.0) -> Construction:
+    """``count`` vertical plates fanned at equal angles about the axis through the middle of the footprint.
+
+    The plates meet at the hub, the column where they all cross.  The hub's
+    height is split into ``count`` tiers, one per plate from the bottom up:
+    each plate keeps its tier and is slotted from the top above it and from
+    the bottom below it, so plate 1 stands and every next plate drops onto the
+    one before from above, no plate passing through another.  Two plates make
+    a plain half-lap (one slotted from the top, one from the bottom).  The
+    hub slot is as wide as two plates at the smallest angle need:
+    ``thickness / 2 · cot(90° / count)`` each side, plus half the clearance.
+    Strips narrower than ``min_width`` mm beside a slot are cut away.
+
+    Returns
+    -------
+    Construction
+    """
+    import shapely
+
+    pitch = check_positive(pitch, name="pitch")
+    thickness = check_positive(thickness, name="thickness")
+    if int(count) != count or not 2 <= count <= MAX_RADIAL_PLATES:
+        raise InvalidShapeError(f"radial_plates: expected an integer from 2 to {MAX_RADIAL_PLATES}, got {count!r}")
+    g = crop(as_grid(grid, name="shape"))
+    nx, ny, nz = g.shape
+    centre = (nx * pitch / 2, ny * pitch / 2)
+    reach = math.hypot(nx, ny) * pitch / 2 + pitch
+    layers = [scaled(cells_outline(np.argwhere(g[:, :, k])), pitch) if g[:, :, k].any() else None
+              for k in range(nz)]
+    half = thickness / 2 / math.tan(math.pi / (2 * count)) + clearance / 2
+    drafts: list[_Draft] = []
+    left_out: list[str] = []
+    sections = [radial_section(layers, centre, 180.0 * k / count, reach, thickness, pitch) for k in range(count)]
+    hub_box = shapely.box(-half, -1.0, half, nz * pitch + 1.0)
+    if not any(p.intersects(hub_box) for sec in sections for p in getattr(sec, "geoms", [sec]) if not p.is_empty):
+        # the axis runs through no solid (a ring, a torus): a flat ring plate locks the radial pieces
+        return _ring_radial(g, sections, centre, reach, pitch=pitch, thickness=thickness, clearance=clearance,
+                            min_width=min_width)
+    for k, section in enumerate(sections):
+        angle = 180.0 * k / count
+        text = f"R{k + 1}"
+        hub = [p for p in getattr(section, "geoms", [section]) if not p.is_empty and p.intersects(hub_box)]
+        others = [p for p in getattr(section, "geoms", [section]) if not p.is_empty and p not in hub]
+        left_out.extend(f"{text} piece at r = {p.bounds[0]:.1f}..{p.bounds[2]:.1f} mm" for p in others)
+        if len(hub) != 1:
+            raise FabricationError(
+                f"radial: plate {text} misses the hub" if not hub
+                else f"radial: plate {text} meets the axis in {len(hub)} separate parts")
+        a = math.radians(angle)
+        drafts.append(_Draft(text, "R", 2, 0.0, angle, (centre[0], centre[1], 0.0),
+                             (math.cos(a), math.sin(a), 0.0), (0.0, 0.0, 1.0),
+                             shapely.orient_polygons(hub[0]), int(round(hub[0].area / pitch ** 2))))
+    spans = [_band(d.body, 0, -half, half) for d in drafts]
+    if any(s is None for s in spans):
+        raise FabricationError("radial: the axis through the middle of the footprint runs through no solid")
+    z0, z1 = max(s[0] for s in spans), min(s[1] for s in spans)
+    if z1 - z0 <= 1e-9:
+        raise FabricationError("radial: the plates share no stretch of the axis to join at")
+    tiers = np.linspace(z0, z1, count + 1)
+    width = 2 * half
+    for k, (d, (lo, hi)) in enumerate(zip(drafts, spans)):
+        if k < count - 1:
+            d.body = shapely.difference(d.body, _slot_box(0, 0.0, width, float(tiers[k + 1]), hi))
+            d.slots.append(Slot(0.0, width, hi, float(tiers[k + 1]), hi - float(tiers[k + 1]), "top",
+                                drafts[k + 1].text))
+        if k > 0:
+            d.body = shapely.difference(d.body, _slot_box(0, 0.0, width, lo, float(tiers[k])))
+            d.slots.append(Slot(0.0, width, lo, float(tiers[k]), float(tiers[k]) - lo, "bottom",
+                                drafts[k - 1].text))
+        d.body, d.trimmed = _single(d.body)
+    joints = [(drafts[k], drafts[k + 1], float(tiers[k + 1]), 0.0) for k in range(count - 1)]
+    held = _still_joined(drafts, joints, width, min_width)
+    keep, dropped = _connected(drafts, held)
+    if len(keep) < 2:
+        raise FabricationError("radial: the hub is too thin to join the plates; use fewer or thinner plates")
+    left_out.extend(dropped)
+    kept = {d.text for d in keep}
+    plates = tuple(_finish(d, n, "radial", thickness, pitch, kept) for n, d in enumerate(keep, start=1))
+    labels = [p.text for p in plates]
+    steps = (f"stand {labels[0]} upright with its hub slot open at the top",
+             *(f"drop {b} from above onto {a} at the hub: the lower slot of {b} over {a}"
+               for a, b in zip(labels, labels[1:])))
+    crossings = tuple((a, b) for a, b in held if a in kept and b in kept)
+    return Construction("radial", pitch, thickness, clearance, plates, crossings, (), tuple(left_out),
+                        tuple(d.text for d in keep if d.trimmed), tuple(float(s * pitch) for s in g.shape), steps)
+
+
+def _ring_radial(g: npt.NDArray[np.bool_], sections: list[object], centre: tuple[float, float], reach: float, *,
+                 pitch: float, thickness: float, clearance: float, min_width: float) -> Construction:
+    """Radial pieces locked by a flat ring, for a shape with no solid on its axis.
+
+    The ring ``H1`` is the section of the solid at the voxel layer with the
+    most cells.  Each radial piece meets it along a line pointing away from
+    the axis, and the pair is half-lapped across that line: the piece is
+    slotted from its edge nearer the axis, the ring from its outer edge, each
+    to the middle of the stretch they share.  Lay the ring flat, then slide
+    every piece onto it towards the axis; pieces never meet one another.
+    """
+    import shapely
+
+    counts = g.sum(axis=(0, 1))
+    layer = int(np.argmax(counts))
+    zc = (layer + 0.5) * pitch
+    cells = slab_section(g, 2, zc, pitch, thickness)
+    labels, n = label_layer(cells)
+    if n == 0:
+        raise FabricationError("radial: the axis runs through no solid, and no layer can carry a ring to join at")
+    sizes = np.bincount(labels.ravel())[1:]
+    ring = scaled(cells_outline(np.argwhere(labels == int(np.argmax(sizes)) + 1)), pitch)
+    ring_draft = _Draft("H1", "H", 2, zc, 0.0, (0.0, 0.0, zc), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0),
+                        shapely.orient_polygons(ring), int(sizes.max()))
+    width = thickness + clearance
+    pieces: list[_Draft] = []
+    joints: list[tuple[_Draft, float, float, float]] = []  # piece, side, slot end (distance), angle
+    left_out: list[str] = [f"H1 piece {k}" for k in range(2, n + 1)] if n > 1 else []
+    moved: list[str] = []
+    for k, section in enumerate(sections):
+        angle = 180.0 * k / len(sections)
+        a = math.radians(angle)
+        parts = sorted((p for p in getattr(section, "geoms", [section]) if not p.is_empty),
+                       key=lambda p: (p.centroid.x, p.centroid.y))
+        for j, part in enumerate(parts, start=1):
+            pieces.append(_Draft(f"R{k + 1}-{j}", "R", 2, 0.0, angle, (centre[0], centre[1], 0.0),
+                                 (math.cos(a), math.sin(a), 0.0), (0.0, 0.0, 1.0), shapely.orient_polygons(part),
+                                 int(round(part.area / pitch ** 2))))
+    for d in pieces:
+        side = 1.0 if d.body.centroid.x > 0 else -1.0
+        band = _band(d.body, 1, zc - width / 2, zc + width / 2)
+        strip = _radial_box(centre, d.angle, width, 0.0, side * reach)
+        on_ring = shapely.intersection(ring_draft.body, strip)
+        if band is None or on_ring.is_empty or on_ring.area <= 0:
+            continue
+        rho = (shapely.get_coordinates(on_ring) - np.asarray(centre)) @ np.array(d.u_dir[:2]) * side
+        p0, p1 = sorted((band[0] * side, band[1] * side))
+        q0, q1 = float(rho.min()), float(rho.max())
+        lo, hi = max(p0, q0), min(p1, q1)
+        if hi - lo <= 1e-9:
+            continue
+        middle = (lo + hi) / 2
+        steps = np.arange(1, int((hi - lo) / pitch * 2) + 1) * pitch / 2
+        chosen = None
+        for m in [middle] + [middle + st * sg for st in steps for sg in (1, -1) if lo < middle + st * sg < hi]:
+            cut_p = shapely.difference(d.body, _slot_box(1, zc, width, side * p0, side * m))
+            cut_r = shapely.difference(ring_draft.body, _radial_box(centre, d.angle, width, side * m, side * q1))
+            if _whole(cut_p) and _whole(cut_r):
+                chosen = (m, cut_p, cut_r)
+                break
+        if chosen is None:
+            m = middle
+            cut_p, lost_p = _single(shapely.difference(d.body, _slot_box(1, zc, width, side * p0, side * m)))
+            cut_r, lost_r = _single(shapely.difference(ring_draft.body,
+                                                       _radial_box(centre, d.angle, width, side * m, side * q1)))
+            d.trimmed |= lost_p
+            ring_draft.trimmed |= lost_r
+            chosen = (m, cut_p, cut_r)
+        m, d.body, ring_draft.body = chosen
+        is_moved = bool(abs(m - middle) > 1e-9)
+        if is_moved:
+            moved.append(f"H1/{d.text}")
+        d.slots.append(Slot(zc, width, side * p0, side * m, m - p0, "inner", "H1", is_moved, "u"))
+        ring_draft.slots.append(Slot(d.angle, width, side * q1, side * m, q1 - m, "outer", d.text, is_moved,
+                                     "radial", centre))
+        joints.append((d, side, m, d.angle))
+    for d in [ring_draft, *pieces]:
+        _open(d, min_width)
+    held = []
+    for d, side, m, angle in joints:
+        band = _band(d.body, 1, zc - width / 2, zc + width / 2)
+        on_ring = shapely.intersection(ring_draft.body, _radial_box(centre, angle, width, 0.0, side * reach))
+        ok = band is not None and not on_ring.is_empty and on_ring.area > 0
+        if ok:
+            rho = (shapely.get_coordinates(on_ring) - np.asarray(centre)) @ np.array(d.u_dir[:2]) * side
+            ok = min(band[0] * side, band[1] * side) <= m + 1e-6 and float(rho.max()) >= m - 1e-6
+        if ok:
+            held.append(("H1", d.text))
+        else:
+            d.slots = [sl for sl in d.slots if sl.partner != "H1"]
+            ring_draft.slots = [sl for sl in ring_draft.slots if sl.partner != d.text]
+    keep, dropped = _connected([ring_draft, *pieces], held)
+    if ring_draft not in keep or len(keep) < 2:
+        raise FabricationError("radial: the axis runs through no solid, and no radial piece crosses a ring")
+    left_out.extend(dropped)
+    kept = {d.text for d in keep}
+    plates = tuple(_finish(d, i, "radial", thickness, pitch, kept) for i, d in enumerate(keep, start=1))
+    labels = [p.text for p in plates if p.text != "H1"]
+    steps = ("lay the ring H1 flat with its slots open towards the outside",
+             f"slide {' '.join(labels)} onto H1 towards the axis: the slot of each piece over the ring "
+             "at the ring slot engraved with its label")
+    return Construction("radial", pitch, thickness, clearance, plates, tuple(held), tuple(moved), tuple(left_out),
+                        tuple(d.text for d in keep if d.trimmed), tuple(float(v * pitch) for v in g.shape), steps)
