@@ -35,6 +35,7 @@ QUESTIONS = [
     ("1x1x3 box", _box(1, 1, 3), ["min"]),
     ("1x2x2 box", _box(1, 2, 2), ["3x6", "min"]),
     ("2x2x2 cube", _box(2, 2, 2), ["2x12", "3x8", "min"]),
+    ("8x8x2 plate", _box(8, 8, 2), ["40x40"]),
     ("ball r=3", examples.ball(3), ["30x30"]),
     ("ball r=6", examples.ball(6), ["40x40"]),
     ("ball r=8", examples.ball(8), ["50x50"]),
