@@ -216,6 +216,16 @@ def test_cli_proved_none_has_its_own_exit_status_and_writes_nothing(tmp_path):
     assert r.stderr.startswith("voxfab: error: ") and "Traceback" not in r.stderr
 
 
+def test_a_slow_run_gives_the_same_net():
+    from voxfab.shape import examples
+
+    shape = examples.ball(2)
+    fast = unfold(shape, rng=0, strategy="exact", fit=(12, 12), timeout=60)
+    # Out of time before the solver checked the growth net: the same net all the same.
+    slow = unfold(shape, rng=0, strategy="exact", fit=(12, 12), timeout=1e-6)
+    assert slow.to_json() == fast.to_json()
+
+
 def test_time_out_is_undecided_not_none():
     grid = np.ones((3, 3, 6), dtype=bool)
     with pytest.raises(UnfoldError, match="^undecided") as info:
