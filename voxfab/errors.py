@@ -15,6 +15,7 @@ __all__ = [
     "UnknownFormatError",
     "FormatError",
     "UnfoldError",
+    "NoNetExistsError",
     "RecipeError",
     "RepositoryError",
     "MissingDependencyError",
@@ -87,6 +88,29 @@ class UnfoldError(VoxfabError, RuntimeError):
     """Valid input for which no net was found (or none can exist)."""
 
 
+class NoNetExistsError(UnfoldError):
+    """A complete search proved that no one-piece net fits the box (not a time-out).
+
+    Attributes
+    ----------
+    box : (int, int)
+        The box in faces, ``(width, height)``.
+    why : str
+        The reason when it is known without a search (edge constraints that
+        leave no room), else empty.
+    """
+
+    def __init__(self, width: int, height: int, why: str = "") -> None:
+        text = f"no one-piece net of this shape fits {width}x{height} faces (proved)"
+        super().__init__(f"{text}: {why}" if why else text)
+        self.box = (width, height)
+        self.why = why
+
+    def __reduce__(self) -> tuple:
+        # Rebuilt from the box (batch workers pickle errors), not from the message.
+        return (type(self), (*self.box, self.why))
+
+
 class RecipeError(VoxfabError, ValueError):
     """A recipe with an unknown key, a wrong type or a bad value."""
 
@@ -135,4 +159,5 @@ EXIT_CODES: dict[type[VoxfabError], int] = {
     MissingDependencyError: 9,
     FabricationError: 10,
     LimitError: 12,
+    NoNetExistsError: 13,
 }

@@ -35,7 +35,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="NET.json, or a drawing (.svg .dxf laser files, .pdf .png to look at and print); "
                              "repeat for several files of the same net")
     parser.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
-    parser.add_argument("--fit", metavar="WxH",
+    parser.add_argument("--fit", "--box", metavar="WxH",
                         help="JSON nets: keep the net inside W×H (voxels, or mm when the face size is known); "
                              "drawings always fit their sheet")
     add_pitch_option(parser)
@@ -111,6 +111,10 @@ def run(args: argparse.Namespace) -> int:
         check_output(p)  # before the search, which may take minutes
     drawings = [p for p in outputs if p.suffix.lower() != ".json"]
     _drawing_formats(drawings)
+    if search.zipper and (drawings or search.count > 1):
+        raise InvalidShapeError("--zipper: for one JSON net (NET.json) with --strategy exact")
+    if search.min_box and (drawings or args.fit is not None):
+        raise InvalidShapeError("--min-box: for JSON nets without --box (drawings fit their sheet)")
     if search.count > 1 and search.pieces != "one":
         raise InvalidShapeError("--count: several nets need --pieces one")
     # The paper scale: --face-size, else the shape's pitch (--pitch or the file's own); a shape
@@ -140,7 +144,8 @@ def run(args: argparse.Namespace) -> int:
             print_notes([f"{len(results)} distinct nets found of the {search.count} asked for "
                          f"within the {search.budget:g} s budget"])
     else:
-        found = unfold(shape.grid, rng=args.seed, pieces=search.pieces, fit=_fit(args.fit, face_size), **options)
+        found = unfold(shape.grid, rng=args.seed, pieces=search.pieces, fit=_fit(args.fit, face_size),
+                       min_box=search.min_box, zipper=search.zipper, **options)
         results = [found if isinstance(found, list) else [found]]
     grid = fill_cavities(shape.grid) if search.fill else shape.grid
     title = name or Path(args.shape).stem

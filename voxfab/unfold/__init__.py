@@ -6,6 +6,8 @@ describe its cut edges for glue tabs, ``EdgeConstraints`` names edges to cut
 or keep folded.
 """
 
+from voxfab.errors import NoNetExistsError
+
 from ._constraints import EdgeConstraints
 from ._layout import seam_pairs, tab_room
 from ._net import NET_FORMAT, Net
@@ -18,6 +20,7 @@ __all__ = [
     "EdgeConstraints",
     "Net",
     "NoFitError",
+    "NoNetExistsError",
     "Pieces",
     "Strategy",
     "ValidationReport",

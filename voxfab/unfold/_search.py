@@ -13,7 +13,7 @@ import numpy.typing as npt
 from voxfab._shared.progress import Meter, meter
 from voxfab._shared.rng import as_rng
 from voxfab._shared.validate import as_grid, check_choice
-from voxfab.errors import InvalidShapeError, UnfoldError
+from voxfab.errors import InvalidShapeError, NoNetExistsError, UnfoldError
 from voxfab.shape import SurfaceGraph, cavity_count, component_count, fill_cavities, surface_graph
 
 from ._constraints import EdgeConstraints, Resolved, check_one_piece, resolve
@@ -78,6 +78,7 @@ class Strategy(enum.StrEnum):
 
     DEFAULT = "default"
     PAPER = "paper"
+    EXACT = "exact"
 
 
 class Pieces(enum.StrEnum):
@@ -437,6 +438,8 @@ def unfold(
     pieces: str | Pieces = "one",
     compact: bool = False,
     constraints: EdgeConstraints | None = None,
+    min_box: bool = False,
+    zipper: bool = False,
 ) -> Net | list[Net]:
     """Find a net of a voxel shape: its surface cut along voxel edges and laid flat.
 
@@ -447,11 +450,15 @@ def unfold(
     rng : int or numpy Generator
         Seed.  The same int seed gives the identical net (unless the search runs
         into ``timeout``); different seeds give different nets.
-    strategy : {"default", "paper"}
+    strategy : {"default", "paper", "exact"}
         ``"default"``: ruin-and-recreate growth (a dead end removes the subtree on
         the blocking cell and lays the blocked face there), then tab-room
         repair.  ``"paper"``: the published random growth with leaf swaps,
-        subtree drops and restarts, for comparison.
+        subtree drops and restarts, for comparison.  ``"exact"``: a complete
+        search (CP-SAT, needs the ``ortools`` package) inside ``fit``, or for the
+        least-area box with ``min_box``: it finds a net or proves that none
+        exists (:class:`~voxfab.errors.NoNetExistsError`); the same net on every
+        run, whatever ``rng``, and no tab-room repair.
     timeout : float
         Budget in seconds for the whole call.
     fit : (int, int) or None
@@ -481,6 +488,12 @@ def unfold(
     constraints : EdgeConstraints, optional
         Edges to cut (never folds) and edges to keep (always folds: the faces
         they join move as one rigid group during the search).
+    zipper : bool
+        Exact strategy only: the cut edges must form one path (an unzipping).
+    min_box : bool
+        Exact strategy only, instead of ``fit``: the net whose bounding box has
+        the least area, every smaller area proved to have none (``compact``
+        without ``fit`` means the same to the exact strategy).
 
     Returns
     -------
@@ -489,6 +502,8 @@ def unfold(
 
     Raises
     ------
+    NoNetExistsError
+        Exact strategy: no one-piece net fits ``fit`` (proved).
     NoFitError
         No one-piece net fits ``fit`` within the budget; ``best_extent`` gives
         the most compact layout found.
@@ -502,6 +517,9 @@ def unfold(
     strat = check_choice(strategy, Strategy, name="strategy")
     mode = check_choice(pieces, Pieces, name="pieces")
     fit = _check_fit(fit)
+    min_box = _check_exact(strat, mode, fit, compact, min_box)
+    if zipper and strat is not Strategy.EXACT:
+        raise InvalidShapeError("zipper (CLI --zipper) needs strategy 'exact'")
     if not float(timeout) > 0:
         raise InvalidShapeError(f"timeout: expected a positive number of seconds, got {timeout!r}")
     seed = _seed_of(rng)
@@ -512,9 +530,20 @@ def unfold(
     deadline = time.monotonic() + float(timeout)
     sg = surface_graph(g)
     resolved = resolve(constraints, sg)  # every named edge must be on this surface
+    if strat is Strategy.EXACT and fit is not None:
+        try:  # each is a proof that no net fits the box, found without a search
+            _check_groups_fit(resolved, fit)
+            check_one_piece(sg, resolved)
+        except UnfoldError as exc:
+            raise NoNetExistsError(*fit, why=str(exc)) from None
     _check_groups_fit(resolved, fit)
     job = _Job(g, sg, seed, strat, fit, tab_aware, compact, deadline, float(timeout), constraints)
     parts = _surface_parts(sg)
+    if strat is Strategy.EXACT:
+        if len(parts) > 1:
+            _refuse_parts(g, len(parts))
+        check_one_piece(sg, resolved)
+        return dataclasses.replace(_exact_piece(job, parts[0], resolved, min_box, bool(zipper)), filled=fill)
     if mode is Pieces.ONE:
         if len(parts) > 1:
             _refuse_parts(g, len(parts))
@@ -527,6 +556,78 @@ def unfold(
                                        deadline=time.monotonic() + remaining / (len(parts) - t))
         nets.extend(_pieces(part_job, part))
     return [dataclasses.replace(n, filled=fill) for n in nets]
+
+
+def _check_exact(strat: Strategy, mode: Pieces, fit: tuple[int, int] | None, compact: bool,
+                 min_box: bool) -> bool:
+    """Refuse options the exact strategy has no meaning for, before any work; return ``min_box``.
+
+    ``compact`` without a box asks the exact strategy for the least-area box
+    (what compactness means to it), so callers that shrink a net (the sheet's
+    automatic face size) work with it unchanged.
+    """
+    if strat is not Strategy.EXACT:
+        if min_box:
+            raise InvalidShapeError("min_box (CLI --min-box) needs strategy 'exact'")
+        return False
+    if mode is not Pieces.ONE:
+        raise InvalidShapeError("strategy 'exact' finds one-piece nets only: pieces must be 'one'")
+    if fit is not None and min_box:
+        raise InvalidShapeError("strategy 'exact': give a box (fit, CLI --box WxH) or min_box (CLI --min-box), "
+                                "not both")
+    min_box = min_box or (compact and fit is None)
+    if fit is None and not min_box:
+        raise InvalidShapeError("strategy 'exact' needs a box: fit=(W, H) (CLI --box WxH) or min_box "
+                                "(CLI --min-box)")
+    return min_box
+
+
+def _exact_piece(job: _Job, faces: npt.NDArray[np.int64], resolved: Resolved | None, min_box: bool,
+                 zipper: bool) -> Net:
+    """The exact strategy's net of one surface part (no seed: recorded as 0)."""
+    from ._exact import exact_layout, min_box_layout
+    from ._validate import validate
+
+    with meter(1, desc="net: exact search") as bar:
+        if min_box:
+            lay = min_box_layout(job.sg, faces, resolved, job.deadline, zipper)
+        else:
+            hint = None if zipper else _growth_hint(job, faces, resolved)
+            lay = exact_layout(job.sg, faces, resolved, job.fit, job.deadline, zipper, hint)
+        bar.update()
+    net = build_net(job.sg, faces, lay.cell, lay.rot, lay.parent, seed=0, strategy=Strategy.EXACT.value)
+    # The independent refold: a net the model let through but the validator
+    # refuses would be a bug in the model, never a net to hand out.
+    net = dataclasses.replace(net, seams_without_tab_room=count_without_tab_room(job.grid, net))
+    validate(job.grid, net, constraints=job.constraints, strict=True)
+    return net
+
+
+def _growth_hint(job: _Job, faces: npt.NDArray[np.int64], resolved: Resolved | None):  # noqa: ANN202
+    """A net in the box from ruin-and-recreate growth with seed 0, or None: the exact search's starting point.
+
+    A fixed seed and a fixed budget of growth steps in each orientation (no
+    clock) make the hint, and so the exact result, the same on every run.
+    """
+    from ._exact import ExactLayout
+
+    n = int(faces.size)
+    w, h = job.fit
+    if w * h < n:
+        return None
+    for t, box in enumerate(_orientations((w, h))):
+        b = _Board(job.sg, faces, [0, t], box, resolved)
+        # Bounded by steps, not by the clock: a slow run must not change the hint.
+        if not b.grow(_settings(Strategy.DEFAULT, n), math.inf, _FIT_STEPS_PER_FACE * n):
+            continue
+        x, y = b.pos % b.width - 1, b.pos // b.width - 1  # inside the board's wall
+        rot, par = b.rot.copy(), b.par.copy()
+        if t == 1:  # grown in the box turned: turn the net back a quarter turn clockwise
+            x, y = y, h - 1 - x
+            rot = (rot + 3) % 4
+        cell = np.stack([x, y], axis=1)
+        return ExactLayout(cell, rot, par, (w, h))
+    return None
 
 
 def _check_groups_fit(resolved: Resolved | None, fit: tuple[int, int] | None) -> None:
@@ -1030,6 +1131,8 @@ def unfold_many(
         raise InvalidShapeError(f"budget: expected a positive number of seconds, got {budget!r}")
     if options.get("pieces", "one") != "one":
         raise InvalidShapeError("unfold_many: pieces must be 'one'")
+    if str(options.get("strategy", "default")) == Strategy.EXACT.value:
+        raise InvalidShapeError("strategy 'exact' gives one net, the same every run: ask for one net")
     gen = np.random.default_rng(_seed_of(rng))
     end = time.monotonic() + float(budget)
     timeout = float(options.pop("timeout", 60.0))  # type: ignore[arg-type]

@@ -27,8 +27,9 @@ class NetOptions(Options):
 
     face_size: float | None = option(None, help="edge of one paper face (default: the shape's pitch)",
                                      unit="mm", low=0.0, low_open=True, high=1000.0)
-    strategy: str = option("default", help="search strategy: ruin-and-recreate with tab room, or paper",
-                           choices=("default", "paper"))
+    strategy: str = option("default", help="search strategy: ruin-and-recreate with tab room, paper, or exact "
+                           "(a complete search in --box or --min-box: a net, or a proof that none fits; needs "
+                           "ortools)", choices=("default", "paper", "exact"))
     timeout: float = option(60.0, help="search budget per net", unit="s", low=0.0, low_open=True,
                             high=MAX_TIMEOUT)
     count: int = option(1, help="write N distinct nets as NAME-1.ext ... NAME-N.ext", low=1, high=MAX_COUNT,
@@ -39,6 +40,10 @@ class NetOptions(Options):
                          "few sheets as possible", choices=("one", "auto"))
     fill: bool = option(False, help="unfold the outer surface only, as if enclosed cavities were filled")
     compact: bool = option(False, help="prefer a small bounding box (slower)")
+    min_box: bool = option(False, help="strategy exact: the net of least bounding-box area, every smaller "
+                           "area proved to have none", recipe=False)
+    zipper: bool = option(False, help="strategy exact: the cut edges form one path (an unzipping), or a proof "
+                          "that no such net fits", recipe=False)
     fit: bool = option(True, help="kept for old recipes: drawn nets always fit their sheet", cli=False)
     formats: tuple[str, ...] = option(("svg", "dxf", "pdf"), help="drawings written beside net.json (png: a "
                                       "preview)", choices=("svg", "dxf", "pdf", "png"), cli=False)
