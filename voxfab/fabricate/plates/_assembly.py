@@ -8,10 +8,6 @@ are named by the plates' labels.
 
 from __future__ import annotations
 
-import io
-import zipfile
-from xml.sax.saxutils import escape, quoteattr
-
 import numpy as np
 import numpy.typing as npt
 
@@ -60,37 +56,15 @@ def plate_solid_mesh(plate: Plate, axis: str = "z") -> tuple[npt.NDArray[np.floa
 
 def assembly_3mf(plates: tuple[Plate, ...], *, axis: str = "z", name: str = "") -> bytes:
     """The 3MF package of the assembled plates: one object per plate, named by its label."""
-    from voxfab.fabricate.mesh.formats._text import format_rows
-    from voxfab.fabricate.mesh.formats.threemf import _CONTENT_TYPES, _DATE, _NS, _RELS
+    from voxfab.fabricate.mesh.formats.threemf import objects_xml, package_bytes
 
-    out = [
-        '<?xml version="1.0" encoding="UTF-8"?>\n',
-        f'<model unit="millimeter" xml:lang="en-US" xmlns="{_NS}">\n',
-        f'<metadata name="Title">{escape(name or "plates")}</metadata>\n',
-        '<metadata name="Application">voxfab</metadata>\n',
-        "<resources>\n",
-    ]
-    for i, plate in enumerate(plates, start=1):
-        v, t = plate_solid_mesh(plate, axis)
-        # -0.0 and 0.0 print differently: add 0.0 so equal plates give equal bytes
-        v = np.round(v, 6) + 0.0
-        out.append(f'<object id="{i}" type="model" name={quoteattr(plate.label.text)}>\n<mesh>\n<vertices>\n')
-        out.append(format_rows(v, '<vertex x="%.9g" y="%.9g" z="%.9g"/>\n'))
-        out.append("</vertices>\n<triangles>\n")
-        out.append(format_rows(t, '<triangle v1="%d" v2="%d" v3="%d"/>\n'))
-        out.append("</triangles>\n</mesh>\n</object>\n")
-    out.append("</resources>\n<build>\n")
-    out.extend(f'<item objectid="{i}"/>\n' for i in range(1, len(plates) + 1))
-    out.append("</build>\n</model>\n")
-    buf = io.BytesIO()
-    with zipfile.ZipFile(buf, "w") as z:
-        for arcname, text in (("[Content_Types].xml", _CONTENT_TYPES), ("_rels/.rels", _RELS),
-                              ("3D/3dmodel.model", "".join(out))):
-            info = zipfile.ZipInfo(arcname, date_time=_DATE)
-            info.compress_type = zipfile.ZIP_DEFLATED
-            info.external_attr = 0o644 << 16
-            z.writestr(info, text.encode("utf-8"), compresslevel=6)
-    return buf.getvalue()
+    def objects():  # noqa: ANN202 - a generator of (name, vertices, triangles)
+        for plate in plates:
+            v, t = plate_solid_mesh(plate, axis)
+            # -0.0 and 0.0 print differently: add 0.0 so equal plates give equal bytes
+            yield plate.label.text, np.round(v, 6) + 0.0, t
+
+    return package_bytes(objects_xml(objects(), title=name or "plates"))
 
 
 def write_assembly_3mf(plates: tuple[Plate, ...], path: PathLike, *, axis: str = "z", name: str = "") -> None:

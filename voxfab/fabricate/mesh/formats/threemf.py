@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import io
 import zipfile
+from collections.abc import Iterable
 from xml.etree import ElementTree as ET
 from xml.sax.saxutils import escape, quoteattr
 
@@ -41,44 +42,54 @@ _RELS = (
 _DATE = (1980, 1, 1, 0, 0, 0)
 
 
-def model_xml(mesh: MeshData, *, name: str) -> str:
-    """The ``3D/3dmodel.model`` document."""
+def objects_xml(objects: Iterable[tuple[str, np.ndarray, np.ndarray]], *, title: str) -> str:
+    """A ``3D/3dmodel.model`` document of named objects, each ``(name, vertices mm, triangles)``."""
     out = [
         '<?xml version="1.0" encoding="UTF-8"?>\n',
         f'<model unit="millimeter" xml:lang="en-US" xmlns="{_NS}">\n',
-        f'<metadata name="Title">{escape(name)}</metadata>\n',
+        f'<metadata name="Title">{escape(title)}</metadata>\n',
         '<metadata name="Application">voxfab</metadata>\n',
         "<resources>\n",
     ]
-    n = mesh.part_count
-    for p in range(n):
-        v, t = mesh.part_mesh(p)
-        obj_name = name if n == 1 else f"{name} part {p + 1}"
-        out.append(f'<object id="{p + 1}" type="model" name={quoteattr(obj_name)}>\n<mesh>\n<vertices>\n')
+    count = 0
+    for count, (obj_name, v, t) in enumerate(objects, start=1):
+        out.append(f'<object id="{count}" type="model" name={quoteattr(obj_name)}>\n<mesh>\n<vertices>\n')
         out.append(format_rows(v, '<vertex x="%.9g" y="%.9g" z="%.9g"/>\n'))
         out.append("</vertices>\n<triangles>\n")
         out.append(format_rows(t, '<triangle v1="%d" v2="%d" v3="%d"/>\n'))
         out.append("</triangles>\n</mesh>\n</object>\n")
     out.append("</resources>\n<build>\n")
-    out.extend(f'<item objectid="{p + 1}"/>\n' for p in range(n))
+    out.extend(f'<item objectid="{i}"/>\n' for i in range(1, count + 1))
     out.append("</build>\n</model>\n")
     return "".join(out)
 
 
-def to_bytes(mesh: MeshData, *, name: str) -> bytes:
-    """The 3MF package as bytes (byte-identical for the same mesh and name)."""
+def model_xml(mesh: MeshData, *, name: str) -> str:
+    """The ``3D/3dmodel.model`` document: one object per part."""
+    n = mesh.part_count
+    parts = ((name if n == 1 else f"{name} part {p + 1}", *mesh.part_mesh(p)) for p in range(n))
+    return objects_xml(parts, title=name)
+
+
+def package_bytes(model: str) -> bytes:
+    """The 3MF package around a model document (fixed dates: the same model gives the same bytes)."""
     buf = io.BytesIO()
     with zipfile.ZipFile(buf, "w") as z:
         for arcname, text in (
             ("[Content_Types].xml", _CONTENT_TYPES),
             ("_rels/.rels", _RELS),
-            ("3D/3dmodel.model", model_xml(mesh, name=name)),
+            ("3D/3dmodel.model", model),
         ):
             info = zipfile.ZipInfo(arcname, date_time=_DATE)
             info.compress_type = zipfile.ZIP_DEFLATED
             info.external_attr = 0o644 << 16
             z.writestr(info, text.encode("utf-8"), compresslevel=6)
     return buf.getvalue()
+
+
+def to_bytes(mesh: MeshData, *, name: str) -> bytes:
+    """The 3MF package as bytes (byte-identical for the same mesh and name)."""
+    return package_bytes(model_xml(mesh, name=name))
 
 
 def read(path: PathLike) -> MeshData:
