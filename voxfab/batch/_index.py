@@ -17,18 +17,16 @@ INDEX_NAME = "index.html"
 THUMBS = "thumbs"
 #: Shapes per contact sheet; a bigger batch gets ``contact_sheet_2.png`` and so on.
 SHEET_SHAPES = 400
-#: Unfolding budget for a net thumbnail when the batch builds no net (the first call in a fresh
-#: process may also compile the net engine, when its numba cache is cold).
-_NET_TIMEOUT_S = 60.0
 
 
 def draw_thumbnails(grid: BoolGrid, folder: Path, thumbs: Path, *, name: str, seed: int, size: int) -> list[str]:
     """Write ``thumbs/<name>.png`` (isometric render) and ``thumbs/<name>-net.png``.
 
     The net is the batch's own (``folder/net.json``) when the outputs include a net,
-    else one unfolded with the recipe's seed.  Returns notes (why a net is missing).
+    else the pictures pipeline's net for the recipe's seed (the triptych's).  Returns
+    notes (why a net is missing).
     """
-    from voxfab.render import net_picture, render, save_picture
+    from voxfab.render import make_net, net_picture, render, save_picture
     from voxfab.unfold import Net
 
     thumbs.mkdir(parents=True, exist_ok=True)
@@ -38,9 +36,7 @@ def draw_thumbnails(grid: BoolGrid, folder: Path, thumbs: Path, *, name: str, se
         if built.is_file():
             net = Net.from_json(built.read_text())
         else:
-            from voxfab.unfold import unfold
-
-            net = unfold(grid, rng=seed, timeout=_NET_TIMEOUT_S)
+            net = make_net(grid, rng=seed)
         picture = net_picture(net, grid, size=size, legend=False, numbers=False)
     except Exception as exc:  # noqa: BLE001 - a missing thumbnail must not fail a built shape
         return [f"no net thumbnail: {' '.join(str(exc).split())}"]
