@@ -22,7 +22,7 @@ from ._views import View
 if TYPE_CHECKING:
     from PIL import Image
 
-    from voxfab.fabricate import Artefact
+    from voxfab.fabricate._outputs import Artefact
     from voxfab.shape import VoxelShape
     from voxfab.unfold import Net
 
@@ -219,7 +219,7 @@ def render_pictures(
         Before any drawing, when a picture's extension is not one of its kind's formats.
     """
     from voxfab._shared.atomic import write_bytes
-    from voxfab.fabricate import Artefact, OutputFile
+    from voxfab.fabricate._outputs import Artefact, OutputFile
 
     from ._image import gif_bytes, pdf_bytes, png_bytes
 
