@@ -8,6 +8,9 @@ the vertex graph whose complement folds flat without overlap.  The model is
 that path alone, one ``AddCircuit`` over the vertices and a dummy node (a far
 stronger propagator than a tree encoded by depths), with no cells at all:
 
+0. the short paths whose ends fold onto one cell (five faces round a vertex
+   span 450 degrees, a path round a notch doubles back) are found by a
+   bounded enumeration and ruled out first: one of their edges is cut;
 1. solve for a Hamiltonian path;
 2. fold its complement flat (the layout of a tree is fixed by its folds);
 3. two faces on one cell are an overlap that every tree holding the tree path
@@ -28,13 +31,17 @@ import time
 import numpy as np
 import numpy.typing as npt
 
-from voxfab.errors import NoNetExistsError
+from voxfab.errors import NoNetExistsError, UnfoldError
 from voxfab.shape import SurfaceGraph
 
 from ._constraints import _SIDE_STEP
 from ._exact import _SOLVER_SEED, ExactLayout, Undecided, _cp_model
 
 __all__ = ["zipper_layout"]
+
+#: Paths of up to this many folds that overlap are ruled out before the search (the common,
+#: local overlaps); longer ones as the search meets them.
+_SHORT_PATH = 8
 
 
 def _edges(sg: SurfaceGraph, faces: npt.NDArray[np.int64]) -> list[tuple[int, int, int, int]]:
@@ -94,36 +101,44 @@ def _tree_path(u: int, v: int, parent: npt.NDArray[np.int64], via: npt.NDArray[n
     return up_u[b] + path_v
 
 
-def _crowded_fans(sg: SurfaceGraph, faces: npt.NDArray[np.int64],
-                  edges: list[tuple[int, int, int, int]]) -> list[list[int]]:
-    """Every run of four consecutive edges around a vertex of five or more faces (indices in ``edges``)."""
+def _short_overlaps(sg: SurfaceGraph, faces: npt.NDArray[np.int64], edges: list[tuple[int, int, int, int]],
+                    longest: int, deadline: float) -> list[tuple[int, ...]]:
+    """Every path of at most ``longest`` folds whose two end faces fold onto one cell (indices in ``edges``).
+
+    Only the shortest such paths are kept (a path holding one is not extended),
+    each once whichever end it starts from.
+    """
     number = {}
     for i, (a, k, b, kb) in enumerate(edges):
         number[(a, k)] = number[(b, kb)] = i
-    inside = np.zeros(sg.face_count, dtype=bool)
-    inside[faces] = True
-    done = set()
-    out = []
-    for a in faces.tolist():
-        for k in range(4):
-            v = int(sg.vertex[a, k])
-            if v in done:
+    found: set[tuple[int, ...]] = set()
+    for start in faces.tolist():
+        if time.monotonic() > deadline:
+            raise Undecided(f"undecided: the zipper search ran out of time while it prepared the {faces.size}-face "
+                            "surface; raise the timeout")
+        # Depth first: (face, its rotation, its cell, the faces on the path with their cells, the folds).
+        stack = [(start, 0, (0, 0), {(0, 0): start}, ())]
+        while stack:
+            a, r, c, cells, path = stack.pop()
+            if len(path) == longest:
                 continue
-            done.add(v)
-            ring = []  # the edges around v in turn: face a's edge k starts at v, then the next face's
-            fa, fk = a, k
-            while True:
-                ring.append(number.get((fa, fk), -1))
-                b, kb = int(sg.neighbor[fa, fk]), int(sg.neighbor_edge[fa, fk])
-                if b < 0 or not inside[b]:
-                    break
-                fa, fk = b, (kb + 1) % 4
-                if (fa, fk) == (a, k) or len(ring) > 8:
-                    break
-            if len(ring) < 5 or -1 in ring:
-                continue
-            out.extend([ring[(j + t) % len(ring)] for t in range(4)] for j in range(len(ring)))
-    return out
+            for k in range(4):
+                i = number.get((a, k))
+                if i is None:
+                    continue
+                b, kb = int(sg.neighbor[a, k]), int(sg.neighbor_edge[a, k])
+                if b in cells.values():
+                    continue
+                s = (k + r) % 4
+                cb = (c[0] + _SIDE_STEP[s][0], c[1] + _SIDE_STEP[s][1])
+                if cb in cells:
+                    if cells[cb] == start:
+                        found.add(tuple(sorted((*path, i))))
+                    continue  # a shorter path inside this one overlaps: it is found from its own start
+                if abs(cb[0]) + abs(cb[1]) > longest - len(path) - 1:
+                    continue  # too far to come back to the start's cell
+                stack.append((b, (s + 2 - kb) % 4, cb, {**cells, cb: b}, (*path, i)))
+    return sorted(found)
 
 
 def zipper_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], deadline: float) -> ExactLayout:
@@ -156,7 +171,9 @@ def zipper_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], deadline: floa
     verts = np.unique(corner)
     index = {int(v): i for i, v in enumerate(verts.tolist())}
     genus2 = 2 - (verts.size - len(edges) + n)  # twice the genus, by Euler
-    if genus2 != 0:
+    if genus2 < 0:
+        raise UnfoldError(f"the {n}-face surface is not one closed surface (Euler characteristic {2 - genus2})")
+    if genus2 > 0:
         raise NoNetExistsError(n, n, why=(
             f"the {n}-face surface has a handle (Euler characteristic {2 - genus2}), so the cut edges of any "
             "of its nets hold a cycle: no zipper net exists"))
@@ -178,9 +195,8 @@ def zipper_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], deadline: floa
     ends = [lit for (_, h, lit) in arcs if h == dummy]
     for v in range(dummy):
         m.Add(sum(ends[: v + 1]) >= 1).OnlyEnforceIf(starts[v])
-    for window in _crowded_fans(sg, faces, edges):
-        # Five faces folded around one vertex span 450 degrees: two of them overlap.
-        m.AddBoolOr([lit for i in window for lit in cut[i]])
+    for path in _short_overlaps(sg, faces, edges, _SHORT_PATH, deadline):
+        m.AddBoolOr([lit for i in path for lit in cut[i]])
     solver = cp_model.CpSolver()
     prm = solver.parameters
     prm.num_search_workers = 1  # one worker, one seed: the same search every run
