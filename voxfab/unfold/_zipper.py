@@ -41,7 +41,7 @@ __all__ = ["zipper_layout"]
 
 #: Paths of up to this many folds that overlap are ruled out before the search (the common,
 #: local overlaps); longer ones as the search meets them.
-_SHORT_PATH = 8
+_SHORT_PATH = 6
 
 
 def _edges(sg: SurfaceGraph, faces: npt.NDArray[np.int64]) -> list[tuple[int, int, int, int]]:
@@ -108,36 +108,40 @@ def _short_overlaps(sg: SurfaceGraph, faces: npt.NDArray[np.int64], edges: list[
     Only the shortest such paths are kept (a path holding one is not extended),
     each once whichever end it starts from.
     """
-    number = {}
+    # Plain lists: this loop visits every short path, and numpy scalars are slow to index one by one.
+    step = [[None] * 4 for _ in range(sg.face_count)]  # (neighbour, its edge, fold index) across each edge
     for i, (a, k, b, kb) in enumerate(edges):
-        number[(a, k)] = number[(b, kb)] = i
+        step[a][k] = (b, kb, i)
+        step[b][kb] = (a, k, i)
+    side = [tuple(d) for d in _SIDE_STEP]
     found: set[tuple[int, ...]] = set()
     for start in faces.tolist():
         if time.monotonic() > deadline:
             raise Undecided(f"undecided: the zipper search ran out of time while it prepared the {faces.size}-face "
                             "surface; raise the timeout")
-        # Depth first: (face, its rotation, its cell, the faces on the path with their cells, the folds).
-        stack = [(start, 0, (0, 0), {(0, 0): start}, ())]
+        # Depth first: (face, its rotation, its cell, the cells of the path's faces, the folds).
+        stack = [(start, 0, 0, 0, {(0, 0): start}, ())]
         while stack:
-            a, r, c, cells, path = stack.pop()
-            if len(path) == longest:
+            a, r, cx, cy, cells, path = stack.pop()
+            left = longest - len(path) - 1
+            if left < 0:
                 continue
             for k in range(4):
-                i = number.get((a, k))
-                if i is None:
+                nxt = step[a][k]
+                if nxt is None:
                     continue
-                b, kb = int(sg.neighbor[a, k]), int(sg.neighbor_edge[a, k])
+                b, kb, i = nxt
                 if b in cells.values():
-                    continue
+                    continue  # not a simple path
                 s = (k + r) % 4
-                cb = (c[0] + _SIDE_STEP[s][0], c[1] + _SIDE_STEP[s][1])
-                if cb in cells:
-                    if cells[cb] == start:
+                bx, by = cx + side[s][0], cy + side[s][1]
+                if (bx, by) in cells:
+                    if cells[(bx, by)] == start:
                         found.add(tuple(sorted((*path, i))))
                     continue  # a shorter path inside this one overlaps: it is found from its own start
-                if abs(cb[0]) + abs(cb[1]) > longest - len(path) - 1:
+                if abs(bx) + abs(by) > left:
                     continue  # too far to come back to the start's cell
-                stack.append((b, (s + 2 - kb) % 4, cb, {**cells, cb: b}, (*path, i)))
+                stack.append((b, (s + 2 - kb) % 4, bx, by, {**cells, (bx, by): b}, (*path, i)))
     return sorted(found)
 
 
