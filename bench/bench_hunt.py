@@ -30,7 +30,8 @@ def main() -> None:
     parser.add_argument("--timeout", type=float, default=10.0, help="random engine's budget per shape, s")
     parser.add_argument("--exact-timeout", type=float, default=10.0, help="exact one-piece budget, s")
     parser.add_argument("--zipper-timeout", type=float, default=1.5, help="exact zipper budget per shape, s")
-    parser.add_argument("--out", type=Path, help="keep the batch folder here, with its index (default: a temporary one)")
+    parser.add_argument("--out", type=Path, help="keep the batch folder here (default: a temporary one)")
+    parser.add_argument("--index", action="store_true", help="draw the thumbnails and write the index page")
     args = parser.parse_args()
 
     from voxfab.batch import run_batch
@@ -50,7 +51,7 @@ def main() -> None:
         out = args.out or root / "out"
         t = time.perf_counter()
         report = run_batch(root / "r.sqlite", outputs, out, workers=args.workers, dashboard=None,
-                           thumbnails=args.out is not None)
+                           thumbnails=args.index)
         total = time.perf_counter() - t
         if report.hunt is None:
             raise SystemExit(f"no shape was hunted: {report.failed} failed ({report.failures[:1]})")
