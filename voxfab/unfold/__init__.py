@@ -3,12 +3,14 @@
 ``unfold`` searches a net, ``unfold_many`` several distinct ones, ``validate``
 refolds a net and checks it against the shape, ``seam_pairs`` and ``tab_room``
 describe its cut edges for glue tabs, ``EdgeConstraints`` names edges to cut
-or keep folded.
+or keep folded,
+``hunt_shape`` tells whether a shape has a one-piece net and a zipper net.
 """
 
 from voxfab.errors import NoNetExistsError
 
 from ._constraints import EdgeConstraints
+from ._hunt import HUNT_NET, HUNT_ZIPPER, HuntOutcome, hunt_shape
 from ._layout import seam_pairs, tab_room
 from ._net import NET_FORMAT, Net
 from ._outline import outline_key
@@ -18,6 +20,9 @@ from ._validate import ValidationReport, validate
 __all__ = [
     "NET_FORMAT",
     "EdgeConstraints",
+    "HUNT_NET",
+    "HUNT_ZIPPER",
+    "HuntOutcome",
     "Net",
     "NoFitError",
     "NoNetExistsError",
@@ -29,5 +34,6 @@ __all__ = [
     "tab_room",
     "unfold",
     "unfold_many",
+    "hunt_shape",
     "validate",
 ]

@@ -475,7 +475,9 @@ def unfold(
         Edges to cut (never folds) and edges to keep (always folds: the faces
         they join move as one rigid group during the search).
     zipper : bool
-        Exact strategy only: the cut edges must form one path (an unzipping).
+        Exact strategy only: the cut edges must form one path (an unzipping);
+        without ``fit`` or ``min_box``, in a box of any size
+        (:mod:`voxfab.unfold._zipper`).
     min_box : bool
         Exact strategy only, instead of ``fit``: the net whose bounding box has
         the least area, every smaller area proved to have none (``compact``
@@ -503,7 +505,7 @@ def unfold(
     strat = check_choice(strategy, Strategy, name="strategy")
     mode = check_choice(pieces, Pieces, name="pieces")
     fit = _check_fit(fit)
-    min_box = _check_exact(strat, mode, fit, compact, min_box)
+    min_box = _check_exact(strat, mode, fit, compact, min_box, bool(zipper))
     if zipper and strat is not Strategy.EXACT:
         raise InvalidShapeError("zipper (CLI --zipper) needs strategy 'exact'")
     if not float(timeout) > 0:
@@ -548,12 +550,13 @@ def unfold(
 
 
 def _check_exact(strat: Strategy, mode: Pieces, fit: tuple[int, int] | None, compact: bool,
-                 min_box: bool) -> bool:
+                 min_box: bool, zipper: bool = False) -> bool:
     """Refuse options the exact strategy has no meaning for, before any work; return ``min_box``.
 
     ``compact`` without a box asks the exact strategy for the least-area box
     (what compactness means to it), so callers that shrink a net (the sheet's
-    automatic face size) work with it unchanged.
+    automatic face size) work with it unchanged.  ``zipper`` needs no box: any
+    zipper net, or a proof that the shape has none.
     """
     if strat is not Strategy.EXACT:
         if min_box:
@@ -565,7 +568,7 @@ def _check_exact(strat: Strategy, mode: Pieces, fit: tuple[int, int] | None, com
         raise InvalidShapeError("strategy 'exact': give a box (fit, CLI --box WxH) or min_box (CLI --min-box), "
                                 "not both")
     min_box = min_box or (compact and fit is None)
-    if fit is None and not min_box:
+    if fit is None and not min_box and not zipper:
         raise InvalidShapeError("strategy 'exact' needs a box: fit=(W, H) (CLI --box WxH) or min_box "
                                 "(CLI --min-box)")
     return min_box
@@ -580,6 +583,13 @@ def _exact_piece(job: _Job, faces: npt.NDArray[np.int64], resolved: Resolved | N
     with meter(1, desc="net: exact search") as bar:
         if min_box:
             lay = min_box_layout(job.sg, faces, resolved, job.deadline, zipper)
+        elif job.fit is None:  # a zipper net in any box
+            from ._zipper import zipper_layout
+
+            if resolved is not None:
+                raise InvalidShapeError("strategy 'exact': a zipper net with edge constraints needs a box "
+                                        "(fit, CLI --box WxH)")
+            lay = zipper_layout(job.sg, faces, job.deadline)
         else:
             hint = None if zipper else _growth_hint(job, faces, resolved)
             lay = exact_layout(job.sg, faces, resolved, job.fit, job.deadline, zipper, hint)
