@@ -35,7 +35,8 @@ from ._sheets import SheetFitError
 
 if TYPE_CHECKING:
     from ._drawing import Drawing
-    from ._fit import SheetNets
+    from ._fit import FaceSizeError, SheetNets
+    from ._gallery import Gallery, GalleryNet, gallery_json, gallery_options, net_gallery, net_layout
 
 __all__ = [
     "SHEETS",
@@ -50,6 +51,13 @@ __all__ = [
     "draw_net",
     "draw_pieces",
     "find_sheet_nets",
+    "FaceSizeError",
+    "Gallery",
+    "GalleryNet",
+    "gallery_json",
+    "gallery_options",
+    "net_gallery",
+    "net_layout",
     "drawing_formats",
     "fabricate_net",
     "options_from_args",
@@ -69,10 +77,14 @@ def __getattr__(name: str) -> Any:
         from ._drawing import Drawing
 
         return Drawing
-    if name == "SheetNets":
-        from ._fit import SheetNets
+    if name in ("SheetNets", "FaceSizeError"):
+        from . import _fit
 
-        return SheetNets
+        return getattr(_fit, name)
+    if name in ("Gallery", "GalleryNet", "gallery_json", "gallery_options", "net_gallery", "net_layout"):
+        from . import _gallery
+
+        return getattr(_gallery, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
