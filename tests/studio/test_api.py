@@ -572,3 +572,41 @@ def test_open_curve_of_revolution_in_the_studio(client):
     assert r.status_code == 400 and 'mode = "surface"' in r.json()["error"]
     r = client.post("/api/preview", json=rev(CIRCLE, ring, mode="surface", arc=[0, "a"]))
     assert r.status_code == 400 and "shape.arc" in r.json()["error"]
+
+
+def _cli_net(tmp_path, grid, seed: int, *names: str) -> dict[str, bytes]:
+    import subprocess
+    import sys
+
+    out = tmp_path / f"cli-{seed}"
+    out.mkdir()
+    np.save(out / "column.npy", grid)
+    argv = [sys.executable, "-m", "voxfab", "net", "column.npy", "--seed", str(seed), "--face-size", "10",
+            "--sheet", "A3"]
+    for n in names:
+        argv += ["-o", n]
+    r = subprocess.run(argv, capture_output=True, text=True, cwd=out, timeout=300)
+    assert r.returncode == 0, r.stderr
+    return {n: (out / n).read_bytes() for n in names}
+
+
+def test_studio_net_files_are_the_cli_files(client, tmp_path):
+    """The studio's /api/make (with and without a gallery pick) writes the bytes `voxfab net` writes."""
+    g = small_shape()
+    options = {"face_size": 10, "sheet": "A3"}
+    gallery = wait_job(client, client.post("/api/nets", json={"grid": pack(g), "count": 2, "seed": 5,
+                                                              "options": options}).json()["job"])
+    assert gallery["state"] == "done", gallery
+    pick = gallery["result"]["nets"][1]
+    for net, seed in ((None, 0), ({"job": gallery["id"], "index": 1}, pick["seed"])):
+        want = _cli_net(tmp_path, g, seed, "column-net.json", "column-net.svg")
+        for artefact in ("net.json", "net.svg"):
+            body = {"grid": pack(g), "artefact": artefact, "title": "column", "options": options}
+            if net is not None:
+                body["net"] = net
+            m = client.post("/api/make", json=body)
+            assert m.status_code == 200, m.text
+            s = wait_job(client, m.json()["job"])
+            assert s["state"] == "done", s
+            got = client.get(f"/api/files/{m.json()['job']}/0").content
+            assert got == want[f"column-{artefact}"], (artefact, seed)

@@ -79,6 +79,13 @@ def edge_constraints(data: Any) -> Any:
     return EdgeConstraints.from_dict(data)
 
 
+def _keep_ways_out(job: Job, exc: Exception) -> None:
+    """Keep the ways out of a failure (a sheet too small, faces too small) in the job's result for the page."""
+    ways = getattr(exc, "ways_out", None)
+    if ways:
+        job.result = {**job.result, "ways_out": list(ways)}
+
+
 def net_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, net: Any, drawing: Any,
                 constraints: Any) -> None:
     """The library's gallery (:func:`voxfab.fabricate.netdraw.net_gallery`) as a job: nets kept for /api/make.
@@ -93,9 +100,7 @@ def net_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, net: Any, 
         gallery = netdraw.net_gallery(grid, net, drawing, count=count, seed=seed, constraints=constraints,
                                       progress=lambda done, total: job.step(done, total, f"{done} of {total} nets"))
     except Exception as exc:
-        ways = getattr(exc, "ways_out", None)
-        if ways:
-            job.result = {"ways_out": ways}
+        _keep_ways_out(job, exc)
         raise
     job.data["nets"] = [item.pieces for item in gallery.nets]
     job.data["options"] = (net, gallery.options)
@@ -189,6 +194,9 @@ def make_files(job: Job, grid: np.ndarray, *, artefact: str, title: str, pitch: 
                            paper_at_pitch=False)
     try:
         made = row.run(shape, settings, out, name=title, seed=0, context=context)
+    except Exception as exc:
+        _keep_ways_out(job, exc)
+        raise
     finally:
         if folder is not None:
             shutil.rmtree(folder, ignore_errors=True)
