@@ -2,7 +2,8 @@
 
 The gallery is the net search of :func:`._fit.find_sheet_nets` (the one
 ``voxfab net --count`` runs) with the sheet's face size settled first, so that
-the nets it shows are the nets the CLI writes for the same seed.  Nets that
+the nets it shows are the nets the CLI writes for the same seed; each is
+validated (:func:`voxfab.unfold.validate`) before it is shown.  Nets that
 cannot fit the sheet as one piece are shown all the same, with what would
 work (``ways_out``); they are ordered by how well they fit: fewest sheets,
 then the highest mean fill, then the smallest extent.
@@ -145,6 +146,7 @@ def net_gallery(grid: Any, net: NetOptions, drawing: DrawingOptions, *, count: i
         No net found at all.
     """
     from ._fit import find_sheet_nets
+    from ._pipeline import validate_net
 
     start = time.monotonic()
     options, notes = gallery_face_size(grid, net, drawing)
@@ -155,6 +157,8 @@ def net_gallery(grid: Any, net: NetOptions, drawing: DrawingOptions, *, count: i
                             show_unfit=True, progress=progress, cancelled=cancelled, **search)
     options = found.options
     notes += found.notes
+    for pieces in found.nets:  # every net shown is a valid net of the shape (and of the marks)
+        validate_net(grid, pieces, constraints=constraints)
     items = [GalleryNet(pieces, *_fit_and_place(pieces, options)) for pieces in found.nets]
     items.sort(key=lambda g: fit_order(g.fit))
     return Gallery(items, options, count, round(time.monotonic() - start, 3), notes)
