@@ -369,7 +369,8 @@ def test_net_gallery_errors(client):
                           ({"grid": pack(g), "options": {"face_size": "big"}}, "face_size"),
                           ({"grid": pack(g), "options": {"face_size": 2000}}, "face_size"),
                           ({"grid": pack(g), "options": {"colour": "red"}}, "unknown option"),
-                          ({"grid": pack(g), "options": [1]}, "options")]:
+                          ({"grid": pack(g), "options": [1]}, "options"),
+                          ({"grid": pack(g), "face_mm": 10}, "face_mm")]:
         r = client.post("/api/nets", json=body)
         assert r.status_code == 400 and message in r.json()["error"], body
         assert "\n" not in r.json()["error"]

@@ -383,6 +383,7 @@ def create_app(settings: Settings) -> Starlette:
         data = await _json(request)
         if not isinstance(data, dict):
             raise InvalidShapeError("request: expected {\"grid\": ..., \"count\": N, \"options\": {...}}")
+        _work.check_gallery_body(data)
         grid = _grid.unpack(data.get("grid"))
         count = _work.check_number(data.get("count", 8), name="count", lo=1, hi=_work.MAX_NETS, integer=True)
         seed = _work.check_number(data.get("seed", 0), name="seed", lo=0, hi=2**31 - 1, integer=True)

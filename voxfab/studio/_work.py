@@ -50,6 +50,18 @@ def check_number(value: Any, *, name: str, lo: float, hi: float, integer: bool =
 GALLERY_DEFAULTS = {"timeout": 5.0, "budget": MAX_GALLERY_SECONDS}
 
 
+#: The fields of a POST /api/nets body.
+GALLERY_BODY = ("grid", "seed", "count", "options", "constraints")
+
+
+def check_gallery_body(data: dict[str, Any]) -> None:
+    """Refuse a gallery request with fields the contract does not have (options go in ``options``)."""
+    extra = sorted(str(k) for k in data if k not in GALLERY_BODY)
+    if extra:
+        raise InvalidShapeError(f"request: unknown field {extra[0][:40]!r}; expected {', '.join(GALLERY_BODY)} "
+                                "(net and drawing options go in \"options\")")
+
+
 def gallery_options(values: Any) -> tuple[Any, Any]:
     """The page's net options, checked by the library's option dataclasses (the CLI's bounds and words)."""
     from voxfab.fabricate import netdraw
