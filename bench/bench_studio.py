@@ -130,7 +130,8 @@ def browser_latency(url: str, strokes: int) -> None:
 def gallery(url: str, count: int, shape: str, spec: dict, timeout: float) -> None:
     r = _post(f"{url}/api/preview", spec)
     t0 = time.perf_counter()
-    job = _post(f"{url}/api/nets", {"grid": r["grid"], "count": count, "seed": 0, "timeout": timeout})["job"]
+    job = _post(f"{url}/api/nets", {"grid": r["grid"], "count": count, "seed": 0,
+                                        "options": {"timeout": timeout}})["job"]
     while True:
         s = _get(f"{url}/api/jobs/{job}")
         if s["state"] != "running":
@@ -143,7 +144,8 @@ def gallery(url: str, count: int, shape: str, spec: dict, timeout: float) -> Non
     res = s["result"]
     faces = res["nets"][0]["faces"] if res["nets"] else 0
     print(f"gallery of {count} nets, {shape} ({r['facts']['volume']} voxels, {faces} faces): {res['found']} "
-          f"distinct nets in {wall:.1f} s wall ({res['seconds']:.1f} s search, {res['tries']} seeds)")
+          f"distinct nets in {wall:.1f} s wall ({res['seconds']:.1f} s search and validation, "
+          f"{res['options']['face_size']:g} mm faces)")
 
 
 def main() -> None:

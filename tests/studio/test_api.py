@@ -325,24 +325,28 @@ def test_repository_errors_and_drafts(client):
 # --- nets and files ---------------------------------------------------------------------------
 
 def test_net_gallery_distinct_valid_nets_then_files(client, tmp_path):
-    from voxfab.studio._work import outline_key
-    from voxfab.unfold import Net, validate
+    from voxfab.unfold import Net, outline_key, validate
 
     g = small_shape()
-    r = client.post("/api/nets", json={"grid": pack(g), "count": 3, "seed": 1, "timeout": 5, "sheet": "A4",
-                                       "face_mm": 10})
+    r = client.post("/api/nets", json={"grid": pack(g), "count": 3, "seed": 1,
+                                       "options": {"timeout": 5, "sheet": "A3", "face_size": 10}})
     assert r.status_code == 200, r.text
     s = wait_job(client, r.json()["job"])
     assert s["state"] == "done", s
     nets = s["result"]["nets"]
-    assert s["result"]["found"] == 3 == len(nets)
+    assert s["result"]["found"] == 3 == len(nets) and s["result"]["options"]["face_size"] == 10
     for n in nets:
         lay = n["layout"]
         assert len(lay["corners"]) == 8 * len(lay["faces"]) == 8 * n["faces"]
-        assert len(lay["neighbor"]) == 4 * n["faces"]
+        assert len(lay["corners3d"]) == 12 * n["faces"] and len(lay["neighbor"]) == 4 * n["faces"]
+        assert lay["piece"] == [0] * n["faces"] and lay["parent"].count(-1) == 1
         w, h = n["fit"]["extent"]
-        assert n["fit"]["fits"] == (n["fit"]["largest_face_mm"] >= 10)
-        assert n["fit"]["size_mm"] == [w * 10, h * 10]
+        assert n["fit"]["fits"] and n["fit"]["sheets"] == 1 and n["placement"]["sheets"] == 1
+        # On an A3 sheet (297 x 420 mm) with its 10 mm margin, at 10 mm faces.
+        assert min(w, h) * 10 <= 277 and max(w, h) * 10 <= 400
+    # ordered by fit: the mean fill never rises along the gallery (same sheets, same faces)
+    fills = [sum(n["fit"]["fill"]) for n in nets]
+    assert fills == sorted(fills, reverse=True)
     # each net downloads as JSON: it refolds onto the shape, and the outlines differ
     keys = set()
     for i in range(3):
@@ -360,16 +364,37 @@ def test_net_gallery_distinct_valid_nets_then_files(client, tmp_path):
 def test_net_gallery_errors(client):
     g = small_shape()
     for body, message in [({"grid": pack(g), "count": 0}, "count"), ({"grid": pack(g), "count": 99}, "count"),
-                          ({"grid": pack(g), "sheet": "B9"}, "sheet"), ({"grid": pack(g), "timeout": -1}, "timeout"),
-                          ({"grid": pack(g), "face_mm": "big"}, "face_mm")]:
+                          ({"grid": pack(g), "options": {"sheet": "B9"}}, "sheet"),
+                          ({"grid": pack(g), "options": {"timeout": -1}}, "timeout"),
+                          ({"grid": pack(g), "options": {"face_size": "big"}}, "face_size"),
+                          ({"grid": pack(g), "options": {"face_size": 2000}}, "face_size"),
+                          ({"grid": pack(g), "options": {"colour": "red"}}, "unknown option"),
+                          ({"grid": pack(g), "options": [1]}, "options"),
+                          ({"grid": pack(g), "face_mm": 10}, "face_mm")]:
         r = client.post("/api/nets", json=body)
         assert r.status_code == 400 and message in r.json()["error"], body
+        assert "\n" not in r.json()["error"]
+    # The same bound and words as the CLI's --face-size.
+    from voxfab.fabricate.netdraw import NetOptions
+
+    with pytest.raises(Exception) as cli:
+        NetOptions(face_size=2000)
+    r = client.post("/api/nets", json={"grid": pack(g), "options": {"face_size": 2000}})
+    assert r.json()["error"] == str(cli.value)
     two = g.copy()
     two[0, 0, 0] = True
     r = client.post("/api/nets", json={"grid": pack(two)})
     assert r.status_code == 400 and "one piece" in r.json()["error"]
     r = client.post("/api/nets", json={"grid": pack(g), "constraints": {"cut": [[[0, 0, 0, "+q"], [0, 0, 0, "+x"]]]}})
     assert r.status_code == 400
+
+
+def test_gallery_of_faces_too_small_has_ways_out(client):
+    g = small_shape()
+    r = client.post("/api/nets", json={"grid": pack(g), "count": 2, "options": {"face_size": 3}})
+    s = wait_job(client, r.json()["job"])
+    assert s["state"] == "error" and "smallest face size that works is" in s["message"]
+    assert "\n" not in s["message"]
 
 
 @pytest.mark.parametrize("artefact", ["mesh.3mf", "mesh.stl", "net.svg", "net.dxf", "net.pdf", "plates.zip",
@@ -458,7 +483,7 @@ def _folds(layout) -> set[tuple[int, int]]:
 
 def test_marked_edges_are_honoured(client):
     g = small_shape()
-    first = wait_job(client, client.post("/api/nets", json={"grid": pack(g), "count": 1, "timeout": 3}).json()["job"])
+    first = wait_job(client, client.post("/api/nets", json={"grid": pack(g), "count": 1, "options": {"timeout": 3}}).json()["job"])
     lay = first["result"]["nets"][0]["layout"]
     folds = _folds(lay)
     nb = np.array(lay["neighbor"]).reshape(-1, 4)
@@ -466,7 +491,7 @@ def test_marked_edges_are_honoured(client):
     cut = next((i, int(j)) for i in range(len(nb)) for j in nb[i] if tuple(sorted((i, int(j)))) not in folds)
     faces = lay["faces"]
     constraints = {"cut": [[faces[fold[0]], faces[fold[1]]]], "keep": [[faces[cut[0]], faces[cut[1]]]]}
-    r = client.post("/api/nets", json={"grid": pack(g), "count": 2, "timeout": 3, "constraints": constraints})
+    r = client.post("/api/nets", json={"grid": pack(g), "count": 2, "options": {"timeout": 3}, "constraints": constraints})
     s = wait_job(client, r.json()["job"])
     assert s["state"] == "done", s
     for net in s["result"]["nets"]:
@@ -478,13 +503,13 @@ def test_marked_edges_are_honoured(client):
     r = client.post("/api/nets", json={"grid": pack(g), "constraints": both})
     assert r.status_code == 400 and "both cut and kept" in r.json()["error"]
     away = {"cut": [[[0, 0, 0, "+x"], [0, 0, 0, "+y"]]]}
-    r = client.post("/api/nets", json={"grid": pack(g), "count": 1, "timeout": 3, "constraints": away})
+    r = client.post("/api/nets", json={"grid": pack(g), "count": 1, "options": {"timeout": 3}, "constraints": away})
     s = wait_job(client, r.json()["job"])
     assert s["state"] == "error" and "\n" not in s["message"] and s["message"]
 
 
 def test_a_seed_that_runs_out_of_time_is_skipped(client, monkeypatch):
-    import voxfab.unfold as engine
+    import voxfab.unfold._search as engine
     from voxfab.errors import UnfoldError
 
     real = engine.unfold
@@ -498,14 +523,15 @@ def test_a_seed_that_runs_out_of_time_is_skipped(client, monkeypatch):
 
     monkeypatch.setattr(engine, "unfold", flaky)
     g = small_shape()
-    s = wait_job(client, client.post("/api/nets", json={"grid": pack(g), "count": 2, "timeout": 5}).json()["job"])
-    assert s["state"] == "done" and s["result"]["found"] == 2 and s["result"]["tries"] == 3
+    body = {"grid": pack(g), "count": 2, "options": {"timeout": 5, "sheet": "A3", "face_size": 10}}
+    s = wait_job(client, client.post("/api/nets", json=body).json()["job"])
+    assert s["state"] == "done" and s["result"]["found"] == 2 and len(calls) >= 3
 
     def never(grid, *, rng, **options):
         raise UnfoldError("no one-piece net in 1 s")
 
     monkeypatch.setattr(engine, "unfold", never)
-    s = wait_job(client, client.post("/api/nets", json={"grid": pack(g), "count": 2, "timeout": 5}).json()["job"])
+    s = wait_job(client, client.post("/api/nets", json=body).json()["job"])
     assert s["state"] == "error" and s["message"] == "no one-piece net in 1 s"
 
 
@@ -545,3 +571,41 @@ def test_open_curve_of_revolution_in_the_studio(client):
     assert r.status_code == 400 and 'mode = "surface"' in r.json()["error"]
     r = client.post("/api/preview", json=rev(CIRCLE, ring, mode="surface", arc=[0, "a"]))
     assert r.status_code == 400 and "shape.arc" in r.json()["error"]
+
+
+def _cli_net(tmp_path, grid, seed: int, *names: str) -> dict[str, bytes]:
+    import subprocess
+    import sys
+
+    out = tmp_path / f"cli-{seed}"
+    out.mkdir()
+    np.save(out / "column.npy", grid)
+    argv = [sys.executable, "-m", "voxfab", "net", "column.npy", "--seed", str(seed), "--face-size", "10",
+            "--sheet", "A3"]
+    for n in names:
+        argv += ["-o", n]
+    r = subprocess.run(argv, capture_output=True, text=True, cwd=out, timeout=300)
+    assert r.returncode == 0, r.stderr
+    return {n: (out / n).read_bytes() for n in names}
+
+
+def test_studio_net_files_are_the_cli_files(client, tmp_path):
+    """The studio's /api/make (with and without a gallery pick) writes the bytes `voxfab net` writes."""
+    g = small_shape()
+    options = {"face_size": 10, "sheet": "A3"}
+    gallery = wait_job(client, client.post("/api/nets", json={"grid": pack(g), "count": 2, "seed": 5,
+                                                              "options": options}).json()["job"])
+    assert gallery["state"] == "done", gallery
+    pick = gallery["result"]["nets"][1]
+    for net, seed in ((None, 0), ({"job": gallery["id"], "index": 1}, pick["seed"])):
+        want = _cli_net(tmp_path, g, seed, "column-net.json", "column-net.svg")
+        for artefact in ("net.json", "net.svg"):
+            body = {"grid": pack(g), "artefact": artefact, "title": "column", "options": options}
+            if net is not None:
+                body["net"] = net
+            m = client.post("/api/make", json=body)
+            assert m.status_code == 200, m.text
+            s = wait_job(client, m.json()["job"])
+            assert s["state"] == "done", s
+            got = client.get(f"/api/files/{m.json()['job']}/0").content
+            assert got == want[f"column-{artefact}"], (artefact, seed)

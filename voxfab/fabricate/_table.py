@@ -243,12 +243,18 @@ def _run_net(shape: Any, settings: NetSettings, outdir: Path, *, name: str, seed
 
 
 def _net_download(download: str, values: Mapping[str, Any]) -> dict[str, Any]:
+    # The page's options by the recipe's names (face_mm: the page's older name of face_size); the
+    # options of other outputs on the page are not the net's.
     ext = download.rsplit(".", 1)[1]
     table: dict[str, Any] = {"formats": [] if ext == "json" else [ext]}
-    for key, value in (("face_size", values.get("face_mm")), ("sheet", values.get("sheet")),
-                       ("timeout", values.get("timeout"))):
-        if value is not None:
+    keys = (set(OptionTable("voxfab.fabricate.netdraw:NetOptions", "net").keys())
+            | set(OptionTable("voxfab.fabricate.netdraw:DrawingOptions", "net-drawing", _DRAWING_HIDDEN).keys()))
+    keys -= {"formats"}
+    for key, value in values.items():
+        if key in keys and value is not None:
             table[key] = value
+    if values.get("face_mm") is not None and "face_size" not in table:
+        table["face_size"] = values["face_mm"]
     return table
 
 

@@ -380,21 +380,15 @@ def create_app(settings: Settings) -> Starlette:
     # --- nets and files -----------------------------------------------------------------------
 
     async def nets(request: Request) -> dict[str, Any]:
-        from voxfab.fabricate.netdraw import parse_sheet
-
         data = await _json(request)
         if not isinstance(data, dict):
-            raise InvalidShapeError("request: expected {\"grid\": ..., \"count\": N}")
+            raise InvalidShapeError("request: expected {\"grid\": ..., \"count\": N, \"options\": {...}}")
+        _work.check_gallery_body(data)
         grid = _grid.unpack(data.get("grid"))
         count = _work.check_number(data.get("count", 8), name="count", lo=1, hi=_work.MAX_NETS, integer=True)
         seed = _work.check_number(data.get("seed", 0), name="seed", lo=0, hi=2**31 - 1, integer=True)
-        timeout = _work.check_number(data.get("timeout", 5.0), name="timeout", lo=0.5, hi=_work.MAX_NET_SECONDS)
-        sheet = data.get("sheet", "A4")
-        if not isinstance(sheet, str):
-            raise InvalidShapeError("sheet: expected A4, A3, Letter or WxH in mm")
-        parse_sheet(sheet)
-        face = data.get("face_mm")
-        face_mm = None if face is None else _work.check_number(face, name="face_mm", lo=1.0, hi=500.0)
+        # Checked by the library's option dataclasses: the CLI's bounds and words.
+        net, drawing = _work.gallery_options(data.get("options"))
         constraints = _work.edge_constraints(data.get("constraints"))
         from voxfab.shape import well_formed_reasons
 
@@ -403,8 +397,7 @@ def create_app(settings: Settings) -> Starlette:
             raise InvalidShapeError("shape: a net needs one piece of face-connected voxels: "
                                     + "; ".join(reasons or ["the shape is empty"]))
         job = jobs().submit("nets", lambda j: _work.net_gallery(
-            j, grid, count=int(count), seed=int(seed), timeout=timeout, sheet=sheet, face_mm=face_mm,
-            constraints=constraints))
+            j, grid, count=int(count), seed=int(seed), net=net, drawing=drawing, constraints=constraints))
         return {"job": job.id}
 
     def _job(job_id: str) -> Any:

@@ -9,10 +9,8 @@ NET.svg``), and the recipe outputs ``mesh``, ``slices`` and ``pictures``
 
 from __future__ import annotations
 
-import inspect
 import math
 import shutil
-import time
 import zipfile
 from pathlib import Path
 from typing import Any
@@ -35,9 +33,6 @@ def artefacts() -> list[str]:
 
     return [d for row in outputs().values() for d in row.downloads]
 
-_DIRS = ("+x", "-x", "+y", "-y", "+z", "-z")
-
-
 def check_number(value: Any, *, name: str, lo: float, hi: float, integer: bool = False) -> float:
     """``value`` as a number in ``[lo, hi]`` (an int when ``integer``), or an error naming it."""
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
@@ -51,131 +46,77 @@ def check_number(value: Any, *, name: str, lo: float, hi: float, integer: bool =
 
 # --- the net gallery --------------------------------------------------------------------------
 
-def outline_key(net: Any) -> bytes:
-    """The net's cells up to the 8 rotations and mirrors of the sheet: equal keys look the same cut out."""
-    cells = net.corners2d.min(axis=1)
-    best = None
-    for swap in (False, True):
-        c = cells[:, ::-1] if swap else cells
-        for sx in (1, -1):
-            for sy in (1, -1):
-                t = c * np.array([sx, sy])
-                t = t - t.min(axis=0)
-                order = np.lexsort((t[:, 1], t[:, 0]))
-                key = t[order].astype(np.int32).tobytes()
-                if best is None or key < best:
-                    best = key
-    assert best is not None
-    return best
+#: What the page gets unless it says otherwise: short searches, as a gallery is browsed, not waited for.
+GALLERY_DEFAULTS = {"timeout": 5.0, "budget": MAX_GALLERY_SECONDS}
 
 
-def sheet_fit(net: Any, *, sheet: str, face_mm: float | None, margin: float = 10.0,
-              tab_width: float = 5.0) -> dict[str, Any]:
-    """How the net sits on the sheet: its extent in faces, the largest face size that fits, and the fit at ``face_mm``."""
-    from voxfab.fabricate.netdraw import parse_sheet
+#: The fields of a POST /api/nets body.
+GALLERY_BODY = ("grid", "seed", "count", "options", "constraints")
 
-    sw, sh = parse_sheet(sheet)
-    x0, y0, x1, y1 = net.bounds()
-    w, h = x1 - x0, y1 - y0
-    # the drawable area loses the margins and room for glue tabs all around
-    aw, ah = sw - 2 * margin - 2 * tab_width, sh - 2 * margin - 2 * tab_width
-    largest = max(min(aw / w, ah / h), min(aw / h, ah / w))
-    out: dict[str, Any] = {"extent": [int(w), int(h)], "sheet": sheet, "largest_face_mm": math.floor(largest * 10) / 10}
-    if face_mm is not None:
-        out["face_mm"] = face_mm
-        out["fits"] = bool(largest >= face_mm)
-        out["size_mm"] = [round(w * face_mm, 1), round(h * face_mm, 1)]
-    return out
+
+def check_gallery_body(data: dict[str, Any]) -> None:
+    """Refuse a gallery request with fields the contract does not have (options go in ``options``)."""
+    extra = sorted(str(k) for k in data if k not in GALLERY_BODY)
+    if extra:
+        raise InvalidShapeError(f"request: unknown field {extra[0][:40]!r}; expected {', '.join(GALLERY_BODY)} "
+                                "(net and drawing options go in \"options\")")
+
+
+def gallery_options(values: Any) -> tuple[Any, Any]:
+    """The page's net options, checked by the library's option dataclasses (the CLI's bounds and words)."""
+    from voxfab.fabricate import netdraw
+
+    if values is None:
+        values = {}
+    net, drawing = netdraw.gallery_options(values, defaults=GALLERY_DEFAULTS)
+    if net.timeout > MAX_NET_SECONDS:
+        raise InvalidShapeError(f"timeout: the studio searches a net for at most {MAX_NET_SECONDS:g} s, "
+                                f"got {net.timeout:g}")
+    return net, drawing
 
 
 def net_layout(net: Any, grid: np.ndarray) -> dict[str, Any]:
-    """What the page draws and marks: faces, 2D corners, folds, and each edge's neighbour and fold type."""
-    from voxfab.shape import fill_cavities, surface_graph
+    """The page's LAYOUT of a net (or of its pieces): see :func:`voxfab.fabricate.netdraw.net_layout`."""
+    from voxfab.fabricate import netdraw
 
-    sg = surface_graph(fill_cavities(grid) if net.filled else grid)
-    faces = [[int(v[0]), int(v[1]), int(v[2]), _DIRS[int(d)]] for v, d in zip(sg.voxel, sg.direction)]
-    return {
-        "faces": faces,
-        "corners": net.corners2d.reshape(-1).tolist(),
-        "folds": net.folds.reshape(-1).tolist(),
-        "neighbor": sg.neighbor.reshape(-1).tolist(),
-        "fold_type": sg.fold.reshape(-1).tolist(),
-    }
+    return netdraw.net_layout(grid, net)
 
 
 def edge_constraints(data: Any) -> Any:
     """``voxfab.unfold.EdgeConstraints`` from the page's JSON, or None when nothing is marked."""
     if data is None or (isinstance(data, dict) and not data.get("cut") and not data.get("keep")):
         return None
-    try:
-        from voxfab.unfold import EdgeConstraints
-    except ImportError:
-        raise InvalidShapeError("constraints: this voxfab's net engine does not take marked edges") from None
+    from voxfab.unfold import EdgeConstraints
+
     return EdgeConstraints.from_dict(data)
 
 
-def net_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, timeout: float, sheet: str,
-                face_mm: float | None, constraints: Any, budget: float = MAX_GALLERY_SECONDS) -> None:
-    """Search ``count`` nets that look different once cut out, validate each, and lay them out for the page.
+def _keep_ways_out(job: Job, exc: Exception) -> None:
+    """Keep the ways out of a failure (a sheet too small, faces too small) in the job's result for the page."""
+    ways = getattr(exc, "ways_out", None)
+    if ways:
+        job.result = {**job.result, "ways_out": list(ways)}
 
-    Nets are ``unfold(grid, rng=s)`` for seeds ``s`` drawn from ``seed``, as
-    ``voxfab net --count``; a net whose outline repeats an earlier one (up to
-    turning or flipping the sheet) is skipped, and so is a seed whose search runs
-    out of time (three in a row end the search).  Stops at ``budget`` seconds.
+
+def net_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, net: Any, drawing: Any,
+                constraints: Any) -> None:
+    """The library's gallery (:func:`voxfab.fabricate.netdraw.net_gallery`) as a job: nets kept for /api/make.
+
+    A failure that has ways out (faces too small, no fit) leaves them in the job's result
+    as ``ways_out`` beside the one-line message.
     """
-    from voxfab.unfold import unfold, validate
+    from voxfab.fabricate import netdraw
 
-    options: dict[str, Any] = {"timeout": timeout}
-    if constraints is not None:
-        if "constraints" not in inspect.signature(unfold).parameters:
-            raise InvalidShapeError("constraints: this voxfab's net engine does not take marked edges")
-        options["constraints"] = constraints
-    from voxfab.errors import UnfoldError
-
-    gen = np.random.default_rng(seed)
-    start = time.monotonic()
-    nets, seen, tries, failed = [], set(), 0, 0
     job.step(0, count, "searching nets")
-    while len(nets) < count and tries < 4 * count + 8 and time.monotonic() - start < budget:
-        tries += 1
-        s = int(gen.integers(0, 2**31 - 1))
-        try:
-            net = unfold(grid, rng=s, **options)
-        except UnfoldError:
-            # a seed whose search ran out of time: the next seed may do; three in a row end the gallery
-            failed += 1
-            if failed >= 3 or (failed == tries and tries >= count):
-                if nets:
-                    break
-                raise
-            continue
-        failed = 0
-        key = outline_key(net)
-        if key in seen:
-            continue
-        seen.add(key)
-        from voxfab.shape import fill_cavities
-
-        report = validate(fill_cavities(grid) if net.filled else grid, net)
-        if not report.ok:  # pragma: no cover - the engine validates its own nets
-            continue
-        nets.append(net)
-        job.step(len(nets), count, f"{len(nets)} of {count} nets")
-    job.data["nets"] = nets
-    job.result = {
-        "asked": count,
-        "found": len(nets),
-        "tries": tries,
-        "seconds": round(time.monotonic() - start, 3),
-        "nets": [
-            {
-                "index": i, "seed": int(n.seed), "faces": n.face_count, "mountain": int(n.mountain),
-                "valley": int(n.valley), "seams_without_tab_room": int(n.seams_without_tab_room),
-                "fit": sheet_fit(n, sheet=sheet, face_mm=face_mm), "layout": net_layout(n, grid),
-            }
-            for i, n in enumerate(nets)
-        ],
-    }
+    try:
+        gallery = netdraw.net_gallery(grid, net, drawing, count=count, seed=seed, constraints=constraints,
+                                      progress=lambda done, total: job.step(done, total, f"{done} of {total} nets"))
+    except Exception as exc:
+        _keep_ways_out(job, exc)
+        raise
+    job.data["nets"] = [item.pieces for item in gallery.nets]
+    job.data["options"] = (net, gallery.options)
+    job.result = netdraw.gallery_json(gallery, grid)
 
 
 def warm_up() -> None:
@@ -265,6 +206,9 @@ def make_files(job: Job, grid: np.ndarray, *, artefact: str, title: str, pitch: 
                            paper_at_pitch=False)
     try:
         made = row.run(shape, settings, out, name=title, seed=0, context=context)
+    except Exception as exc:
+        _keep_ways_out(job, exc)
+        raise
     finally:
         if folder is not None:
             shutil.rmtree(folder, ignore_errors=True)

@@ -6,6 +6,7 @@ import dataclasses
 import enum
 import math
 import time
+from collections.abc import Callable
 
 import numpy as np
 import numpy.typing as npt
@@ -749,6 +750,8 @@ def unfold_many(
     count: int,
     rng: np.random.Generator | int,
     budget: float = DEFAULT_BUDGET,
+    progress: Callable[[int, int], None] | None = None,
+    cancelled: Callable[[], bool] | None = None,
     **options: object,
 ) -> list[Net]:
     """Find up to ``count`` nets that look different on the sheet.
@@ -766,6 +769,12 @@ def unfold_many(
     budget : float
         Seconds for the whole call.  The search also stops after ``4 * count +
         8`` seeds, so a surface with few nets ends early.
+    progress : callable, optional
+        ``progress(found, count)`` after each new net.
+    cancelled : callable, optional
+        Asked before each seed: when it returns True the search stops with the
+        nets found so far (a caller's stop button; each seed is bounded by
+        ``timeout``).
 
     Returns
     -------
@@ -795,7 +804,7 @@ def unfold_many(
     with meter(n, desc="nets") as bar:
         while len(nets) < n and tries < 4 * n + 8:
             left = end - time.monotonic()
-            if left <= 0:
+            if left <= 0 or (cancelled is not None and cancelled()):
                 break
             tries += 1
             seed = int(gen.integers(0, 2**31 - 1))
@@ -812,6 +821,8 @@ def unfold_many(
             seen.add(key)
             nets.append(net)
             bar.update()
+            if progress is not None:
+                progress(len(nets), n)
     if not nets:
         raise last_error or UnfoldError(f"no net found within the budget of {budget:g} s")
     return nets

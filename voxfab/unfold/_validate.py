@@ -157,6 +157,206 @@ def validate(
 
 
 def _check_piece(g, faces, net: Net, p: int, owner: dict, problems: list[str], tag: str):
+    """Check one net; a sound net is confirmed by whole-array checks, any other face by face with reasons."""
+    sound = _sound_piece(g, faces, net, owner)
+    if sound is not None:
+        for idx, i in zip(*sound[2]):
+            owner[idx] = (p, i)
+        return sound[0], sound[1]
+    return _check_piece_by_face(g, faces, net, p, owner, problems, tag)
+
+
+def _rule_neighbours(gp, v, n, u):
+    """Vectorised :func:`_rule_neighbour` on the grid padded by one: neighbour voxels, normals and fold kinds."""
+    side = v + u
+    a = gp[tuple((side + 1).T)]
+    b = gp[tuple((side + n + 1).T)]
+    valley, flat = a & b, a & ~b
+    voxel = np.where(valley[:, None], side + n, np.where(flat[:, None], side, v))
+    normal = np.where(valley[:, None], -u, np.where(flat[:, None], n, u))
+    kind = np.where(valley, -1, np.where(flat, 0, 1))
+    return voxel, normal, kind
+
+
+def _sound_piece(g, faces, net: Net, owner: dict):
+    """Every condition of one net checked over whole arrays: ``(seams, no_room, (ids, faces))``, or None.
+
+    None means some condition may fail: :func:`_check_piece_by_face` then finds
+    and words the problems.  The conditions are those of the face-by-face check.
+    """
+    nf = net.face_count
+    if nf == 0:
+        return None
+    v3 = np.asarray(net.voxel, dtype=np.int64)
+    n3 = np.asarray(net.normal, dtype=np.int64)
+    c3 = np.asarray(net.corners3d, dtype=np.int64)
+    c2 = np.asarray(net.corners2d, dtype=np.int64)
+    ids = [faces.get(k) for k in zip(map(tuple, v3.tolist()), map(tuple, n3.tolist()))]
+    if any(i is None or i in owner for i in ids) or len(set(ids)) != nf:
+        return None
+    if not (np.abs(n3).sum(axis=1) == 1).all():
+        return None
+    # 3D: a unit square counter-clockwise seen from outside on the face of (voxel, normal).
+    e1, e3 = c3[:, 1] - c3[:, 0], c3[:, 3] - c3[:, 0]
+    if not ((np.cross(e1, e3) == n3).all() and (c3[:, 2] == c3[:, 1] + e3).all()
+            and (np.abs(e1).sum(axis=1) == 1).all() and (np.abs(e3).sum(axis=1) == 1).all()):
+        return None
+    base = v3 + np.maximum(n3, 0)
+    if not (c3.min(axis=1) == base).all():
+        return None
+    # 2D: a unit square on the grid, counter-clockwise; no two on one cell.
+    d1, d3 = c2[:, 1] - c2[:, 0], c2[:, 3] - c2[:, 0]
+    if not ((np.abs(d1).sum(axis=1) == 1).all() and (np.abs(d3).sum(axis=1) == 1).all()
+            and (c2[:, 2] == c2[:, 1] + d3).all() and (d1[:, 0] * d3[:, 1] - d1[:, 1] * d3[:, 0] == 1).all()):
+        return None
+    cell = c2.min(axis=1)
+    lo = cell.min(axis=0) - 2
+    span = int((cell.max(axis=0) - lo).max()) + 3
+    cell_key = (cell[:, 0] - lo[0]) * span + (cell[:, 1] - lo[1])
+    if np.unique(cell_key).size != nf:
+        return None
+    # Folds: two faces that are rule neighbours across their shared edge, at the same place in 2D.
+    folds = np.asarray(net.folds, dtype=np.int64).reshape(-1, 2)
+    i, j = folds[:, 0], folds[:, 1]
+    if folds.size and ((folds < 0).any() or (folds >= nf).any() or (i == j).any()):
+        return None
+    pair = np.minimum(i, j) * nf + np.maximum(i, j)
+    if np.unique(pair).size != pair.size:
+        return None
+    gp = np.pad(np.asarray(g, dtype=bool), 1)
+    if folds.size:
+        same = (c3[i][:, :, None, :] == c3[j][:, None, :, :]).all(axis=3)  # (m, 4 of i, 4 of j)
+        if not (same.sum(axis=(1, 2)) == 2).all():
+            return None
+        ai = np.argwhere(same)  # two rows per fold, in the order of i's corners
+        a, b = ai[:, 1].reshape(-1, 2), ai[:, 2].reshape(-1, 2)
+        rows = np.arange(folds.shape[0])[:, None]
+        mid2 = c3[i][rows, a].sum(axis=1)  # twice the midpoint of the shared edge
+        u = np.rint(mid2 - 2 * c3[i].mean(axis=1)).astype(np.int64)
+        voxel, normal, kind = _rule_neighbours(gp, v3[i], n3[i], u)
+        if not ((voxel == v3[j]).all() and (normal == n3[j]).all()
+                and (c2[i][rows, a] == c2[j][rows, b]).all()):
+            return None
+        counts = (int((kind == 1).sum()), int((kind == -1).sum()), int((kind == 0).sum()))
+    else:
+        kind, counts = np.zeros(0, dtype=np.int64), (0, 0, 0)
+    if (net.mountain, net.valley, net.flat) != counts:
+        return None
+    if not _refolds(c2, c3, folds, kind):
+        return None
+    seams, no_room = _sound_seams(gp, v3, n3, c3, c2, pair, cell_key, lo, span)
+    if seams is None or net.seams_without_tab_room != no_room:
+        return None
+    return seams, no_room, (ids, range(nf))
+
+
+def _refolds(c2, c3, folds, kind) -> bool:
+    """Whether the folds join the net into one tree-connected piece whose refolding lands every face on its 3D face.
+
+    Each face's own map 2D -> 3D is fixed by its corners; folding a face's map about
+    the shared edge (a quarter turn, or none when flat) must give its neighbour's
+    own map along a breadth-first tree from face 0: then refolding from face 0
+    puts every face on its 3D face, as the face-by-face check rebuilds it.
+    """
+    nf = c2.shape[0]
+    adj: list[list[tuple[int, int]]] = [[] for _ in range(nf)]
+    for t, (i, j) in enumerate(folds.tolist()):
+        adj[i].append((j, t))
+        adj[j].append((i, t))
+    seen = np.zeros(nf, dtype=bool)
+    seen[0] = True
+    queue = deque([0])
+    tree_i, tree_j, tree_t = [], [], []
+    while queue:
+        i = queue.popleft()
+        for j, t in adj[i]:
+            if not seen[j]:
+                seen[j] = True
+                tree_i.append(i)
+                tree_j.append(j)
+                tree_t.append(t)
+                queue.append(j)
+    if not seen.all():
+        return False
+    if not tree_i:
+        return True
+    i, j, t = np.array(tree_i), np.array(tree_j), np.array(tree_t)
+    c2f, c3f = c2.astype(float), c3.astype(float)
+    # Own map of face i: 3D = o + A @ 2D, from corners 0, 1, 3 (a unit square: the inverse is the transpose).
+    e = np.stack([c2f[i, 1] - c2f[i, 0], c2f[i, 3] - c2f[i, 0]], axis=2)  # (m, 2, 2), columns
+    big = np.stack([c3f[i, 1] - c3f[i, 0], c3f[i, 3] - c3f[i, 0]], axis=2)  # (m, 3, 2)
+    amap = big @ np.linalg.inv(e)
+    o = c3f[i, 0] - np.einsum("mab,mb->ma", amap, c2f[i, 0])
+    normal = np.cross(amap[:, :, 0], amap[:, :, 1])
+    # A point of the shared edge, and the unit vector in i's plane across it towards j.
+    shared = (c2[i][:, :, None, :] == c2[j][:, None, :, :]).all(axis=3).any(axis=2)  # (m, 4) corners of i
+    k0 = np.argmax(shared, axis=1)
+    rows = np.arange(i.size)
+    p0 = c2f[i][rows, k0]
+    edge_mid = (c2f[i] * shared[:, :, None]).sum(axis=1) / 2.0
+    q0 = o + np.einsum("mab,mb->ma", amap, p0)
+    u = 2.0 * np.einsum("mab,mb->ma", amap, c2f[j].mean(axis=1) - edge_mid)
+    s = (-kind[t]).astype(float)[:, None, None]
+    eye = np.broadcast_to(np.eye(3), (i.size, 3, 3))
+    uu = u[:, :, None] * u[:, None, :]
+    nn = normal[:, :, None] * normal[:, None, :]
+    nu = normal[:, :, None] * u[:, None, :]
+    turn = eye - uu - nn + s * (nu - nu.transpose(0, 2, 1))
+    rot = np.where((kind[t] == 0)[:, None, None], eye, turn)
+    o_j = q0 + np.einsum("mab,mb->ma", rot, o - q0)
+    a_j = rot @ amap
+    placed = o_j[:, None, :] + np.einsum("mab,mkb->mka", a_j, c2f[j])
+    return bool(np.allclose(placed, c3f[j], atol=1e-6))
+
+
+def _sound_seams(gp, v3, n3, c3, c2, fold_pairs, cell_key, lo, span):
+    """Seams and seams without tab room over whole arrays, as :func:`_seams` counts them; None on a slit."""
+    nf = v3.shape[0]
+    f = np.repeat(np.arange(nf), 4)
+    k = np.tile(np.arange(4), nf)
+    k1 = (k + 1) % 4
+    p3, q3 = c3[f, k], c3[f, k1]
+    u = np.rint(p3 + q3 - 2 * c3[f].mean(axis=1)).astype(np.int64)
+    voxel, normal, _ = _rule_neighbours(gp, v3[f], n3[f], u)
+    # Neighbour face ids by (voxel, normal), sorted keys of this net's faces.
+    vlo = np.minimum(v3.min(axis=0), voxel.min(axis=0)) - 1
+    vspan = int((np.maximum(v3.max(axis=0), voxel.max(axis=0)) - vlo).max()) + 2
+
+    def key(v, n):
+        w = v - vlo
+        d = np.argmax(np.abs(n), axis=1) * 2 + (n.sum(axis=1) < 0)
+        return ((w[:, 0] * vspan + w[:, 1]) * vspan + w[:, 2]) * 6 + d
+
+    own = key(v3, n3)
+    order = np.argsort(own)
+    want = key(voxel, normal)
+    pos = np.clip(np.searchsorted(own[order], want), 0, nf - 1)
+    found = own[order][pos] == want
+    j = np.where(found, order[pos], -1)
+    seam = found & (j > f) & ~np.isin(np.minimum(f, j) * nf + np.maximum(f, j), fold_pairs)
+    f, k, k1, j, p3, q3 = f[seam], k[seam], k1[seam], j[seam], p3[seam], q3[seam]
+    hit_a = (c3[j] == q3[:, None, :]).all(axis=2)
+    hit_b = (c3[j] == p3[:, None, :]).all(axis=2)
+    both = hit_a.any(axis=1) & hit_b.any(axis=1)
+    ja, jb = np.argmax(hit_a, axis=1), np.argmax(hit_b, axis=1)
+    rows = np.arange(f.size)
+    slit = both & (c2[j, ja] == c2[f, k1]).all(axis=1) & (c2[j, jb] == c2[f, k]).all(axis=1)
+    if slit.any():
+        return None, None
+
+    def beyond(face, a, b):
+        pa, pb = c2[face, a], c2[face, b]
+        step = np.stack([pb[:, 1] - pa[:, 1], pa[:, 0] - pb[:, 0]], axis=1)
+        cell = c2[face].min(axis=1) + step - lo
+        inside = (cell >= 0).all(axis=1) & (cell < span).all(axis=1)
+        return inside & np.isin(cell[:, 0] * span + cell[:, 1], cell_key)
+
+    del rows
+    no_room = both & beyond(f, k, k1) & beyond(j, ja, jb)
+    return int(f.size), int(np.count_nonzero(no_room))
+
+
+def _check_piece_by_face(g, faces, net: Net, p: int, owner: dict, problems: list[str], tag: str):
     nf = net.face_count
     err = problems.append
     v3 = np.asarray(net.voxel, dtype=np.int64)

@@ -11,7 +11,9 @@ fit its sheet is refused too, naming the largest face size at which it fits and
 the smallest sheet that takes it; pieces (``pieces="auto"``) are packed on as
 few sheets as possible.
 
-Public API: :func:`find_sheet_nets` (shape → nets that fit the sheet),
+Public API: :func:`net_files` (the whole job of ``voxfab net``: search,
+validation, files), :func:`net_gallery` (distinct nets ordered by fit, for the
+studio), :func:`find_sheet_nets` (shape → nets that fit the sheet),
 :func:`draw_net` and :func:`draw_pieces` (nets → :class:`Drawing`),
 :func:`write_net_drawing`, and :func:`fabricate_net`, the pipeline of the
 recipe output ``net``.  Heavy libraries (shapely,
@@ -35,7 +37,9 @@ from ._sheets import SheetFitError
 
 if TYPE_CHECKING:
     from ._drawing import Drawing
-    from ._fit import SheetNets
+    from ._fit import FaceSizeError, SheetNets
+    from ._gallery import Gallery, GalleryNet, gallery_json, gallery_options, net_gallery, net_layout
+    from ._pipeline import NetFiles, check_request, net_files, parse_box, search_nets
 
 __all__ = [
     "SHEETS",
@@ -50,6 +54,18 @@ __all__ = [
     "draw_net",
     "draw_pieces",
     "find_sheet_nets",
+    "FaceSizeError",
+    "NetFiles",
+    "check_request",
+    "net_files",
+    "parse_box",
+    "search_nets",
+    "Gallery",
+    "GalleryNet",
+    "gallery_json",
+    "gallery_options",
+    "net_gallery",
+    "net_layout",
     "drawing_formats",
     "fabricate_net",
     "options_from_args",
@@ -69,10 +85,18 @@ def __getattr__(name: str) -> Any:
         from ._drawing import Drawing
 
         return Drawing
-    if name == "SheetNets":
-        from ._fit import SheetNets
+    if name in ("SheetNets", "FaceSizeError"):
+        from . import _fit
 
-        return SheetNets
+        return getattr(_fit, name)
+    if name in ("NetFiles", "check_request", "net_files", "parse_box", "search_nets"):
+        from . import _pipeline
+
+        return getattr(_pipeline, name)
+    if name in ("Gallery", "GalleryNet", "gallery_json", "gallery_options", "net_gallery", "net_layout"):
+        from . import _gallery
+
+        return getattr(_gallery, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
@@ -245,22 +269,21 @@ def fabricate_net(shape: VoxelShape, net: NetOptions, drawing: DrawingOptions, o
         warnings (net split, labels shrunk, seams without tabs) and a report
         with the face size and the fill of every sheet.
     """
-    from voxfab import unfold
     from voxfab._shared.atomic import write_text
     from voxfab.fabricate._outputs import Artefact
     from voxfab.shape import fill_cavities
 
-    search = dict(strategy=net.strategy, timeout=net.timeout, fill=net.fill, compact=net.compact)
-    if constraints is not None:
-        search["constraints"] = constraints
+    from ._pipeline import search_nets, validate_net
+
     if chosen is None:
-        found = find_sheet_nets(shape.grid, drawing, rng=seed, pieces=net.pieces, **search)
+        found = search_nets(shape.grid, dataclasses.replace(net, count=1), drawing, seed=seed,
+                            constraints=constraints)
         nets, fitted, notes = found.nets[0], found.options, list(found.notes)
     else:
         nets = list(chosen) if isinstance(chosen, (list, tuple)) else [chosen]
         fitted, notes = drawing, []
     grid = fill_cavities(shape.grid) if nets[0].filled else shape.grid
-    unfold.validate(grid, nets if len(nets) > 1 else nets[0])
+    validate_net(shape.grid, nets, constraints=constraints)
     outdir = Path(outdir)
     files = []
     for i, piece in enumerate(nets):

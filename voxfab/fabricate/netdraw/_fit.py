@@ -16,6 +16,7 @@ Faces too small for legible marks are refused before any search.
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -58,7 +59,7 @@ def _surface_faces(grid: Any, fill: bool) -> int:
     return surface_graph(fill_cavities(g) if fill else g).face_count
 
 
-def _measured_extent(err: UnfoldError, grid: Any, rng: Any, search: dict[str, Any]) -> tuple[int, int]:
+def _measured_extent(err: UnfoldError | None, grid: Any, rng: Any, search: dict[str, Any]) -> tuple[int, int]:
     """Extent of the most compact net: from the error when it says, else from an unconstrained search."""
     from voxfab.unfold import unfold
 
@@ -71,8 +72,55 @@ def _measured_extent(err: UnfoldError, grid: Any, rng: Any, search: dict[str, An
     return extent_of(net.corners2d)
 
 
+class FaceSizeError(InvalidShapeError):
+    """Faces too small for legible seam labels and glue tabs.
+
+    Attributes
+    ----------
+    ways_out : list of dict
+        The choices that would work: ``{"label": plain words, "options": {NAME: VALUE}}``.
+    """
+
+    def __init__(self, message: str, ways_out: list[dict[str, Any]]) -> None:
+        super().__init__(message)
+        self.ways_out = ways_out
+
+
+def legibility_ways_out(options: DrawingOptions, chars: int, *, sheet: str | None = None,
+                        pieces: bool = False) -> list[dict[str, Any]]:
+    """Ways out of faces too small for the marks: the smallest face size that works, or no marks."""
+    need = smallest_face_size(options, chars)
+    out: list[dict[str, Any]] = []
+    if pieces:
+        out.append({"label": f"make the faces {need:g} mm and split the net into pieces",
+                    "options": {"face_size": need, "pieces": "auto"}})
+    elif sheet:
+        out.append({"label": f"make the faces {need:g} mm on a larger sheet ({sheet})",
+                    "options": {"face_size": need, "sheet": sheet}})
+    else:
+        out.append({"label": f"make the faces {need:g} mm", "options": {"face_size": need}})
+    off = {k: False for k in ("numbers", "tabs") if getattr(options, k)}
+    if off:
+        words = " and ".join({"numbers": "edge labels", "tabs": "glue tabs"}[k] for k in off)
+        out.append({"label": f"draw without {words}", "options": off})
+    return out
+
+
+def _check_legible(options: DrawingOptions, chars: int) -> None:
+    problem = legibility_problem(options, float(options.pitch), chars)
+    if problem:
+        raise FaceSizeError(problem, legibility_ways_out(options, chars))
+
+
+def label_chars(faces: int, pieces: str) -> int:
+    """Characters of a seam label: a one-piece net has at most F + 1 seams, pieces number all 2F surface edges."""
+    return label_length(2 * faces if pieces == "auto" else faces + 1)
+
+
 def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str = "one", count: int = 1,
-                    budget: float = 60.0, **search: Any) -> SheetNets:
+                    budget: float = 60.0, show_unfit: bool = False,
+                    progress: Callable[[int, int], None] | None = None,
+                    cancelled: Callable[[], bool] | None = None, **search: Any) -> SheetNets:
     """Search nets of ``grid`` that fit the sheet of ``options``.
 
     Parameters
@@ -86,9 +134,16 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     pieces : {"one", "auto"}
         ``"auto"``: when one piece does not fit, split into the fewest pieces that do.
     count : int
-        Distinct one-piece nets wanted.
+        Distinct nets wanted (:func:`voxfab.unfold.unfold_many`; with
+        ``pieces="auto"`` each is the unfolding of one of its seeds).
     budget : float
         Seconds for all ``count`` nets together (each also has its ``timeout``).
+    show_unfit : bool
+        When no one-piece net fits the sheet, return nets searched without the
+        sheet (the gallery shows how each fits) instead of raising.
+    progress, cancelled : callable, optional
+        ``progress(found, count)`` after each net; ``cancelled()`` stops the
+        search with the nets found so far.
     **search
         ``strategy``, ``timeout``, ``fill``, ``compact``, ``tab_aware`` for
         :func:`voxfab.unfold.unfold`.
@@ -99,42 +154,96 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
 
     Raises
     ------
-    InvalidShapeError
+    FaceSizeError
         When the faces are too small for legible numbers and tabs (before any search).
     SheetFitError
         When no one-piece net fits and pieces were not allowed.
     """
-    from voxfab.unfold import unfold, unfold_many
+    from voxfab.unfold import NoFitError, unfold, unfold_many
 
     search = {k: v for k, v in search.items() if k != "fit"}
     faces = _surface_faces(grid, bool(search.get("fill", False)))
-    # A one-piece net has at most F + 1 seams; pieces label seams by their surface edge, of which there are 2F.
-    chars = label_length(2 * faces if pieces == "auto" else faces + 1)
+    chars = label_chars(faces, pieces)
     notes: list[str] = []
     if options.pitch is None:
         options, auto_notes = _auto_face_size(grid, options, rng=rng, pieces=pieces, chars=chars, search=search)
         notes += auto_notes
-    problem = legibility_problem(options, float(options.pitch), chars)
-    if problem:
-        raise InvalidShapeError(problem)
+    _check_legible(options, chars)
     fit = sheet_cells(options, float(options.pitch))
     if min(fit) < 1:
         raise InvalidShapeError(f"sheet: {options.sheet} has no room for one {options.pitch:g} mm face with its tabs")
-    if count > 1:
-        found = unfold_many(grid, count=count, rng=rng, fit=fit, budget=budget, **search)
-        if len(found) < count:
-            notes.append(f"{len(found)} distinct nets found of the {count} asked for")
-        return SheetNets([[n] for n in found], options, notes)
-    # With pieces allowed, a surface larger than the sheet goes straight to the split.
-    if pieces != "auto" or faces <= fit[0] * fit[1]:
+    # A surface larger than the sheet has no one-piece net on it: no search can find one.
+    room = faces <= fit[0] * fit[1]
+    if pieces == "auto" and not room:
+        return SheetNets(_piece_nets(grid, rng, fit, count, budget, progress, cancelled, search, notes), options,
+                         notes)
+    found: list[Net] | None = None
+    failed: UnfoldError | None = None
+    if room:
         try:
-            return SheetNets([[unfold(grid, rng=rng, fit=fit, **search)]], options, notes)
+            if count > 1 or progress is not None or cancelled is not None:
+                found = unfold_many(grid, count=count, rng=rng, fit=fit, budget=budget, progress=progress,
+                                    cancelled=cancelled, **search)
+            else:
+                found = [unfold(grid, rng=rng, fit=fit, **search)]
         except UnfoldError as err:
-            if pieces != "auto":
-                extent = _measured_extent(err, grid, rng, search)
-                raise fit_error(extent, options, float(options.pitch), what="the most compact net found") from None
-    nets = unfold(grid, rng=rng, fit=fit, pieces="auto", **search)
-    return SheetNets([list(nets)], options, notes)
+            failed = err
+    if found is None:
+        if pieces == "auto":
+            return SheetNets(_piece_nets(grid, rng, fit, count, budget, progress, cancelled, search, notes),
+                             options, notes)
+        if failed is not None and not isinstance(failed, NoFitError) and count > 1:
+            raise failed  # every seed ran out of time: not a question of the sheet
+        if show_unfit and (failed is None or isinstance(failed, NoFitError)):
+            found = unfold_many(grid, count=count, rng=rng, budget=budget, progress=progress, cancelled=cancelled,
+                                **search)
+            notes.append(f"no one-piece net fits {options.sheet} at {options.pitch:g} mm faces")
+        else:
+            extent = _measured_extent(failed, grid, rng, search)
+            raise fit_error(extent, options, float(options.pitch), what="the most compact net found") from None
+    if count > 1 and len(found) < count:
+        notes.append(f"{len(found)} distinct nets found of the {count} asked for")
+    return SheetNets([[n] for n in found], options, notes)
+
+
+def _piece_nets(grid: Any, rng: int, fit: tuple[int, int], count: int, budget: float,
+                progress: Callable[[int, int], None] | None, cancelled: Callable[[], bool] | None,
+                search: dict[str, Any], notes: list[str]) -> list[list[Net]]:
+    """Nets in the fewest pieces that fit, one per seed (seed ``rng`` first, then seeds drawn from it)."""
+    import time
+
+    from voxfab.unfold import outline_key, unfold
+
+    if count == 1:
+        return [list(unfold(grid, rng=rng, fit=fit, pieces="auto", **search))]
+    gen = np.random.default_rng(rng)
+    end = time.monotonic() + budget
+    timeout = float(search.pop("timeout", 60.0))
+    out: list[list[Net]] = []
+    seen: set[bytes] = set()
+    tries = 0
+    while len(out) < count and tries < 4 * count + 8 and time.monotonic() < end:
+        if cancelled is not None and cancelled():
+            break
+        tries += 1
+        seed = int(gen.integers(0, 2**31 - 1))
+        try:
+            nets = list(unfold(grid, rng=seed, fit=fit, pieces="auto", timeout=min(timeout, end - time.monotonic()),
+                               **search))
+        except UnfoldError:
+            continue
+        key = b"|".join(sorted(outline_key(n) for n in nets))
+        if key in seen:
+            continue
+        seen.add(key)
+        out.append(nets)
+        if progress is not None:
+            progress(len(out), count)
+    if not out:
+        raise UnfoldError(f"no net in pieces found within the budget of {budget:g} s")
+    if len(out) < count:
+        notes.append(f"{len(out)} distinct nets found of the {count} asked for")
+    return out
 
 
 def _auto_face_size(grid: Any, options: DrawingOptions, *, rng: int, pieces: str, chars: int,
@@ -153,8 +262,10 @@ def _auto_face_size(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
             f"face size {need:g} mm: the smallest with legible marks (one piece fits only at {p:g} mm)"]
     sheet = smallest_sheet(extent, options, need)
     where = f"at {need:g} mm it needs {sheet}" if sheet else f"at {need:g} mm it is larger than every standard sheet"
-    raise InvalidShapeError(
+    outs = legibility_ways_out(options, chars, pieces=True)
+    if sheet:
+        outs[1:1] = legibility_ways_out(options, chars, sheet=sheet)[:1]
+    raise FaceSizeError(
         f"the most compact net found ({extent[0]} x {extent[1]} faces) fits {options.sheet} only at faces up "
         f"to {p:g} mm, too small for legible numbers and tabs (at least {need:g} mm); {where} (--sheet), "
-        "or give a face size and split it (--pieces auto)"
-    )
+        "or give a face size and split it (--pieces auto)", outs)

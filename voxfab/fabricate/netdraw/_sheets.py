@@ -41,6 +41,21 @@ class SheetFitError(UnfoldError):
         self.largest_face_size = largest_face_size
         self.smallest_sheet = smallest_sheet
 
+    @property
+    def ways_out(self) -> list[dict[str, object]]:
+        """The choices that would work, in plain words: ``[{"label": ..., "options": {NAME: VALUE}}]``."""
+        return ways_out(self.largest_face_size, self.smallest_sheet)
+
+
+def ways_out(largest: float, sheet: str | None) -> list[dict[str, object]]:
+    """Ways out of a net too large for its sheet: pieces, the smallest sheet that takes it, smaller faces."""
+    out: list[dict[str, object]] = [{"label": "split it into pieces", "options": {"pieces": "auto"}}]
+    if sheet:
+        out.append({"label": f"use a larger sheet ({sheet})", "options": {"sheet": sheet}})
+    if largest > 0:
+        out.append({"label": f"make the faces {largest:g} mm", "options": {"face_size": largest}})
+    return out
+
 
 @dataclasses.dataclass(frozen=True, eq=False)
 class SheetPlan:

@@ -1,0 +1,178 @@
+"""The net gallery: distinct nets ordered by fit, their LAYOUT and PLACEMENT, and the ways out of a small sheet."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from voxfab._shared.options import OptionError
+from voxfab.fabricate.netdraw import (
+    DrawingOptions,
+    NetOptions,
+    draw_net,
+    gallery_json,
+    gallery_options,
+    net_gallery,
+    net_layout,
+)
+from voxfab.shape import examples
+from voxfab.unfold import outline_key, unfold, validate
+
+
+def _queen() -> np.ndarray:
+    from voxfab.recipe import load_recipe
+    from voxfab.recipe._build import make_shape
+
+    return make_shape(load_recipe(Path(__file__).parents[3] / "recipes/chess/queen.toml")).grid
+
+
+def _turn(c: np.ndarray, turns: int) -> np.ndarray:
+    for _ in range(turns):
+        c = np.stack([-c[..., 1], c[..., 0]], axis=-1)
+    return c
+
+
+def _placed_mm(layout: dict, placement: dict) -> list[tuple[int, np.ndarray]]:
+    """Each face's corners in mm on its sheet, computed from the LAYOUT and PLACEMENT alone."""
+    corners = np.array(layout["corners"]).reshape(-1, 4, 2)
+    piece = np.array(layout["piece"])
+    f = placement["face_size"]
+    out = []
+    for p in placement["pieces"]:
+        c = corners[piece == p["piece"]].astype(float)
+        if p["mirror"]:
+            c[..., 0] *= -1
+        out.append((p["sheet"], _turn(c, p["turns"]) * f + (p["x"], p["y"])))
+    return out
+
+
+def _check_on_sheets(layout: dict, placement: dict) -> None:
+    w, h = placement["sheet"]
+    m = placement["margin"]
+    cells: set[tuple[int, int, int]] = set()
+    f = placement["face_size"]
+    for sheet, mm in _placed_mm(layout, placement):
+        assert mm[..., 0].min() >= m - 1e-6 and mm[..., 0].max() <= w - m + 1e-6
+        assert mm[..., 1].min() >= m - 1e-6 and mm[..., 1].max() <= h - m + 1e-6
+        for face in mm:
+            lo = face.min(axis=0)
+            key = (sheet, int(round(lo[0] / f * 4)), int(round(lo[1] / f * 4)))
+            assert key not in cells, "two faces on one spot"
+            cells.add(key)
+
+
+def test_a_gallery_that_fits_is_ordered_by_fit_and_placed_on_the_sheet() -> None:
+    grid = examples.ball(2)
+    net, drawing = gallery_options({"sheet": "A3", "face_size": 10, "timeout": 10})
+    gallery = net_gallery(grid, net, drawing, count=4, seed=2)
+    assert gallery.options.pitch == 10.0 and 1 <= len(gallery.nets) <= 4
+    keys = {outline_key(item.pieces[0]) for item in gallery.nets}
+    assert len(keys) == len(gallery.nets)
+    fills = [item.fit["fill"][0] for item in gallery.nets]
+    assert fills == sorted(fills, reverse=True)
+    body = gallery_json(gallery, grid)
+    for item, js in zip(gallery.nets, body["nets"]):
+        n = item.pieces[0]
+        assert validate(grid, n).ok
+        ex, ey = js["fit"]["extent"]
+        assert js["fit"]["fits"] and js["fit"]["sheets"] == 1
+        # The net fits A3 (297 x 420 mm) inside the 10 mm margin, in some orientation.
+        assert min(ex, ey) * 10 <= 277 and max(ex, ey) * 10 <= 400
+        assert js["fit"]["fill"][0] == pytest.approx(n.face_count * 100 / (297 * 420), abs=1e-4)
+        _check_on_sheets(js["layout"], js["placement"])
+
+
+def test_layout_matches_the_net_and_its_drawing() -> None:
+    grid = examples.ball(2)
+    n = unfold(grid, rng=4, timeout=20)
+    lay = net_layout(grid, n)
+    f = n.face_count
+    assert np.array_equal(np.array(lay["corners3d"]).reshape(-1, 4, 3), n.corners3d)
+    assert np.array_equal(np.array(lay["corners"]).reshape(-1, 4, 2), n.corners2d)
+    nb = np.array(lay["neighbor"]).reshape(-1, 4)
+    c3 = n.corners3d
+    for i in range(f):
+        for k in range(4):
+            j = nb[i, k]
+            # Edge k of face i (corner k to k + 1) is an edge of face j as well.
+            edge = {tuple(c3[i, k]), tuple(c3[i, (k + 1) % 4])}
+            assert edge <= {tuple(c) for c in c3[j]} and i in nb[j]
+    folds = {tuple(sorted(p)) for p in np.array(lay["folds"]).reshape(-1, 2).tolist()}
+    parent = lay["parent"]
+    assert parent.count(-1) == 1 and all(p == -1 or tuple(sorted((i, p))) in folds for i, p in enumerate(parent))
+    # Every cut edge pair has the label the drawing prints.
+    drawing = draw_net(grid, n, options=DrawingOptions(pitch=12.0, sheet="A3"))
+    cut = {tuple(sorted((i, int(j)))) for i in range(f) for j in nb[i]} - folds
+    assert {tuple(map(int, k.split("-"))) for k in lay["labels"]} == cut
+    printed = [x for v in lay["labels"].values() for x in v.split()]
+    assert sorted(printed) == sorted(drawing.seam_labels)
+
+
+def test_pieces_share_one_layout_and_sit_apart_on_their_sheets() -> None:
+    grid = np.ones((3, 3, 3), dtype=bool)
+    net, drawing = gallery_options({"sheet": "A5", "face_size": 40, "pieces": "auto", "timeout": 10})
+    gallery = net_gallery(grid, net, drawing, count=1, seed=0)
+    (item,) = gallery.nets
+    assert len(item.pieces) > 1 and validate(grid, item.pieces).ok
+    js = gallery_json(gallery, grid)["nets"][0]
+    lay = js["layout"]
+    assert len(lay["faces"]) == 54 and sorted(set(lay["piece"])) == list(range(len(item.pieces)))
+    assert lay["parent"].count(-1) == len(item.pieces)
+    assert js["placement"]["sheets"] == js["fit"]["sheets"] > 1
+    _check_on_sheets(lay, js["placement"])
+
+
+def test_the_queen_on_a4_says_what_would_work() -> None:
+    grid = _queen()
+    net, drawing = gallery_options({"sheet": "A4", "timeout": 5})
+    gallery = net_gallery(grid, net, drawing, count=3, seed=0)
+    assert gallery.options.pitch == 8.6  # the smallest face size with legible marks
+    assert len({outline_key(i.pieces[0]) for i in gallery.nets}) == len(gallery.nets) >= 2
+    for item in gallery.nets:
+        fit = item.fit
+        assert not fit["fits"] and "does not fit sheet A4 at 8.6 mm faces" in fit["message"]
+        ways = {tuple(sorted(w["options"])): w["options"] for w in fit["ways_out"]}
+        assert ways[("pieces",)] == {"pieces": "auto"}
+        # The larger sheet offered holds the net at 8.6 mm faces inside its margins.
+        sheet = ways[("sheet",)]["sheet"]
+        sw, sh = DrawingOptions(sheet=sheet).sheet_size
+        ex, ey = fit["extent"]
+        assert (ex * 8.6 <= sw - 20 and ey * 8.6 <= sh - 20) or (ey * 8.6 <= sw - 20 and ex * 8.6 <= sh - 20)
+        # The face size offered is too small for the marks: it comes without them.
+        small = ways[("face_size", "numbers", "tabs")]
+        assert small["numbers"] is False and small["tabs"] is False
+        assert fit["extent"][0] * small["face_size"] <= 277 or fit["extent"][1] * small["face_size"] <= 277
+    order = [(i.fit["extent"][0] * i.fit["extent"][1]) for i in gallery.nets]
+    assert order == sorted(order)
+
+
+def test_faces_too_small_fail_with_ways_out() -> None:
+    from voxfab.fabricate.netdraw import FaceSizeError
+
+    net, drawing = gallery_options({"face_size": 3})
+    with pytest.raises(FaceSizeError, match="smallest face size that works") as err:
+        net_gallery(examples.ball(2), net, drawing, count=2, seed=0)
+    options = [w["options"] for w in err.value.ways_out]
+    assert {"numbers": False, "tabs": False} in options and any("face_size" in o for o in options)
+
+
+def test_the_search_stops_when_cancelled_and_reports_progress() -> None:
+    seen: list[tuple[int, int]] = []
+    net, drawing = gallery_options({"sheet": "A3", "face_size": 10, "timeout": 10})
+    gallery = net_gallery(examples.ball(2), net, drawing, count=6, seed=1, progress=lambda d, t: seen.append((d, t)),
+                          cancelled=lambda: bool(seen))
+    assert len(gallery.nets) == 1 and seen == [(1, 6)]
+
+
+def test_options_are_checked_by_the_dataclasses() -> None:
+    net, drawing = gallery_options({"face_size": 7.5, "sheet": "A3", "tabs": False}, defaults={"timeout": 5.0})
+    assert (net.timeout, drawing.pitch, drawing.sheet, drawing.tabs) == (5.0, 7.5, "A3", False)
+    with pytest.raises(OptionError, match="unknown option"):
+        gallery_options({"colour": "red"})
+    with pytest.raises(OptionError) as ours:
+        gallery_options({"face_size": -1})
+    with pytest.raises(OptionError) as cli:
+        NetOptions(face_size=-1)
+    assert str(ours.value) == str(cli.value)

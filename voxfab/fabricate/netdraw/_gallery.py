@@ -1,0 +1,395 @@
+"""A gallery of nets to choose from: distinct outlines, each with its fit to the sheet, its layout and placement.
+
+The gallery is the net search of :func:`._fit.find_sheet_nets` (the one
+``voxfab net --count`` runs) with the sheet's face size settled first, so that
+the nets it shows are the nets the CLI writes for the same seed; each is
+validated (:func:`voxfab.unfold.validate`) before it is shown.  Nets that
+cannot fit the sheet as one piece are shown all the same, with what would
+work (``ways_out``); they are ordered by how well they fit: fewest sheets,
+then the highest mean fill, then the smallest extent.
+
+Everything the page draws comes from here, as plain JSON-ready dictionaries
+(:func:`net_layout`, :func:`placement`), so the studio stays a thin shell.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from collections.abc import Callable, Mapping
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from voxfab.errors import InvalidShapeError
+from voxfab.unfold import EdgeConstraints, Net
+
+from ._net_options import NetOptions
+from ._options import DrawingOptions
+
+_DIRS = ("+x", "-x", "+y", "-y", "+z", "-z")
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class GalleryNet:
+    """One net of a gallery.
+
+    Attributes
+    ----------
+    pieces : list of Net
+        The net as its pieces (one Net for a one-piece net).
+    fit : dict
+        How it sits on the sheet (:func:`sheet_fit`).
+    placement : dict or None
+        Where its pieces go on the sheets (:func:`placement`); None when it does not fit.
+    """
+
+    pieces: list[Net]
+    fit: dict[str, Any]
+    placement: dict[str, Any] | None
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Gallery:
+    """Nets ordered by fit, with the options they were searched and fitted with.
+
+    Attributes
+    ----------
+    nets : list of GalleryNet
+    options : DrawingOptions
+        The drawing options with the face size settled.
+    asked : int
+        Nets asked for.
+    seconds : float
+        Time the gallery took.
+    notes : list of str
+        Report lines (face size chosen, fewer nets than asked).
+    """
+
+    nets: list[GalleryNet]
+    options: DrawingOptions
+    asked: int
+    seconds: float
+    notes: list[str]
+
+
+def gallery_options(values: Mapping[str, Any], *, defaults: Mapping[str, Any] | None = None,
+                    ) -> tuple[NetOptions, DrawingOptions]:
+    """The net and drawing options named in ``values`` (field name → value), checked by their dataclasses.
+
+    ``face_size`` (a :class:`NetOptions` field) becomes the drawing's ``pitch``; a name of
+    neither dataclass is refused with the accepted ones, a bad value in the CLI's words.
+    ``defaults`` are used for names ``values`` does not give.
+    """
+    from voxfab._shared.options import OptionError, from_mapping, option_specs
+
+    if not isinstance(values, Mapping):
+        raise InvalidShapeError("options: expected an object of option names and values")
+    merged = {**(defaults or {}), **values}
+    net_names = {s.name for s in option_specs(NetOptions)}
+    draw_names = {s.name for s in option_specs(DrawingOptions)} - {"pitch"}
+    for key in merged:
+        if key not in net_names | draw_names:
+            raise OptionError(str(key), f"unknown option; accepted: {', '.join(sorted(net_names | draw_names))}")
+    net = from_mapping(NetOptions, {k: v for k, v in merged.items() if k in net_names}, front="any")
+    drawing = from_mapping(DrawingOptions, {k: v for k, v in merged.items() if k in draw_names}, front="any")
+    return net, drawing.replace(pitch=net.face_size)
+
+
+def gallery_face_size(grid: Any, net: NetOptions, drawing: DrawingOptions) -> tuple[DrawingOptions, list[str]]:
+    """The drawing options with a face size: the one asked for, else the smallest with legible marks."""
+    if drawing.pitch is not None:
+        return drawing, []
+    from ._fit import _surface_faces, label_chars
+    from ._legible import smallest_face_size
+
+    p = smallest_face_size(drawing, label_chars(_surface_faces(grid, net.fill), net.pieces))
+    if p <= 0:  # no marks to size: the shape's own unit
+        p = 10.0
+    return drawing.replace(pitch=p), [f"face size {p:g} mm: the smallest with legible marks"]
+
+
+def net_gallery(grid: Any, net: NetOptions, drawing: DrawingOptions, *, count: int, seed: int,
+                constraints: EdgeConstraints | None = None, progress: Callable[[int, int], None] | None = None,
+                cancelled: Callable[[], bool] | None = None) -> Gallery:
+    """Search ``count`` nets of ``grid`` that look different once cut out, ordered by fit to the sheet.
+
+    Parameters
+    ----------
+    grid : (X, Y, Z) bool array_like
+    net : NetOptions
+        Search options (``pieces``, ``fill``, ``compact``, ``strategy``, ``timeout`` per net,
+        ``budget`` for all).
+    drawing : DrawingOptions
+        Sheet and marks; ``pitch`` the face size (None: the smallest with legible marks).
+    count : int
+        Nets wanted.
+    seed : int
+        Seed of the search (net ``t`` is the net of the ``t``-th seed drawn from it, as
+        ``voxfab net --count``).
+    constraints : EdgeConstraints, optional
+        Edges to cut or keep folded.
+    progress, cancelled : callable, optional
+        ``progress(found, count)`` after each net; ``cancelled()`` ends the search early
+        with the nets found so far.
+
+    Returns
+    -------
+    Gallery
+
+    Raises
+    ------
+    FaceSizeError
+        Faces too small for the marks (its ``ways_out`` say what works).
+    UnfoldError
+        No net found at all.
+    """
+    from ._fit import find_sheet_nets
+    from ._pipeline import validate_net
+
+    start = time.monotonic()
+    options, notes = gallery_face_size(grid, net, drawing)
+    search: dict[str, Any] = dict(strategy=net.strategy, timeout=net.timeout, fill=net.fill, compact=net.compact)
+    if constraints is not None:
+        search["constraints"] = constraints
+    found = find_sheet_nets(grid, options, rng=seed, pieces=net.pieces, count=count, budget=net.budget,
+                            show_unfit=True, progress=progress, cancelled=cancelled, **search)
+    options = found.options
+    notes += found.notes
+    for pieces in found.nets:  # every net shown is a valid net of the shape (and of the marks)
+        validate_net(grid, pieces, constraints=constraints)
+    items = [GalleryNet(pieces, *_fit_and_place(pieces, options)) for pieces in found.nets]
+    items.sort(key=lambda g: fit_order(g.fit))
+    return Gallery(items, options, count, round(time.monotonic() - start, 3), notes)
+
+
+def fit_order(fit: dict[str, Any]) -> tuple[Any, ...]:
+    """Sort key of a net's fit: fitting first, fewest sheets, highest mean fill, smallest extent."""
+    fill = fit.get("fill") or [0.0]
+    ex, ey = fit["extent"]
+    return (not fit["fits"], fit.get("sheets") or 1 << 30, -round(sum(fill) / len(fill), 6), ex * ey, max(ex, ey))
+
+
+def sheet_fit(pieces: list[Net], options: DrawingOptions) -> dict[str, Any]:
+    """How a net (its pieces) sits on the sheet of ``options`` at face size ``options.pitch``.
+
+    Returns
+    -------
+    dict
+        ``sheet``, ``face_size``, ``extent`` (faces, of the largest piece), ``fits``, ``sheets``
+        (None when it does not fit), ``fill`` (share of each sheet covered by faces),
+        ``largest_face_size`` (the largest at which the largest piece fits one sheet) and,
+        when it does not fit, ``message`` (the CLI's words) and ``ways_out``.
+    """
+    return _fit_and_place(pieces, options)[0]
+
+
+def _fit_and_place(pieces: list[Net], options: DrawingOptions) -> tuple[dict[str, Any], dict[str, Any] | None]:
+    from ._sheets import (
+        SheetFitError,
+        extent_of,
+        fit_error,
+        largest_face_size,
+        pack_pieces,
+        plan_sheets,
+    )
+
+    pitch = float(options.pitch)
+    w, h = options.sheet_size
+    big = max(pieces, key=lambda n: n.face_count)
+    extent = extent_of(big.corners2d)
+    fit: dict[str, Any] = {"sheet": options.sheet, "face_size": pitch, "extent": list(extent),
+                           "largest_face_size": largest_face_size(extent, options)}
+    try:
+        if len(pieces) == 1:
+            plan = plan_sheets(big.corners2d, options)
+            placed = [plan.corners2d]
+        else:
+            plan, placed = pack_pieces([p.corners2d for p in pieces], options)
+    except SheetFitError:
+        err = fit_error(extent, options, pitch, what="the net" if len(pieces) == 1 else "a piece")
+        fit.update(fits=False, sheets=None, fill=[], message=str(err),
+                   ways_out=legible_ways_out(err.ways_out, options, pieces))
+        return fit, None
+    faces = np.bincount(plan.face_sheet, minlength=plan.count)
+    fit.update(fits=True, sheets=plan.count, fill=[round(float(n) * pitch * pitch / (w * h), 4) for n in faces])
+    return fit, placement(pieces, placed, plan, options)
+
+
+def legible_ways_out(ways: list[dict[str, Any]], options: DrawingOptions, pieces: list[Net]) -> list[dict[str, Any]]:
+    """``ways`` with a smaller face size that is too small for the marks offered without the marks."""
+    from ._fit import label_chars
+    from ._legible import legibility_problem
+
+    faces = sum(n.face_count for n in pieces)
+    chars = label_chars(faces, "auto" if len(pieces) > 1 else "one")
+    out = []
+    for way in ways:
+        size = way["options"].get("face_size")
+        if size is not None and legibility_problem(options, float(size), chars):
+            off = {k: False for k in ("numbers", "tabs") if getattr(options, k)}
+            way = {"label": f"{way['label']} and draw without edge labels and glue tabs",
+                   "options": {**way["options"], **off}}
+        out.append(way)
+    return out
+
+
+def _turn(c: npt.NDArray[np.int64], turns: int) -> npt.NDArray[np.int64]:
+    for _ in range(turns % 4):
+        c = np.stack([-c[..., 1], c[..., 0]], axis=-1)
+    return c
+
+
+def placement(pieces: list[Net], placed: list[npt.NDArray[np.int64]], plan: Any,
+              options: DrawingOptions) -> dict[str, Any]:
+    """Where each piece's own frame lands on its sheet (mm, sheet origin bottom-left): the PLACEMENT.
+
+    ``placed`` are the pieces' corners in the plan's cells (as :func:`._sheets.pack_pieces`
+    returns them); each piece is its own corners turned by some quarter turns and moved.
+    """
+    stride_faces = plan.face_sheet
+    out = []
+    start = 0
+    for q, (net, cells) in enumerate(zip(pieces, placed)):
+        sheet = int(stride_faces[start]) if net.face_count else 0
+        start += net.face_count
+        turns = next(t for t in range(4)
+                     if np.array_equal(_shifted(_turn(net.corners2d, t)), _shifted(cells)))
+        shift = cells.reshape(-1, 2).min(axis=0) - _turn(net.corners2d, turns).reshape(-1, 2).min(axis=0)
+        x, y = plan.origin[sheet] + shift * plan.pitch
+        out.append({"piece": q, "sheet": sheet, "x": round(float(x), 4), "y": round(float(y), 4), "turns": turns,
+                    "mirror": False})
+    return {"sheet": list(options.sheet_size), "margin": float(options.margin), "face_size": float(plan.pitch),
+            "sheets": int(plan.count), "pieces": out}
+
+
+def _shifted(c: npt.NDArray[np.int64]) -> npt.NDArray[np.int64]:
+    return c - c.reshape(-1, 2).min(axis=0)
+
+
+def net_layout(grid: Any, pieces: Net | list[Net], *, graph: Any = None) -> dict[str, Any]:
+    """What the page draws and marks, over all the pieces of a net: the LAYOUT of the studio contract.
+
+    Face ids run over the pieces in order.  ``corners`` are each face's 2D corners in its
+    piece's own frame, ``corners3d`` its 3D corners (same corner order); ``neighbor`` and
+    ``fold_type`` give, per edge ``k`` (corner ``k`` to ``k + 1``), the face across it and
+    the fold there as seen from outside; ``piece`` and ``parent`` the piece of each face
+    and the face it is hinged on (-1 for each piece's root); ``labels`` the seam label of
+    every cut edge, by face pair ``"i-j"`` (i < j), as printed on the drawings.
+
+    Parameters
+    ----------
+    grid : (X, Y, Z) bool array_like
+        The shape (with its cavities filled when the net was searched so).
+    pieces : Net or list of Net
+    graph : SurfaceGraph, optional
+        ``surface_graph(grid)`` when the caller has it already.
+    """
+    from voxfab.shape import fill_cavities, surface_graph
+
+    from ._geometry import face_map
+
+    nets = [pieces] if isinstance(pieces, Net) else list(pieces)
+    if graph is None:
+        graph = surface_graph(fill_cavities(grid) if nets[0].filled else grid)
+    fmap = np.concatenate([face_map(graph, n) for n in nets])
+    local = np.full(graph.face_count, -1, dtype=np.int64)
+    local[fmap] = np.arange(fmap.size)
+    counts = [n.face_count for n in nets]
+    offsets = np.cumsum([0] + counts)[:-1]
+    folds = np.concatenate([n.folds.reshape(-1, 2) + o for n, o in zip(nets, offsets)]) if nets else \
+        np.zeros((0, 2), dtype=np.int64)
+    corners = np.concatenate([n.corners2d for n in nets])
+    # The pieces side by side, apart, for the seam numbering of the drawings (no seam closes between pieces).
+    apart = np.concatenate([n.corners2d - n.corners2d.reshape(-1, 2).min(axis=0) + (int(q) * 100_000, 0)
+                            for q, n in enumerate(nets)])
+    combined = Net(voxel=np.concatenate([n.voxel for n in nets]), normal=np.concatenate([n.normal for n in nets]),
+                   corners3d=np.concatenate([n.corners3d for n in nets]), corners2d=apart, folds=folds,
+                   seed=nets[0].seed, strategy=nets[0].strategy, filled=nets[0].filled)
+    labels = seam_labels_of(graph, combined)
+    piece = np.repeat(np.arange(len(nets)), counts)
+    return {
+        "faces": [[int(v[0]), int(v[1]), int(v[2]), _DIRS[int(d)]]
+                  for v, d in zip(graph.voxel[fmap].tolist(), graph.direction[fmap].tolist())],
+        "corners": corners.reshape(-1).tolist(),
+        "corners3d": combined.corners3d.reshape(-1).tolist(),
+        "folds": folds.reshape(-1).tolist(),
+        "neighbor": local[graph.neighbor[fmap]].reshape(-1).tolist(),
+        "fold_type": graph.fold[fmap].reshape(-1).tolist(),
+        "piece": piece.tolist(),
+        "parent": fold_parents(combined.face_count, folds, offsets).tolist(),
+        "labels": labels,
+    }
+
+
+def seam_labels_of(graph: Any, net: Net) -> dict[str, str]:
+    """The seam label of each cut edge of ``net`` (pieces combined, laid apart), by face pair ``"i-j"``.
+
+    The numbering is the drawings' (:func:`._drawing.draw_net`): seams in the order of their
+    first copy (face, then edge), labels of :func:`._labels.label_length` characters.
+    """
+    from ._geometry import classify_edges
+    from ._labels import label_length, seam_label
+
+    edges = classify_edges(graph, net, net.corners2d)
+    f, k = np.nonzero(~edges.joined & edges.canonical())
+    g = edges.partner_face[f, k]
+    chars = label_length(max(int(f.size), 1))
+    out: dict[str, str] = {}
+    for t, (a, b) in enumerate(zip(f.tolist(), g.tolist())):
+        key = f"{min(a, b)}-{max(a, b)}"
+        label = seam_label(t + 1, chars)
+        # A face pair may meet along two edges (a one-voxel wide strip): both labels, in order.
+        out[key] = f"{out[key]} {label}" if key in out else label
+    return out
+
+
+def fold_parents(faces: int, folds: npt.NDArray[np.int64], roots: Any) -> npt.NDArray[np.int64]:
+    """The face each face is hinged on, breadth first from each piece's first face (-1 for the roots)."""
+    from collections import deque
+
+    adj: list[list[int]] = [[] for _ in range(faces)]
+    for a, b in folds.reshape(-1, 2).tolist():
+        adj[a].append(b)
+        adj[b].append(a)
+    parent = np.full(faces, -2, dtype=np.int64)
+    for r in [int(r) for r in roots] + list(range(faces)):
+        if r >= faces or parent[r] != -2:
+            continue
+        parent[r] = -1
+        queue = deque([r])
+        while queue:
+            i = queue.popleft()
+            for j in adj[i]:
+                if parent[j] == -2:
+                    parent[j] = i
+                    queue.append(j)
+    return parent
+
+
+def gallery_json(gallery: Gallery, grid: Any) -> dict[str, Any]:
+    """The gallery as the studio's job result: ``asked``, ``found``, ``seconds``, ``options`` and ``nets``."""
+    from voxfab.shape import fill_cavities, surface_graph
+
+    graphs: dict[bool, Any] = {}
+
+    def graph(filled: bool) -> Any:
+        if filled not in graphs:  # one surface graph for every net of the gallery
+            graphs[filled] = surface_graph(fill_cavities(grid) if filled else grid)
+        return graphs[filled]
+
+    nets = []
+    for i, item in enumerate(gallery.nets):
+        first = item.pieces[0]
+        nets.append({
+            "index": i, "seed": int(first.seed), "faces": sum(n.face_count for n in item.pieces),
+            "pieces": len(item.pieces), "mountain": sum(int(n.mountain) for n in item.pieces),
+            "valley": sum(int(n.valley) for n in item.pieces),
+            "seams_without_tab_room": sum(int(n.seams_without_tab_room) for n in item.pieces),
+            "fit": item.fit, "layout": net_layout(grid, item.pieces, graph=graph(first.filled)),
+            "placement": item.placement,
+        })
+    return {"asked": gallery.asked, "found": len(nets), "seconds": gallery.seconds,
+            "options": {"face_size": float(gallery.options.pitch), "sheet": gallery.options.sheet},
+            "notes": list(gallery.notes), "nets": nets}
