@@ -37,6 +37,9 @@ from ._validate import validate
 
 __all__ = ["EditResult", "cut_edge", "join_edge"]
 
+#: Places one edit may try for the faces it lifts (a bound on the time an edit takes when room is scarce).
+MAX_TRIES = 3000
+
 #: Rotation of a face from where its corner 0 sits in its cell (dx + 2 dy of CELL_CORNER).
 _ROT_OF_CORNER = {0: 0, 1: 1, 3: 2, 2: 3}
 
@@ -241,27 +244,132 @@ def _hinge_move(lay: _Layout, moved: npt.NDArray[np.int64], u: int, k: int) -> _
     return _Move(moved, cells, (lay.rot[moved] + turn) % 4)
 
 
-def _check_move(lay: _Layout, mv: _Move, rest: npt.NDArray[np.int64], rest_keys: npt.NDArray[np.int64],
-                boundary: tuple[npt.NDArray[np.int64], ...], forbidden: set[tuple[int, int]],
-                keep: set[tuple[int, int]]) -> str | None:
-    """Why the move cannot be made (overlap, a forbidden edge closing up, a kept edge opening), or None."""
-    if rest_keys.size:
-        keys = _keys(mv.cell)
-        hit = np.minimum(np.searchsorted(rest_keys, keys), rest_keys.size - 1)
-        if (rest_keys[hit] == keys).any():
-            return "overlap"
-    w, k, y, pos = boundary  # edges from moved faces (w, edge k) to rest faces y; pos: w's row in mv
-    if w.size:
+class _Hanger:
+    """Hangs faces of a lifted side back onto the placed ones, keeping as much of the side rigid as fits.
+
+    The whole side is tried first across each free edge, nearest first; when it
+    fits nowhere, its root face goes alone to the nearest free place and each of
+    its subtrees in turn hangs on its parent again (the old fold), or failing that
+    across the nearest free edge, and so on down.  A place is free when no cell is
+    taken twice, no cut edge closes up and no kept edge opens.
+    """
+
+    def __init__(self, lay: _Layout, placed: npt.NDArray[np.bool_], cut: set[tuple[int, int]],
+                 keep: set[tuple[int, int]], tries: list[int]) -> None:
+        self.lay, self.placed, self.cut, self.keep = lay, placed.copy(), cut, keep
+        self.tries = tries  # places left to try, shared by the hangers of one edit
+        self.keys = set(_keys(lay.cell[placed]).tolist())
+        self.saved = (lay.cell.copy(), lay.rot.copy())
+        self.log: list[tuple[_Move, npt.NDArray[np.int64], npt.NDArray[np.int64]]] = []
+
+    def undo(self) -> None:
+        self.lay.cell[:], self.lay.rot[:] = self.saved
+
+    def moved(self) -> int:
+        """Faces whose cell or turn the hanger changed."""
+        cell, rot = self.saved
+        return int(((self.lay.cell != cell).any(axis=1) | (self.lay.rot != rot)).sum())
+
+    def back_to(self, mark: int) -> None:
+        """Take back the moves committed since ``len(self.log)`` was ``mark``."""
+        while len(self.log) > mark:
+            mv, cell, rot = self.log.pop()
+            self.lay.cell[mv.moved], self.lay.rot[mv.moved] = cell, rot
+            self.placed[mv.moved] = False
+            self.keys.difference_update(_keys(mv.cell).tolist())
+
+    def fits(self, mv: _Move) -> bool:
+        self.tries[0] -= 1
+        if self.tries[0] < 0:
+            return False
+        if any(k in self.keys for k in _keys(mv.cell).tolist()):
+            return False
+        lay = self.lay
+        w, k, y, pos = _boundary(lay, mv.moved, self.placed)
+        if not w.size:
+            return True
         side = (k + mv.rot[pos]) % 4
         meets = (mv.cell[pos] + SIDE_STEP[side] == lay.cell[y]).all(axis=1) & (
             lay.rot[y] == (side + 2 - lay.sg.neighbor_edge[w, k]) % 4)
         for i, j, m in zip(w.tolist(), y.tolist(), meets.tolist()):
             pair = _pair(i, j)
-            if m and pair in forbidden:
-                return "closes a cut edge"
-            if not m and pair in keep:
-                return "opens a kept edge"
-    return None
+            if (m and pair in self.cut) or (not m and pair in self.keep):
+                return False
+        return True
+
+    def commit(self, mv: _Move) -> None:
+        self.log.append((mv, self.lay.cell[mv.moved].copy(), self.lay.rot[mv.moved].copy()))
+        self.lay.cell[mv.moved] = mv.cell
+        self.lay.rot[mv.moved] = mv.rot
+        self.placed[mv.moved] = True
+        self.keys.update(_keys(mv.cell).tolist())
+
+    def nearest(self, side: npt.NDArray[np.int64]) -> list[_Move]:
+        """Moves hanging ``side`` across each uncut edge to a placed face, nearest to where it was first."""
+        w, k, y, _ = _boundary(self.lay, side, self.placed)
+        centre = self.lay.cell[side].mean(axis=0)
+        moves = []
+        for t, (u, kk, v) in enumerate(zip(w.tolist(), k.tolist(), y.tolist())):
+            if _pair(u, v) in self.cut:
+                continue
+            mv = _hinge_move(self.lay, side, u, kk)
+            turned = int((mv.rot[0] - self.lay.rot[side[0]]) % 4) != 0
+            moves.append((float(np.abs(mv.cell.mean(axis=0) - centre).sum()), turned, t, mv))
+        moves.sort(key=lambda m: m[:3])
+        return [m[3] for m in moves]
+
+    def first(self, moves: list[_Move]) -> bool:
+        for mv in moves:
+            if self.fits(mv):
+                self.commit(mv)
+                return True
+        return False
+
+    def hang(self, tree: dict[int, list[int]], side: npt.NDArray[np.int64], root: int,
+             hinge: tuple[int, int] | None = None) -> bool:
+        """Place ``side`` (the tree below ``root``, not yet placed); ``hinge`` (face, edge) fixes the root's place."""
+        children: dict[int, list[int]] = {}
+        inside = set(side.tolist())
+        order, up = [root], {root: -1}
+        for i in order:
+            children[i] = [j for j in tree[i] if j in inside and j not in up]
+            for j in children[i]:
+                up[j] = i
+                order.append(j)
+        below: dict[int, list[int]] = {}
+        for i in reversed(order):
+            below[i] = [i] + [f for c in children[i] for f in below[c]]
+        if self._hang(children, below, root, hinge):
+            return True
+        self.back_to(0)
+        return False
+
+    def _hang(self, children: dict[int, list[int]], below: dict[int, list[int]], s: int,
+              hinge: tuple[int, ...] | None) -> bool:
+        """Hang the subtree below ``s``; ``hinge`` is (face, edge) or (face, edge, True) for a kept fold."""
+        lay = self.lay
+        sub = np.array(sorted(below[s]), dtype=np.int64)
+        if hinge is not None:
+            if self.first([_hinge_move(lay, sub, hinge[0], hinge[1])]):
+                return True
+            if len(hinge) == 3:
+                return False
+        elif self.first(self.nearest(sub)):
+            return True
+        alone = np.array([s], dtype=np.int64)
+        if not self.first([_hinge_move(lay, alone, hinge[0], hinge[1])] if hinge is not None else self.nearest(alone)):
+            return False
+        for c in children[s]:
+            k = int(np.flatnonzero(lay.sg.neighbor[c] == s)[0])
+            kept = _pair(c, s) in self.keep
+            mark = len(self.log)
+            # back on its old fold first; a kept fold may not open at all
+            if self._hang(children, below, c, (c, k, True) if kept else (c, k)):
+                continue
+            self.back_to(mark)
+            if kept or not self._hang(children, below, c, None):
+                return False
+        return True
 
 
 def _boundary(lay: _Layout, moved: npt.NDArray[np.int64], rest_mask: npt.NDArray[np.bool_]
@@ -272,11 +380,6 @@ def _boundary(lay: _Layout, moved: npt.NDArray[np.int64], rest_mask: npt.NDArray
     keep = (y >= 0) & rest_mask[np.maximum(y, 0)]
     pos = np.repeat(np.arange(moved.size), 4)
     return w[keep], k[keep], y[keep], pos[keep]
-
-
-def _apply(lay: _Layout, mv: _Move) -> None:
-    lay.cell[mv.moved] = mv.cell
-    lay.rot[mv.moved] = mv.rot
 
 
 def _rebuild(lay: _Layout, marks: EdgeConstraints, *, moved: int, cut: list[Edge], joined: list[Edge],
@@ -358,35 +461,16 @@ def cut_edge(grid: npt.ArrayLike, net: Net | Sequence[Net], face_a: Face, face_b
         piece_of[moved] = int(lay.piece.max()) + 1
         result = _rebuild(lay, marks, moved=0, cut=[], joined=[], piece_of=_renumber(piece_of))
         return _with_changes(result, lay, before, edge)
-    rest_mask = np.zeros(lay.sg.face_count, dtype=bool)
-    rest_mask[members] = True
-    rest_mask[moved] = False
-    rest = np.flatnonzero(rest_mask)
-    rest_keys = np.sort(_keys(lay.cell[rest]))
-    boundary = _boundary(lay, moved, rest_mask)
-    w, k, y, _ = boundary
-    # Every edge from the moved side to the rest may hinge it, except the cut ones.
-    hinges = [(int(i), int(kk)) for i, kk, j in zip(w.tolist(), k.tolist(), y.tolist())
-              if _pair(i, j) not in cut_pairs]
-    if not hinges:
+    placed = np.zeros(lay.sg.face_count, dtype=bool)
+    placed[members] = True
+    placed[moved] = False
+    hanger = _Hanger(lay, placed, cut_pairs, keep, [MAX_TRIES])
+    root = b if b in set(moved.tolist()) else a
+    if not hanger.hang(tree, moved, root):
         raise UnfoldError(f"no room to re-attach the {moved.size} faces cut off by edge {_name(edge)}: "
-                          "every edge to the rest is cut")
-    centre = lay.cell[moved].mean(axis=0)
-    moves = []
-    for t, (u, kk) in enumerate(hinges):
-        mv = _hinge_move(lay, moved, u, kk)
-        # nearest first: how far the cut-off side's middle travels, then how much it turns
-        shift = float(np.abs(mv.cell.mean(axis=0) - centre).sum())
-        turned = int((mv.rot[0] - lay.rot[moved[0]]) % 4)
-        moves.append((shift, turned != 0, t, mv))
-    moves.sort(key=lambda m: m[:3])
-    for _, _, _, mv in moves:
-        if _check_move(lay, mv, rest, rest_keys, boundary, cut_pairs, keep) is None:
-            _apply(lay, mv)
-            result = _rebuild(lay, marks, moved=int(moved.size), cut=[], joined=[], piece_of=piece_of)
-            return _with_changes(result, lay, before, edge)
-    raise UnfoldError(f"no room to re-attach the {moved.size} faces cut off by edge {_name(edge)} "
-                      "without overlapping the rest; cut another edge nearby first, or allow several pieces")
+                          "every free place overlaps the rest or closes a cut edge; allow several pieces")
+    result = _rebuild(lay, marks, moved=hanger.moved(), cut=[], joined=[], piece_of=piece_of)
+    return _with_changes(result, lay, before, edge)
 
 
 def join_edge(grid: npt.ArrayLike, net: Net | Sequence[Net], face_a: Face, face_b: Face, *,
@@ -450,19 +534,21 @@ def join_edge(grid: npt.ArrayLike, net: Net | Sequence[Net], face_a: Face, face_
             raise UnfoldError(f"joining edge {_name(edge)} would close a loop of kept folds; "
                               "unmark one of them first")
         choices.sort(key=lambda c: (c[0].size, int(c[0][0])))
+    tries = [MAX_TRIES]
     for moved, u, k, fixed in choices:
-        rest_mask = np.zeros(lay.sg.face_count, dtype=bool)
-        rest_mask[fixed] = True
-        rest_keys = np.sort(_keys(lay.cell[fixed]))
-        boundary = _boundary(lay, moved, rest_mask)
-        mv = _hinge_move(lay, moved, u, k)
-        if _check_move(lay, mv, fixed, rest_keys, boundary, cut_pairs, keep) is None:
-            _apply(lay, mv)
+        if tries[0] <= 0:
+            break
+        placed = np.zeros(lay.sg.face_count, dtype=bool)
+        placed[fixed] = True
+        hanger = _Hanger(lay, placed, cut_pairs, keep, tries)
+        # inside a piece the swinging side keeps its folds where it can; a whole piece moves rigidly
+        if (hanger.hang(tree, moved, u, (u, k)) if pa == pb else hanger.first([_hinge_move(lay, moved, u, k)])):
             if pa != pb:
                 piece_of[moved] = min(pa, pb)
                 piece_of = _renumber(piece_of)
-            result = _rebuild(lay, marks, moved=int(moved.size), cut=[], joined=[], piece_of=piece_of)
+            result = _rebuild(lay, marks, moved=hanger.moved(), cut=[], joined=[], piece_of=piece_of)
             return _with_changes(result, lay, before, edge)
+        hanger.undo()
     if pa != pb:
         raise UnfoldError(f"no room to join edge {_name(edge)}: the two pieces would overlap")
     raise UnfoldError(f"no room to join edge {_name(edge)}: every way to open the loop it closes makes "
