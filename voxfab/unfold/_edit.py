@@ -468,7 +468,8 @@ def cut_edge(grid: npt.ArrayLike, net: Net | Sequence[Net], face_a: Face, face_b
     root = b if b in set(moved.tolist()) else a
     if not hanger.hang(tree, moved, root):
         raise UnfoldError(f"no room to re-attach the {moved.size} faces cut off by edge {_name(edge)}: "
-                          "every free place overlaps the rest or closes a cut edge; allow several pieces")
+                          "every free place overlaps the rest or closes a cut edge; cut an edge nearer the outline, "
+                          "or allow several pieces")
     result = _rebuild(lay, marks, moved=hanger.moved(), cut=[], joined=[], piece_of=piece_of)
     return _with_changes(result, lay, before, edge)
 
