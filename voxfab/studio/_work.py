@@ -162,6 +162,8 @@ def net_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, timeout: f
         nets.append(net)
         job.step(len(nets), count, f"{len(nets)} of {count} nets")
     job.data["nets"] = nets
+    job.data["grid"] = grid  # for /api/nets/edit
+    from ._edit import net_layout as edited_layout
     job.result = {
         "asked": count,
         "found": len(nets),
@@ -171,7 +173,7 @@ def net_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, timeout: f
             {
                 "index": i, "seed": int(n.seed), "faces": n.face_count, "mountain": int(n.mountain),
                 "valley": int(n.valley), "seams_without_tab_room": int(n.seams_without_tab_room),
-                "fit": sheet_fit(n, sheet=sheet, face_mm=face_mm), "layout": net_layout(n, grid),
+                "fit": sheet_fit(n, sheet=sheet, face_mm=face_mm), "layout": edited_layout(grid, n),
             }
             for i, n in enumerate(nets)
         ],
