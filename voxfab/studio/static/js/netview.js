@@ -147,6 +147,7 @@ export class NetView {
     if (play) play.addEventListener('click', () => this.play());
     if (undo) undo.addEventListener('click', () => this.undo());
     window.voxfabFold = (t = 1) => this.foldState(t);
+    window.voxfabNetView = this; // for scripts driving the page: toScreen, layout, hit
   }
 
   _pixel(e) {

@@ -74,7 +74,12 @@ export class Viewer {
   setLayer(layer) { this.layer = layer; this.draw(); }
 
   // Light up faces (names "x,y,z,+z") and seam edges ([p, q] 3D points), with a label; null clears.
-  setHighlight(h) { this.highlight = h; this.draw(); }
+  setHighlight(h) {
+    this.highlight = h;
+    this.canvas.dataset.highlight = h ? [...h.faces].sort().join(' ') : '';
+    this.canvas.dataset.highlightLabel = h && h.label ? h.label : '';
+    this.draw();
+  }
 
   // Show a net folding: `corners` F*12 numbers (4 corners per face in 3D), framed by `frame`
   // ({lo, hi} over the whole animation so it does not jump); null goes back to the shape.
