@@ -136,3 +136,22 @@ def test_bad_edits_are_one_line(client, gallery, body, words):
     r = client.post("/api/nets/edit", json=body)
     assert r.status_code == 400, r.text
     assert words in r.json()["error"] and "\n" not in r.json()["error"]
+
+
+def test_marks_from_the_page_start_a_fresh_nets_record(client, gallery):
+    grid, job, layout = gallery
+    folds = np.array(layout["folds"]).reshape(-1, 2)
+    folded = {tuple(p) for p in folds.tolist()}
+    nb = np.array(layout["neighbor"]).reshape(-1, 4)
+    # a seam of the gallery net, marked cut on the page before any edit
+    a, b = next((a, int(b)) for a in range(nb.shape[0]) for b in nb[a] if a < b and (a, b) not in folded)
+    page_marks = {"cut": [sorted(pair_faces(layout, a, b))], "keep": []}
+    for i, j in folds.tolist()[::-1]:
+        r = client.post("/api/nets/edit", json={"job": job, "index": 0, "cut": pair_faces(layout, i, j),
+                                                "marks": page_marks})
+        if r.status_code == 200:
+            break
+    assert r.status_code == 200, r.text
+    marks = r.json()["net"]["marks"]
+    assert sorted(marks["cut"]) == sorted(page_marks["cut"] + [sorted(pair_faces(layout, i, j))])
+    checked(grid, r.json()["net"]["layout"], marks)

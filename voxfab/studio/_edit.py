@@ -8,7 +8,8 @@ laid out for the page.
 
 Body: ``{"job": ID, "index": N, "cut": [faceA, faceB]}`` or ``"join": [...]`` or
 ``"undo": true``, faces as ``[x, y, z, "+z"]``; ``"grid"`` (packed) is needed only
-when the gallery job did not keep its shape.  Answer: ``{"job": NEWID, "net": ITEM}``
+when the gallery job did not keep its shape, ``"marks"`` (``{"cut": [...], "keep":
+[...]}``) starts the marks of a net that has none yet (one fresh from a gallery).  Answer: ``{"job": NEWID, "net": ITEM}``
 with ITEM as a gallery item plus ``"marks"``, ``"moved"``, ``"cut"``, ``"joined"``
 and ``"undo"`` (edits that undo can take back).
 """
@@ -121,6 +122,11 @@ def apply_edit(job: Any, data: dict[str, Any]) -> dict[str, Any]:
     marks = job.data.get("marks")
     if marks is None and job.data.get("constraints") is not None:
         marks = job.data["constraints"]
+    if marks is None and data.get("marks"):
+        # a net fresh from a gallery: the marks the page made so far start its record
+        from voxfab.unfold import EdgeConstraints as Marks
+
+        marks = Marks.from_dict(data["marks"])
     history = list(job.data.get("history", []))
     kinds = [k for k in ("cut", "join", "undo") if data.get(k) not in (None, False)]
     if len(kinds) != 1:

@@ -336,7 +336,8 @@ export class NetView {
     const t0 = performance.now();
     try {
       const shape = this.shape && this.shape();
-      const r = await post('/api/nets/edit', {job: this.job, index: this.index, ...change, grid: shape ? shape.pack() : null});
+      const r = await post('/api/nets/edit', {job: this.job, index: this.index, ...change, grid: shape ? shape.pack() : null,
+        marks: this.marks});
       const ms = performance.now() - t0;
       this.marks = r.net.marks; this.undos = r.net.undo;
       this.setNet(r.job, 0, r.net.layout, {keepView: true});
