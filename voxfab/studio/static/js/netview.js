@@ -77,19 +77,30 @@ export function foldPlan(layout) {
 }
 
 // Face corners (F*12 numbers) at fold fraction t: 0 flat in the plane of each piece's root, 1 the surface.
+// Flat typed arrays and inlined 3×3 products: this runs once per animation frame over every face.
 export function foldCorners(plan, t) {
   const {F, rot, shift, order, hinge, angle, parent, c2} = plan;
-  const r = new Array(F), s = new Array(F), out = new Float64Array(12 * F);
+  const R = new Float64Array(9 * F), S = new Float64Array(3 * F), out = new Float64Array(12 * F);
   for (const c of order) {
-    const p = parent[c];
-    if (p < 0) { r[c] = rot[c]; s[c] = shift[c]; } else {
-      const {point, axis} = hinge[c], tn = turn(axis, t * angle[c]);
-      const tp = apply(tn, point), moved = apply(r[p], [point[0] - tp[0], point[1] - tp[1], -tp[2]]);
-      r[c] = mul(r[p], tn); s[c] = moved.map((v, j) => v + s[p][j]);
+    const p = parent[c], rc = 9 * c, sc = 3 * c;
+    if (p < 0) {
+      for (let m = 0; m < 9; m++) R[rc + m] = rot[c][m];
+      for (let m = 0; m < 3; m++) S[sc + m] = shift[c][m];
+    } else {
+      const {point, axis} = hinge[c], tn = turn(axis, t * angle[c]), rp = 9 * p, sp = 3 * p;
+      // d = point - turn·point (point has z = 0)
+      const d0 = point[0] - (tn[0] * point[0] + tn[1] * point[1]);
+      const d1 = point[1] - (tn[3] * point[0] + tn[4] * point[1]);
+      const d2 = -(tn[6] * point[0] + tn[7] * point[1]);
+      for (let i = 0; i < 3; i++) {
+        const a0 = R[rp + 3 * i], a1 = R[rp + 3 * i + 1], a2 = R[rp + 3 * i + 2];
+        for (let j = 0; j < 3; j++) R[rc + 3 * i + j] = a0 * tn[j] + a1 * tn[3 + j] + a2 * tn[6 + j];
+        S[sc + i] = a0 * d0 + a1 * d1 + a2 * d2 + S[sp + i];
+      }
     }
     for (let k = 0; k < 4; k++) {
-      const q = apply(r[c], [c2[8 * c + 2 * k], c2[8 * c + 2 * k + 1], 0]);
-      for (let j = 0; j < 3; j++) out[12 * c + 3 * k + j] = q[j] + s[c][j];
+      const x = c2[8 * c + 2 * k], y = c2[8 * c + 2 * k + 1];
+      for (let j = 0; j < 3; j++) out[12 * c + 3 * k + j] = R[rc + 3 * j] * x + R[rc + 3 * j + 1] * y + S[sc + j];
     }
   }
   return out;
