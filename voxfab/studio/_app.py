@@ -40,6 +40,7 @@ from starlette.routing import Route
 from voxfab.errors import InvalidShapeError, VoxfabError
 
 from . import _grid, _specs, _work
+from ._edit import edit_route
 from ._jobs import Jobs
 
 #: Thumbnails kept in memory (oldest dropped first).
@@ -500,6 +501,7 @@ def create_app(settings: Settings) -> Starlette:
         Route("/api/repo/shape", api(repo_shape)),
         Route("/api/repo/thumb", api(repo_thumb)),
         Route("/api/nets", api(nets), methods=["POST"]),
+        Route("/api/nets/edit", api(edit_route(jobs)), methods=["POST"]),
         Route("/api/make", api(make), methods=["POST"]),
         Route("/api/jobs/{job}", api(job_status)),
         Route("/api/files/{job}/{index:int}", api(download)),

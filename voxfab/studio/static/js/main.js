@@ -4,7 +4,8 @@ import {fileUrl, get, post, saveBlob, waitJob} from './api.js';
 import {CurveSource, FociInput, SpineDrawing} from './draw.js';
 import {LayerEditor} from './editor.js';
 import {Grid} from './grid.js';
-import {drawNet, NetMarker} from './nets.js';
+import {drawNet} from './nets.js';
+import {NetView} from './netview.js';
 import {Viewer} from './viewer.js';
 
 const $ = (sel) => document.querySelector(sel);
@@ -288,7 +289,7 @@ async function openShape(name) {
 
 // --- Net ----------------------------------------------------------------------------------------
 
-const marker = new NetMarker($('#net-canvas'), {onChange: () => {
+const marker = new NetView($('#net-canvas'), {viewer, shape: () => state.shape, say, fold: $('#net-fold'), play: $('#net-fold-play'), undo: $('#net-undo'), onChange: () => {
   const c = marker.constraints();
   $('#marks-count').textContent = `${c.cut.length} cut, ${c.keep.length} kept`;
   $('#marks-count').dataset.constraints = JSON.stringify(c);
@@ -345,7 +346,7 @@ async function gallery(withMarks) {
 function choose(i) {
   state.chosen = i;
   $$('#net-gallery figure').forEach((f, j) => f.classList.toggle('chosen', i === j));
-  marker.setLayout(state.gallery.nets[i].layout);
+  marker.setNet(state.gallery.job, i, state.gallery.nets[i].layout);
   $('#net-chosen-label').textContent = `#${i + 1} (seed ${state.gallery.nets[i].seed})`;
   $('#net-chosen-label').dataset.index = String(i);
   netNote();
@@ -364,7 +365,7 @@ async function make(artefact) {
     title: state.name || $('#recipe-name').value || 'studio',
     options: {face_mm: face ? Number(face) : null, sheet: $('#net-sheet').value, thickness: Number($('#thickness').value),
       timeout: Number($('#net-timeout').value), style: $('#plate-style').value, plate_sheet: $('#plate-sheet').value},
-    net: state.gallery && state.chosen !== null ? {job: state.gallery.job, index: state.chosen} : null,
+    net: state.gallery && state.chosen !== null ? {job: marker.job, index: marker.index} : null,
     shape: artefact === 'animation.gif' ? state.drawn : undefined};
   try {
     const {job} = await post('/api/make', body);
