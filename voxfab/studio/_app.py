@@ -453,6 +453,11 @@ def create_app(settings: Settings) -> Starlette:
     async def job_status(request: Request) -> dict[str, Any]:
         return _job(request.path_params["job"]).status()
 
+    async def job_cancel(request: Request) -> dict[str, Any]:
+        job = _job(request.path_params["job"])
+        jobs().cancel(job)
+        return job.status()
+
     async def download(request: Request) -> Response:
         job = _job(request.path_params["job"])
         index = request.path_params["index"]
@@ -509,6 +514,7 @@ def create_app(settings: Settings) -> Starlette:
         Route("/api/nets", api(nets), methods=["POST"]),
         Route("/api/make", api(make), methods=["POST"]),
         Route("/api/jobs/{job}", api(job_status)),
+        Route("/api/jobs/{job}/cancel", api(job_cancel), methods=["POST"]),
         Route("/api/files/{job}/{index:int}", api(download)),
     ]
     app = Starlette(routes=routes, lifespan=lifespan,
