@@ -520,5 +520,6 @@ def create_app(settings: Settings) -> Starlette:
     app = Starlette(routes=routes, lifespan=lifespan,
                     exception_handlers={404: not_found, 405: method_not_allowed, 500: server_error})
     app.state.cleanup = cleanup
+    app.state.cancel_jobs = lambda: state["jobs"].cancel_all() if "jobs" in state else None
     return Guard(app, settings.hosts)  # type: ignore[return-value]
 

@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
+import queue
 import secrets
 import shutil
 import threading
 import time
 from collections import OrderedDict
 from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -88,14 +88,28 @@ class Job:
 
 
 class Jobs:
-    """A thread pool, its queue, and the table of recent jobs."""
+    """Worker threads, their queue, and the table of recent jobs.
+
+    The workers are daemon threads (not a ``ThreadPoolExecutor``, whose threads
+    the interpreter joins at exit): a server stopping with Ctrl-C cancels its
+    jobs and goes, even if one is inside a step that cannot be cut short (numba
+    compiling a kernel, the exact solver).
+    """
 
     def __init__(self, work: Path, workers: int = 2) -> None:
         self._work = work
-        self._pool = ThreadPoolExecutor(max_workers=workers, thread_name_prefix="studio-job")
         self._jobs: OrderedDict[str, Job] = OrderedDict()
         self._queue: list[Job] = []  # submitted, not started, in order
         self._lock = threading.Lock()
+        self._tasks: queue.SimpleQueue[Callable[[], None] | None] = queue.SimpleQueue()
+        self._workers = [threading.Thread(target=self._serve, name=f"studio-job-{i}", daemon=True)
+                         for i in range(workers)]
+        for t in self._workers:
+            t.start()
+
+    def _serve(self) -> None:
+        while (task := self._tasks.get()) is not None:
+            task()
 
     def submit(self, kind: str, work: Callable[[Job], None]) -> Job:
         """Queue ``work(job)``; it fills ``job.result`` and ``job.files``; errors become the job's message."""
@@ -136,7 +150,7 @@ class Jobs:
             self._queue.append(job)
             self._renumber()
             self._prune()
-            self._pool.submit(run)
+            self._tasks.put(run)
         return job
 
     def get(self, job_id: str) -> Job | None:
@@ -158,6 +172,11 @@ class Jobs:
             else:
                 job.message = "cancelling"
 
+    def cancel_all(self) -> None:
+        """Ask every job to stop, without waiting and without the table's lock (safe in a signal handler)."""
+        for job in list(self._jobs.values()):
+            job.cancel.set()
+
     def _renumber(self) -> None:
         for i, queued in enumerate(self._queue):
             queued.place = i + 1
@@ -170,13 +189,14 @@ class Jobs:
             del self._jobs[old.id]
             shutil.rmtree(old.folder, ignore_errors=True)
 
-    def shutdown(self, wait: float = 1.5) -> None:
-        """Stop taking work, cancel every job, and wait up to ``wait`` seconds for the running ones to stop."""
+    def shutdown(self, wait: float = 1.0) -> None:
+        """Cancel every job, stop the workers, and wait up to ``wait`` seconds for the running jobs to stop."""
         with self._lock:
             jobs = [j for j in self._jobs.values() if not j.ended]
         for job in jobs:
             self.cancel(job)
-        self._pool.shutdown(wait=False, cancel_futures=True)
+        for _ in self._workers:
+            self._tasks.put(None)
         end = time.monotonic() + wait
         for job in jobs:
             while not job.ended and time.monotonic() < end:
