@@ -81,3 +81,76 @@ def test_ctrl_c_stops_the_server_within_two_seconds_while_nets_are_searched(tmp_
         if proc.poll() is None:
             proc.kill()
             proc.wait(5)
+
+
+def _queen_file(folder: Path) -> tuple[Path, "object"]:
+    import numpy as np
+
+    queen = make_shape(load_recipe(QUEEN)).grid
+    path = folder / "queen.npy"
+    np.save(path, queen)
+    return path, queen
+
+
+def test_studio_shape_file_opens_with_that_shape(tmp_path):
+    from voxfab.shape import crop
+    from voxfab.studio._grid import unpack
+
+    path, queen = _queen_file(tmp_path)
+    proc, url = _start(tmp_path, str(path))
+    try:
+        got = _get(f"{url}/api/initial")["shape"]
+        assert got["label"] == "queen.npy" and got["name"] is None
+        grid = unpack(got["grid"])
+        assert grid.shape == (25, 25, 25)
+        assert (crop(grid) == crop(queen)).all()  # the same voxels, centred in the editor
+        assert got["facts"]["volume"] == int(queen.sum())
+    finally:
+        proc.send_signal(signal.SIGINT)
+        proc.wait(10)
+
+
+def test_studio_repository_name_opens_that_shape(tmp_path):
+    from voxfab.repo import Repository
+    from voxfab.shape import crop
+    from voxfab.studio._grid import unpack
+
+    _, queen = _queen_file(tmp_path)
+    with Repository(tmp_path / "repo.sqlite") as repo:
+        name = repo.add(queen).name
+    proc, url = _start(tmp_path, name)
+    try:
+        got = _get(f"{url}/api/initial")["shape"]
+        assert (got["label"], got["name"]) == (name, name)
+        assert (crop(unpack(got["grid"])) == crop(queen)).all()
+    finally:
+        proc.send_signal(signal.SIGINT)
+        proc.wait(10)
+
+
+def test_studio_without_shape_opens_on_the_drawing(server):
+    assert _get(f"{server['url']}/api/initial") == {"shape": None}
+
+
+@pytest.mark.parametrize("what, words", [
+    ("missing.npy", "missing.npy"),
+    ("big.npy", "does not fit the 25³ editor"),
+    ("empty.npy", "empty"),
+    ("99999.001", "99999.001"),
+])
+def test_studio_shape_errors_are_one_line_before_serving(tmp_path, what, words):
+    import numpy as np
+
+    np.save(tmp_path / "big.npy", np.ones((30, 4, 4), dtype=bool))
+    np.save(tmp_path / "empty.npy", np.zeros((5, 5, 5), dtype=bool))
+    from voxfab.repo import Repository
+
+    with Repository(tmp_path / "repo.sqlite") as repo:
+        repo.add(np.ones((3, 3, 3), dtype=bool), draft=True)
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]))
+    r = subprocess.run([sys.executable, "-m", "voxfab", "studio", what, "--port", str(free_port()),
+                        "--repo", str(tmp_path / "repo.sqlite"), "--no-browser"],
+                       env=env, cwd=tmp_path, capture_output=True, text=True, timeout=60)
+    assert r.returncode != 0
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and words in lines[0] and "Traceback" not in r.stderr, r.stderr

@@ -15,6 +15,8 @@ from typing import Any
 
 from voxfab.errors import VoxfabError
 
+from ._words import plain
+
 #: Jobs kept for polling and downloads; the oldest finished ones (and their files) go first.
 MAX_JOBS = 64
 
@@ -36,7 +38,9 @@ class Job:
     done, total : int
         Progress in the job's own units.
     message : str
-        What runs now, or the error.
+        What runs now, or the error in the artist's words (see ``_words.plain``).
+    detail : str
+        The error's technical line, when it has other words.
     result : dict
         JSON-ready result for the page.
     files : list of (str, Path)
@@ -61,6 +65,7 @@ class Job:
     seconds: float = 0.0
     cancel: threading.Event = field(default_factory=threading.Event)
     place: int = 0
+    detail: str = ""
 
     def step(self, done: int, total: int, message: str = "") -> None:
         """Report progress (called from the worker thread; plain attribute writes)."""
@@ -80,6 +85,8 @@ class Job:
             "done": self.done, "total": self.total, "message": self.message,
             "seconds": round(self.seconds or time.monotonic() - self.started, 3),
         }
+        if self.state == "error" and self.detail != self.message:
+            out["detail"] = self.detail  # the technical line behind the plain message
         if self.state == "done":
             out["result"] = self.result
             out["files"] = [{"index": i, "name": name, "bytes": path.stat().st_size}
@@ -137,7 +144,8 @@ class Jobs:
                 if job.cancel.is_set():
                     job.message, job.state = "cancelled", "cancelled"
                 else:
-                    job.message = " ".join(str(exc).split())
+                    job.detail = " ".join(str(exc).split())
+                    job.message = plain(job.detail)
                     job.state = "error"
             except Exception as exc:  # noqa: BLE001 - the page gets one line, never a traceback
                 job.message = f"internal error ({type(exc).__name__}): {' '.join(str(exc).split())}"

@@ -8,6 +8,7 @@ import webbrowser
 from collections.abc import Callable
 from pathlib import Path
 from types import FrameType
+from typing import Any
 
 from voxfab.errors import InvalidShapeError, MissingDependencyError
 
@@ -27,7 +28,7 @@ def _check_port(host: str, port: int) -> None:
 
 
 def serve(*, host: str = "127.0.0.1", port: int = 8765, repo: Path, open_browser: bool = True,
-          work: Path | None = None) -> None:
+          work: Path | None = None, initial: Any = None) -> None:
     """Serve the studio until interrupted.
 
     Parameters
@@ -40,6 +41,8 @@ def serve(*, host: str = "127.0.0.1", port: int = 8765, repo: Path, open_browser
         Open the page in the default browser once the server listens.
     work : Path, optional
         The session's work folder (default: a temporary folder removed at exit).
+    initial : InitialShape, optional
+        The shape the page opens with (``voxfab studio SHAPE``).
     """
     try:
         import uvicorn
@@ -50,10 +53,11 @@ def serve(*, host: str = "127.0.0.1", port: int = 8765, repo: Path, open_browser
     if not 1 <= port <= 65535:
         raise InvalidShapeError(f"--port: expected 1..65535, got {port}")
     _check_port(host, port)
-    app = create_app(Settings(repo=Path(repo), hosts=allowed_hosts(host, port), work=work))
+    app = create_app(Settings(repo=Path(repo), hosts=allowed_hosts(host, port), work=work, initial=initial))
     shown = f"[{host}]" if ":" in host else host
     url = f"http://{shown}:{port}/"
-    print(f"voxfab studio: {url}  (repository {repo}; Ctrl+C stops)", flush=True)
+    opened = f"; opens {initial.label}" if initial is not None else ""
+    print(f"voxfab studio: {url}  (repository {repo}{opened}; Ctrl+C stops)", flush=True)
     if open_browser:
         threading.Timer(0.8, webbrowser.open, args=(url,)).start()
     server = _server_class()(uvicorn.Config(app, host=host, port=port, log_level="warning", lifespan="on",

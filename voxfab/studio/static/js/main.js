@@ -413,6 +413,16 @@ $$('#tabs button').forEach((b) => b.addEventListener('click', () => {
   if (b.dataset.tab === 'keep') refreshRepo();
 }));
 
+// The first shape: the one `voxfab studio SHAPE` was given, else the drawing's preview.
+async function start() {
+  const {shape} = await get('/api/initial');
+  if (!shape) { schedule(true); return; }
+  setShape(Grid.unpack(shape.grid), shape.facts, {name: shape.name});
+  $('#shape-name').textContent = shape.label;
+  if (shape.pitch) $('#pitch').value = String(shape.pitch);
+  say(`Opened ${shape.label}`, true);
+}
+
 recipeNote(); netNote();
-schedule(true);
+start().catch((e) => say(e.message));
 makeButtons().then(() => { document.body.dataset.ready = 'true'; }, (e) => say(e.message));
