@@ -11,6 +11,7 @@ import time
 import urllib.request
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from voxfab.recipe import load_recipe, make_shape
@@ -83,9 +84,7 @@ def test_ctrl_c_stops_the_server_within_two_seconds_while_nets_are_searched(tmp_
             proc.wait(5)
 
 
-def _queen_file(folder: Path) -> tuple[Path, "object"]:
-    import numpy as np
-
+def _queen_file(folder: Path) -> tuple[Path, np.ndarray]:
     queen = make_shape(load_recipe(QUEEN)).grid
     path = folder / "queen.npy"
     np.save(path, queen)
@@ -139,8 +138,6 @@ def test_studio_without_shape_opens_on_the_drawing(server):
     ("99999.001", "99999.001"),
 ])
 def test_studio_shape_errors_are_one_line_before_serving(tmp_path, what, words):
-    import numpy as np
-
     np.save(tmp_path / "big.npy", np.ones((30, 4, 4), dtype=bool))
     np.save(tmp_path / "empty.npy", np.zeros((5, 5, 5), dtype=bool))
     from voxfab.repo import Repository
