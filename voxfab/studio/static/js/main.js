@@ -83,7 +83,8 @@ function forgetShapeState() {
   state.gallery = null; state.chosen = null;
   $('#save-result').textContent = ''; delete $('#save-result').dataset.name;
   $('#net-summary').textContent = '';
-  marker.setLayout(null); marker.clear();
+  marker.setLayout(null);
+  if (marker.marks && marker.marks.size) marker.clear();
 }
 
 function setShape(grid, facts, {drawn = null, name = null, keepHistory = false} = {}) {
@@ -153,7 +154,9 @@ function schedule(final) {
   if (!inFlight) runPreview();
 }
 
-function drawnEmpty(src) { return src.kind === 'drawn' && !src.polylines.some((p) => p.points.length >= 2); }
+function drawnEmpty(src) {
+  return (src.kind === 'drawn' && !src.polylines.some((p) => p.points.length >= 2)) || (src.kind === 'bitmap' && !src.bitmap);
+}
 
 function currentSpec() {
   const maker = $('#maker').value;
@@ -197,7 +200,8 @@ async function runPreview() {
   const req = pending; pending = null;
   const spec = currentSpec();
   const missing = emptyDrawing(spec);
-  if (missing) { say(`Draw the ${missing} to see the shape.`, true); return; }
+  // an unfinished drawing has no shape yet: none is shown rather than the last one
+  if (missing) { say(`Draw or choose the ${missing} to see the shape.`, true); drawingFailed(); return; }
   inFlight = true;
   try {
     const r = await post('/api/preview', spec);
