@@ -11,7 +11,7 @@ from collections.abc import Callable
 import numpy as np
 import numpy.typing as npt
 
-from voxfab._shared.progress import Meter, meter
+from voxfab._shared.progress import Meter, check_cancelled, meter
 from voxfab._shared.rng import as_rng
 from voxfab._shared.validate import as_grid, check_choice
 from voxfab.errors import InvalidShapeError, NoNetExistsError, UnfoldError
@@ -197,6 +197,7 @@ class _Board:
         if not self.started:
             return False
         while self.unplaced > 0:
+            check_cancelled()  # between compiled chunks: a cancelled job stops within milliseconds
             if time.monotonic() > deadline or (max_steps is not None and spent >= max_steps):
                 return False
             chunk = _CHUNK if max_steps is None else min(_CHUNK, max_steps - spent)
@@ -288,6 +289,7 @@ class _Board:
         cnt[self.k.C_TRACK] = 0
         done = spent = 0
         while True:
+            check_cancelled()
             step = min(_ANNEAL_CHUNK, total - done)
             with _quiet():
                 used = tr.anneal(*self.sf, *self.b, gw, sched, step, done, best)

@@ -15,6 +15,8 @@ from collections.abc import Sequence
 import numpy as np
 import numpy.typing as npt
 
+# check_cancelled() in the face-by-face walks: a cancelled studio job stops within a face, not a whole check.
+from voxfab._shared.progress import check_cancelled
 from voxfab._shared.validate import as_grid
 from voxfab.errors import UnfoldError
 
@@ -371,6 +373,7 @@ def _check_piece_by_face(g, faces, net: Net, p: int, owner: dict, problems: list
     c2 = np.asarray(net.corners2d, dtype=np.int64)
     good = np.ones(nf, dtype=bool)  # faces whose own geometry is sound
     for i in range(nf):
+        check_cancelled()
         key = (tuple(v3[i].tolist()), tuple(n3[i].tolist()))
         if key not in faces:
             err(f"{tag}face {i} (voxel {key[0]}, normal {key[1]}) is not an exposed face")
@@ -405,6 +408,7 @@ def _check_piece_by_face(g, faces, net: Net, p: int, owner: dict, problems: list
             good[i] = False
     cells: dict[tuple[int, int], int] = {}
     for i in range(nf):
+        check_cancelled()
         cell = tuple(c2[i].min(axis=0).tolist())
         if cell in cells:
             err(f"{tag}faces {cells[cell]} and {i} overlap on cell {cell}")
@@ -419,6 +423,7 @@ def _check_piece_by_face(g, faces, net: Net, p: int, owner: dict, problems: list
     }
     folds = np.asarray(net.folds, dtype=np.int64).reshape(-1, 2)
     for t, (i, j) in enumerate(folds.tolist()):
+        check_cancelled()
         if not (0 <= i < nf and 0 <= j < nf) or i == j:
             err(f"{tag}fold {t} [{i}, {j}] does not join two faces of the net")
             continue
@@ -490,6 +495,7 @@ def _refold(c2, c3, n3, adj, good, err, tag):
     maps[start] = affine(start)
     queue = deque([start])
     while queue:
+        check_cancelled()
         i = queue.popleft()
         o, a = maps[i]
         normal = _cross(a[:, 0], a[:, 1])
@@ -520,6 +526,7 @@ def _refold(c2, c3, n3, adj, good, err, tag):
             f"to face {start} (e.g. face {unreached[0]})")
     wrong = []
     for i, (o, a) in maps.items():
+        check_cancelled()
         if not good[i]:
             continue
         placed = (o[:, None] + a @ c2[i].T.astype(float)).T
@@ -532,6 +539,7 @@ def _refold(c2, c3, n3, adj, good, err, tag):
 def _seams(g, v3, n3, c3, c2, lookup, folded, cells, good, err, tag):
     seams = no_room = slits = 0
     for i in range(v3.shape[0]):
+        check_cancelled()
         if not good[i]:
             continue
         centre = c3[i].mean(axis=0)
