@@ -39,7 +39,7 @@ def checked(grid, layout: dict, marks: dict | None = None) -> Net:
 @pytest.fixture
 def gallery(client):
     grid = small_shape()
-    r = client.post("/api/nets", json={"grid": pack(grid), "count": 1, "seed": 3, "timeout": 10})
+    r = client.post("/api/nets", json={"grid": pack(grid), "count": 1, "seed": 3, "options": {"timeout": 10}})
     assert r.status_code == 200, r.text
     status = wait_job(client, r.json()["job"])
     assert status["state"] == "done", status

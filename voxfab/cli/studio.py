@@ -6,7 +6,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from ._common import DEFAULT_REPOSITORY, check_repository_path
+from ._common import DEFAULT_REPOSITORY, add_pitch_option, check_repository_path
 
 HELP = "open the studio: draw, edit and keep shapes, choose nets, download files (local web app)"
 
@@ -16,8 +16,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("shape", nargs="?", metavar="SHAPE",
                         help="open the page with this shape: a file voxfab reads (.npy, .vox, .binvox, ...) "
                              "or a repository name such as 00797.001")
-    parser.add_argument("--pitch", type=float, default=None, metavar="MM",
-                        help="mm per voxel of SHAPE (default: the file's own, else 1 mm)")
+    add_pitch_option(parser)
     parser.add_argument("--host", default="127.0.0.1",
                         help="address to listen on (default 127.0.0.1: this computer only)")
     parser.add_argument("--port", type=int, default=8765, help="port (default 8765)")
@@ -57,11 +56,12 @@ def run(args: argparse.Namespace) -> int:
 
 def _initial(args: argparse.Namespace):  # noqa: ANN202 - voxfab.studio._grid.InitialShape, imported lazily
     """SHAPE as the page's first shape: read as every command reads it, checked to fit the 25³ editor now."""
+    from voxfab.repo import load_shape
     from voxfab.studio._grid import InitialShape
 
-    from ._common import load_scaled_shape, print_notes
+    from ._common import print_notes, shape_pitch
 
-    shape, name, notes, scaled = load_scaled_shape(args.shape, args.repo, pitch=args.pitch)
+    shape, name, notes, scaled = load_shape(args.shape, args.repo, pitch=shape_pitch(args))
     print_notes(notes)
     return InitialShape.of(shape.grid, label=name or Path(args.shape).name, name=name,
                            pitch=float(shape.pitch) if scaled else None)
