@@ -77,7 +77,7 @@ class Settings:
     work : Path or None
         The session's work folder (a fresh temporary folder when None, removed at shutdown).
     warm_up : bool
-        Compile the numba kernels in the background at start (see :func:`_work.warm_up`).
+        Compile the numba kernels in the background at start (see :func:`_work.warm_kernels_here`).
     initial : InitialShape or None
         The shape the page opens with (``voxfab studio SHAPE``); None: the page starts from its drawing.
     """
@@ -505,7 +505,7 @@ def create_app(settings: Settings) -> Starlette:
         if settings.warm_up:
             import threading
 
-            threading.Thread(target=_work.warm_up, name="studio-warm-up", daemon=True).start()
+            threading.Thread(target=_work.warm_kernels_here, name="studio-warm-up", daemon=True).start()
         try:
             yield
         finally:

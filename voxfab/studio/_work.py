@@ -2,7 +2,7 @@
 
 Both run inside a :class:`~voxfab.studio._jobs.Job` on a worker thread and call
 the same library functions as the CLI: ``voxfab.unfold.unfold`` and
-``validate`` (``voxfab net``), ``netdraw.write_drawing`` (``voxfab net -o
+``validate`` (``voxfab net``), ``netdraw.write_net_drawing`` (``voxfab net -o
 NET.svg``), and the recipe outputs ``mesh``, ``slices`` and ``pictures``
 (``voxfab build``).
 """
@@ -120,17 +120,17 @@ def net_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, net: Any, 
     job.result = netdraw.gallery_json(gallery, grid)
 
 
-def warm_up() -> None:
+def warm_kernels_here() -> None:
     """Compile (or load from numba's cache) every kernel group in this process, so the first real request is not slowed.
 
     numba compiles on the first call in each process, and that time would otherwise
     count against the artist's first preview or the first net's budget.
     """
     from voxfab.errors import VoxfabError
-    from voxfab.warmup import warm_up as warm_kernels
+    from voxfab.warmup import warm_up
 
     try:
-        warm_kernels(processes=1)  # here, not in child processes: this process serves the requests
+        warm_up(processes=1)  # here, not in child processes: this process serves the requests
     except VoxfabError:  # pragma: no cover - the warm-up jobs are fixed and valid
         pass
 

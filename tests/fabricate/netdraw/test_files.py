@@ -14,7 +14,7 @@ import pytest
 
 from voxfab.cli._options import add_option_arguments, options_from_args
 from voxfab.errors import UnknownFormatError
-from voxfab.fabricate.netdraw import DrawingOptions, draw_net, write_drawing
+from voxfab.fabricate.netdraw import DrawingOptions, draw_net, write_net_drawing
 from voxfab.shape import VoxelShape, examples, surface_graph
 from voxfab.unfold import Net
 
@@ -52,9 +52,8 @@ def test_svg_reads_back_in_mm(tmp_path: Path, ball_net: Net) -> None:
     from lxml import etree
 
     out = tmp_path / "ball.svg"
-    lines = write_drawing(VoxelShape(BALL), ball_net, out, drawing_args("--sheet", "A2", "--grid-lines"),
-                          title="ball")
-    assert lines[-1] == f"wrote {out}"
+    result = write_net_drawing(BALL, ball_net, out, drawing_args("--sheet", "A2", "--grid-lines"), title="ball")
+    assert result.files == [str(out)]
     root = etree.parse(str(out)).getroot()
     ns = {"s": "http://www.w3.org/2000/svg"}
     assert root.get("width") == "420mm" and root.get("height") == "594mm"
@@ -98,7 +97,7 @@ def test_dxf_passes_audit_and_reads_back(tmp_path: Path, version: str, ball_net:
     net = ball_net
     out = tmp_path / "ball.dxf"
     args = drawing_args("--dxf-version", version, "--grid-lines", "--sheet", "600x600", pitch=20.0)
-    write_drawing(VoxelShape(BALL), net, out, args, title="ball")
+    write_net_drawing(BALL, net, out, args, title="ball")
     doc = ezdxf.readfile(out)
     auditor = doc.audit()
     assert not auditor.has_errors, [e.message for e in auditor.errors]
@@ -127,7 +126,7 @@ def test_dxf_passes_audit_and_reads_back(tmp_path: Path, version: str, ball_net:
 def test_pdf_renders_non_blank(tmp_path: Path, ball_net: Net) -> None:
     out = tmp_path / "ball.pdf"
     # A4 takes this net at 9.4 mm faces only: too small for numbers, so they are left out explicitly.
-    write_drawing(VoxelShape(BALL), ball_net, out, drawing_args("--no-numbers"), title="ball")
+    write_net_drawing(BALL, ball_net, out, drawing_args("--no-numbers"), title="ball")
     data = out.read_bytes()
     assert data.startswith(b"%PDF-1.4") and b"CreationDate" not in data
     if shutil.which("pdftoppm") is None:
@@ -169,8 +168,8 @@ def test_same_input_same_bytes(tmp_path: Path, ball_net: Net) -> None:
     for argv in (("--sheet", "A2"), ("--sheet", "A2", "--dxf-version", "R2000")):
         for ext in ("svg", "dxf", "pdf"):
             a, b = tmp_path / f"a.{ext}", tmp_path / f"b.{ext}"
-            write_drawing(VoxelShape(BALL), net, a, drawing_args(*argv), title="ball")
-            write_drawing(VoxelShape(BALL), net, b, drawing_args(*argv), title="ball")
+            write_net_drawing(BALL, net, a, drawing_args(*argv), title="ball")
+            write_net_drawing(BALL, net, b, drawing_args(*argv), title="ball")
             assert a.read_bytes() == b.read_bytes(), ext
 
 
@@ -179,8 +178,8 @@ def test_colors_reach_the_files(tmp_path: Path, ball_net: Net) -> None:
     from lxml import etree
 
     args = drawing_args("--colors", "cut=blue,mountain=#ff0000:dotted", "--dxf-version", "R2000", "--sheet", "A2")
-    write_drawing(VoxelShape(BALL), ball_net, tmp_path / "c.svg", args)
-    write_drawing(VoxelShape(BALL), ball_net, tmp_path / "c.dxf", args)
+    write_net_drawing(BALL, ball_net, tmp_path / "c.svg", args)
+    write_net_drawing(BALL, ball_net, tmp_path / "c.dxf", args)
     root = etree.parse(str(tmp_path / "c.svg")).getroot()
     strokes = {g.get("id"): g.get("stroke") for g in root}
     assert strokes["CUT"] == "#0000ff" and strokes["MOUNTAIN"] == "#ff0000"
@@ -190,7 +189,7 @@ def test_colors_reach_the_files(tmp_path: Path, ball_net: Net) -> None:
 
 def test_unknown_extension(tmp_path: Path, ball_net: Net) -> None:
     with pytest.raises(UnknownFormatError, match="unknown drawing format"):
-        write_drawing(VoxelShape(BALL), ball_net, tmp_path / "x.eps", drawing_args())
+        write_net_drawing(BALL, ball_net, tmp_path / "x.eps", drawing_args())
 
 
 def _recipe(tmp_path: Path, outputs: str) -> Path:
@@ -258,7 +257,7 @@ def test_voxfab_net_writes_all_drawings_of_one_net(tmp_path: Path) -> None:
     again = tmp_path / "again.svg"
     args = drawing_args("--sheet", "A3", "--tab-width", "4", "--grid-lines", pitch=12.0)
     title = root.find("{http://www.w3.org/2000/svg}title").text.split("  FACES")[0]
-    write_drawing(VoxelShape(examples.ball(2)), net, again, args, title=title)
+    write_net_drawing(examples.ball(2), net, again, args, title=title)
     assert again.read_bytes() == outs[1].read_bytes()
 
 

@@ -68,10 +68,8 @@ __all__ = [
     "net_layout",
     "drawing_formats",
     "fabricate_net",
-    "options_from_args",
     "parse_colors",
     "parse_sheet",
-    "write_drawing",
     "write_net_drawing",
 ]
 
@@ -123,20 +121,10 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
 
 
 def drawing_formats() -> list[str]:
-    """File extensions :func:`write_drawing` understands."""
+    """File extensions :func:`write_net_drawing` understands."""
     from ._writers import drawing_formats as _formats
 
     return _formats()
-
-
-def options_from_args(args: Any) -> DrawingOptions:
-    """DrawingOptions from an object's attributes of the same names (missing or None ones keep their defaults)."""
-    values = {
-        f.name: getattr(args, f.name)
-        for f in dataclasses.fields(DrawingOptions)
-        if getattr(args, f.name, None) is not None
-    }
-    return DrawingOptions(**values)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -215,18 +203,6 @@ def _draw_any(grid: Any, nets: Net | list[Net], options: DrawingOptions, title: 
 def _result(drawing: Drawing, files: list[str]) -> DrawingResult:
     return DrawingResult(files, drawing.report(), drawing.warnings(), drawing.pitch,
                          [sheet.fill for sheet in drawing.sheets])
-
-
-def write_drawing(shape: VoxelShape, net: Net | list[Net], path: str | Path,
-                  options: DrawingOptions | Any, *, title: str = "") -> list[str]:
-    """Draw ``net`` of ``shape`` and write it to ``path``; the report lines and the files written.
-
-    ``options`` may be any object with attributes named like the fields of
-    :class:`DrawingOptions` (``pitch`` is the face size).  See :func:`write_net_drawing`.
-    """
-    opts = options if isinstance(options, DrawingOptions) else options_from_args(options)
-    result = write_net_drawing(shape.grid, net, path, opts, title=title)
-    return result.report + [f"wrote {p}" for p in result.files]
 
 
 _PURPOSES = {
