@@ -234,6 +234,7 @@ def create_app(settings: Settings) -> Starlette:
 
     async def info(request: Request) -> dict[str, Any]:
         from voxfab._version import __version__
+        from voxfab.fabricate.netdraw import SHEETS
 
         try:
             from voxfab.unfold import EdgeConstraints  # noqa: F401
@@ -243,7 +244,7 @@ def create_app(settings: Settings) -> Starlette:
             constraints = False
         return {"version": __version__, "repository": settings.repo.name, "side": _grid.SIDE,
                 "max_body": MAX_BODY, "constraints": constraints, "artefacts": _work.artefacts(),
-                "max_nets": _work.MAX_NETS}
+                "max_nets": _work.MAX_NETS, "sheets": {k: list(v) for k, v in SHEETS.items()}}
 
     async def preview(request: Request) -> dict[str, Any]:
         spec = await _json(request)
@@ -388,6 +389,8 @@ def create_app(settings: Settings) -> Starlette:
         grid = _grid.unpack(data.get("grid"))
         count = _work.check_number(data.get("count", 8), name="count", lo=1, hi=_work.MAX_NETS, integer=True)
         seed = _work.check_number(data.get("seed", 0), name="seed", lo=0, hi=2**31 - 1, integer=True)
+        if "options" in data:
+            return await sheet_nets(data, grid, int(count), int(seed))
         timeout = _work.check_number(data.get("timeout", 5.0), name="timeout", lo=0.5, hi=_work.MAX_NET_SECONDS)
         sheet = data.get("sheet", "A4")
         if not isinstance(sheet, str):
@@ -405,6 +408,18 @@ def create_app(settings: Settings) -> Starlette:
         job = jobs().submit("nets", lambda j: _work.net_gallery(
             j, grid, count=int(count), seed=int(seed), timeout=timeout, sheet=sheet, face_mm=face_mm,
             constraints=constraints))
+        return {"job": job.id}
+
+    async def sheet_nets(data: dict[str, Any], grid: Any, count: int, seed: int) -> dict[str, Any]:
+        # The contract's gallery: options by their Python names, checked by the net output's own dataclasses.
+        opts = data.get("options")
+        if not isinstance(opts, dict):
+            raise InvalidShapeError("options: expected an object of net options (sheet, face_size, pieces, ...)")
+        settings = _work.net_settings(opts)
+        constraints = _work.edge_constraints(data.get("constraints"))
+        _work.check_one_piece(grid)
+        job = jobs().submit("nets", lambda j: _work.sheet_gallery(
+            j, grid, count=count, seed=seed, net=settings.net, drawing=settings.drawing, constraints=constraints))
         return {"job": job.id}
 
     def _job(job_id: str) -> Any:
@@ -443,11 +458,19 @@ def create_app(settings: Settings) -> Starlette:
             if not chosen:
                 raise InvalidShapeError("net: that gallery has no nets")
             net = chosen[int(index)]
+        placement = data.get("placement")
+        if placement is not None:
+            if net is None:
+                raise InvalidShapeError("placement: pick a net first (\"net\": {\"job\": ID, \"index\": N})")
+            from voxfab.fabricate.netdraw._placement import Placement
+
+            placement = Placement.from_dict(placement)
         tube = None
         if artefact == "animation.gif":
             tube = await run_in_threadpool(_specs.tube_params, data.get("shape"), work())
         job = jobs().submit("make", lambda j: _work.make_files(
-            j, grid, artefact=artefact, title=title, pitch=pitch, net=net, settings=settings, tube=tube))
+            j, grid, artefact=artefact, title=title, pitch=pitch, net=net, settings=settings, tube=tube,
+            placement=placement))
         return {"job": job.id}
 
     async def job_status(request: Request) -> dict[str, Any]:

@@ -70,6 +70,8 @@ class Job:
             "id": self.id, "kind": self.kind, "state": self.state, "done": self.done, "total": self.total,
             "message": self.message, "seconds": round(self.seconds or time.monotonic() - self.started, 3),
         }
+        if self.state == "error":
+            out["ways_out"] = self.result.get("ways_out", [])
         if self.state == "done":
             out["result"] = self.result
             out["files"] = [{"index": i, "name": name, "bytes": path.stat().st_size}
@@ -101,6 +103,8 @@ class Jobs:
                 job.state = "done"
             except VoxfabError as exc:
                 job.message = " ".join(str(exc).split())
+                # A net that does not fit says what would (the page's one-click ways out).
+                job.result = {"ways_out": list(getattr(exc, "ways_out", []))}
                 job.state = "error"
             except Exception as exc:  # noqa: BLE001 - the page gets one line, never a traceback
                 job.message = f"internal error ({type(exc).__name__}): {' '.join(str(exc).split())}"

@@ -247,7 +247,7 @@ def download_settings(artefact: str, values: dict[str, Any]) -> Any:
 
 
 def make_files(job: Job, grid: np.ndarray, *, artefact: str, title: str, pitch: float, net: Any,
-               settings: Any, tube: tuple[dict[str, Any], Path] | None = None) -> None:
+               settings: Any, tube: tuple[dict[str, Any], Path] | None = None, placement: Any = None) -> None:
     """Write one artefact of the shape into the job's folder through its pipeline in the table of outputs."""
     from voxfab.fabricate import BuildContext, output_for_download
     from voxfab.shape import VoxelShape
@@ -262,7 +262,7 @@ def make_files(job: Job, grid: np.ndarray, *, artefact: str, title: str, pitch: 
         raise InvalidShapeError("animation: only a drawn tube has a turning profile; choose Tube in Draw")
     params, folder = tube if tube is not None else ({}, None)
     context = BuildContext(maker="tube" if tube is not None else None, params=params, base_dir=folder, net=net,
-                           paper_at_pitch=False)
+                           paper_at_pitch=False, placement=placement)
     try:
         made = row.run(shape, settings, out, name=title, seed=0, context=context)
     finally:
@@ -282,3 +282,140 @@ def make_files(job: Job, grid: np.ndarray, *, artefact: str, title: str, pitch: 
         name = f"{stem}.{ext}" if row.name == "mesh" else f"{stem}-{artefact}"
         _one(job, name, files)
     job.step(1, 1, "done")
+
+
+# --- nets for a sheet, in one piece or several, with their placement ---------------------------
+
+class NoFitError(InvalidShapeError):
+    """No net of the shape fits the sheet as asked; ``ways_out`` lists the choices that would work.
+
+    Each way out is ``{"label": plain words, "options": {option: value}}``: the
+    page offers one button per way out, which sets those options and asks again.
+    """
+
+    def __init__(self, message: str, ways_out: list[dict[str, Any]]) -> None:
+        super().__init__(message)
+        self.ways_out = ways_out
+
+
+def net_settings(values: dict[str, Any]) -> Any:
+    """The net output's checked settings (search and drawing) from options by their Python names, as a recipe's."""
+    from voxfab.fabricate import output_for_download
+
+    return output_for_download("net.json").settings({**values, "formats": []})
+
+
+def check_one_piece(grid: np.ndarray) -> None:
+    """Refuse an empty shape, or one of several pieces, before a net search."""
+    from voxfab.shape import well_formed_reasons
+
+    reasons = well_formed_reasons(grid)
+    if any("piece" in r for r in reasons) or not grid.any():
+        raise InvalidShapeError("shape: a net needs one piece of face-connected voxels: "
+                                + "; ".join(reasons or ["the shape is empty"]))
+
+
+def ways_out(err: Exception, net: Any, drawing: Any, faces: int) -> list[dict[str, Any]]:
+    """The choices that would give a net after ``err`` (a refused fit or face size), in the CLI's order.
+
+    A net that does not fit the sheet (:class:`~voxfab.fabricate.netdraw.SheetFitError`):
+    split into pieces, the smallest sheet that takes it, the largest face size
+    at which it fits this sheet (when its marks stay legible).  Faces given too
+    small for legible marks: the smallest face size that works.  A face size
+    left to the pipeline that comes out too small, or a one-piece search that
+    ran out of time: split into pieces.
+    """
+    from voxfab.fabricate.netdraw import SheetFitError
+    from voxfab.fabricate.netdraw._labels import label_length
+    from voxfab.fabricate.netdraw._legible import legibility_problem, smallest_face_size
+
+    split = [{"label": "split into pieces", "options": {"pieces": "auto"}}] if net.pieces != "auto" else []
+    # A one-piece net has at most F + 1 seams; pieces label seams by their surface edge, of which there are 2F.
+    chars = label_length(2 * faces if net.pieces == "auto" else faces + 1)
+    if isinstance(err, SheetFitError):
+        out = list(split)
+        if err.smallest_sheet:
+            out.append({"label": f"use a larger sheet: {err.smallest_sheet}", "options": {"sheet": err.smallest_sheet}})
+        size = err.largest_face_size
+        if size > 0 and legibility_problem(drawing, size, chars) is None:
+            out.append({"label": f"smaller faces: {size:g} mm", "options": {"face_size": size}})
+        return out
+    if drawing.pitch is not None and legibility_problem(drawing, float(drawing.pitch), chars):
+        size = smallest_face_size(drawing, chars)
+        return [{"label": f"larger faces: {size:g} mm", "options": {"face_size": size}}]
+    return split
+
+
+def pieces_layout(pieces: list[Any], grid: np.ndarray) -> dict[str, Any]:
+    """The contract's LAYOUT of a net given as its pieces: every surface face by id, in its piece's own frame."""
+    from voxfab.fabricate.netdraw._geometry import face_map
+    from voxfab.shape import fill_cavities, surface_graph
+
+    sg = surface_graph(fill_cavities(grid) if pieces[0].filled else grid)
+    n = sg.face_count
+    corners = np.zeros((n, 4, 2), dtype=np.int64)
+    piece = np.full(n, -1, dtype=np.int64)
+    folds = []
+    for q, p in enumerate(pieces):
+        fid = face_map(sg, p)
+        corners[fid] = p.corners2d
+        piece[fid] = q
+        folds.append(fid[p.folds.reshape(-1, 2)])
+    faces = [[int(v[0]), int(v[1]), int(v[2]), _DIRS[int(d)]] for v, d in zip(sg.voxel, sg.direction)]
+    return {"faces": faces, "corners": corners.reshape(-1).tolist(),
+            "folds": np.concatenate(folds).reshape(-1).tolist(), "neighbor": sg.neighbor.reshape(-1).tolist(),
+            "fold_type": sg.fold.reshape(-1).tolist(), "piece": piece.tolist()}
+
+
+def sheet_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, net: Any, drawing: Any,
+                  constraints: Any) -> None:
+    """Nets of ``grid`` that fit the sheet, by the net pipeline's own search (``find_sheet_nets``).
+
+    One-piece nets come ``count`` distinct ones at a time; a net that has to be
+    split (``pieces="auto"``) comes as one net in pieces.  Each carries its
+    layout and the placement of its pieces on the sheets, which the page shows
+    and the artist may change before making the files.  A net that does not fit
+    ends the job with the pipeline's message and its ways out.
+    """
+    from voxfab.errors import UnfoldError
+    from voxfab.fabricate.netdraw import SheetFitError, find_sheet_nets
+    from voxfab.fabricate.netdraw._placement import placement_for
+    from voxfab.shape import fill_cavities, surface_graph
+
+    search: dict[str, Any] = {"strategy": net.strategy, "timeout": net.timeout, "fill": net.fill,
+                              "compact": net.compact}
+    if constraints is not None:
+        search["constraints"] = constraints
+    start = time.monotonic()
+    job.step(0, count, "searching nets")
+    faces = surface_graph(fill_cavities(grid) if net.fill else grid).face_count
+    try:
+        found = find_sheet_nets(grid, drawing, rng=seed, pieces=net.pieces,
+                                count=1 if net.pieces == "auto" else count,
+                                budget=min(net.budget, MAX_GALLERY_SECONDS), **search)
+    except (SheetFitError, InvalidShapeError, UnfoldError) as err:
+        options = ways_out(err, net, drawing, faces)
+        if not options:
+            raise
+        raise NoFitError(str(err), options) from None
+    settled = found.options
+    job.data["nets"] = [n if len(n) > 1 else n[0] for n in found.nets]
+    items = []
+    for i, pieces in enumerate(found.nets):
+        placement = placement_for(pieces, settled)
+        per_sheet = np.zeros(placement.sheets)
+        for place, p in zip(placement.pieces, pieces):
+            per_sheet[place.sheet] += p.face_count
+        w, h = settled.sheet_size
+        f = float(settled.pitch)
+        items.append({
+            "index": i, "seed": int(pieces[0].seed), "faces": sum(p.face_count for p in pieces),
+            "pieces": len(pieces),
+            "fit": {"sheet": settled.sheet, "face_size": f, "sheets": placement.sheets,
+                    "fill": [round(float(k) * f * f / (w * h), 4) for k in per_sheet], "fits": True},
+            "layout": pieces_layout(pieces, grid), "placement": placement.to_dict(),
+        })
+        job.step(i + 1, len(found.nets), f"{i + 1} of {len(found.nets)} nets laid out")
+    job.result = {"asked": count, "found": len(items), "seconds": round(time.monotonic() - start, 3),
+                  "options": {"face_size": float(settled.pitch), "sheet": settled.sheet, "pieces": net.pieces},
+                  "notes": list(found.notes), "nets": items}
