@@ -210,7 +210,8 @@ def _one(job: Job, name: str, paths: list[Path]) -> None:
     if len(paths) == 1:
         job.files.append((name if paths[0].suffix == Path(name).suffix else paths[0].name, paths[0]))
         return
-    stem = Path(name).stem
+    # NAME-net.svg in sheets: NAME-net-svg.zip, so the SVG, DXF and JSON zips of one net keep apart.
+    stem = f"{Path(name).stem}-{Path(name).suffix[1:]}"
     job.files.append((f"{stem}.zip", _zip(job.folder, paths, job.folder / f"{stem}.zip")))
 
 
