@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import io
 import json
+import time
 import urllib.request
 import zipfile
 from pathlib import Path
@@ -154,44 +155,31 @@ def test_queen_to_a4_in_pieces_moved_on_the_page(server, browser):
     assert by_id(browser, "net-face-size").get_attribute("value") == ""
     browser.save_screenshot(str(SHOTS / "net-1-options.png"))
 
+    clock = {}
+    t0 = time.monotonic()
     by_id(browser, "net-generate").click()
     items = wait(browser, lambda d: by_id(d, "net-gallery-item", many=True), timeout=420, what="the gallery")
     browser.save_screenshot(str(SHOTS / "net-2-gallery.png"))
+    clock["gallery"] = time.monotonic() - t0
+    t0 = time.monotonic()
     items[0].click()
     wait(browser, _files_ready, timeout=240, what="the net files")
+    clock["files"] = time.monotonic() - t0
     assert "Net files ready" in by_id(browser, "status").text
     browser.save_screenshot(str(SHOTS / "net-3-chosen.png"))
 
     placement = _placement(browser)
     assert placement["sheet"] == list(SHEETS["A4"]) and len(placement["pieces"]) > 1
-    pieces = _check_files(_downloads(browser, server), grid, placement)
+    old_files = _downloads(browser, server)
+    pieces = _check_files(old_files, grid, placement)
 
-    # Drag the smallest piece onto the empty sheet at the end, with the mouse.
+    # Drag the smallest piece with the mouse by whole faces, right or up, where its sheet has room for it.
+    from voxfab.fabricate.netdraw import DrawingOptions
+    from voxfab.fabricate.netdraw._legible import tab_depth
+
     q = min(range(len(pieces)), key=lambda i: pieces[i].face_count)
     place = placement["pieces"][q]
     f = placement["face_size"]
-    corners = pieces[q].corners2d[0]
-    turned = corners.astype(float)
-    for _ in range(place["turns"]):
-        turned = np.stack([-turned[:, 1], turned[:, 0]], axis=1)
-    cx, cy = np.array([place["x"], place["y"]]) + turned.mean(axis=0) * f  # the middle of one of its faces, mm
-    browser.execute_script("arguments[0].scrollIntoView({block: 'start'})", by_id(browser, "net-sheets"))
-    views = by_id(browser, "net-sheet-view", many=True)
-    assert len(views) == placement["sheets"] + 1
-    source = views[place["sheet"]]
-    scale = source.size["width"] / placement["sheet"][0]
-    before = _hrefs(browser)
-    ActionChains(browser, duration=20).move_to_element_with_offset(
-        source, cx * scale - source.size["width"] / 2, source.size["height"] / 2 - cy * scale
-    ).click_and_hold().move_by_offset(5, 5).move_to_element(views[-1]).move_by_offset(3, 3).release().perform()
-    wait(browser, lambda d: _placement(d)["sheets"] == placement["sheets"] + 1, what="the piece on a new sheet")
-    wait(browser, lambda d: _files_ready(d, before), timeout=240, what="the files of the new layout")
-    browser.save_screenshot(str(SHOTS / "net-4-dragged.png"))
-    moved = _placement(browser)
-    assert moved["pieces"][q]["sheet"] == moved["sheets"] - 1
-    files = _downloads(browser, server)
-    _check_files(files, grid, moved)
-    last = _files(files["dxf"], ".dxf")[-1]
 
     def expected_box(p: dict) -> tuple[np.ndarray, np.ndarray]:
         c = pieces[q].corners2d.reshape(-1, 2).astype(float)
@@ -200,7 +188,50 @@ def test_queen_to_a4_in_pieces_moved_on_the_page(server, browser):
         mm = np.array([p["x"], p["y"]]) + c * f
         return mm.min(axis=0), mm.max(axis=0)
 
-    # The new sheet holds that piece where the page shows it: its outline is the faces plus their tabs.
+    lo, hi = expected_box(place)
+    pad = tab_depth(DrawingOptions(), f)
+    room = np.floor((np.array(placement["sheet"]) - placement["margin"] - pad - hi) / f + 1e-9).astype(int)
+    axis = int(np.argmax(room))
+    steps = int(min(room[axis], 3))
+    assert steps >= 1, "the smallest piece has room to move on its sheet"
+    # Grab it by the middle of one of its faces.
+    face = pieces[q].corners2d[0].astype(float)
+    for _ in range(place["turns"]):
+        face = np.stack([-face[:, 1], face[:, 0]], axis=1)
+    cx, cy = np.array([place["x"], place["y"]]) + face.mean(axis=0) * f
+    browser.execute_script("arguments[0].scrollIntoView({block: 'start'})", by_id(browser, "net-sheets"))
+    views = by_id(browser, "net-sheet-view", many=True)
+    assert len(views) == placement["sheets"] + 1  # and an empty one for a new sheet
+    source = views[place["sheet"]]
+    scale = (source.size["width"] - 2) / placement["sheet"][0]  # less the 1 px border
+    shift = steps * f * scale
+    before = _hrefs(browser)
+    chain = ActionChains(browser, duration=20).move_to_element_with_offset(
+        source, cx * scale - source.size["width"] / 2 + 1, source.size["height"] / 2 - 1 - cy * scale).click_and_hold()
+    for _ in range(4):
+        chain.move_by_offset(shift / 4 if axis == 0 else 0, -shift / 4 if axis == 1 else 0)
+    chain.release().perform()
+    t0 = time.monotonic()
+    want = np.array([place["x"], place["y"]]) + np.eye(2)[axis] * steps * f
+    wait(browser, lambda d: np.allclose([_placement(d)["pieces"][q]["x"], _placement(d)["pieces"][q]["y"]], want,
+                                        atol=1e-6), what="the dragged piece")
+    wait(browser, lambda d: _files_ready(d, before), timeout=240, what="the files of the new layout")
+    clock["files after the drag"] = time.monotonic() - t0
+    browser.save_screenshot(str(SHOTS / "net-4-dragged.png"))
+    moved = _placement(browser)
+    files = _downloads(browser, server)
+    _check_files(files, grid, moved)
+    sheet_lo, sheet_hi = _dxf_cut_bounds(_files(old_files["dxf"], ".dxf")[place["sheet"]])
+    lo, hi = _dxf_cut_bounds(_files(files["dxf"], ".dxf")[place["sheet"]])
+    # That sheet's outline moved by the drag, whole faces (when the piece is alone there), no other sheet changed.
+    if sum(p["sheet"] == place["sheet"] for p in placement["pieces"]) == 1:
+        assert np.allclose(lo - sheet_lo, np.eye(2)[axis] * steps * f) and np.allclose(hi - sheet_hi, lo - sheet_lo)
+    for k, (a, b) in enumerate(zip(_files(old_files["dxf"], ".dxf"), _files(files["dxf"], ".dxf"))):
+        if k != place["sheet"]:
+            assert np.allclose(np.concatenate(_dxf_cut_bounds(a)), np.concatenate(_dxf_cut_bounds(b)))
+    last = _files(files["dxf"], ".dxf")[place["sheet"]]
+
+    # The sheet holds that piece where the page shows it: its outline is the faces plus their tabs.
     lo, hi = _dxf_cut_bounds(last)
     want_lo, want_hi = expected_box(moved["pieces"][q])
     assert (lo <= want_lo + 1e-6).all() and (hi >= want_hi - 1e-6).all()
@@ -212,11 +243,12 @@ def test_queen_to_a4_in_pieces_moved_on_the_page(server, browser):
     wait(browser, lambda d: _placement(d)["pieces"][q]["turns"] == (moved["pieces"][q]["turns"] + 2) % 4,
          what="the turned piece")
     wait(browser, lambda d: _files_ready(d, before), timeout=240, what="the files of the turned piece")
+    print("seconds:", {k: round(v, 1) for k, v in clock.items()})
     browser.save_screenshot(str(SHOTS / "net-5-turned.png"))
     turned_place = _placement(browser)
     files = _downloads(browser, server)
     _check_files(files, grid, turned_place)
-    lo, hi = _dxf_cut_bounds(_files(files["dxf"], ".dxf")[-1])
+    lo, hi = _dxf_cut_bounds(_files(files["dxf"], ".dxf")[place["sheet"]])
     want_lo, want_hi = expected_box(turned_place["pieces"][q])
     assert (lo <= want_lo + 1e-6).all() and (hi >= want_hi - 1e-6).all()
     assert attr(browser, "download-net-dxf", "href") not in before

@@ -302,7 +302,10 @@ const board = new SheetBoard($('#net-sheets'), {
     if (!g || state.chosen === null) return;
     g.placement = placement;
     marker.setLayout(placedLayout(g.nets[state.chosen].layout, placement));
-    makeNetFiles();
+    // Moves and turns in quick succession make one set of files, for the last layout.
+    clearNetFiles();
+    clearTimeout(netFiles.timer);
+    netFiles.timer = setTimeout(makeNetFiles, 400);
   },
   onSelect: (q) => { $('#piece-chosen').textContent = q === null ? '' : `piece (${q + 1}) chosen`; },
 });
@@ -451,6 +454,7 @@ function netMakeBody(artefact) {
 
 // Make the four net files of the chosen net as laid out; the links point at them once made.
 async function makeNetFiles() {
+  clearTimeout(netFiles.timer);
   clearNetFiles();
   const generation = netFiles.generation;
   const links = $$('#net-files a');

@@ -44,7 +44,8 @@ export class SheetBoard {
 
   // Show a net (its LAYOUT) placed as `placement`; null clears the board.
   setNet(layout, placement) {
-    this.layout = layout; this.placement = placement ? copyPlacement(placement) : null; this.selected = null;
+    this.layout = layout; this.placement = placement ? copyPlacement(placement) : null;
+    this.selected = null; this.pivot = null;
     // Faces of each piece, for drawing and hit tests.
     this.members = [];
     if (layout) {
@@ -228,21 +229,25 @@ export class SheetBoard {
     this.commit();
   }
 
-  // Turn the chosen piece a quarter turn counter-clockwise about its middle (on the face grid).
+  // Turn the chosen piece a quarter turn counter-clockwise about its middle (on the face grid). Turns in a
+  // row keep the first one's middle, so two make an exact half turn and four bring the piece back.
   turn() {
     const q = this.selected;
     if (q === null || !this.placement) return;
     const p = this.placement.pieces[q];
-    const [a0, b0, a1, b1] = this.pieceBox(q, p);
+    if (!this.pivot || this.pivot.piece !== q) {
+      const [a0, b0, a1, b1] = this.pieceBox(q, p);
+      this.pivot = {piece: q, at: [(a0 + a1) / 2, (b0 + b1) / 2]};
+    }
     const turned = {...p, turns: (p.turns + 1) % 4};
     const [c0, d0, c1, d1] = this.pieceBox(q, {...turned, x: 0, y: 0});
-    const [x, y] = this.snap((a0 + a1) / 2 - (c0 + c1) / 2, (b0 + b1) / 2 - (d0 + d1) / 2);
+    const [x, y] = this.snap(this.pivot.at[0] - (c0 + c1) / 2, this.pivot.at[1] - (d0 + d1) / 2);
     this.placement.pieces[q] = {...turned, x, y};
     this.commit();
   }
 
   select(q) {
-    this.selected = q;
+    this.selected = q; this.pivot = null;
     this.draw();
     this.onSelect(q);
   }
