@@ -252,3 +252,37 @@ def test_queen_to_a4_in_pieces_moved_on_the_page(server, browser):
     want_lo, want_hi = expected_box(turned_place["pieces"][q])
     assert (lo <= want_lo + 1e-6).all() and (hi >= want_hi - 1e-6).all()
     assert attr(browser, "download-net-dxf", "href") not in before
+
+
+def test_a_net_that_does_not_fit_says_so_plainly_and_one_click_splits_it(server, browser):
+    from selenium.webdriver.support.ui import Select
+
+    from .test_browser import set_expression
+
+    open_page(browser, server)
+    set_expression(browser, "src-generatrix", "x = 0.12")  # a slim column: 25 faces tall
+    wait(browser, lambda d: int(attr(d, "volume", "data-volume")) < 400, what="the slim column")
+    by_id(browser, "tab-net").click()
+    Select(by_id(browser, "net-sheet")).select_by_value("A5")
+    Select(by_id(browser, "net-pieces")).select_by_value("one")
+    face = by_id(browser, "net-face-size")
+    face.clear()
+    face.send_keys("20")
+    field = browser.find_element("id", "net-timeout")
+    field.clear()
+    field.send_keys("5")
+    by_id(browser, "net-generate").click()
+    buttons = wait(browser, lambda d: d.find_elements("css selector", '[data-testid="net-ways-out"] button'),
+                   timeout=120, what="the ways out")
+    status = by_id(browser, "status").text
+    # The net pipeline's words, without the CLI's flags.
+    assert ("does not fit sheet A5" in status or "larger sheet" in status) and "--" not in status, status
+    labels = [b.text for b in buttons]
+    assert labels[0] == "split into pieces" and all("--" not in t for t in labels)
+    browser.save_screenshot(str(SHOTS / "net-ways-out.png"))
+    buttons[0].click()
+    items = wait(browser, lambda d: by_id(d, "net-gallery-item", many=True), timeout=240, what="the split net")
+    assert Select(by_id(browser, "net-pieces")).first_selected_option.get_attribute("value") == "auto"
+    assert not browser.find_elements("css selector", '[data-testid="net-ways-out"] button')
+    assert "pieces on" in items[0].text
+    browser.save_screenshot(str(SHOTS / "net-split.png"))
