@@ -96,3 +96,24 @@ def test_bad_gallery_options_get_the_cli_words(client):
         assert r.status_code == 400 and words in r.json()["error"], (options, r.text)
     r = client.post("/api/nets", json={"grid": pack(g), "options": "A4"})
     assert r.status_code == 400 and "options" in r.json()["error"]
+
+
+def test_the_page_carries_the_contract_test_ids(client):
+    import re
+
+    html = client.get("/").text
+    ids = set(re.findall(r'data-testid="([a-z0-9-]+)"', html))
+    wanted = {"tab-draw", "tab-edit", "tab-keep", "tab-net", "tab-make", "net-sheet", "net-sheet-custom",
+              "net-face-size", "net-pieces", "net-generate", "net-2d", "view-3d", "download-net-svg",
+              "download-net-dxf", "download-net-pdf", "download-net-json", "status"}
+    assert wanted <= ids, wanted - ids
+    # The gallery items and the sheet views are made by the page's scripts, with the same attribute.
+    main = client.get("/static/js/main.js").text
+    sheets = client.get("/static/js/sheets.js").text
+    assert "'net-gallery-item'" in main and "'net-sheet-view'" in sheets
+
+
+def test_a_placement_needs_a_chosen_net(client):
+    r = client.post("/api/make", json={"grid": pack(small_shape()), "artefact": "net.svg",
+                                       "placement": {"sheet": [210, 297]}})
+    assert r.status_code == 400 and "pick a net first" in r.json()["error"]

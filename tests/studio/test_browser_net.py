@@ -263,7 +263,12 @@ def test_a_net_that_does_not_fit_says_so_plainly_and_one_click_splits_it(server,
     set_expression(browser, "src-generatrix", "x = 0.12")  # a slim column: 25 faces tall
     wait(browser, lambda d: int(attr(d, "volume", "data-volume")) < 400, what="the slim column")
     by_id(browser, "tab-net").click()
+    # A laser bed of any size: the custom field shows for it only.
+    assert not by_id(browser, "net-sheet-custom").is_displayed()
+    Select(by_id(browser, "net-sheet")).select_by_value("custom")
+    assert by_id(browser, "net-sheet-custom").is_displayed()
     Select(by_id(browser, "net-sheet")).select_by_value("A5")
+    assert not by_id(browser, "net-sheet-custom").is_displayed()
     Select(by_id(browser, "net-pieces")).select_by_value("one")
     face = by_id(browser, "net-face-size")
     face.clear()
