@@ -409,6 +409,7 @@ def sheet_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, net: Any
             per_sheet[place.sheet] += p.face_count
         w, h = settled.sheet_size
         f = float(settled.pitch)
+        # The share of each sheet under faces (the drawing adds its tabs when the files are made).
         items.append({
             "index": i, "seed": int(pieces[0].seed), "faces": sum(p.face_count for p in pieces),
             "pieces": len(pieces),

@@ -97,6 +97,8 @@ def test_pieces_over_each_other_or_across_the_margin_are_refused(ball_pieces) ->
         draw_pieces(grid, pieces, options=OPTIONS, placement=_moved(placement, later.piece, x=later.x + 3.0))
     with pytest.raises(PlacementError, match="mirrored"):
         draw_pieces(grid, pieces, options=OPTIONS, placement=_moved(placement, 1, mirror=True))
+    with pytest.raises(PlacementError, match="made for a 5 mm margin"):
+        draw_pieces(grid, pieces, options=OPTIONS, placement=dataclasses.replace(placement, margin=5.0))
     with pytest.raises(PlacementError, match="made for 12 mm faces"):
         draw_pieces(grid, pieces, options=OPTIONS, placement=dataclasses.replace(placement, face_size=12.0))
 

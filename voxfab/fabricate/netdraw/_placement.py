@@ -158,12 +158,12 @@ def turned(cells: npt.NDArray[np.int64], turns: int, mirror: bool = False) -> np
     return c
 
 
-def placement_of(plan: SheetPlan, pieces: list[npt.NDArray[np.int64]]) -> Placement:
+def placement_of(plan: SheetPlan, pieces: list[npt.NDArray[np.int64]], margin: float) -> Placement:
     """The placement a plan gives the pieces whose own corners (in cells) are ``pieces``.
 
     ``plan.corners2d`` holds the faces of all pieces in order; each piece's
     placed corners are its own turned by some quarter turns and moved by whole
-    cells, which this finds back.
+    cells, which this finds back.  ``margin`` is the sheets' margin, mm.
     """
     places = []
     start = 0
@@ -180,7 +180,8 @@ def placement_of(plan: SheetPlan, pieces: list[npt.NDArray[np.int64]]) -> Placem
         x, y = plan.origin[sheet] + shift[0] * plan.pitch
         places.append(PiecePlace(i, sheet, _mm(x), _mm(y), t, False))
         start += own.shape[0]
-    return Placement((float(plan.size[0]), float(plan.size[1])), 0.0, float(plan.pitch), plan.count, tuple(places))
+    return Placement((float(plan.size[0]), float(plan.size[1])), float(margin), float(plan.pitch), plan.count,
+                     tuple(places))
 
 
 def plan_placement(placement: Placement, pieces: list[npt.NDArray[np.int64]],
@@ -205,7 +206,7 @@ def plan_placement(placement: Placement, pieces: list[npt.NDArray[np.int64]],
     Raises
     ------
     PlacementError
-        A placement for another sheet, face size or number of pieces; a mirrored
+        A placement for another sheet, margin, face size or number of pieces; a mirrored
         piece; a piece off its sheet's face grid; a piece (with room for its tabs)
         across the margin; or two pieces on or beside each other.
     """
@@ -213,6 +214,9 @@ def plan_placement(placement: Placement, pieces: list[npt.NDArray[np.int64]],
     if abs(placement.sheet[0] - size[0]) > 1e-3 or abs(placement.sheet[1] - size[1]) > 1e-3:
         raise PlacementError(f"placement: made for a {placement.sheet[0]:g} x {placement.sheet[1]:g} mm sheet, "
                              f"the drawing is on {options.sheet} ({size[0]:g} x {size[1]:g} mm)")
+    if abs(placement.margin - float(options.margin)) > TOLERANCE:
+        raise PlacementError(f"placement: made for a {placement.margin:g} mm margin, the drawing has "
+                             f"{options.margin:g} mm")
     pitch = placement.face_size if options.pitch is None else float(options.pitch)
     if abs(pitch - placement.face_size) > TOLERANCE:
         raise PlacementError(f"placement: made for {placement.face_size:g} mm faces, the drawing has {pitch:g} mm")
@@ -288,4 +292,4 @@ def placement_for(pieces: list[Any], options: DrawingOptions) -> Placement:
 
     corners = [p.corners2d for p in pieces]
     plan = plan_sheets(corners[0], options) if len(corners) == 1 else pack_pieces(corners, options)[0]
-    return dataclasses.replace(placement_of(plan, corners), margin=float(options.margin))
+    return placement_of(plan, corners, float(options.margin))
