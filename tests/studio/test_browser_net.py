@@ -253,6 +253,31 @@ def test_queen_to_a4_in_pieces_moved_on_the_page(server, browser):
     assert (lo <= want_lo + 1e-6).all() and (hi >= want_hi - 1e-6).all()
     assert attr(browser, "download-net-dxf", "href") not in before
 
+    # Drop it on the empty sheet: it goes to the middle of a sheet of its own, the files follow.
+    views = by_id(browser, "net-sheet-view", many=True)
+    source = views[turned_place["pieces"][q]["sheet"]]
+    # A point of the piece: the middle of its first face.
+    face = pieces[q].corners2d[0].astype(float)
+    for _ in range(turned_place["pieces"][q]["turns"]):
+        face = np.stack([-face[:, 1], face[:, 0]], axis=1)
+    cx, cy = np.array([turned_place["pieces"][q]["x"], turned_place["pieces"][q]["y"]]) + face.mean(axis=0) * f
+    before = _hrefs(browser)
+    ActionChains(browser, duration=20).move_to_element_with_offset(
+        source, cx * scale - source.size["width"] / 2 + 1, source.size["height"] / 2 - 1 - cy * scale
+    ).click_and_hold().move_by_offset(4, 4).move_to_element(views[-1]).move_by_offset(2, 2).release().perform()
+    wait(browser, lambda d: _placement(d)["pieces"][q]["sheet"] == _placement(d)["sheets"] - 1
+         and _placement(d) != turned_place, what="the piece on a sheet of its own")
+    wait(browser, lambda d: _files_ready(d, before), timeout=240, what="the files with the new sheet")
+    browser.save_screenshot(str(SHOTS / "net-6-new-sheet.png"))
+    alone = _placement(browser)
+    assert sum(p["sheet"] == alone["pieces"][q]["sheet"] for p in alone["pieces"]) == 1
+    lo, hi = expected_box(alone["pieces"][q])
+    assert np.abs((lo + hi) / 2 - np.array(alone["sheet"]) / 2).max() <= f, "in the middle of its sheet"
+    files = _downloads(browser, server)
+    _check_files(files, grid, alone)
+    got_lo, got_hi = _dxf_cut_bounds(_files(files["dxf"], ".dxf")[-1])
+    assert (got_lo <= lo + 1e-6).all() and (got_hi >= hi - 1e-6).all()
+
 
 def test_a_net_that_does_not_fit_says_so_plainly_and_one_click_splits_it(server, browser):
     from selenium.webdriver.support.ui import Select
