@@ -6,6 +6,7 @@ import io
 import zipfile
 
 import numpy as np
+import pytest
 
 from voxfab.shape import examples, surface_graph
 from voxfab.studio._grid import pack
@@ -77,9 +78,10 @@ def test_a_net_in_pieces_with_its_placement_then_files_where_the_pieces_were_mov
     assert done["state"] == "error" and "pieces 1 and 2" in done["message"] and "\n" not in done["message"]
 
 
-def test_a_net_that_does_not_fit_offers_its_ways_out(client):
+@pytest.mark.parametrize("count", [1, 3])
+def test_a_net_that_does_not_fit_offers_its_ways_out(client, count):
     g = _ball()
-    r = client.post("/api/nets", json={"grid": pack(g), "count": 1,
+    r = client.post("/api/nets", json={"grid": pack(g), "count": count,
                                        "options": {"sheet": "A5", "face_size": 12, "timeout": 3}})
     s = wait_job(client, r.json()["job"], 240)
     assert s["state"] == "error" and "does not fit sheet A5" in s["message"], s

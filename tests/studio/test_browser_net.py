@@ -306,7 +306,7 @@ def test_a_net_that_does_not_fit_says_so_plainly_and_one_click_splits_it(server,
                    timeout=120, what="the ways out")
     status = by_id(browser, "status").text
     # The net pipeline's words, without the CLI's flags.
-    assert ("does not fit sheet A5" in status or "larger sheet" in status) and "--" not in status, status
+    assert "does not fit sheet A5 at 20 mm faces" in status and "--" not in status, status
     labels = [b.text for b in buttons]
     assert labels[0] == "split into pieces" and all("--" not in t for t in labels)
     browser.save_screenshot(str(SHOTS / "net-ways-out.png"))

@@ -381,6 +381,7 @@ def sheet_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, net: Any
     from voxfab.errors import UnfoldError
     from voxfab.fabricate.netdraw import SheetFitError, find_sheet_nets
     from voxfab.fabricate.netdraw._placement import placement_for
+    from voxfab.fabricate.netdraw._sheets import fit_error
     from voxfab.shape import fill_cavities, surface_graph
 
     search: dict[str, Any] = {"strategy": net.strategy, "timeout": net.timeout, "fill": net.fill,
@@ -394,10 +395,18 @@ def sheet_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, net: Any
         found = find_sheet_nets(grid, drawing, rng=seed, pieces=net.pieces,
                                 count=1 if net.pieces == "auto" else count,
                                 budget=min(net.budget, MAX_GALLERY_SECONDS), **search)
-    except (SheetFitError, InvalidShapeError, UnfoldError) as err:
+    except (SheetFitError, InvalidShapeError, UnfoldError) as exc:
+        err: Exception = exc
+        extent = getattr(exc, "best_extent", None)
+        if extent is not None and drawing.pitch is not None and not isinstance(exc, SheetFitError):
+            # Several one-piece nets asked for and none fits: say it as for one net, with what would fit.
+            err = fit_error((int(extent[0]), int(extent[1])), drawing, float(drawing.pitch),
+                            what="the most compact net found")
         options = ways_out(err, net, drawing, faces)
         if not options:
-            raise
+            if err is exc:
+                raise
+            raise err from None
         raise NoFitError(str(err), options) from None
     settled = found.options
     job.data["nets"] = [n if len(n) > 1 else n[0] for n in found.nets]
