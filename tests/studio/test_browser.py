@@ -177,7 +177,11 @@ def test_net_gallery_pick_and_download_svg(server, browser):
     browser.find_elements("css selector", "#net-gallery figure")[1].click()
     assert attr(browser, "net-chosen-label", "data-index") == "1"
     browser.save_screenshot(str(SHOTS / "net-gallery.png"))
-    browser.find_element("id", "net-svg").click()
+    # the download links point at the chosen net's files on the server once they are made
+    svg_link = wait(browser, lambda d: d.find_element("css selector", '[data-testid="download-net-svg"][href]'),
+                    timeout=60, what="the SVG link")
+    assert svg_link.get_attribute("href").startswith(server["url"] + "/api/files/")
+    svg_link.click()
     svg = wait(browser, lambda d: next(iter(sorted(d.downloads.glob("*-net.svg"))), None), timeout=60,
                what="the downloaded SVG")
     time.sleep(0.3)  # let the download finish writing
@@ -198,8 +202,7 @@ def test_net_gallery_pick_and_download_svg(server, browser):
     xmin, xmax, ymin, ymax = cut.bbox()
     assert 10 <= xmin < xmax <= 200 and 10 <= ymin < ymax <= 287 and cut.isclosed()
     # it is the chosen net: the JSON of the same pick refolds onto the shape and draws the same SVG
-    tab(browser, "make")
-    browser.find_element("css selector", '[data-make="net.json"]').click()
+    browser.find_element("css selector", '[data-testid="download-net-json"][href]').click()
     js = wait(browser, lambda d: next(iter(sorted(d.downloads.glob("*-net.json"))), None), timeout=60,
               what="the downloaded net JSON")
     time.sleep(0.3)
@@ -210,7 +213,8 @@ def test_net_gallery_pick_and_download_svg(server, browser):
     again = svg.with_name("again.svg")
     import argparse
 
-    write_drawing(VoxelShape(grid, 2.0), net, again, argparse.Namespace(pitch=None, sheet="A4"), title=name)
+    face = float(re.search(r"faces ([0-9.]+) mm", browser.find_element("id", "net-summary").text).group(1))
+    write_drawing(VoxelShape(grid, 2.0), net, again, argparse.Namespace(pitch=face, sheet="A4"), title=name)
     assert again.read_bytes() == svg.read_bytes()
     assert np.count_nonzero(grid) == int(name[:5])
 

@@ -63,6 +63,8 @@ class BuildContext:
         A net without a ``face_size`` is drawn at the shape's pitch, so the paper
         model is the printed object (a recipe's one-scale rule); False lets the net
         pipeline choose the face size for the sheet (the studio's default).
+    placement : voxfab.fabricate.netdraw.Placement, optional
+        Where the pieces of ``net`` go on the sheets (the studio's layout).
     """
 
     maker: str | None = None
@@ -70,6 +72,7 @@ class BuildContext:
     base_dir: Path | None = None
     net: Any = None
     paper_at_pitch: bool = True
+    placement: Any = None
 
 
 @dataclasses.dataclass(frozen=True)
@@ -233,7 +236,8 @@ def _run_net(shape: Any, settings: NetSettings, outdir: Path, *, name: str, seed
         # One scale for the whole object: the paper faces are the print's voxels unless the
         # recipe gives another face size.
         drawing = dataclasses.replace(drawing, pitch=shape.pitch)
-    made = fabricate_net(shape, settings.net, drawing, outdir, name=name, seed=seed, chosen=context.net)
+    made = fabricate_net(shape, settings.net, drawing, outdir, name=name, seed=seed, chosen=context.net,
+                         placement=context.placement)
     face = settings.net.face_size
     if face is not None and abs(face - shape.pitch) > 1e-9 * shape.pitch:
         note = (f"the paper model is at face_size = {face:g} mm, {face / shape.pitch:.3g} x the recipe's pitch "

@@ -249,6 +249,7 @@ def create_app(settings: Settings) -> Starlette:
 
     async def info(request: Request) -> dict[str, Any]:
         from voxfab._version import __version__
+        from voxfab.fabricate.netdraw import SHEETS
 
         try:
             from voxfab.unfold import EdgeConstraints  # noqa: F401
@@ -258,7 +259,7 @@ def create_app(settings: Settings) -> Starlette:
             constraints = False
         return {"version": __version__, "repository": settings.repo.name, "side": _grid.SIDE,
                 "max_body": MAX_BODY, "constraints": constraints, "artefacts": _work.artefacts(),
-                "max_nets": _work.MAX_NETS}
+                "max_nets": _work.MAX_NETS, "sheets": {k: list(v) for k, v in SHEETS.items()}}
 
     async def initial(request: Request) -> dict[str, Any]:
         return {"shape": None if settings.initial is None else settings.initial.answer()}
@@ -456,11 +457,19 @@ def create_app(settings: Settings) -> Starlette:
             if not chosen:
                 raise InvalidShapeError("net: that gallery has no nets")
             net = chosen[int(index)]
+        placement = data.get("placement")
+        if placement is not None:
+            if net is None:
+                raise InvalidShapeError("placement: pick a net first (\"net\": {\"job\": ID, \"index\": N})")
+            from voxfab.fabricate.netdraw._placement import Placement
+
+            placement = Placement.from_dict(placement)
         tube = None
         if artefact == "animation.gif":
             tube = await run_in_threadpool(_specs.tube_params, data.get("shape"), work())
         job = jobs().submit("make", lambda j: _work.make_files(
-            j, grid, artefact=artefact, title=title, pitch=pitch, net=net, settings=settings, tube=tube))
+            j, grid, artefact=artefact, title=title, pitch=pitch, net=net, settings=settings, tube=tube,
+            placement=placement))
         return {"job": job.id}
 
     async def job_status(request: Request) -> dict[str, Any]:

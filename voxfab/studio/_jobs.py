@@ -87,6 +87,8 @@ class Job:
         }
         if self.state == "error" and self.detail != self.message:
             out["detail"] = self.detail  # the technical line behind the plain message
+        if self.state == "error":
+            out["ways_out"] = self.result.get("ways_out", [])
         if self.state == "done":
             out["result"] = self.result
             out["files"] = [{"index": i, "name": name, "bytes": path.stat().st_size}
@@ -146,6 +148,9 @@ class Jobs:
                 else:
                     job.detail = " ".join(str(exc).split())
                     job.message = plain(job.detail)
+                    # A net that does not fit says what would (the page's one-click ways out).
+                    ways = job.result.get("ways_out") or getattr(exc, "ways_out", None) or []
+                    job.result = {**job.result, "ways_out": list(ways)}
                     job.state = "error"
             except Exception as exc:  # noqa: BLE001 - the page gets one line, never a traceback
                 job.message = f"internal error ({type(exc).__name__}): {' '.join(str(exc).split())}"

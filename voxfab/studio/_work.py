@@ -91,29 +91,18 @@ def edge_constraints(data: Any) -> Any:
     return EdgeConstraints.from_dict(data)
 
 
-def _keep_ways_out(job: Job, exc: Exception) -> None:
-    """Keep the ways out of a failure (a sheet too small, faces too small) in the job's result for the page."""
-    ways = getattr(exc, "ways_out", None)
-    if ways:
-        job.result = {**job.result, "ways_out": list(ways)}
-
-
 def net_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, net: Any, drawing: Any,
                 constraints: Any) -> None:
     """The library's gallery (:func:`voxfab.fabricate.netdraw.net_gallery`) as a job: nets kept for /api/make.
 
-    A failure that has ways out (faces too small, no fit) leaves them in the job's result
-    as ``ways_out`` beside the one-line message.
+    A failure that has ways out (faces too small, no fit) carries them to the job's status
+    as ``ways_out`` beside the one-line message (:class:`._jobs.Jobs`).
     """
     from voxfab.fabricate import netdraw
 
     job.step(0, count, "searching nets")
-    try:
-        gallery = netdraw.net_gallery(grid, net, drawing, count=count, seed=seed, constraints=constraints,
-                                      progress=lambda done, total: job.step(done, total, f"{done} of {total} nets"))
-    except Exception as exc:
-        _keep_ways_out(job, exc)
-        raise
+    gallery = netdraw.net_gallery(grid, net, drawing, count=count, seed=seed, constraints=constraints,
+                                  progress=lambda done, total: job.step(done, total, f"{done} of {total} nets"))
     job.data["nets"] = [item.pieces for item in gallery.nets]
     job.data["options"] = (net, gallery.options)
     job.data["grid"] = grid  # for /api/nets/edit
@@ -152,7 +141,8 @@ def _one(job: Job, name: str, paths: list[Path]) -> None:
     if len(paths) == 1:
         job.files.append((name if paths[0].suffix == Path(name).suffix else paths[0].name, paths[0]))
         return
-    stem = Path(name).stem
+    # NAME-net.svg in sheets: NAME-net-svg.zip, so the SVG, DXF and JSON zips of one net keep apart.
+    stem = f"{Path(name).stem}-{Path(name).suffix[1:]}"
     job.files.append((f"{stem}.zip", _zip(job.folder, paths, job.folder / f"{stem}.zip")))
 
 
@@ -189,7 +179,7 @@ def download_settings(artefact: str, values: dict[str, Any]) -> Any:
 
 
 def make_files(job: Job, grid: np.ndarray, *, artefact: str, title: str, pitch: float, net: Any,
-               settings: Any, tube: tuple[dict[str, Any], Path] | None = None) -> None:
+               settings: Any, tube: tuple[dict[str, Any], Path] | None = None, placement: Any = None) -> None:
     """Write one artefact of the shape into the job's folder through its pipeline in the table of outputs."""
     from voxfab.fabricate import BuildContext, output_for_download
     from voxfab.shape import VoxelShape
@@ -204,12 +194,9 @@ def make_files(job: Job, grid: np.ndarray, *, artefact: str, title: str, pitch: 
         raise InvalidShapeError("animation: only a drawn tube has a turning profile; choose Tube in Draw")
     params, folder = tube if tube is not None else ({}, None)
     context = BuildContext(maker="tube" if tube is not None else None, params=params, base_dir=folder, net=net,
-                           paper_at_pitch=False)
+                           paper_at_pitch=False, placement=placement)
     try:
         made = row.run(shape, settings, out, name=title, seed=0, context=context)
-    except Exception as exc:
-        _keep_ways_out(job, exc)
-        raise
     finally:
         if folder is not None:
             shutil.rmtree(folder, ignore_errors=True)

@@ -105,11 +105,12 @@ def draw_net(grid: Any, net: Net, *, options: DrawingOptions | None = None, name
     return _draw(grid, net, options=options, name=name)
 
 
-def draw_pieces(grid: Any, pieces: list[Net], *, options: DrawingOptions | None = None, name: str = "") -> Drawing:
-    """Pack the pieces of a net on as few sheets as possible; see :func:`._drawing.draw_pieces`."""
+def draw_pieces(grid: Any, pieces: list[Net], *, options: DrawingOptions | None = None, name: str = "",
+                placement: Any = None) -> Drawing:
+    """Pack the pieces of a net on as few sheets as possible (or as ``placement`` puts them); see :func:`._drawing.draw_pieces`."""
     from ._drawing import draw_pieces as _draw
 
-    return _draw(grid, pieces, options=options, name=name)
+    return _draw(grid, pieces, options=options, name=name, placement=placement)
 
 
 def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str = "one", count: int = 1,
@@ -190,11 +191,17 @@ def write_net_drawing(grid: Any, nets: Net | list[Net], path: str | Path, option
     return _result(drawing, write(drawing, Path(path), options))
 
 
-def _draw_any(grid: Any, nets: Net | list[Net], options: DrawingOptions, title: str) -> Drawing:
+def _draw_any(grid: Any, nets: Net | list[Net], options: DrawingOptions, title: str,
+              placement: Any = None) -> Drawing:
     from ._drawing import draw_net as _draw_one
     from ._drawing import draw_pieces as _draw_many
 
     pieces = [nets] if isinstance(nets, Net) else list(nets)
+    if placement is not None:
+        from ._placement import Placement
+
+        where = placement if isinstance(placement, Placement) else Placement.from_dict(placement)
+        return _draw_many(grid, pieces, options=options, name=title, placement=where)
     if len(pieces) == 1:
         return _draw_one(grid, pieces[0], options=options, name=title)
     return _draw_many(grid, pieces, options=options, name=title)
@@ -217,7 +224,7 @@ _PURPOSES = {
 
 
 def fabricate_net(shape: VoxelShape, net: NetOptions, drawing: DrawingOptions, outdir: str | Path, *, name: str,
-                  seed: int, constraints: Any = None, chosen: Any = None) -> Artefact:
+                  seed: int, constraints: Any = None, chosen: Any = None, placement: Any = None) -> Artefact:
     """The paper net of ``shape``: ``net.json`` and its drawings, fitted to the sheet.
 
     Parameters
@@ -237,6 +244,9 @@ def fabricate_net(shape: VoxelShape, net: NetOptions, drawing: DrawingOptions, o
     chosen : Net or list of Net, optional
         A net chosen already (the studio's gallery pick): drawn as it is, after the
         same validation, instead of searching one.
+    placement : Placement or its JSON form, optional
+        Where the pieces of ``chosen`` go on the sheets (the studio's layout),
+        checked for overlap and the margin before the drawings are written.
 
     Returns
     -------
@@ -272,7 +282,7 @@ def fabricate_net(shape: VoxelShape, net: NetOptions, drawing: DrawingOptions, o
         return Artefact(tuple(files), (), {"faces": sum(n.face_count for n in nets), "pieces": len(nets)})
     from ._writers import write
 
-    drawing = _draw_any(grid, nets, fitted, name)
+    drawing = _draw_any(grid, nets, fitted, name, placement)
     for f in net.formats:
         written = write(drawing, outdir / f"net.{f}", fitted)
         files += [OutputFile(Path(p).relative_to(outdir).as_posix(), _PURPOSES[f]) for p in written]

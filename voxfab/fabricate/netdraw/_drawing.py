@@ -18,6 +18,7 @@ from ._geometry import NetEdges, check_net, classify_edges, merge_unit_segments,
 from ._labels import label_length, seam_labels
 from ._legible import LABEL_ADVANCE, NUMBER_INSET, legibility_problem, number_height, number_start
 from ._options import DrawingOptions, Perforate
+from ._placement import Placement, plan_placement
 from ._sheets import SheetPlan, pack_pieces, plan_sheets
 from ._tabs import TabPlan, place_tabs, tab_heights
 
@@ -292,7 +293,7 @@ def draw_net(grid: npt.ArrayLike, net: Net, *, options: DrawingOptions | None = 
 
 
 def draw_pieces(grid: npt.ArrayLike, pieces: list[Net], *, options: DrawingOptions | None = None,
-                name: str = "") -> Drawing:
+                name: str = "", placement: Placement | None = None) -> Drawing:
     """Pack the pieces of a several-piece unfolding on as few sheets as possible and draw them.
 
     Seams between pieces are labelled on both edges and get a tab on one side,
@@ -307,6 +308,8 @@ def draw_pieces(grid: npt.ArrayLike, pieces: list[Net], *, options: DrawingOptio
     options : DrawingOptions, optional
     name : str
         The shape's name for the title.
+    placement : Placement, optional
+        Where each piece goes (the studio's layout), instead of packing them.
 
     Returns
     -------
@@ -318,12 +321,15 @@ def draw_pieces(grid: npt.ArrayLike, pieces: list[Net], *, options: DrawingOptio
         When a piece is not part of a net of ``grid``, or two pieces share a face.
     SheetFitError
         When a piece alone does not fit the sheet.
+    PlacementError
+        When ``placement`` puts pieces over each other or across the margin.
     """
     opts = options or DrawingOptions()
     graph = surface_graph(grid)
     for piece in pieces:
         check_net(graph, piece)
-    plan, placed = pack_pieces([p.corners2d for p in pieces], opts)
+    corners = [p.corners2d for p in pieces]
+    plan, placed = pack_pieces(corners, opts) if placement is None else plan_placement(placement, corners, opts)
     counts = np.cumsum([0] + [p.face_count for p in pieces])
     combined = Net(
         voxel=np.concatenate([p.voxel for p in pieces]), normal=np.concatenate([p.normal for p in pieces]),

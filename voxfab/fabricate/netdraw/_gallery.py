@@ -9,7 +9,7 @@ work (``ways_out``); they are ordered by how well they fit: fewest sheets,
 then the highest mean fill, then the smallest extent.
 
 Everything the page draws comes from here, as plain JSON-ready dictionaries
-(:func:`net_layout`, :func:`placement`), so the studio stays a thin shell.
+(:func:`net_layout`, :func:`._placement.placement_of`), so the studio stays a thin shell.
 """
 
 from __future__ import annotations
@@ -42,7 +42,7 @@ class GalleryNet:
     fit : dict
         How it sits on the sheet (:func:`sheet_fit`).
     placement : dict or None
-        Where its pieces go on the sheets (:func:`placement`); None when it does not fit.
+        Where its pieces go on the sheets (the PLACEMENT of :mod:`._placement`); None when it does not fit.
     """
 
     pieces: list[Net]
@@ -186,6 +186,7 @@ def sheet_fit(pieces: list[Net], options: DrawingOptions) -> dict[str, Any]:
 
 
 def _fit_and_place(pieces: list[Net], options: DrawingOptions) -> tuple[dict[str, Any], dict[str, Any] | None]:
+    from ._placement import placement_of
     from ._sheets import (
         SheetFitError,
         extent_of,
@@ -204,9 +205,8 @@ def _fit_and_place(pieces: list[Net], options: DrawingOptions) -> tuple[dict[str
     try:
         if len(pieces) == 1:
             plan = plan_sheets(big.corners2d, options)
-            placed = [plan.corners2d]
         else:
-            plan, placed = pack_pieces([p.corners2d for p in pieces], options)
+            plan = pack_pieces([p.corners2d for p in pieces], options)[0]
     except SheetFitError:
         err = fit_error(extent, options, pitch, what="the net" if len(pieces) == 1 else "a piece")
         fit.update(fits=False, sheets=None, fill=[], message=str(err),
@@ -214,7 +214,7 @@ def _fit_and_place(pieces: list[Net], options: DrawingOptions) -> tuple[dict[str
         return fit, None
     faces = np.bincount(plan.face_sheet, minlength=plan.count)
     fit.update(fits=True, sheets=plan.count, fill=[round(float(n) * pitch * pitch / (w * h), 4) for n in faces])
-    return fit, placement(pieces, placed, plan, options)
+    return fit, placement_of(plan, [p.corners2d for p in pieces], float(options.margin)).to_dict()
 
 
 def legible_ways_out(ways: list[dict[str, Any]], options: DrawingOptions, pieces: list[Net]) -> list[dict[str, Any]]:
@@ -233,39 +233,6 @@ def legible_ways_out(ways: list[dict[str, Any]], options: DrawingOptions, pieces
                    "options": {**way["options"], **off}}
         out.append(way)
     return out
-
-
-def _turn(c: npt.NDArray[np.int64], turns: int) -> npt.NDArray[np.int64]:
-    for _ in range(turns % 4):
-        c = np.stack([-c[..., 1], c[..., 0]], axis=-1)
-    return c
-
-
-def placement(pieces: list[Net], placed: list[npt.NDArray[np.int64]], plan: Any,
-              options: DrawingOptions) -> dict[str, Any]:
-    """Where each piece's own frame lands on its sheet (mm, sheet origin bottom-left): the PLACEMENT.
-
-    ``placed`` are the pieces' corners in the plan's cells (as :func:`._sheets.pack_pieces`
-    returns them); each piece is its own corners turned by some quarter turns and moved.
-    """
-    stride_faces = plan.face_sheet
-    out = []
-    start = 0
-    for q, (net, cells) in enumerate(zip(pieces, placed)):
-        sheet = int(stride_faces[start]) if net.face_count else 0
-        start += net.face_count
-        turns = next(t for t in range(4)
-                     if np.array_equal(_shifted(_turn(net.corners2d, t)), _shifted(cells)))
-        shift = cells.reshape(-1, 2).min(axis=0) - _turn(net.corners2d, turns).reshape(-1, 2).min(axis=0)
-        x, y = plan.origin[sheet] + shift * plan.pitch
-        out.append({"piece": q, "sheet": sheet, "x": round(float(x), 4), "y": round(float(y), 4), "turns": turns,
-                    "mirror": False})
-    return {"sheet": list(options.sheet_size), "margin": float(options.margin), "face_size": float(plan.pitch),
-            "sheets": int(plan.count), "pieces": out}
-
-
-def _shifted(c: npt.NDArray[np.int64]) -> npt.NDArray[np.int64]:
-    return c - c.reshape(-1, 2).min(axis=0)
 
 
 def net_layout(grid: Any, pieces: Net | list[Net], *, graph: Any = None) -> dict[str, Any]:

@@ -6,6 +6,7 @@ import {LayerEditor} from './editor.js';
 import {Grid} from './grid.js';
 import {drawNet} from './nets.js';
 import {NetView} from './netview.js';
+import {placedLayout, SheetBoard} from './sheets.js';
 import {Viewer} from './viewer.js';
 
 const $ = (sel) => document.querySelector(sel);
@@ -382,77 +383,203 @@ const marker = new NetView($('#net-canvas'), {viewer, shape: () => state.shape, 
   $('#marks-count').dataset.constraints = JSON.stringify(c);
 }});
 
+const board = new SheetBoard($('#net-sheets'), {
+  onChange: (placement) => {
+    const g = state.gallery;
+    if (!g || state.chosen === null) return;
+    g.placement = placement;
+    marker.setLayout(placedLayout(g.nets[state.chosen].layout, placement));
+    // Moves and turns in quick succession make one set of files, for the last layout.
+    clearNetFiles();
+    clearTimeout(netFiles.timer);
+    netFiles.timer = setTimeout(makeNetFiles, 400);
+  },
+  onSelect: (q) => { $('#piece-chosen').textContent = q === null ? '' : `piece (${q + 1}) chosen`; },
+});
+$('#piece-turn').addEventListener('click', () => board.turn());
+
+// The CLI's words without its flags: the artist reads what to do, the flag stays in the CLI.
+function plainWords(text) {
+  return text.replace(/,?\s*CLI --pieces auto/g, '').replace(/\(pieces='auto'\)/g, '(split into pieces)')
+    .replace(/\s*\(--[a-z-]+(?: [A-Za-z0-9.]+)?\)/g, '').replace(/--pieces auto/g, 'split into pieces')
+    .replace(/--no-numbers/g, 'no seam labels').replace(/--no-tabs/g, 'no glue tabs').replace(/--([a-z-]+)/g, '$1');
+}
+
+function sayError(e) { say(plainWords(e.message || String(e))); }
+
+function sheetValue() {
+  return $('#net-sheet').value === 'custom' ? $('#net-sheet-custom').value.trim() : $('#net-sheet').value;
+}
+
+// The net options as the net output names them (NetOptions / DrawingOptions fields).
+function netOptions() {
+  const face = $('#net-face').value;
+  return {sheet: sheetValue(), face_size: face ? Number(face) : null, pieces: $('#net-pieces').value,
+    numbers: $('#net-numbers').checked, tabs: $('#net-tabs').checked, fill: $('#net-fill').checked,
+    timeout: Number($('#net-timeout').value)};
+}
+
+function fillSheets(sheets) {
+  const sel = $('#net-sheet');
+  sel.replaceChildren(...Object.entries(sheets).map(([name, [w, h]]) =>
+    Object.assign(document.createElement('option'), {value: name, textContent: `${name} (${w} × ${h} mm)`})),
+  Object.assign(document.createElement('option'), {value: 'custom', textContent: 'custom size (laser bed)…'}));
+  sel.value = 'A4';
+}
+$('#net-sheet').addEventListener('change', () => {
+  $('#net-sheet-custom-box').classList.toggle('hidden', $('#net-sheet').value !== 'custom');
+});
+
+const netFiles = {generation: 0}; // bumped whenever the chosen net or its layout changes
+
+function clearNetFiles() {
+  netFiles.generation++;
+  for (const a of $$('#net-files a')) { a.removeAttribute('href'); a.removeAttribute('download'); a.dataset.state = 'none'; }
+}
+
 function netNote() {
   const g = state.gallery;
   $('#make-net').textContent = g && state.chosen !== null
-    ? `Net files use net ${state.chosen + 1} of the gallery (seed ${g.nets[state.chosen].seed}).`
+    ? `Net files use net ${state.chosen + 1} of the gallery (seed ${g.nets[state.chosen].seed}), as laid out in Net.`
     : 'Net files use a new net (seed 0) unless you pick one in Net.';
-  if (!g) { $('#net-gallery').replaceChildren(); $('#net-chosen-label').textContent = ''; }
+  if (!g) {
+    $('#net-gallery').replaceChildren(); $('#net-chosen-label').textContent = '';
+    board.setNet(null, null); clearNetFiles();
+  }
+}
+
+// One button per way out of a net that does not fit: it sets those options and searches again.
+function showWaysOut(ways) {
+  $('#net-ways').replaceChildren(...(ways || []).map((w) => {
+    const b = Object.assign(document.createElement('button'), {type: 'button', textContent: w.label});
+    b.dataset.options = JSON.stringify(w.options);
+    b.addEventListener('click', () => {
+      const o = w.options;
+      if (o.pieces) $('#net-pieces').value = o.pieces;
+      if (o.sheet) {
+        const known = [...$('#net-sheet').options].some((x) => x.value === o.sheet);
+        $('#net-sheet').value = known ? o.sheet : 'custom';
+        if (!known) $('#net-sheet-custom').value = o.sheet;
+        $('#net-sheet').dispatchEvent(new Event('change'));
+      }
+      if (o.face_size !== undefined) $('#net-face').value = o.face_size === null ? '' : String(o.face_size);
+      gallery(false);
+    });
+    return b;
+  }));
 }
 
 async function gallery(withMarks) {
-  const face = $('#net-face').value;
+  const options = netOptions();
   const body = {grid: state.shape.pack(), count: Number($('#net-count').value), seed: Number($('#net-seed').value),
-    timeout: Number($('#net-timeout').value), sheet: $('#net-sheet').value, face_mm: face ? Number(face) : null,
-    constraints: withMarks ? marker.constraints() : null};
+    options, constraints: withMarks ? marker.constraints() : null};
+  state.gallery = null; state.chosen = null; netNote(); showWaysOut([]);
   try {
     $('#net-go').disabled = true; $('#net-regen').disabled = true;
     const t0 = performance.now();
     const {job} = await post('/api/nets', body);
     progress(0, body.count, 'searching nets');
-    const s = await waitJob(job, progress);
+    let s;
+    try { s = await waitJob(job, progress); } catch (e) {
+      const st = await get(`/api/jobs/${job}`);
+      showWaysOut(st.ways_out);
+      throw e;
+    }
     const r = s.result;
-    state.gallery = {job, nets: r.nets}; state.chosen = null;
+    state.gallery = {job, nets: r.nets, options: {...options, face_size: r.options.face_size}, placement: null};
+    state.chosen = null;
     // a new gallery: nothing chosen yet; the marks stay (they name faces, not a net)
     $('#net-chosen-label').textContent = ''; delete $('#net-chosen-label').dataset.index;
     marker.setLayout(null);
     const secs = ((performance.now() - t0) / 1000).toFixed(1);
-    $('#net-summary').textContent = `${r.found} of ${r.asked} nets in ${secs} s (search ${r.seconds} s), each different once cut out.`;
+    const what = r.nets.some((n) => n.pieces > 1) ? 'net in pieces' : 'nets, each different once cut out';
+    $('#net-summary').textContent = `${r.found} ${what} in ${secs} s, faces ${r.options.face_size} mm.`;
     $('#net-summary').dataset.found = String(r.found); $('#net-summary').dataset.seconds = secs;
     $('#net-gallery').replaceChildren(...r.nets.map((n, i) => {
       const fig = document.createElement('figure');
+      fig.dataset.testid = 'net-gallery-item';
+      fig.setAttribute('data-testid', 'net-gallery-item');
+      fig.dataset.index = String(i);
       const cv = Object.assign(document.createElement('canvas'), {width: 356, height: 356});
-      drawNet(cv, n.layout);
+      drawNet(cv, placedLayout(n.layout, n.placement));
       const f = n.fit;
-      const fit = f.fits === undefined ? `${f.sheet}: up to ${f.largest_face_mm} mm per face`
-        : `${f.fits ? 'fits' : 'does not fit'} ${f.sheet} at ${f.face_mm} mm (up to ${f.largest_face_mm} mm)`;
       const cap = document.createElement('figcaption');
-      cap.innerHTML = `<b>#${i + 1}</b> ${f.extent[0]}×${f.extent[1]} faces<br><span class="${f.fits === false ? 'nofit' : 'fits'}"></span>`;
-      cap.querySelector('span').textContent = fit;
+      cap.innerHTML = '<b></b> <span class="fits"></span>';
+      cap.querySelector('b').textContent = `#${i + 1}`;
+      cap.querySelector('span').textContent = `${n.pieces} piece${n.pieces > 1 ? 's' : ''} on ${f.sheets} `
+        + `sheet${f.sheets > 1 ? 's' : ''} ${f.sheet}, faces ${f.face_size} mm`;
       fig.append(cv, cap);
       fig.addEventListener('click', () => choose(i));
       return fig;
     }));
     netNote();
-    say('');
-  } catch (e) { say(e.message); } finally {
+    say(`${r.found} ${what}: pick one to lay it out and make its files.`, true);
+  } catch (e) { sayError(e); } finally {
     progressDone(); $('#net-go').disabled = false; $('#net-regen').disabled = false;
   }
 }
 
 function choose(i) {
-  state.chosen = i;
+  const g = state.gallery;
+  state.chosen = i; g.placement = g.nets[i].placement;
   $$('#net-gallery figure').forEach((f, j) => f.classList.toggle('chosen', i === j));
-  marker.setNet(state.gallery.job, i, state.gallery.nets[i].layout);
-  $('#net-chosen-label').textContent = `#${i + 1} (seed ${state.gallery.nets[i].seed})`;
+  marker.setNet(g.job, i, g.placement ? placedLayout(g.nets[i].layout, g.placement) : g.nets[i].layout);
+  board.setNet(g.nets[i].layout, g.placement);
+  $('#net-chosen-label').textContent = `#${i + 1} (seed ${g.nets[i].seed})`;
   $('#net-chosen-label').dataset.index = String(i);
   netNote();
+  makeNetFiles();
+}
+
+// The body of /api/make for a net file of the chosen net, as laid out on the sheets.
+function netMakeBody(artefact) {
+  const g = state.gallery;
+  return {grid: state.shape.pack(), artefact, pitch: Number($('#pitch').value),
+    title: state.name || $('#recipe-name').value || 'studio', options: g.options,
+    net: {job: marker.job, index: marker.index}, placement: g.placement};
+}
+
+// Make the four net files of the chosen net as laid out; the links point at them once made.
+async function makeNetFiles() {
+  clearTimeout(netFiles.timer);
+  clearNetFiles();
+  const generation = netFiles.generation;
+  const links = $$('#net-files a');
+  links.forEach((a) => { a.dataset.state = 'making'; });
+  say('making the net files of the sheets shown…', true);
+  try {
+    const made = await Promise.all(links.map(async (a) => {
+      const {job} = await post('/api/make', netMakeBody(`net.${a.dataset.kind}`));
+      const s = await waitJob(job);
+      return {a, job, file: s.files[0]};
+    }));
+    if (generation !== netFiles.generation) return; // the layout changed meanwhile: newer files are coming
+    for (const {a, job, file} of made) {
+      a.href = fileUrl(job, file.index); a.download = file.name; a.dataset.state = 'ready';
+      a.title = `${file.name} (${Math.ceil(file.bytes / 1024)} kB)`;
+    }
+    say(`Net files ready: ${made.map((m) => m.file.name).join(', ')}, as the sheets show.`, true);
+  } catch (e) {
+    if (generation !== netFiles.generation) return;
+    links.forEach((a) => { a.dataset.state = 'error'; });
+    sayError(e);
+  }
 }
 
 $('#net-go').addEventListener('click', () => gallery(false));
 $('#net-regen').addEventListener('click', () => gallery(true));
 $('#marks-clear').addEventListener('click', () => marker.clear());
-$('#net-svg').addEventListener('click', () => make('net.svg'));
 
 // --- Make ---------------------------------------------------------------------------------------
 
 async function make(artefact) {
-  const face = $('#net-face').value;
-  const body = {grid: state.shape.pack(), artefact, pitch: Number($('#pitch').value),
+  const g = state.gallery;
+  const chosen = g && state.chosen !== null && artefact.startsWith('net.');
+  const body = chosen ? netMakeBody(artefact) : {grid: state.shape.pack(), artefact, pitch: Number($('#pitch').value),
     title: state.name || $('#recipe-name').value || 'studio',
-    options: {face_mm: face ? Number(face) : null, sheet: $('#net-sheet').value, thickness: Number($('#thickness').value),
-      timeout: Number($('#net-timeout').value), style: $('#plate-style').value, plate_sheet: $('#plate-sheet').value},
-    net: state.gallery && state.chosen !== null ? {job: marker.job, index: marker.index} : null,
+    options: {...netOptions(), thickness: Number($('#thickness').value), style: $('#plate-style').value,
+      plate_sheet: $('#plate-sheet').value},
+    net: g && state.chosen !== null ? {job: marker.job, index: marker.index} : null,
     shape: artefact === 'animation.gif' ? state.drawn : undefined};
   try {
     const {job} = await post('/api/make', body);
@@ -468,7 +595,7 @@ async function make(artefact) {
     }
     if (s.result && s.result.assembly) viewer.setMesh(s.result.assembly.plates);
     say(`${artefact}: ${s.files.map((f) => f.name).join(', ')} in ${s.seconds.toFixed(1)} s`, true);
-  } catch (e) { say(e.message); } finally { progressDone(); }
+  } catch (e) { sayError(e); } finally { progressDone(); }
 }
 // The Make buttons are the studio downloads of the table of outputs (the server's /api/info).
 const MAKE_LABELS = {'plates.zip': 'Plates', 'animation.gif': 'Tube animation GIF'};
@@ -478,6 +605,7 @@ function makeLabel(name) {
 }
 async function makeButtons() {
   const info = await get('/api/info');
+  fillSheets(info.sheets);
   const box = $('#make-buttons');
   for (const name of info.artefacts) {
     const b = Object.assign(document.createElement('button'), {type: 'button', textContent: makeLabel(name)});

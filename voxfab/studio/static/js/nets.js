@@ -1,6 +1,6 @@
-// Nets on canvases: thumbnails for the gallery, and the chosen net whose edges the artist marks
-// to cut or to keep folded. An edge is named by its two faces [x, y, z, "+z"], as the net engine's
-// EdgeConstraints and `voxfab net --constraints` name it.
+// Nets on canvases: the gallery's thumbnails, with the marks of edges to cut or keep folded. An edge
+// is named by its two faces [x, y, z, "+z"], as the net engine's EdgeConstraints and
+// `voxfab net --constraints` name it. The chosen net is edited in the linked view of netview.js.
 
 const FOLD_STYLE = {
   1: {color: '#0000ff', dash: [5, 3]}, // mountain
@@ -75,62 +75,5 @@ export function drawNet(canvas, layout, marks = null) {
       }
     }
     ctx.lineCap = 'butt';
-  }
-}
-
-// The chosen net, whose edges cycle unmarked → cut → keep → unmarked on click.
-export class NetMarker {
-  constructor(canvas, {onChange}) {
-    this.canvas = canvas; this.onChange = onChange; this.layout = null; this.marks = new Map();
-    canvas.addEventListener('click', (e) => {
-      if (!this.layout) return;
-      const r = canvas.getBoundingClientRect();
-      const px = (e.clientX - r.left) * canvas.width / r.width, py = (e.clientY - r.top) * canvas.height / r.height;
-      const hit = this.edgeAt(px, py);
-      if (hit) this.toggle(hit[0], hit[1]);
-    });
-  }
-
-  setLayout(layout) { this.layout = layout; this.draw(); }
-
-  draw() {
-    if (this.layout) { drawNet(this.canvas, this.layout, this.marks); return; }
-    const ctx = this.canvas.getContext('2d');
-    ctx.fillStyle = '#fff'; ctx.fillRect(0, 0, this.canvas.width, this.canvas.height);
-  }
-
-  // The nearest edge (face indices i, j) within a third of a face of the pixel, or null.
-  edgeAt(px, py) {
-    const {toNet} = frame(this.layout, this.canvas.width, this.canvas.height, 6);
-    const [x, y] = toNet(px, py), c = this.layout.corners;
-    let best = null, bestD = 0.34;
-    for (let i = 0; i < this.layout.faces.length; i++) {
-      for (let k = 0; k < 4; k++) {
-        const ax = c[8 * i + 2 * k], ay = c[8 * i + 2 * k + 1];
-        const bx = c[8 * i + 2 * ((k + 1) % 4)], by = c[8 * i + 2 * ((k + 1) % 4) + 1];
-        const t = Math.max(0, Math.min(1, ((x - ax) * (bx - ax) + (y - ay) * (by - ay)) / ((bx - ax) ** 2 + (by - ay) ** 2)));
-        const d = Math.hypot(x - ax - t * (bx - ax), y - ay - t * (by - ay));
-        if (d < bestD) { bestD = d; best = [i, this.layout.neighbor[4 * i + k]]; }
-      }
-    }
-    return best;
-  }
-
-  toggle(i, j) {
-    const a = this.layout.faces[i], b = this.layout.faces[j], key = pairKey(a, b);
-    const m = this.marks.get(key);
-    if (!m) this.marks.set(key, {state: 'cut', faces: [a, b]});
-    else if (m.state === 'cut') m.state = 'keep';
-    else this.marks.delete(key);
-    this.draw(); this.onChange();
-  }
-
-  clear() { this.marks.clear(); this.draw(); this.onChange(); }
-
-  // {"cut": [[face, face], ...], "keep": [...]} for the net engine.
-  constraints() {
-    const out = {cut: [], keep: []};
-    for (const m of this.marks.values()) out[m.state].push(m.faces);
-    return out;
   }
 }

@@ -1,0 +1,295 @@
+"""Where the pieces of a net sit on their sheets, as data: read from a packing, or given to draw a net.
+
+A :class:`Placement` says, for every piece, its sheet, its quarter turns and
+where its own frame's origin lands on the sheet in mm (origin at the sheet's
+lower-left corner).  :func:`placement_of` reads one from a
+:class:`~._sheets.SheetPlan` (what the packer chose); :func:`plan_placement`
+turns one back into a plan the drawing code draws, after checking that the
+pieces with the room their glue tabs need stay inside the margin and keep
+clear of each other (the packer's own rule: no face of one piece on or beside
+a face of another, so every seam keeps free paper for its tab).
+
+The studio's page moves and turns pieces by whole faces, so every piece of a
+sheet stays on one grid of face cells: a piece off that grid is refused, as
+is a mirrored piece (printed mirrored, its folds would turn inside out).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from voxfab.errors import InvalidShapeError
+
+from ._legible import tab_depth
+from ._options import DrawingOptions
+from ._sheets import SheetPlan, drawable_area
+
+#: Slack of the grid and margin checks, mm (JSON round trips of decimal mm).
+TOLERANCE = 1e-6
+
+
+class PlacementError(InvalidShapeError):
+    """A placement that cannot be drawn: malformed, off the grid, overlapping, or across the margin."""
+
+
+@dataclasses.dataclass(frozen=True)
+class PiecePlace:
+    """Where one piece goes.
+
+    Attributes
+    ----------
+    piece : int
+        0-based piece index (the order of the net's pieces).
+    sheet : int
+        0-based sheet index.
+    x, y : float
+        Where the piece frame's origin lands on the sheet, mm, after the turns.
+    turns : int
+        Quarter turns counter-clockwise, 0 to 3.
+    mirror : bool
+        Mirrored (x -> -x before turning); always False for a drawable net.
+    """
+
+    piece: int
+    sheet: int
+    x: float
+    y: float
+    turns: int = 0
+    mirror: bool = False
+
+
+@dataclasses.dataclass(frozen=True)
+class Placement:
+    """Every piece of a net on its sheet.
+
+    Attributes
+    ----------
+    sheet : (float, float)
+        Sheet width and height, mm.
+    margin : float
+        Empty border of every sheet, mm.
+    face_size : float
+        Face edge, mm.
+    sheets : int
+        Number of sheets.
+    pieces : tuple of PiecePlace
+        One per piece, in piece order.
+    """
+
+    sheet: tuple[float, float]
+    margin: float
+    face_size: float
+    sheets: int
+    pieces: tuple[PiecePlace, ...]
+
+    def to_dict(self) -> dict[str, Any]:
+        """The contract's JSON form (mm, rounded to 1e-6 mm so it reads back on the same grid)."""
+        return {
+            "sheet": [_mm(self.sheet[0]), _mm(self.sheet[1])], "margin": _mm(self.margin),
+            "face_size": _mm(self.face_size), "sheets": self.sheets,
+            "pieces": [{"piece": p.piece, "sheet": p.sheet, "x": _mm(p.x), "y": _mm(p.y), "turns": p.turns,
+                        "mirror": p.mirror} for p in self.pieces],
+        }
+
+    @classmethod
+    def from_dict(cls, data: Any) -> Placement:
+        """Read the JSON form, checking every field (one-line :class:`PlacementError` otherwise)."""
+        if not isinstance(data, dict):
+            raise PlacementError("placement: expected an object with sheet, margin, face_size, sheets, pieces")
+        sheet = data.get("sheet")
+        if not isinstance(sheet, (list, tuple)) or len(sheet) != 2:
+            raise PlacementError("placement.sheet: expected [width, height] in mm")
+        w, h = (_number(v, "placement.sheet", positive=True) for v in sheet)
+        margin = _number(data.get("margin"), "placement.margin")
+        face = _number(data.get("face_size"), "placement.face_size", positive=True)
+        sheets = _whole(data.get("sheets"), "placement.sheets", 1, 1000)
+        raw = data.get("pieces")
+        if not isinstance(raw, list) or not raw:
+            raise PlacementError("placement.pieces: expected a list with one entry per piece")
+        places = []
+        for i, p in enumerate(raw):
+            where = f"placement.pieces[{i}]"
+            if not isinstance(p, dict):
+                raise PlacementError(f"{where}: expected an object with piece, sheet, x, y, turns")
+            mirror = p.get("mirror", False)
+            if not isinstance(mirror, bool):
+                raise PlacementError(f"{where}.mirror: expected true or false")
+            places.append(PiecePlace(
+                piece=_whole(p.get("piece"), f"{where}.piece", 0, len(raw) - 1),
+                sheet=_whole(p.get("sheet"), f"{where}.sheet", 0, sheets - 1),
+                x=_number(p.get("x"), f"{where}.x"), y=_number(p.get("y"), f"{where}.y"),
+                turns=_whole(p.get("turns", 0), f"{where}.turns", 0, 3), mirror=mirror))
+        places.sort(key=lambda p: p.piece)
+        if [p.piece for p in places] != list(range(len(places))):
+            raise PlacementError("placement.pieces: every piece must appear exactly once")
+        return cls((w, h), margin, face, sheets, tuple(places))
+
+
+def _mm(v: float) -> float:
+    return round(float(v), 6)
+
+
+def _number(v: Any, where: str, *, positive: bool = False) -> float:
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+        raise PlacementError(f"{where}: expected a number, got {v!r:.40}")
+    if positive and not v > 0:
+        raise PlacementError(f"{where}: expected a positive number, got {v!r}")
+    return float(v)
+
+
+def _whole(v: Any, where: str, lo: int, hi: int) -> int:
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or v != int(v) or not lo <= v <= hi:
+        raise PlacementError(f"{where}: expected a whole number from {lo} to {hi}, got {v!r:.40}")
+    return int(v)
+
+
+def turned(cells: npt.NDArray[np.int64], turns: int, mirror: bool = False) -> npt.NDArray[np.int64]:
+    """``cells`` (..., 2) mirrored (x -> -x) if asked, then turned ``turns`` quarter turns counter-clockwise."""
+    c = np.asarray(cells, dtype=np.int64)
+    if mirror:
+        c = np.stack([-c[..., 0], c[..., 1]], axis=-1)
+    for _ in range(turns % 4):
+        c = np.stack([-c[..., 1], c[..., 0]], axis=-1)
+    return c
+
+
+def placement_of(plan: SheetPlan, pieces: list[npt.NDArray[np.int64]], margin: float) -> Placement:
+    """The placement a plan gives the pieces whose own corners (in cells) are ``pieces``.
+
+    ``plan.corners2d`` holds the faces of all pieces in order; each piece's
+    placed corners are its own turned by some quarter turns and moved by whole
+    cells, which this finds back.  ``margin`` is the sheets' margin, mm.
+    """
+    places = []
+    start = 0
+    for i, own in enumerate(pieces):
+        own = np.asarray(own, dtype=np.int64)
+        placed = plan.corners2d[start:start + own.shape[0]]
+        sheet = int(plan.face_sheet[start])
+        for t in range(4):
+            shift = (placed - turned(own, t)).reshape(-1, 2)
+            if (shift == shift[0]).all():
+                break
+        else:  # pragma: no cover - the packer only turns and moves pieces
+            raise PlacementError(f"piece {i + 1}: its place on the sheet is not a quarter turn of its net")
+        x, y = plan.origin[sheet] + shift[0] * plan.pitch
+        places.append(PiecePlace(i, sheet, _mm(x), _mm(y), t, False))
+        start += own.shape[0]
+    return Placement((float(plan.size[0]), float(plan.size[1])), float(margin), float(plan.pitch), plan.count,
+                     tuple(places))
+
+
+def plan_placement(placement: Placement, pieces: list[npt.NDArray[np.int64]],
+                   options: DrawingOptions) -> tuple[SheetPlan, list[npt.NDArray[np.int64]]]:
+    """The sheet plan of a given placement, checked against the sheet, the margin and the other pieces.
+
+    Parameters
+    ----------
+    placement : Placement
+    pieces : list of (n_i, 4, 2) int ndarray
+        Each piece's corners in cells, in its own frame.
+    options : DrawingOptions
+        The drawing's sheet, margin, tabs and face size (``pitch``; None takes
+        the placement's).
+
+    Returns
+    -------
+    plan : SheetPlan
+    placed : list of (n_i, 4, 2) int ndarray
+        Each piece's corners in the plan's cells.
+
+    Raises
+    ------
+    PlacementError
+        A placement for another sheet, margin, face size or number of pieces; a mirrored
+        piece; a piece off its sheet's face grid; a piece (with room for its tabs)
+        across the margin; or two pieces on or beside each other.
+    """
+    size = options.sheet_size
+    if abs(placement.sheet[0] - size[0]) > 1e-3 or abs(placement.sheet[1] - size[1]) > 1e-3:
+        raise PlacementError(f"placement: made for a {placement.sheet[0]:g} x {placement.sheet[1]:g} mm sheet, "
+                             f"the drawing is on {options.sheet} ({size[0]:g} x {size[1]:g} mm)")
+    if abs(placement.margin - float(options.margin)) > TOLERANCE:
+        raise PlacementError(f"placement: made for a {placement.margin:g} mm margin, the drawing has "
+                             f"{options.margin:g} mm")
+    pitch = placement.face_size if options.pitch is None else float(options.pitch)
+    if abs(pitch - placement.face_size) > TOLERANCE:
+        raise PlacementError(f"placement: made for {placement.face_size:g} mm faces, the drawing has {pitch:g} mm")
+    if len(placement.pieces) != len(pieces):
+        raise PlacementError(f"placement: {len(placement.pieces)} pieces placed, the net has {len(pieces)}")
+    used = sorted({p.sheet for p in placement.pieces})
+    renumber = {s: k for k, s in enumerate(used)}  # an emptied sheet is dropped, not printed blank
+    x0, y0, x1, y1 = drawable_area(options)
+    pad = tab_depth(options, pitch)
+    anchor: dict[int, npt.NDArray[np.float64]] = {}
+    local: list[npt.NDArray[np.int64]] = []
+    for place, own in zip(placement.pieces, pieces):
+        name = f"piece {place.piece + 1}"
+        if place.mirror:
+            raise PlacementError(f"{name}: a mirrored piece would fold inside out; place it unmirrored")
+        at = np.array([place.x, place.y])
+        ref = anchor.setdefault(place.sheet, at)
+        steps = (at - ref) / pitch
+        if np.abs(steps - np.rint(steps)).max() * pitch > 1e-4:
+            raise PlacementError(f"{name}: not on the face grid of sheet {renumber[place.sheet] + 1}; "
+                                 "move pieces by whole faces")
+        cells = turned(np.asarray(own, dtype=np.int64), place.turns) + np.rint(steps).astype(np.int64)
+        local.append(cells)
+        mm = ref + cells.reshape(-1, 2) * pitch
+        lo, hi = mm.min(axis=0), mm.max(axis=0)
+        if lo[0] < x0 + pad - TOLERANCE or lo[1] < y0 + pad - TOLERANCE or hi[0] > x1 - pad + TOLERANCE \
+                or hi[1] > y1 - pad + TOLERANCE:
+            room = f" and {pad:.1f} mm for its tabs" if pad else ""
+            raise PlacementError(f"{name} crosses the margin of sheet {renumber[place.sheet] + 1}: keep it "
+                                 f"{options.margin:g} mm from the edges{room}")
+    _check_clear(placement, local, renumber)
+    # Each sheet's cells start at 0, sheets side by side in cell space (as the packer lays them).
+    low = {s: np.min([c.reshape(-1, 2).min(axis=0) for p, c in zip(placement.pieces, local) if p.sheet == s],
+                     axis=0) for s in used}
+    high = max(int((c.reshape(-1, 2) - low[p.sheet]).max()) for p, c in zip(placement.pieces, local))
+    stride = high + 2
+    placed = [c - low[p.sheet] + (renumber[p.sheet] * stride, 0) for p, c in zip(placement.pieces, local)]
+    origin = np.array([anchor[s] + low[s] * pitch - (renumber[s] * stride * pitch, 0.0) for s in used])
+    face_sheet = np.concatenate([np.full(c.shape[0], renumber[p.sheet], dtype=np.int64)
+                                 for p, c in zip(placement.pieces, local)])
+    single = len(pieces) == 1 and placement.pieces[0].turns % 2 == 1
+    plan = SheetPlan(pitch, single, np.concatenate(placed), face_sheet, origin, (x0, y0, x1, y1), size)
+    return plan, placed
+
+
+def _check_clear(placement: Placement, local: list[npt.NDArray[np.int64]], renumber: dict[int, int]) -> None:
+    """Refuse two pieces of one sheet whose faces share a cell or lie side by side (no paper left for tabs).
+
+    Faces meeting only at a corner are allowed, as the packer allows them: the
+    tabs of the two edges there go into different free cells.
+    """
+    owner: dict[tuple[int, int, int], int] = {}
+    for place, cells in zip(placement.pieces, local):
+        for cx, cy in cells.min(axis=1).tolist():
+            key = (place.sheet, cx, cy)
+            other = owner.get(key)
+            if other is not None and other != place.piece:
+                raise PlacementError(f"pieces {other + 1} and {place.piece + 1} overlap on sheet "
+                                     f"{renumber[place.sheet] + 1}")
+            owner[key] = place.piece
+    for (sheet, cx, cy), piece in owner.items():
+        for dx, dy in ((1, 0), (0, 1)):
+            other = owner.get((sheet, cx + dx, cy + dy))
+            if other is not None and other != piece:
+                a, b = sorted((piece, other))
+                raise PlacementError(f"pieces {a + 1} and {b + 1} touch on sheet {renumber[sheet] + 1}: leave a "
+                                     "face of paper between them for the glue tabs")
+
+
+def placement_for(pieces: list[Any], options: DrawingOptions) -> Placement:
+    """The placement the drawing code gives a net (one :class:`~voxfab.unfold.Net` per piece) by itself."""
+    from ._sheets import pack_pieces, plan_sheets
+
+    corners = [p.corners2d for p in pieces]
+    plan = plan_sheets(corners[0], options) if len(corners) == 1 else pack_pieces(corners, options)[0]
+    return placement_of(plan, corners, float(options.margin))
