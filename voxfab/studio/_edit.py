@@ -32,64 +32,26 @@ def _pieces(net: Any) -> list[Any]:
     return [net] if hasattr(net, "corners2d") else list(net)
 
 
-def net_layout(grid: np.ndarray, net: Any) -> dict[str, Any]:
-    """The page's LAYOUT of a net or its pieces (the studio net contract), faces in surface-graph order.
+def net_item(grid: np.ndarray, net: Any, marks: Any, *, history: int, extra: dict[str, Any],
+             drawing: Any = None) -> dict[str, Any]:
+    """A gallery item for an edited net, with its marks and how many edits undo can take back.
 
-    ``corners`` are each face's 2D corners in its piece's frame, ``parent`` the
-    face it hinges on in the fold-up (the tree :func:`voxfab.render.fold_tree`
-    walks), ``labels`` the seam code of each cut edge pair in the drawings'
-    alphabet, numbered in the order of the pairs.
+    The layout, and with the gallery's drawing options the fit and placement on the sheets,
+    are the library gallery's own (:mod:`voxfab.fabricate.netdraw`).
     """
-    from voxfab.fabricate.netdraw._labels import label_length, seam_label
-    from voxfab.render._fold import fold_tree
-    from voxfab.shape import fill_cavities, surface_graph
-    from voxfab.unfold._constraints import NORMALS, face_index
+    from voxfab.fabricate.netdraw import fit_and_placement, net_layout
 
-    pieces = _pieces(net)
-    sg = surface_graph(fill_cavities(grid) if pieces[0].filled else grid)
-    f = sg.face_count
-    corners = np.zeros((f, 4, 2), dtype=np.int64)
-    piece = np.full(f, -1, dtype=np.int64)
-    parent = np.full(f, -1, dtype=np.int64)
-    folds: list[tuple[int, int]] = []
-    for p, part in enumerate(pieces):
-        names = [(*v, NORMALS[2 * int(np.flatnonzero(n)[0]) + (0 if sum(n) > 0 else 1)])
-                 for v, n in zip(part.voxel.tolist(), part.normal.tolist())]
-        ids = face_index(sg, names)
-        if (ids < 0).any():
-            raise InvalidShapeError("net: its faces are not the faces of this shape")
-        corners[ids] = part.corners2d
-        piece[ids] = p
-        if part.face_count > 1:
-            _, up, _ = fold_tree(part)
-            parent[ids] = np.where(up >= 0, ids[np.maximum(up, 0)], -1)
-        folds += [(int(min(ids[i], ids[j])), int(max(ids[i], ids[j]))) for i, j in part.folds.tolist()]
-    folded = set(folds)
-    seams = sorted({(min(i, int(j)), max(i, int(j))) for i in range(f) for j in sg.neighbor[i].tolist()
-                    if j >= 0 and (min(i, j), max(i, j)) not in folded})
-    chars = label_length(max(len(seams), 1))
-    return {
-        "faces": [[int(v[0]), int(v[1]), int(v[2]), NORMALS[int(d)]] for v, d in zip(sg.voxel, sg.direction)],
-        "corners": corners.reshape(-1).tolist(),
-        "corners3d": sg.corners.reshape(-1).tolist(),
-        "folds": [c for pair in sorted(folds) for c in pair],
-        "neighbor": sg.neighbor.reshape(-1).tolist(),
-        "fold_type": sg.fold.reshape(-1).tolist(),
-        "piece": piece.tolist(),
-        "parent": parent.tolist(),
-        "labels": {f"{i}-{j}": seam_label(n + 1, chars) for n, (i, j) in enumerate(seams)},
-    }
-
-
-def net_item(grid: np.ndarray, net: Any, marks: Any, *, history: int, extra: dict[str, Any]) -> dict[str, Any]:
-    """A gallery item for an edited net, with its marks and how many edits undo can take back."""
     pieces = _pieces(net)
     first = pieces[0]
-    return {
+    placed: dict[str, Any] = {}
+    if drawing is not None:
+        fit, placement = fit_and_placement(pieces, drawing)
+        placed = {"fit": fit, "placement": placement}
+    return {**placed,
         "index": 0, "seed": int(first.seed), "faces": sum(p.face_count for p in pieces), "pieces": len(pieces),
         "mountain": sum(int(p.mountain) for p in pieces), "valley": sum(int(p.valley) for p in pieces),
         "seams_without_tab_room": sum(int(p.seams_without_tab_room) for p in pieces),
-        "layout": net_layout(grid, net),
+        "layout": net_layout(grid, pieces),
         "marks": marks.to_dict() if marks else {"cut": [], "keep": []},
         "undo": history, **extra,
     }
@@ -150,8 +112,12 @@ def apply_edit(job: Any, data: dict[str, Any]) -> dict[str, Any]:
                  "joined": [[list(x), list(y)] for x, y in result.joined]}
     extra["edit"] = kind
     extra["seconds"] = round(time.perf_counter() - start, 3)
-    item = net_item(grid, net, marks, history=len(history), extra=extra)
-    return {"record": {"nets": [net], "grid": grid, "marks": marks, "history": history}, "item": item}
+    # The gallery's options (search, drawing) travel with every edited net, for its fit and files.
+    options = job.data.get("options")
+    item = net_item(grid, net, marks, history=len(history), extra=extra,
+                    drawing=options[1] if options is not None else None)
+    record = {"nets": [net], "grid": grid, "marks": marks, "history": history, "options": options}
+    return {"record": record, "item": item}
 
 
 def edit_route(jobs: Callable[[], Any]) -> Callable[[Any], Awaitable[dict[str, Any]]]:

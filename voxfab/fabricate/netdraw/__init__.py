@@ -38,7 +38,15 @@ from ._sheets import SheetFitError
 if TYPE_CHECKING:
     from ._drawing import Drawing
     from ._fit import FaceSizeError, SheetNets
-    from ._gallery import Gallery, GalleryNet, gallery_json, gallery_options, net_gallery, net_layout
+    from ._gallery import (
+        Gallery,
+        GalleryNet,
+        fit_and_placement,
+        gallery_json,
+        gallery_options,
+        net_gallery,
+        net_layout,
+    )
     from ._pipeline import NetFiles, check_request, net_files, parse_box, search_nets
 
 __all__ = [
@@ -66,6 +74,7 @@ __all__ = [
     "gallery_options",
     "net_gallery",
     "net_layout",
+    "fit_and_placement",
     "drawing_formats",
     "fabricate_net",
     "parse_colors",
@@ -91,7 +100,8 @@ def __getattr__(name: str) -> Any:
         from . import _pipeline
 
         return getattr(_pipeline, name)
-    if name in ("Gallery", "GalleryNet", "gallery_json", "gallery_options", "net_gallery", "net_layout"):
+    if name in ("Gallery", "GalleryNet", "fit_and_placement", "gallery_json", "gallery_options", "net_gallery",
+                "net_layout"):
         from . import _gallery
 
         return getattr(_gallery, name)

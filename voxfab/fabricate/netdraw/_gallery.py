@@ -159,7 +159,7 @@ def net_gallery(grid: Any, net: NetOptions, drawing: DrawingOptions, *, count: i
     notes += found.notes
     for pieces in found.nets:  # every net shown is a valid net of the shape (and of the marks)
         validate_net(grid, pieces, constraints=constraints)
-    items = [GalleryNet(pieces, *_fit_and_place(pieces, options)) for pieces in found.nets]
+    items = [GalleryNet(pieces, *fit_and_placement(pieces, options)) for pieces in found.nets]
     items.sort(key=lambda g: fit_order(g.fit))
     return Gallery(items, options, count, round(time.monotonic() - start, 3), notes)
 
@@ -182,10 +182,11 @@ def sheet_fit(pieces: list[Net], options: DrawingOptions) -> dict[str, Any]:
         ``largest_face_size`` (the largest at which the largest piece fits one sheet) and,
         when it does not fit, ``message`` (the CLI's words) and ``ways_out``.
     """
-    return _fit_and_place(pieces, options)[0]
+    return fit_and_placement(pieces, options)[0]
 
 
-def _fit_and_place(pieces: list[Net], options: DrawingOptions) -> tuple[dict[str, Any], dict[str, Any] | None]:
+def fit_and_placement(pieces: list[Net], options: DrawingOptions) -> tuple[dict[str, Any], dict[str, Any] | None]:
+    """The net's :func:`sheet_fit` and the PLACEMENT of its pieces on the sheets (None when it does not fit)."""
     from ._placement import placement_of
     from ._sheets import (
         SheetFitError,

@@ -381,6 +381,13 @@ const marker = new NetView($('#net-canvas'), {viewer, shape: () => state.shape, 
   const c = marker.constraints();
   $('#marks-count').textContent = `${c.cut.length} cut, ${c.keep.length} kept`;
   $('#marks-count').dataset.constraints = JSON.stringify(c);
+  // An edit makes a new net: its pieces go on the sheets as the server placed them, and its files follow.
+  const g = state.gallery, edited = marker.item;
+  if (g && state.chosen !== null && edited && edited.job === marker.job && edited.placement) {
+    g.placement = edited.placement; g.layout = edited.layout;
+    board.setNet(edited.layout, edited.placement);
+    makeNetFiles();
+  }
 }});
 
 const board = new SheetBoard($('#net-sheets'), {
@@ -388,7 +395,7 @@ const board = new SheetBoard($('#net-sheets'), {
     const g = state.gallery;
     if (!g || state.chosen === null) return;
     g.placement = placement;
-    marker.setLayout(placedLayout(g.nets[state.chosen].layout, placement));
+    marker.setLayout(placedLayout(g.layout, placement));
     // Moves and turns in quick succession make one set of files, for the last layout.
     clearNetFiles();
     clearTimeout(netFiles.timer);
@@ -521,7 +528,7 @@ async function gallery(withMarks) {
 
 function choose(i) {
   const g = state.gallery;
-  state.chosen = i; g.placement = g.nets[i].placement;
+  state.chosen = i; g.placement = g.nets[i].placement; g.layout = g.nets[i].layout;
   $$('#net-gallery figure').forEach((f, j) => f.classList.toggle('chosen', i === j));
   marker.setNet(g.job, i, g.placement ? placedLayout(g.nets[i].layout, g.placement) : g.nets[i].layout);
   board.setNet(g.nets[i].layout, g.placement);

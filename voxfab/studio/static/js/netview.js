@@ -351,6 +351,7 @@ export class NetView {
         marks: this.marks});
       const ms = performance.now() - t0;
       this.marks = r.net.marks; this.undos = r.net.undo;
+      this.item = {...r.net, job: r.job}; // the edited net: its layout, fit and placement on the sheets
       this.setNet(r.job, 0, r.net.layout, {keepView: true});
       const ds = this.canvas.dataset;
       ds.edit = kind; ds.moved = String(r.net.moved); ds.seconds = String(r.net.seconds); ds.ms = ms.toFixed(0);
