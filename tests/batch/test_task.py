@@ -11,7 +11,14 @@ import pytest
 from _batch_fixtures import OUTPUTS, column, edge_contact, make_repo, write_outputs
 
 from voxfab import io
-from voxfab.batch import BatchTask, build_task, load_outputs, parse_name_range, recipe_text, select_names
+from voxfab.batch import (
+    BatchTask,
+    build_task,
+    load_outputs,
+    parse_name_range,
+    select_names,
+    shape_file_recipe,
+)
 from voxfab.cli import main
 from voxfab.errors import RecipeError, RepositoryError
 from voxfab.repo import Repository, encode_bits
@@ -67,8 +74,8 @@ def test_thumbnails_are_drawn(tmp_path: Path) -> None:
             assert len(np.unique(np.asarray(im.convert("RGB")).reshape(-1, 3), axis=0)) > 3  # not blank
 
 
-def test_recipe_text_keeps_the_lines_of_the_outputs() -> None:
-    text = recipe_text("seed = 1\n[outputs.mesh]", "00025.001")
+def test_shape_file_recipe_keeps_the_lines_of_the_outputs() -> None:
+    text = shape_file_recipe("seed = 1\n[outputs.mesh]", "00025.001")
     assert text.splitlines()[:2] == ["seed = 1", "[outputs.mesh]"]
     assert text.endswith('[source]\nfile = "00025.001.npy"\n')
 

@@ -48,9 +48,12 @@ def test_a_net_in_pieces_with_its_placement_then_files_where_the_pieces_were_mov
     assert sorted(set(lay["piece"])) == list(range(net["pieces"]))
     assert place["sheet"] == [210.0, 297.0] and len(place["pieces"]) == net["pieces"]
     assert net["fit"]["sheets"] == place["sheets"]
-    # Move the last piece onto a sheet of its own: the DXF gains a sheet, the pieces still refold.
+    # Move a piece that shares its sheet onto a sheet of its own: the DXF gains a sheet, the pieces
+    # still refold.
+    shared = [p["piece"] for p in place["pieces"] if sum(q["sheet"] == p["sheet"] for q in place["pieces"]) > 1]
+    assert shared, "packed pieces share sheets"
     moved = dict(place, sheets=place["sheets"] + 1,
-                 pieces=[dict(p, sheet=place["sheets"]) if p["piece"] == net["pieces"] - 1 else p
+                 pieces=[dict(p, sheet=place["sheets"]) if p["piece"] == shared[-1] else p
                          for p in place["pieces"]])
     files = {}
     for artefact in ("net.dxf", "net.json"):

@@ -9,7 +9,7 @@ recipe with that shape and those outputs.  See :func:`run_batch`.
 
 from ._index import HuntSummary, hunt_summary, write_index
 from ._run import BATCH_FORMAT, BatchReport, load_outputs, parse_name_range, run_batch, select_names
-from ._task import BatchTask, Outcome, build_task, recipe_text
+from ._task import BatchTask, Outcome, build_task, shape_file_recipe
 
 __all__ = [
     "BATCH_FORMAT",
@@ -21,7 +21,7 @@ __all__ = [
     "hunt_summary",
     "load_outputs",
     "parse_name_range",
-    "recipe_text",
+    "shape_file_recipe",
     "run_batch",
     "select_names",
     "write_index",

@@ -16,7 +16,7 @@ from voxfab.errors import RecipeError, RepositoryError, VoxfabError
 
 from ._cluster import Cluster, check_dashboard, check_wait, check_workers, connect
 from ._index import THUMBS, HuntSummary, hunt_summary
-from ._task import RECIPES, BatchTask, Outcome, build_task, folder_problem, outputs_sha256, recipe_text
+from ._task import RECIPES, BatchTask, Outcome, build_task, folder_problem, outputs_sha256, shape_file_recipe
 
 __all__ = ["BatchReport", "load_outputs", "parse_name_range", "select_names", "run_batch", "BATCH_FORMAT"]
 
@@ -92,7 +92,7 @@ def load_outputs(path: PathLike) -> str:
     with tempfile.TemporaryDirectory() as tmp:
         probe = Path(tmp) / "probe.toml"
         io.write(np.ones((1, 1, 1), dtype=bool), Path(tmp) / "probe.npy")
-        probe.write_text(recipe_text(text, "probe"), encoding="utf-8")
+        probe.write_text(shape_file_recipe(text, "probe"), encoding="utf-8")
         try:
             load_recipe(probe)
         except RecipeError as exc:

@@ -21,7 +21,7 @@ from voxfab.errors import RecipeError, VoxfabError
 
 from ._index import THUMBS
 
-__all__ = ["BatchTask", "Outcome", "build_task", "recipe_text", "folder_problem"]
+__all__ = ["BatchTask", "Outcome", "build_task", "shape_file_recipe", "folder_problem"]
 
 #: Folder of DIR holding the per-shape recipes.
 RECIPES = "recipes"
@@ -79,7 +79,7 @@ class Outcome:
         return data
 
 
-def recipe_text(outputs: str, name: str) -> str:
+def shape_file_recipe(outputs: str, name: str) -> str:
     """The recipe of one shape: the outputs file's text, then a ``[source]`` reading ``<name>.npy``.
 
     The source comes last so the outputs' lines keep their numbers in error
@@ -113,7 +113,7 @@ def folder_problem(outdir: Path, name: str, outputs: str, grid: BoolGrid) -> str
         return " ".join(str(exc).split())
     except (UnicodeDecodeError, KeyError, TypeError, AttributeError):
         return "manifest.json is not a voxfab manifest"
-    recipe = recipe_text(outputs, name).encode("utf-8")
+    recipe = shape_file_recipe(outputs, name).encode("utf-8")
     if recipe_sha != hashlib.sha256(recipe).hexdigest():
         return "built from another recipe"
     if key != canonical_key(grid):
@@ -184,7 +184,7 @@ def _build(task: BatchTask) -> tuple[int, tuple[str, ...]]:
     recipes.mkdir(parents=True, exist_ok=True)
     io.write(grid, recipes / f"{task.name}.npy")
     recipe_path = recipes / f"{task.name}.toml"
-    write_text(recipe_path, recipe_text(task.outputs, task.name))
+    write_text(recipe_path, shape_file_recipe(task.outputs, task.name))
     recipe = load_recipe(recipe_path)
     if recipe.name != task.name:
         raise RecipeError(f"{recipe_path}: builds {recipe.name!r}, expected {task.name!r}")

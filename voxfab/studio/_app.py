@@ -291,7 +291,7 @@ def create_app(settings: Settings) -> Starlette:
         def run() -> tuple[str, bytes]:
             # made once here, so a recipe that fails to build is never handed out
             _specs.make_grid(data.get("shape"), work())
-            text = _specs.recipe_text(data.get("shape"), name=name, pitch=pitch)
+            text = _specs.drawing_recipe(data.get("shape"), name=name, pitch=pitch)
             if not text.files:
                 return f"{text.name}.toml", text.toml.encode()
             buf = io.BytesIO()

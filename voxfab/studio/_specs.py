@@ -250,7 +250,7 @@ def toml_value(value: Any) -> str:
     raise SpecError(f"recipe: cannot write {type(value).__name__} as TOML")
 
 
-def recipe_text(spec: Any, *, name: str = "studio", pitch: float = 1.0, seed: int = 0) -> RecipeText:
+def drawing_recipe(spec: Any, *, name: str = "studio", pitch: float = 1.0, seed: int = 0) -> RecipeText:
     """The recipe of a drawn shape (no outputs: ``voxfab build`` makes the shape files, the page the rest)."""
     if not isinstance(name, str) or not _NAME.match(name):
         raise SpecError(f"name: expected letters, digits, _ . - (at most 64), got {name!r:.70}")
@@ -302,7 +302,7 @@ def make_grid(spec: Any, work: Path) -> tuple[Any, RecipeText]:
     """
     from voxfab.recipe import load_recipe, make_shape
 
-    recipe = recipe_text(spec)
+    recipe = drawing_recipe(spec)
     folder = Path(tempfile.mkdtemp(prefix="draw-", dir=work))
     try:
         path = recipe.write(folder)
@@ -324,7 +324,7 @@ def tube_params(spec: Any, work: Path) -> tuple[dict[str, Any], Path]:
 
     if not isinstance(spec, dict) or spec.get("maker") != "tube":
         raise SpecError("animation: only a tube's profile can turn; choose Tube in Draw")
-    recipe = recipe_text(spec)
+    recipe = drawing_recipe(spec)
     folder = Path(tempfile.mkdtemp(prefix="tube-", dir=work))
     try:
         loaded = load_recipe(recipe.write(folder))

@@ -14,7 +14,7 @@ few sheets as possible.
 Public API: :func:`net_files` (the whole job of ``voxfab net``: search,
 validation, files), :func:`net_gallery` (distinct nets ordered by fit, for the
 studio), :func:`find_sheet_nets` (shape → nets that fit the sheet),
-:func:`draw_net` and :func:`draw_pieces` (nets → :class:`Drawing`),
+:func:`draw_net` and :func:`draw_pieces` (nets → :class:`NetDrawing`),
 :func:`write_net_drawing`, and :func:`fabricate_net`, the pipeline of the
 recipe output ``net``.  Heavy libraries (shapely,
 ezdxf, scipy, rectpack) load only when a drawing is made.
@@ -36,7 +36,7 @@ from ._options import SHEETS, DrawingOptions, parse_sheet
 from ._sheets import SheetFitError
 
 if TYPE_CHECKING:
-    from ._drawing import Drawing
+    from ._drawing import NetDrawing
     from ._fit import FaceSizeError, SheetNets
     from ._gallery import (
         Gallery,
@@ -51,7 +51,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "SHEETS",
-    "Drawing",
+    "NetDrawing",
     "DrawingOptions",
     "LayerStyle",
     "LineStyle",
@@ -88,10 +88,10 @@ _DEFAULTS = DrawingOptions()
 def __getattr__(name: str) -> Any:
     # Keep `import voxfab.fabricate.netdraw` light for the CLI: the drawing code
     # (and shapely behind it) loads on first use.
-    if name == "Drawing":
-        from ._drawing import Drawing
+    if name == "NetDrawing":
+        from ._drawing import NetDrawing
 
-        return Drawing
+        return NetDrawing
     if name in ("SheetNets", "FaceSizeError"):
         from . import _fit
 
@@ -108,7 +108,7 @@ def __getattr__(name: str) -> Any:
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-def draw_net(grid: Any, net: Net, *, options: DrawingOptions | None = None, name: str = "") -> Drawing:
+def draw_net(grid: Any, net: Net, *, options: DrawingOptions | None = None, name: str = "") -> NetDrawing:
     """Lay ``net`` (a net of ``grid``) out on sheets; see :func:`._drawing.draw_net`."""
     from ._drawing import draw_net as _draw
 
@@ -116,7 +116,7 @@ def draw_net(grid: Any, net: Net, *, options: DrawingOptions | None = None, name
 
 
 def draw_pieces(grid: Any, pieces: list[Net], *, options: DrawingOptions | None = None, name: str = "",
-                placement: Any = None) -> Drawing:
+                placement: Any = None) -> NetDrawing:
     """Pack the pieces of a net on as few sheets as possible (or as ``placement`` puts them); see :func:`._drawing.draw_pieces`."""
     from ._drawing import draw_pieces as _draw
 
@@ -202,7 +202,7 @@ def write_net_drawing(grid: Any, nets: Net | list[Net], path: str | Path, option
 
 
 def _draw_any(grid: Any, nets: Net | list[Net], options: DrawingOptions, title: str,
-              placement: Any = None) -> Drawing:
+              placement: Any = None) -> NetDrawing:
     from ._drawing import draw_net as _draw_one
     from ._drawing import draw_pieces as _draw_many
 
@@ -217,7 +217,7 @@ def _draw_any(grid: Any, nets: Net | list[Net], options: DrawingOptions, title: 
     return _draw_many(grid, pieces, options=options, name=title)
 
 
-def _result(drawing: Drawing, files: list[str]) -> DrawingResult:
+def _result(drawing: NetDrawing, files: list[str]) -> DrawingResult:
     return DrawingResult(files, drawing.report(), drawing.warnings(), drawing.pitch,
                          [sheet.fill for sheet in drawing.sheets])
 

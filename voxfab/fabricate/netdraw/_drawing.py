@@ -70,7 +70,7 @@ class Sheet:
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class Drawing:
+class NetDrawing:
     """A net drawn on one or more sheets, ready for the file writers.
 
     Attributes
@@ -256,7 +256,7 @@ def _edge_points(pos: npt.NDArray[np.float64], fe: npt.NDArray[np.int64]) -> tup
     return pos[fe[:, 0], fe[:, 1]], pos[fe[:, 0], _NEXT[fe[:, 1]]]
 
 
-def draw_net(grid: npt.ArrayLike, net: Net, *, options: DrawingOptions | None = None, name: str = "") -> Drawing:
+def draw_net(grid: npt.ArrayLike, net: Net, *, options: DrawingOptions | None = None, name: str = "") -> NetDrawing:
     """Lay a net out on sheets with cut outlines, folds, glue tabs, seam labels and a title.
 
     Parameters
@@ -273,7 +273,7 @@ def draw_net(grid: npt.ArrayLike, net: Net, *, options: DrawingOptions | None = 
 
     Returns
     -------
-    Drawing
+    NetDrawing
 
     Raises
     ------
@@ -293,7 +293,7 @@ def draw_net(grid: npt.ArrayLike, net: Net, *, options: DrawingOptions | None = 
 
 
 def draw_pieces(grid: npt.ArrayLike, pieces: list[Net], *, options: DrawingOptions | None = None,
-                name: str = "", placement: Placement | None = None) -> Drawing:
+                name: str = "", placement: Placement | None = None) -> NetDrawing:
     """Pack the pieces of a several-piece unfolding on as few sheets as possible and draw them.
 
     Seams between pieces are labelled on both edges and get a tab on one side,
@@ -313,7 +313,7 @@ def draw_pieces(grid: npt.ArrayLike, pieces: list[Net], *, options: DrawingOptio
 
     Returns
     -------
-    Drawing
+    NetDrawing
 
     Raises
     ------
@@ -342,7 +342,7 @@ def draw_pieces(grid: npt.ArrayLike, pieces: list[Net], *, options: DrawingOptio
 
 
 def _draw(graph: SurfaceGraph, net: Net, plan: SheetPlan, opts: DrawingOptions, *, name: str,
-          face_piece: npt.NDArray[np.int64]) -> Drawing:
+          face_piece: npt.NDArray[np.int64]) -> NetDrawing:
     """Draw ``net`` (a whole net, a piece, or pieces side by side, ``face_piece`` saying which) on ``plan``."""
     pieces = int(face_piece.max(initial=0)) + 1
     edges = classify_edges(graph, net, plan.corners2d)
@@ -390,7 +390,7 @@ def _draw(graph: SurfaceGraph, net: Net, plan: SheetPlan, opts: DrawingOptions, 
                     [(piece_name(i + 1), c) for i, (ps, c) in enumerate(number_at) if ps == s] if pieces > 1 else [])
         for s in range(plan.count)
     )
-    return Drawing(
+    return NetDrawing(
         sheets=sheets, pitch=p, rotated=plan.rotated, seams=int(sides.shape[0]),
         tab_seams=tabs.placed, tab_elsewhere=elsewhere, seam_numbers=numbers, label_chars=chars,
         seam_type=seam_type,

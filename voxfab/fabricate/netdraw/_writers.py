@@ -6,7 +6,7 @@ from pathlib import Path
 
 from voxfab.drawing import FORMATS, Legend, Lines, WriteOptions, write_drawing
 
-from ._drawing import Drawing
+from ._drawing import NetDrawing
 from ._options import DrawingOptions
 
 
@@ -15,7 +15,7 @@ def drawing_formats() -> list[str]:
     return sorted(FORMATS)
 
 
-def write(drawing: Drawing, path: Path, options: DrawingOptions) -> list[str]:
+def write(drawing: NetDrawing, path: Path, options: DrawingOptions) -> list[str]:
     """Write ``drawing`` in the format named by the extension of ``path``.
 
     SVG and DXF pages are laser files (hairlines; SVG with visible lines when
