@@ -68,7 +68,7 @@ def _exposed(g: npt.NDArray[np.bool_]) -> dict[tuple[tuple[int, ...], tuple[int,
 
 
 def _filled(g: npt.NDArray[np.bool_], v: npt.NDArray[np.int64]) -> bool:
-    x, y, z = (int(c) for c in v)
+    x, y, z = v.tolist()
     if not (0 <= x < g.shape[0] and 0 <= y < g.shape[1] and 0 <= z < g.shape[2]):
         return False
     return bool(g[x, y, z])
@@ -92,7 +92,7 @@ def _square(v: npt.NDArray[np.int64], n: npt.NDArray[np.int64]) -> set[tuple[int
             q = base.copy()
             q[others[0]] += da
             q[others[1]] += db
-            pts.add(tuple(int(c) for c in q))
+            pts.add(tuple(q.tolist()))
     return pts
 
 
@@ -204,8 +204,9 @@ def _check_piece(g, faces, net: Net, p: int, owner: dict, problems: list[str], t
             err(f"{tag}face {i} is mirrored (corners2d clockwise)")
             good[i] = False
     cells: dict[tuple[int, int], int] = {}
+    lows = c2.min(axis=1).tolist() if nf else []
     for i in range(nf):
-        cell = tuple(c2[i].min(axis=0).tolist())
+        cell = tuple(lows[i])
         if cell in cells:
             err(f"{tag}faces {cells[cell]} and {i} overlap on cell {cell}")
         else:
@@ -319,12 +320,14 @@ def _refold(c2, c3, n3, adj, good, err, tag):
         err(f"{tag}the folds do not connect the net: {len(unreached)} face(s) are not joined "
             f"to face {start} (e.g. face {unreached[0]})")
     wrong = []
-    for i, (o, a) in maps.items():
-        if not good[i]:
-            continue
-        placed = (o[:, None] + a @ c2[i].T.astype(float)).T
-        if not (np.abs(placed - c3[i]) <= 1e-6 + 1e-5 * np.abs(c3[i])).all():  # np.allclose, cheaper
-            wrong.append(i)
+    done = [i for i in maps if good[i]]
+    if done:
+        # every placed face at once: o + A @ corner for its four corners, against its 3D corners
+        o = np.array([maps[i][0] for i in done])
+        a = np.array([maps[i][1] for i in done])
+        placed = o[:, None, :] + np.einsum("fij,fkj->fki", a, c2[done].astype(float))
+        close = (np.abs(placed - c3[done]) <= 1e-6 + 1e-5 * np.abs(c3[done])).all(axis=(1, 2))
+        wrong = [i for i, ok in zip(done, close.tolist()) if not ok]
     if wrong:
         err(f"{tag}refolding puts {len(wrong)} face(s) off their 3D place (e.g. face {wrong[0]})")
 
