@@ -339,9 +339,10 @@ class _Hanger:
         below: dict[int, list[int]] = {}
         for i in reversed(order):
             below[i] = [i] + [f for c in children[i] for f in below[c]]
+        mark = len(self.log)
         if self._hang(children, below, root, hinge):
             return True
-        self.back_to(0)
+        self.back_to(mark)
         return False
 
     def _hang(self, children: dict[int, list[int]], below: dict[int, list[int]], s: int,
@@ -464,14 +465,88 @@ def cut_edge(grid: npt.ArrayLike, net: Net | Sequence[Net], face_a: Face, face_b
     placed = np.zeros(lay.sg.face_count, dtype=bool)
     placed[members] = True
     placed[moved] = False
-    hanger = _Hanger(lay, placed, cut_pairs, keep, [MAX_TRIES])
-    root = b if b in set(moved.tolist()) else a
-    if not hanger.hang(tree, moved, root):
+    tries = [MAX_TRIES]
+    hanger = _Hanger(lay, placed, cut_pairs, keep, tries)
+    root, other = (b, a) if b in set(moved.tolist()) else (a, b)
+    if not hanger.hang(tree, moved, root) and not (
+            hanger := _make_room(lay, tree, moved, other, members, cut_pairs, keep, tries)):
         raise UnfoldError(f"no room to re-attach the {moved.size} faces cut off by edge {_name(edge)}: "
                           "every free place overlaps the rest or closes a cut edge; cut an edge nearer the outline, "
                           "or allow several pieces")
     result = _rebuild(lay, marks, moved=hanger.moved(), cut=[], joined=[], piece_of=piece_of)
     return _with_changes(result, lay, before, edge)
+
+
+#: Faces of the rest an edit may lift out of the way and hang again, and the places of the side it tries.
+MAX_LIFTED = 96
+_ROOM_PLACES = 24
+
+
+def _make_room(lay: _Layout, tree: dict[int, list[int]], moved: npt.NDArray[np.int64], at: int,
+               members: npt.NDArray[np.int64], cut: set[tuple[int, int]], keep: set[tuple[int, int]],
+               tries: list[int]) -> _Hanger | None:
+    """Hang the cut-off side where small branches of the rest are in the way, and hang those again.
+
+    For each place of the whole side, nearest first, the faces in its way are
+    found, and each with the branch below it (as the fold tree hangs from the
+    face ``at`` the side was cut from, so nothing is left hanging) is lifted; the
+    side takes the place, then each branch goes back on its own fold if that is
+    free, else to the nearest free place, piece by piece.  Kept folds are never
+    opened; at most :data:`MAX_LIFTED` faces are lifted.  None when no place works.
+    """
+    inside = set(members.tolist()) - set(moved.tolist())
+    up = {at: -1}
+    order = [at]
+    for i in order:  # breadth first: the list grows while it is read
+        for j in tree[i]:
+            if j in inside and j not in up:
+                up[j] = i
+                order.append(j)
+    below: dict[int, list[int]] = {i: [] for i in order}
+    for i in order[1:]:
+        below[up[i]].append(i)
+    rest = np.array(sorted(inside), dtype=np.int64)
+    owner = dict(zip(_keys(lay.cell[rest]).tolist(), rest.tolist()))
+    placed = np.zeros(lay.sg.face_count, dtype=bool)
+    placed[rest] = True
+    for mv in _Hanger(lay, placed, cut, keep, tries).nearest(moved)[:_ROOM_PLACES]:
+        if tries[0] <= 0:
+            break
+        blockers = sorted({owner[k] for k in _keys(mv.cell).tolist() if k in owner})
+        if not blockers or at in blockers:
+            continue
+        # the topmost blockers: a blocker under another one's branch goes with it
+        lifted: dict[int, list[int]] = {}
+        for z in sorted(blockers, key=order.index):
+            x = z
+            while x != -1 and x not in lifted:
+                x = up[x]
+            if x == -1:
+                sub, stack = [], [z]
+                while stack:
+                    i = stack.pop()
+                    sub.append(i)
+                    stack.extend(below[i])
+                lifted[z] = sub
+        if sum(len(f) for f in lifted.values()) > MAX_LIFTED or any(_pair(z, up[z]) in keep for z in lifted):
+            continue
+        free = placed.copy()
+        for sub in lifted.values():
+            free[sub] = False
+        hanger = _Hanger(lay, free, cut, keep, tries)
+        ok = hanger.fits(mv)
+        if ok:
+            hanger.commit(mv)
+            for z, sub in lifted.items():
+                branch = np.array(sorted(sub), dtype=np.int64)
+                k = int(np.flatnonzero(lay.sg.neighbor[z] == up[z])[0])
+                if not (hanger.hang(tree, branch, z, (z, k)) or hanger.hang(tree, branch, z, None)):
+                    ok = False
+                    break
+        if ok:
+            return hanger
+        hanger.undo()
+    return None
 
 
 def join_edge(grid: npt.ArrayLike, net: Net | Sequence[Net], face_a: Face, face_b: Face, *,
