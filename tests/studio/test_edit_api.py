@@ -89,9 +89,13 @@ def test_cut_join_and_undo(client, gallery):
     assert marks["cut"] == cut["net"]["marks"]["cut"] and marks["keep"] == [sorted(pair_faces(new, a, b))]
     checked(grid, after, marks)
     # Undo twice: back to the cut net, then to the gallery's own net.
-    back = client.post("/api/nets/edit", json={"job": joined["job"], "index": 0, "undo": True}).json()
+    r = client.post("/api/nets/edit", json={"job": joined["job"], "index": 0, "undo": True})
+    assert r.status_code == 200, r.text
+    back = r.json()
     assert back["net"]["layout"] == new and back["net"]["marks"] == cut["net"]["marks"]
-    first = client.post("/api/nets/edit", json={"job": back["job"], "index": 0, "undo": True}).json()
+    r = client.post("/api/nets/edit", json={"job": back["job"], "index": 0, "undo": True})
+    assert r.status_code == 200, r.text
+    first = r.json()
     assert first["net"]["layout"]["corners"] == layout["corners"] and first["net"]["marks"]["cut"] == []
     r = client.post("/api/nets/edit", json={"job": first["job"], "index": 0, "undo": True})
     assert r.status_code == 400 and "no edit" in r.json()["error"]
