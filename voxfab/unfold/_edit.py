@@ -469,7 +469,7 @@ def cut_edge(grid: npt.ArrayLike, net: Net | Sequence[Net], face_a: Face, face_b
     hanger = _Hanger(lay, placed, cut_pairs, keep, tries)
     root, other = (b, a) if b in set(moved.tolist()) else (a, b)
     if not hanger.hang(tree, moved, root) and not (
-            hanger := _make_room(lay, tree, moved, other, members, cut_pairs, keep, tries)):
+            hanger := _make_room(lay, tree, moved, other, np.setdiff1d(members, moved), cut_pairs, keep, tries)):
         raise UnfoldError(f"no room to re-attach the {moved.size} faces cut off by edge {_name(edge)}: "
                           "every free place overlaps the rest or closes a cut edge; cut an edge nearer the outline, "
                           "or allow several pieces")
@@ -483,8 +483,8 @@ _ROOM_PLACES = 24
 
 
 def _make_room(lay: _Layout, tree: dict[int, list[int]], moved: npt.NDArray[np.int64], at: int,
-               members: npt.NDArray[np.int64], cut: set[tuple[int, int]], keep: set[tuple[int, int]],
-               tries: list[int]) -> _Hanger | None:
+               rest: npt.NDArray[np.int64], cut: set[tuple[int, int]], keep: set[tuple[int, int]],
+               tries: list[int], moves: list[_Move] | None = None) -> _Hanger | None:
     """Hang the cut-off side where small branches of the rest are in the way, and hang those again.
 
     For each place of the whole side, nearest first, the faces in its way are
@@ -492,9 +492,10 @@ def _make_room(lay: _Layout, tree: dict[int, list[int]], moved: npt.NDArray[np.i
     face ``at`` the side was cut from, so nothing is left hanging) is lifted; the
     side takes the place, then each branch goes back on its own fold if that is
     free, else to the nearest free place, piece by piece.  Kept folds are never
-    opened; at most :data:`MAX_LIFTED` faces are lifted.  None when no place works.
+    opened; at most :data:`MAX_LIFTED` faces are lifted.  ``moves`` gives the places
+    to try instead (a join has one).  None when no place works.
     """
-    inside = set(members.tolist()) - set(moved.tolist())
+    inside = set(rest.tolist())
     up = {at: -1}
     order = [at]
     for i in order:  # breadth first: the list grows while it is read
@@ -505,11 +506,12 @@ def _make_room(lay: _Layout, tree: dict[int, list[int]], moved: npt.NDArray[np.i
     below: dict[int, list[int]] = {i: [] for i in order}
     for i in order[1:]:
         below[up[i]].append(i)
-    rest = np.array(sorted(inside), dtype=np.int64)
     owner = dict(zip(_keys(lay.cell[rest]).tolist(), rest.tolist()))
     placed = np.zeros(lay.sg.face_count, dtype=bool)
     placed[rest] = True
-    for mv in _Hanger(lay, placed, cut, keep, tries).nearest(moved)[:_ROOM_PLACES]:
+    if moves is None:
+        moves = _Hanger(lay, placed, cut, keep, tries).nearest(moved)[:_ROOM_PLACES]
+    for mv in moves:
         if tries[0] <= 0:
             break
         blockers = sorted({owner[k] for k in _keys(mv.cell).tolist() if k in owner})
@@ -625,6 +627,15 @@ def join_edge(grid: npt.ArrayLike, net: Net | Sequence[Net], face_a: Face, face_
             result = _rebuild(lay, marks, moved=hanger.moved(), cut=[], joined=[], piece_of=piece_of)
             return _with_changes(result, lay, before, edge)
         hanger.undo()
+    if pa == pb:
+        # no side fits as it swings: lift the small branches in the way of the smallest ones
+        for moved, u, k, fixed in choices[:4]:
+            v = int(lay.sg.neighbor[u, k])
+            hanger = _make_room(lay, tree, moved, v, fixed, cut_pairs, keep, tries,
+                                moves=[_hinge_move(lay, moved, u, k)])
+            if hanger is not None:
+                result = _rebuild(lay, marks, moved=hanger.moved(), cut=[], joined=[], piece_of=piece_of)
+                return _with_changes(result, lay, before, edge)
     if pa != pb:
         raise UnfoldError(f"no room to join edge {_name(edge)}: the two pieces would overlap")
     raise UnfoldError(f"no room to join edge {_name(edge)}: every way to open the loop it closes makes "
