@@ -55,9 +55,12 @@ def net_layout(grid: np.ndarray, net: Any) -> dict[str, Any]:
     parent = np.full(f, -1, dtype=np.int64)
     folds: list[tuple[int, int]] = []
     for p, part in enumerate(pieces):
-        names = [(*v, NORMALS[2 * int(np.flatnonzero(n)[0]) + (0 if sum(n) > 0 else 1)])
-                 for v, n in zip(part.voxel.tolist(), part.normal.tolist())]
-        ids = face_index(sg, names)
+        if len(pieces) == 1 and part.face_count == f and np.array_equal(part.voxel, sg.voxel):
+            ids = np.arange(f)  # a one-piece net lists the surface's faces in its order
+        else:
+            names = [(*v, NORMALS[2 * int(np.flatnonzero(n)[0]) + (0 if sum(n) > 0 else 1)])
+                     for v, n in zip(part.voxel.tolist(), part.normal.tolist())]
+            ids = face_index(sg, names)
         if (ids < 0).any():
             raise InvalidShapeError("net: its faces are not the faces of this shape")
         corners[ids] = part.corners2d
@@ -66,9 +69,10 @@ def net_layout(grid: np.ndarray, net: Any) -> dict[str, Any]:
             _, up, _ = fold_tree(part)
             parent[ids] = np.where(up >= 0, ids[np.maximum(up, 0)], -1)
         folds += [(int(min(ids[i], ids[j])), int(max(ids[i], ids[j]))) for i, j in part.folds.tolist()]
-    folded = set(folds)
-    seams = sorted({(min(i, int(j)), max(i, int(j))) for i in range(f) for j in sg.neighbor[i].tolist()
-                    if j >= 0 and (min(i, j), max(i, j)) not in folded})
+    a = np.repeat(np.arange(f), 4)
+    b = sg.neighbor.reshape(-1)
+    edge = (b > a) & ~np.isin(a * f + b, [i * f + j for i, j in folds])
+    seams = sorted(set(zip(a[edge].tolist(), b[edge].tolist())))
     chars = label_length(max(len(seams), 1))
     return {
         "faces": [[int(v[0]), int(v[1]), int(v[2]), NORMALS[int(d)]] for v, d in zip(sg.voxel, sg.direction)],
