@@ -383,9 +383,12 @@ def _boundary(lay: _Layout, moved: npt.NDArray[np.int64], rest_mask: npt.NDArray
     return w[keep], k[keep], y[keep], pos[keep]
 
 
-def _rebuild(lay: _Layout, marks: EdgeConstraints, *, moved: int, cut: list[Edge], joined: list[Edge],
+def _rebuild(lay: _Layout, marks: EdgeConstraints, before: set[tuple[int, int]], *, moved: int,
              piece_of: npt.NDArray[np.int64]) -> EditResult:
-    """Nets from the arrays (folds: every edge that meets in the plane), validated with the marks."""
+    """Nets from the arrays (folds: every edge that meets in the plane), validated with the marks.
+
+    ``before`` are the folded pairs before the edit, to tell which edges it cut and joined.
+    """
     sg = lay.sg
     f = sg.face_count
     pieces = []
@@ -399,7 +402,7 @@ def _rebuild(lay: _Layout, marks: EdgeConstraints, *, moved: int, cut: list[Edge
     report = validate(lay.grid, pieces, strict=False, constraints=marks)
     if not report.ok:
         raise UnfoldError(f"the repaired net is not valid: {report.problems[0]}")
-    return EditResult(tuple(pieces), marks, moved, tuple(cut), tuple(joined))
+    return _with_changes(EditResult(tuple(pieces), marks, moved, (), ()), lay, before)
 
 
 def _marks_with(marks: EdgeConstraints | None, edge: Edge, name: str) -> EdgeConstraints:
@@ -460,8 +463,7 @@ def cut_edge(grid: npt.ArrayLike, net: Net | Sequence[Net], face_a: Face, face_b
     before = {_pair(i, j) for i, j in lay.fold}
     if split:
         piece_of[moved] = int(lay.piece.max()) + 1
-        result = _rebuild(lay, marks, moved=0, cut=[], joined=[], piece_of=_renumber(piece_of))
-        return _with_changes(result, lay, before, edge)
+        return _rebuild(lay, marks, before, moved=0, piece_of=_renumber(piece_of))
     placed = np.zeros(lay.sg.face_count, dtype=bool)
     placed[members] = True
     placed[moved] = False
@@ -473,8 +475,7 @@ def cut_edge(grid: npt.ArrayLike, net: Net | Sequence[Net], face_a: Face, face_b
         raise UnfoldError(f"no room to re-attach the {moved.size} faces cut off by edge {_name(edge)}: "
                           "every free place overlaps the rest or closes a cut edge; cut an edge nearer the outline, "
                           "or allow several pieces")
-    result = _rebuild(lay, marks, moved=hanger.moved(), cut=[], joined=[], piece_of=piece_of)
-    return _with_changes(result, lay, before, edge)
+    return _rebuild(lay, marks, before, moved=hanger.moved(), piece_of=piece_of)
 
 
 #: Faces of the rest an edit may lift out of the way and hang again, and the places of the side it tries.
@@ -624,8 +625,7 @@ def join_edge(grid: npt.ArrayLike, net: Net | Sequence[Net], face_a: Face, face_
             if pa != pb:
                 piece_of[moved] = min(pa, pb)
                 piece_of = _renumber(piece_of)
-            result = _rebuild(lay, marks, moved=hanger.moved(), cut=[], joined=[], piece_of=piece_of)
-            return _with_changes(result, lay, before, edge)
+            return _rebuild(lay, marks, before, moved=hanger.moved(), piece_of=piece_of)
         hanger.undo()
     if pa == pb:
         # no side fits as it swings: lift the small branches in the way of the smallest ones
@@ -634,8 +634,7 @@ def join_edge(grid: npt.ArrayLike, net: Net | Sequence[Net], face_a: Face, face_
             hanger = _make_room(lay, tree, moved, v, fixed, cut_pairs, keep, tries,
                                 moves=[_hinge_move(lay, moved, u, k)])
             if hanger is not None:
-                result = _rebuild(lay, marks, moved=hanger.moved(), cut=[], joined=[], piece_of=piece_of)
-                return _with_changes(result, lay, before, edge)
+                return _rebuild(lay, marks, before, moved=hanger.moved(), piece_of=piece_of)
     if pa != pb:
         raise UnfoldError(f"no room to join edge {_name(edge)}: the two pieces would overlap")
     raise UnfoldError(f"no room to join edge {_name(edge)}: every way to open the loop it closes makes "
@@ -670,7 +669,7 @@ def _renumber(piece_of: npt.NDArray[np.int64]) -> npt.NDArray[np.int64]:
     return new[np.searchsorted(labels, piece_of)]
 
 
-def _with_changes(result: EditResult, lay: _Layout, before: set[tuple[int, int]], edge: Edge) -> EditResult:
+def _with_changes(result: EditResult, lay: _Layout, before: set[tuple[int, int]]) -> EditResult:
     """Record which edges changed from fold to cut and back."""
     sg = lay.sg
     after: set[tuple[int, int]] = set()
