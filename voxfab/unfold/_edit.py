@@ -3,8 +3,10 @@
 A net is a layout of unit cells, each face on one cell with one of four
 rotations, held together by its folds.  Cutting a fold splits the fold tree in
 two; the smaller side is lifted off and hung again, rigidly, across another
-edge to the rest at the nearest place where its cells are free (or, in a net of
-several pieces, left as a piece of its own).  Joining a seam makes it a fold:
+edge to the rest at the nearest place where its cells are free; where it fits
+whole nowhere, its subtrees go back one by one, and failing that the small
+branches of the rest in its way are lifted and hung again after it (in a net of
+several pieces, or with ``split``, it is left as a piece of its own instead).  Joining a seam makes it a fold:
 inside one piece that would close a loop, so a fold on the tree path between
 the two faces is cut and the smaller side swings round to meet across the
 joined edge; between two pieces the smaller piece moves to meet the other.
