@@ -264,7 +264,7 @@ def _fold_kind(g, v3, n3, c3, c2, i, j):
     if len(common) != 2:
         return "the faces share no edge"
     mid = (np.array(common[0]) + np.array(common[1])) / 2.0
-    centre = c3[i].mean(axis=0)
+    centre = c3[i].sum(axis=0) / 4.0  # the mean, without its per-call cost
     u = np.rint((mid - centre) * 2).astype(np.int64)
     want, kind = _rule_neighbour(g, v3[i], n3[i], u)
     have = (tuple(v3[j].tolist()), tuple(n3[j].tolist()))
@@ -301,7 +301,7 @@ def _refold(c2, c3, n3, adj, good, err, tag):
             p0 = np.array(common[0], dtype=float)
             q0 = o + a @ p0
             # Unit vector in i's plane pointing across the edge, towards j.
-            centre_j = o + a @ c2[j].mean(axis=0)
+            centre_j = o + a @ (c2[j].sum(axis=0) / 4.0)
             line = o + a @ np.array(common[1], dtype=float) - q0
             w = centre_j - q0
             w = w - line * (w @ line) / (line @ line)
@@ -337,7 +337,7 @@ def _seams(g, v3, n3, c3, c2, lookup, folded, cells, good, err, tag):
     for i in range(v3.shape[0]):
         if not good[i]:
             continue
-        centre = c3[i].mean(axis=0)
+        centre = c3[i].sum(axis=0) / 4.0  # the mean, without its per-call cost
         for k in range(4):
             p3, q3 = c3[i, k], c3[i, (k + 1) % 4]
             u = np.rint(((p3 + q3) / 2.0 - centre) * 2).astype(np.int64)
