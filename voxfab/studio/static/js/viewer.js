@@ -233,6 +233,7 @@ export class Viewer {
     const {canvas, ctx} = this;
     const W = canvas.width, H = canvas.height;
     const {tris, lo, hi} = this.mesh;
+    this._polys = []; // the plates are not faces of the net: nothing to pick
     const c = [0, 1, 2].map((j) => (lo[j] + hi[j]) / 2);
     const scale = this.zoom * 0.95 * Math.min(W, H) / (Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) || 1);
     const project = (p) => {
