@@ -89,9 +89,13 @@ def test_cut_join_and_undo(client, gallery):
     assert marks["cut"] == cut["net"]["marks"]["cut"] and marks["keep"] == [sorted(pair_faces(new, a, b))]
     checked(grid, after, marks)
     # Undo twice: back to the cut net, then to the gallery's own net.
-    back = client.post("/api/nets/edit", json={"job": joined["job"], "index": 0, "undo": True}).json()
+    r = client.post("/api/nets/edit", json={"job": joined["job"], "index": 0, "undo": True})
+    assert r.status_code == 200, r.text
+    back = r.json()
     assert back["net"]["layout"] == new and back["net"]["marks"] == cut["net"]["marks"]
-    first = client.post("/api/nets/edit", json={"job": back["job"], "index": 0, "undo": True}).json()
+    r = client.post("/api/nets/edit", json={"job": back["job"], "index": 0, "undo": True})
+    assert r.status_code == 200, r.text
+    first = r.json()
     assert first["net"]["layout"]["corners"] == layout["corners"] and first["net"]["marks"]["cut"] == []
     r = client.post("/api/nets/edit", json={"job": first["job"], "index": 0, "undo": True})
     assert r.status_code == 400 and "no edit" in r.json()["error"]
@@ -155,3 +159,21 @@ def test_marks_from_the_page_start_a_fresh_nets_record(client, gallery):
     marks = r.json()["net"]["marks"]
     assert sorted(marks["cut"]) == sorted(page_marks["cut"] + [sorted(pair_faces(layout, i, j))])
     checked(grid, r.json()["net"]["layout"], marks)
+
+
+def test_a_cut_may_split_off_a_piece_and_a_join_merges_it_back(client, gallery):
+    grid, job, layout = gallery
+    i, j = np.array(layout["folds"]).reshape(-1, 2)[len(layout["folds"]) // 4].tolist()
+    edge = pair_faces(layout, i, j)
+    r = client.post("/api/nets/edit", json={"job": job, "index": 0, "cut": edge, "split": True})
+    assert r.status_code == 200, r.text
+    two = r.json()["net"]
+    assert two["pieces"] == 2 and sorted(set(two["layout"]["piece"])) == [0, 1]
+    # each piece has one root, and the cut edge is a seam between the pieces
+    assert two["layout"]["parent"].count(-1) == 2
+    assert two["layout"]["piece"][i] != two["layout"]["piece"][j]
+    back = client.post("/api/nets/edit", json={"job": r.json()["job"], "index": 0, "join": edge}).json()["net"]
+    assert back["pieces"] == 1
+    checked(grid, back["layout"], back["marks"])
+    r = client.post("/api/nets/edit", json={"job": job, "index": 0, "cut": edge, "split": "yes"})
+    assert r.status_code == 400 and "split" in r.json()["error"]

@@ -208,3 +208,20 @@ def test_joining_a_loop_of_kept_folds_is_refused(ball):
     marks = EdgeConstraints(keep=[(name(net, i), name(net, j)) for i, j in net.folds.tolist()])
     with pytest.raises(UnfoldError, match="would close a loop of kept folds"):
         join_edge(grid, net, name(net, a), name(net, b), constraints=marks)
+
+
+def test_most_cuts_of_the_queen_find_room(queen):
+    """Cuts spread over the net: the side goes back whole, piece by piece, or after lifting branches in its way."""
+    grid, net = queen
+    done = 0
+    picks = net.folds[np.linspace(0, len(net.folds) - 1, 12).astype(int)]
+    for i, j in picks.tolist():
+        try:
+            r = cut_edge(grid, net, name(net, i), name(net, j))
+        except UnfoldError as exc:
+            assert str(exc).startswith("no room to re-attach") and "\n" not in str(exc)
+            continue
+        assert validate(grid, r.net, strict=False, constraints=r.marks).ok
+        assert moved_faces(net, r.net) == r.moved <= net.face_count // 2
+        done += 1
+    assert done >= 9

@@ -9,7 +9,9 @@ laid out for the page.
 Body: ``{"job": ID, "index": N, "cut": [faceA, faceB]}`` or ``"join": [...]`` or
 ``"undo": true``, faces as ``[x, y, z, "+z"]``; ``"grid"`` (packed) is needed only
 when the gallery job did not keep its shape, ``"marks"`` (``{"cut": [...], "keep":
-[...]}``) starts the marks of a net that has none yet (one fresh from a gallery).  Answer: ``{"job": NEWID, "net": ITEM}``
+[...]}``) starts the marks of a net that has none yet (one fresh from a gallery), and
+``"split": true`` makes a cut leave the cut-off side as a piece of its own (the default
+for a net already in pieces).  Answer: ``{"job": NEWID, "net": ITEM}``
 with ITEM as a gallery item plus ``"marks"``, ``"moved"``, ``"cut"``, ``"joined"``
 and ``"undo"`` (edits that undo can take back).
 """
@@ -103,8 +105,14 @@ def apply_edit(job: Any, data: dict[str, Any]) -> dict[str, Any]:
         extra: dict[str, Any] = {"moved": 0, "cut": [], "joined": []}
     else:
         a, b = _edge(data[kind], kind)
-        edit = cut_edge if kind == "cut" else join_edge
-        result = edit(grid, _pieces(net), a, b, constraints=marks if isinstance(marks, EdgeConstraints) else None)
+        split = data.get("split")
+        if split is not None and not isinstance(split, bool):
+            raise InvalidShapeError(f"split: expected true or false, got {split!r:.20}")
+        known = marks if isinstance(marks, EdgeConstraints) else None
+        if kind == "cut":
+            result = cut_edge(grid, _pieces(net), a, b, constraints=known, split=split)
+        else:
+            result = join_edge(grid, _pieces(net), a, b, constraints=known)
         history = (history + [(net, marks)])[-MAX_UNDO:]
         net = result.pieces[0] if len(result.pieces) == 1 else result.pieces
         marks = result.marks
@@ -138,7 +146,8 @@ def edit_route(jobs: Callable[[], Any]) -> Callable[[Any], Awaitable[dict[str, A
         source = jobs().get(data["job"]) if len(data["job"]) <= 40 else None
         if source is None:
             raise InvalidShapeError(f"job: no job {data['job'][:20]!r} in this session")
-        if source.state != "done":
+        # an edit's job holds its net from the start (the pool only marks it done)
+        if source.state != "done" and source.kind != "edit":
             raise InvalidShapeError(f"job: job {source.id} has not finished")
         made = await run_in_threadpool(apply_edit, source, data)
         record, item = made["record"], made["item"]

@@ -3,8 +3,10 @@
 A net is a layout of unit cells, each face on one cell with one of four
 rotations, held together by its folds.  Cutting a fold splits the fold tree in
 two; the smaller side is lifted off and hung again, rigidly, across another
-edge to the rest at the nearest place where its cells are free (or, in a net of
-several pieces, left as a piece of its own).  Joining a seam makes it a fold:
+edge to the rest at the nearest place where its cells are free; where it fits
+whole nowhere, its subtrees go back one by one, and failing that the small
+branches of the rest in its way are lifted and hung again after it (in a net of
+several pieces, or with ``split``, it is left as a piece of its own instead).  Joining a seam makes it a fold:
 inside one piece that would close a loop, so a fold on the tree path between
 the two faces is cut and the smaller side swings round to meet across the
 joined edge; between two pieces the smaller piece moves to meet the other.
@@ -339,9 +341,10 @@ class _Hanger:
         below: dict[int, list[int]] = {}
         for i in reversed(order):
             below[i] = [i] + [f for c in children[i] for f in below[c]]
+        mark = len(self.log)
         if self._hang(children, below, root, hinge):
             return True
-        self.back_to(0)
+        self.back_to(mark)
         return False
 
     def _hang(self, children: dict[int, list[int]], below: dict[int, list[int]], s: int,
@@ -382,9 +385,12 @@ def _boundary(lay: _Layout, moved: npt.NDArray[np.int64], rest_mask: npt.NDArray
     return w[keep], k[keep], y[keep], pos[keep]
 
 
-def _rebuild(lay: _Layout, marks: EdgeConstraints, *, moved: int, cut: list[Edge], joined: list[Edge],
+def _rebuild(lay: _Layout, marks: EdgeConstraints, before: set[tuple[int, int]], *, moved: int,
              piece_of: npt.NDArray[np.int64]) -> EditResult:
-    """Nets from the arrays (folds: every edge that meets in the plane), validated with the marks."""
+    """Nets from the arrays (folds: every edge that meets in the plane), validated with the marks.
+
+    ``before`` are the folded pairs before the edit, to tell which edges it cut and joined.
+    """
     sg = lay.sg
     f = sg.face_count
     pieces = []
@@ -398,7 +404,7 @@ def _rebuild(lay: _Layout, marks: EdgeConstraints, *, moved: int, cut: list[Edge
     report = validate(lay.grid, pieces, strict=False, constraints=marks)
     if not report.ok:
         raise UnfoldError(f"the repaired net is not valid: {report.problems[0]}")
-    return EditResult(tuple(pieces), marks, moved, tuple(cut), tuple(joined))
+    return _with_changes(EditResult(tuple(pieces), marks, moved, (), ()), lay, before)
 
 
 def _marks_with(marks: EdgeConstraints | None, edge: Edge, name: str) -> EdgeConstraints:
@@ -459,19 +465,93 @@ def cut_edge(grid: npt.ArrayLike, net: Net | Sequence[Net], face_a: Face, face_b
     before = {_pair(i, j) for i, j in lay.fold}
     if split:
         piece_of[moved] = int(lay.piece.max()) + 1
-        result = _rebuild(lay, marks, moved=0, cut=[], joined=[], piece_of=_renumber(piece_of))
-        return _with_changes(result, lay, before, edge)
+        return _rebuild(lay, marks, before, moved=0, piece_of=_renumber(piece_of))
     placed = np.zeros(lay.sg.face_count, dtype=bool)
     placed[members] = True
     placed[moved] = False
-    hanger = _Hanger(lay, placed, cut_pairs, keep, [MAX_TRIES])
-    root = b if b in set(moved.tolist()) else a
-    if not hanger.hang(tree, moved, root):
+    tries = [MAX_TRIES]
+    hanger = _Hanger(lay, placed, cut_pairs, keep, tries)
+    root, other = (b, a) if b in set(moved.tolist()) else (a, b)
+    if not hanger.hang(tree, moved, root) and not (
+            hanger := _make_room(lay, tree, moved, other, np.setdiff1d(members, moved), cut_pairs, keep, tries)):
         raise UnfoldError(f"no room to re-attach the {moved.size} faces cut off by edge {_name(edge)}: "
                           "every free place overlaps the rest or closes a cut edge; cut an edge nearer the outline, "
                           "or allow several pieces")
-    result = _rebuild(lay, marks, moved=hanger.moved(), cut=[], joined=[], piece_of=piece_of)
-    return _with_changes(result, lay, before, edge)
+    return _rebuild(lay, marks, before, moved=hanger.moved(), piece_of=piece_of)
+
+
+#: Faces of the rest an edit may lift out of the way and hang again, and the places of the side it tries.
+MAX_LIFTED = 96
+_ROOM_PLACES = 24
+
+
+def _make_room(lay: _Layout, tree: dict[int, list[int]], moved: npt.NDArray[np.int64], at: int,
+               rest: npt.NDArray[np.int64], cut: set[tuple[int, int]], keep: set[tuple[int, int]],
+               tries: list[int], moves: list[_Move] | None = None) -> _Hanger | None:
+    """Hang the cut-off side where small branches of the rest are in the way, and hang those again.
+
+    For each place of the whole side, nearest first, the faces in its way are
+    found, and each with the branch below it (as the fold tree hangs from the
+    face ``at`` the side was cut from, so nothing is left hanging) is lifted; the
+    side takes the place, then each branch goes back on its own fold if that is
+    free, else to the nearest free place, piece by piece.  Kept folds are never
+    opened; at most :data:`MAX_LIFTED` faces are lifted.  ``moves`` gives the places
+    to try instead (a join has one).  None when no place works.
+    """
+    inside = set(rest.tolist())
+    up = {at: -1}
+    order = [at]
+    for i in order:  # breadth first: the list grows while it is read
+        for j in tree[i]:
+            if j in inside and j not in up:
+                up[j] = i
+                order.append(j)
+    below: dict[int, list[int]] = {i: [] for i in order}
+    for i in order[1:]:
+        below[up[i]].append(i)
+    owner = dict(zip(_keys(lay.cell[rest]).tolist(), rest.tolist()))
+    placed = np.zeros(lay.sg.face_count, dtype=bool)
+    placed[rest] = True
+    if moves is None:
+        moves = _Hanger(lay, placed, cut, keep, tries).nearest(moved)[:_ROOM_PLACES]
+    for mv in moves:
+        if tries[0] <= 0:
+            break
+        blockers = sorted({owner[k] for k in _keys(mv.cell).tolist() if k in owner})
+        if not blockers or at in blockers:
+            continue
+        # the topmost blockers: a blocker under another one's branch goes with it
+        lifted: dict[int, list[int]] = {}
+        for z in sorted(blockers, key=order.index):
+            x = z
+            while x != -1 and x not in lifted:
+                x = up[x]
+            if x == -1:
+                sub, stack = [], [z]
+                while stack:
+                    i = stack.pop()
+                    sub.append(i)
+                    stack.extend(below[i])
+                lifted[z] = sub
+        if sum(len(f) for f in lifted.values()) > MAX_LIFTED or any(_pair(z, up[z]) in keep for z in lifted):
+            continue
+        free = placed.copy()
+        for sub in lifted.values():
+            free[sub] = False
+        hanger = _Hanger(lay, free, cut, keep, tries)
+        ok = hanger.fits(mv)
+        if ok:
+            hanger.commit(mv)
+            for z, sub in lifted.items():
+                branch = np.array(sorted(sub), dtype=np.int64)
+                k = int(np.flatnonzero(lay.sg.neighbor[z] == up[z])[0])
+                if not (hanger.hang(tree, branch, z, (z, k)) or hanger.hang(tree, branch, z, None)):
+                    ok = False
+                    break
+        if ok:
+            return hanger
+        hanger.undo()
+    return None
 
 
 def join_edge(grid: npt.ArrayLike, net: Net | Sequence[Net], face_a: Face, face_b: Face, *,
@@ -547,9 +627,16 @@ def join_edge(grid: npt.ArrayLike, net: Net | Sequence[Net], face_a: Face, face_
             if pa != pb:
                 piece_of[moved] = min(pa, pb)
                 piece_of = _renumber(piece_of)
-            result = _rebuild(lay, marks, moved=hanger.moved(), cut=[], joined=[], piece_of=piece_of)
-            return _with_changes(result, lay, before, edge)
+            return _rebuild(lay, marks, before, moved=hanger.moved(), piece_of=piece_of)
         hanger.undo()
+    if pa == pb:
+        # no side fits as it swings: lift the small branches in the way of the smallest ones
+        for moved, u, k, fixed in choices[:4]:
+            v = int(lay.sg.neighbor[u, k])
+            hanger = _make_room(lay, tree, moved, v, fixed, cut_pairs, keep, tries,
+                                moves=[_hinge_move(lay, moved, u, k)])
+            if hanger is not None:
+                return _rebuild(lay, marks, before, moved=hanger.moved(), piece_of=piece_of)
     if pa != pb:
         raise UnfoldError(f"no room to join edge {_name(edge)}: the two pieces would overlap")
     raise UnfoldError(f"no room to join edge {_name(edge)}: every way to open the loop it closes makes "
@@ -584,7 +671,7 @@ def _renumber(piece_of: npt.NDArray[np.int64]) -> npt.NDArray[np.int64]:
     return new[np.searchsorted(labels, piece_of)]
 
 
-def _with_changes(result: EditResult, lay: _Layout, before: set[tuple[int, int]], edge: Edge) -> EditResult:
+def _with_changes(result: EditResult, lay: _Layout, before: set[tuple[int, int]]) -> EditResult:
     """Record which edges changed from fold to cut and back."""
     sg = lay.sg
     after: set[tuple[int, int]] = set()

@@ -337,7 +337,10 @@ export class NetView {
     if (this.busy || !this.job) return;
     const L = this.layout, j = L.neighbor[4 * i + k];
     const kind = this.foldsSet.has(pairKey(i, j)) ? 'cut' : 'join';
-    await this._send({[kind]: [L.faces[i], L.faces[j]]}, kind);
+    // with pieces allowed (the Net tab's pieces choice), a cut leaves the cut-off side as a piece
+    const pieces = document.querySelector('[data-testid="net-pieces"]');
+    const split = kind === 'cut' && pieces && pieces.value === 'auto' ? {split: true} : {};
+    await this._send({[kind]: [L.faces[i], L.faces[j]], ...split}, kind);
   }
 
   async undo() { if (this.job && this.undos > 0) await this._send({undo: true}, 'undo'); }

@@ -157,28 +157,52 @@ export class Viewer {
       const q = [p[0] - c[0], p[1] - c[1], p[2] - c[2]];
       return [W / 2 + scale * dot(q, right), H / 2 - scale * dot(q, up)];
     };
-    const F = corners.length / 12, order = [];
+    const F = corners.length / 12, depth = new Float64Array(F), order = new Uint32Array(F);
     for (let i = 0; i < F; i++) {
       let d = 0;
-      for (let k = 0; k < 4; k++) d += dot([corners[12 * i + 3 * k] - c[0], corners[12 * i + 3 * k + 1] - c[1], corners[12 * i + 3 * k + 2] - c[2]], eye);
-      order.push([d, i]);
+      for (let k = 0; k < 4; k++) {
+        const o = 12 * i + 3 * k;
+        d += (corners[o] - c[0]) * eye[0] + (corners[o + 1] - c[1]) * eye[1] + (corners[o + 2] - c[2]) * eye[2];
+      }
+      depth[i] = d; order[i] = i;
     }
-    order.sort((a, b) => a[0] - b[0]);
+    order.sort((a, b) => depth[a] - depth[b]);
     this._polys = [];
+    // colours by brightness step, made once: a CSS colour string per face is most of a frame's cost
+    const colours = new Map();
+    const colour = (front, light) => {
+      const key = (front ? 1000 : 0) + Math.round(light * 200);
+      let hit = colours.get(key);
+      if (!hit) {
+        const base = front ? this.color : [205, 205, 205], l = Math.round(light * 200) / 200;
+        const rgb = base.map((v) => Math.min(255, Math.round(v * l)));
+        hit = [`rgb(${rgb[0]},${rgb[1]},${rgb[2]})`, `rgb(${rgb[0] * 0.7 | 0},${rgb[1] * 0.7 | 0},${rgb[2] * 0.7 | 0})`];
+        colours.set(key, hit);
+      }
+      return hit;
+    };
+    const edges = scale >= 6; // face edges only where faces are big enough to show them
     ctx.lineJoin = 'round'; ctx.lineWidth = Math.max(0.3, Math.min(1, scale / 25));
-    for (const [, i] of order) {
-      const p3 = [0, 1, 2, 3].map((k) => [corners[12 * i + 3 * k], corners[12 * i + 3 * k + 1], corners[12 * i + 3 * k + 2]]);
-      const e1 = p3[1].map((v, j) => v - p3[0][j]), e3 = p3[3].map((v, j) => v - p3[0][j]);
+    for (const i of order) {
+      const o = 12 * i;
+      const e1 = [corners[o + 3] - corners[o], corners[o + 4] - corners[o + 1], corners[o + 5] - corners[o + 2]];
+      const e3 = [corners[o + 9] - corners[o], corners[o + 10] - corners[o + 1], corners[o + 11] - corners[o + 2]];
       const n = normalize([e1[1] * e3[2] - e1[2] * e3[1], e1[2] * e3[0] - e1[0] * e3[2], e1[0] * e3[1] - e1[1] * e3[0]]);
       const front = dot(n, eye) > 0;
-      const light = shade(front ? n : n.map((v) => -v), eye);
-      const base = front ? this.color : [205, 205, 205];
-      const rgb = base.map((v) => Math.min(255, Math.round(v * light)));
-      const pts = p3.map(project);
-      ctx.beginPath(); ctx.moveTo(...pts[0]); for (let k = 1; k < 4; k++) ctx.lineTo(...pts[k]); ctx.closePath();
-      ctx.fillStyle = `rgb(${rgb[0]},${rgb[1]},${rgb[2]})`; ctx.fill();
-      ctx.strokeStyle = `rgb(${rgb[0] * 0.7 | 0},${rgb[1] * 0.7 | 0},${rgb[2] * 0.7 | 0})`; ctx.stroke();
-      if (front && names) this._polys.push({name: names[i], pts, p3});
+      const [fill, line] = colour(front, shade(front ? n : [-n[0], -n[1], -n[2]], eye));
+      const pts = [];
+      for (let k = 0; k < 4; k++) {
+        const q = [corners[o + 3 * k] - c[0], corners[o + 3 * k + 1] - c[1], corners[o + 3 * k + 2] - c[2]];
+        pts.push([W / 2 + scale * dot(q, right), H / 2 - scale * dot(q, up)]);
+      }
+      ctx.beginPath(); ctx.moveTo(pts[0][0], pts[0][1]);
+      for (let k = 1; k < 4; k++) ctx.lineTo(pts[k][0], pts[k][1]);
+      ctx.closePath(); ctx.fillStyle = fill; ctx.fill();
+      if (edges) { ctx.strokeStyle = line; ctx.stroke(); }
+      if (front && names) {
+        const p3 = [0, 1, 2, 3].map((k) => [corners[o + 3 * k], corners[o + 3 * k + 1], corners[o + 3 * k + 2]]);
+        this._polys.push({name: names[i], pts, p3});
+      }
     }
     this._drawHighlight(project);
   }
@@ -209,6 +233,7 @@ export class Viewer {
     const {canvas, ctx} = this;
     const W = canvas.width, H = canvas.height;
     const {tris, lo, hi} = this.mesh;
+    this._polys = []; // the plates are not faces of the net: nothing to pick
     const c = [0, 1, 2].map((j) => (lo[j] + hi[j]) / 2);
     const scale = this.zoom * 0.95 * Math.min(W, H) / (Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) || 1);
     const project = (p) => {
