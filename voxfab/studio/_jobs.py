@@ -108,6 +108,7 @@ class Jobs:
         self._jobs: OrderedDict[str, Job] = OrderedDict()
         self._queue: list[Job] = []  # submitted, not started, in order
         self._lock = threading.Lock()
+        self._closed = False
         self._tasks: queue.SimpleQueue[Callable[[], None] | None] = queue.SimpleQueue()
         self._workers = [threading.Thread(target=self._serve, name=f"studio-job-{i}", daemon=True)
                          for i in range(workers)]
@@ -198,8 +199,14 @@ class Jobs:
             shutil.rmtree(old.folder, ignore_errors=True)
 
     def shutdown(self, wait: float = 1.0) -> None:
-        """Cancel every job, stop the workers, and wait up to ``wait`` seconds for the running jobs to stop."""
+        """Cancel every job, stop the workers, and wait up to ``wait`` seconds for the running jobs to stop.
+
+        Once only: a second call (the server's own after its application's) returns at once.
+        """
         with self._lock:
+            if self._closed:
+                return
+            self._closed = True
             jobs = [j for j in self._jobs.values() if not j.ended]
         for job in jobs:
             self.cancel(job)
