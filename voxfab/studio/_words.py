@@ -11,6 +11,13 @@ from __future__ import annotations
 import re
 from typing import Any
 
+def _choose(name: str, value: str) -> str:
+    """``(choose fill: on)`` for the option ``fill=True``: the page's control and its setting."""
+    return f"(choose {name.replace('_', ' ')}: {ON_OFF.get(value, value)})"
+
+
+ON_OFF = {"True": "on", "False": "off"}
+
 #: (pattern, replacement) in order; each names what the artist sees on the page.
 _PLAIN: tuple[tuple[re.Pattern[str], str], ...] = (
     (re.compile(r"\s*\(pass draft=True to store it as a draft\)"),
@@ -22,6 +29,11 @@ _PLAIN: tuple[tuple[re.Pattern[str], str], ...] = (
      "\\1\u00d7\\2\u00d7\\3 voxels: it must reach right across the \\4-voxel box in at least one direction"),
     (re.compile(r"\bextents \((\d+), (\d+), (\d+)\) do not fit in (\d+)x\d+x\d+"),
      "\\1\u00d7\\2\u00d7\\3 voxels: larger than the \\4\u00b3 box"),
+    # the library's "Python name and CLI option" notes: "(pieces='auto', CLI --pieces auto)", "(CLI --fill)"
+    (re.compile(r"\(([a-z_]+)=(?:'([^']*)'|(\w+)), CLI --[a-z-]+(?: [^()\s]+)?\)"),
+     lambda m: _choose(m.group(1), m.group(2) or m.group(3))),  # type: ignore[list-item]
+    (re.compile(r"\s*\(CLI --[a-z-]+(?: [^()\s]+)?\)"), ""),
+    (re.compile(r"\bpieces='auto'"), "pieces: auto"),
     # CLI options in parentheses, e.g. "(--pieces auto)", "(--sheet)": the page's choice of that name
     (re.compile(r"\(--([a-z][a-z-]*)(?: ([^()\s]+))?\)"),
      lambda m: f"(choose {m.group(1).replace('-', ' ')}{': ' + m.group(2) if m.group(2) else ''})"),  # type: ignore[list-item]
