@@ -11,6 +11,7 @@ from __future__ import annotations
 import re
 from typing import Any
 
+
 def _choose(name: str, value: str) -> str:
     """``(choose fill: on)`` for the option ``fill=True``: the page's control and its setting."""
     return f"(choose {name.replace('_', ' ')}: {ON_OFF.get(value, value)})"
