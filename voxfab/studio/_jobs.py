@@ -66,12 +66,21 @@ class Job:
     cancel: threading.Event = field(default_factory=threading.Event)
     place: int = 0
     detail: str = ""
+    counted: bool = False  # the job reports progress in steps of its own (more than one)
 
     def step(self, done: int, total: int, message: str = "") -> None:
         """Report progress (called from the worker thread; plain attribute writes)."""
         self.done, self.total = done, max(total, 1)
+        self.counted = self.counted or total > 1
         if message:
             self.message = message
+
+    def heard(self, done: int, total: int | None, desc: str) -> None:
+        """The library's own progress (its outermost meter), shown unless the job counts in steps of its own."""
+        if self.counted or not total:
+            return
+        self.done, self.total = min(done, total), total
+        self.message = desc
 
     @property
     def ended(self) -> bool:
@@ -138,7 +147,7 @@ class Jobs:
                 job.state, job.message = "running", ""
             job.started = time.monotonic()
             try:
-                with cancel_scope(job.cancel):
+                with cancel_scope(job.cancel, report=job.heard):
                     work(job)
                 job.state = "cancelled" if job.cancel.is_set() else "done"
             except VoxfabError as exc:
