@@ -149,7 +149,10 @@ class Jobs:
             try:
                 with cancel_scope(job.cancel, report=job.heard):
                     work(job)
-                job.state = "cancelled" if job.cancel.is_set() else "done"
+                if job.cancel.is_set():  # it ended before it saw the cancel: its result is not wanted
+                    job.message, job.state = "cancelled", "cancelled"
+                else:
+                    job.state = "done"
             except VoxfabError as exc:
                 if job.cancel.is_set():
                     job.message, job.state = "cancelled", "cancelled"
