@@ -185,3 +185,60 @@ def test_a_waiting_job_shows_its_place_and_cancel_stops_it(server, browser):
     finally:
         for j in busy:
             _post(f"{server['url']}/api/jobs/{j}/cancel", {})
+
+
+def test_voxfab_studio_shape_opens_the_page_on_it(browser, tmp_path):
+    """``voxfab studio queen.npy``: the page opens on the queen, not on its default drawing."""
+    import numpy as np
+
+    from .test_server import _start
+
+    queen = make_shape(load_recipe(ROOT / "recipes" / "chess" / "queen.toml")).grid
+    np.save(tmp_path / "queen.npy", queen)
+    proc, url = _start(tmp_path, str(tmp_path / "queen.npy"))
+    try:
+        browser.get(url + "/")
+        wait(browser, lambda d: d.find_element("id", "shape-name").text == "queen.npy", what="the queen opened")
+        assert _volume(browser) == int(queen.sum())
+        assert browser.find_element("id", "wf").text == "well formed"
+        assert "Opened queen.npy" in browser.find_element("id", "message").text
+        time.sleep(0.5)  # no preview of the default drawing replaces it
+        assert _volume(browser) == int(queen.sum()) and attr(browser, "latency", "data-count") is None
+        browser.save_screenshot(str(SHOTS / "fix-studio-shape.png"))
+    finally:
+        import signal
+
+        proc.send_signal(signal.SIGINT)
+        proc.wait(10)
+
+
+def test_the_chosen_net_and_its_marks_go_when_the_shape_changes(server, browser):
+    from selenium.webdriver import ActionChains
+
+    from .test_browser import _gallery, set_expression
+
+    open_page(browser, server)
+    set_expression(browser, "src-generatrix", "x = 0.12")
+    wait(browser, lambda d: _volume(d) < 400, what="the slim column")
+    tab(browser, "net")
+    _gallery(browser, 2)
+    browser.find_element("css selector", '[data-testid="net-generate"], #net-go').click()
+    items = '[data-testid="net-gallery-item"], #net-gallery figure'
+    wait(browser, lambda d: len(d.find_elements("css selector", items)) == 2, timeout=90, what="two nets")
+    browser.find_elements("css selector", items)[0].click()
+    canvas = browser.find_element("id", "net-canvas")
+    for dx, dy in ((0, 0), (7, 3), (-5, 9), (3, -11), (12, 12)):
+        ActionChains(browser).move_to_element_with_offset(canvas, dx, dy).click().perform()
+        if browser.find_element("id", "marks-count").text.startswith("1 cut"):
+            break
+    assert browser.find_element("id", "marks-count").text == "1 cut, 0 kept"
+    assert attr(browser, "net-chosen-label", "data-index") == "0"
+    # The shape changes (a hand edit): its nets, the chosen one and the marks on it go.
+    tab(browser, "edit")
+    _click_cell(browser, 0, 0)
+    tab(browser, "net")
+    wait(browser, lambda d: not d.find_elements("css selector", items), what="the gallery gone")
+    assert browser.find_element("id", "net-chosen-label").text == ""
+    assert browser.find_element("id", "marks-count").text == "0 cut, 0 kept"
+    assert "new net" in attr(browser, "make-net", "textContent")
+    browser.save_screenshot(str(SHOTS / "fix-net-forgotten.png"))

@@ -117,5 +117,10 @@ def test_cli_options_in_messages_become_the_pages_choices():
     said = explained(cli)
     assert "--" not in said["text"] and "(choose pieces: auto)" in said["text"] and "(choose sheet)" in said["text"]
     assert said["detail"] == cli
+    engine = ("no one-piece net of the 1270-face surface in 30 s; raise the timeout, or allow several pieces "
+              "(pieces='auto', CLI --pieces auto); fill the cavities (fill=True, CLI --fill)")
+    words = plain(engine)
+    assert "CLI" not in words and "'auto'" not in words and "=True" not in words
+    assert "(choose pieces: auto)" in words and "(choose fill: on)" in words
     assert plain("a message without terms") == "a message without terms"
     assert "detail" not in explained("a message without terms")

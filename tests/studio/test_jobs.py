@@ -122,3 +122,50 @@ def test_a_gallery_waiting_in_the_queue_shows_its_place(client, queen):
             client.post(f"/api/jobs/{j}/cancel")
         for j in ids:
             assert wait_job(client, j, limit=10)["state"] in ("cancelled", "done")
+
+
+def test_a_job_without_steps_of_its_own_shows_the_librarys_progress(tmp_path, queen):
+    """A job that counts nothing itself (one file to make) shows the library's outermost meter: the plates."""
+    from voxfab._shared.progress import meter
+
+    jobs = Jobs(tmp_path, workers=1)
+    seen = []
+
+    def work(job):
+        job.step(0, 1, "making plates.zip")
+        with meter(5, desc="plates") as bar:
+            for _ in range(5):
+                with meter(3, desc="inner") as inner:  # nested: not the job's figure
+                    inner.update(3)
+                bar.update()
+                seen.append((job.done, job.total, job.message))
+
+    try:
+        job = jobs.submit("make", work)
+        end = time.monotonic() + 10
+        while not job.ended and time.monotonic() < end:
+            time.sleep(0.01)
+        assert job.state == "done"
+        assert seen == [(i, 5, "plates") for i in range(1, 6)]
+    finally:
+        jobs.shutdown()
+
+
+def test_a_job_counting_its_own_steps_keeps_them(tmp_path):
+    from voxfab._shared.progress import meter
+
+    jobs = Jobs(tmp_path, workers=1)
+
+    def work(job):
+        job.step(1, 8, "1 of 8 nets")
+        with meter(100, desc="net: faces placed") as bar:
+            bar.update(50)
+
+    try:
+        job = jobs.submit("nets", work)
+        end = time.monotonic() + 10
+        while not job.ended and time.monotonic() < end:
+            time.sleep(0.01)
+        assert (job.done, job.total, job.message) == (1, 8, "1 of 8 nets")
+    finally:
+        jobs.shutdown()

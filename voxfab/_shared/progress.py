@@ -6,7 +6,7 @@ import contextlib
 import sys
 import threading
 import time
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from typing import Any, TypeVar
 
 T = TypeVar("T")
@@ -31,11 +31,17 @@ class Meter:
         self._live = ENABLED and sys.stderr.isatty()
         self._start = time.monotonic()
         self._bar: Any = None
+        # Nesting within a cancel_scope: only the outermost meter reports to the scope's watcher.
+        self._level = getattr(_local, "depth", 0)
+        _local.depth = self._level + 1
 
     def update(self, n: int = 1) -> None:
         """Add ``n`` units of work done (and stop here if the work was cancelled, see :func:`check_cancelled`)."""
         check_cancelled()
         self.done += n
+        report = getattr(_local, "report", None)
+        if report is not None and self._level == 0:
+            report(self.done, self.total, self.desc)
         if not self._live:
             return
         if self._bar is not None:
@@ -46,6 +52,7 @@ class Meter:
             self._bar = tqdm(total=self.total, desc=self.desc, initial=self.done, file=sys.stderr, leave=False)
 
     def close(self) -> None:
+        _local.depth = self._level
         if self._bar is not None:
             self._bar.close()
             self._bar = None
@@ -76,19 +83,21 @@ _local = threading.local()
 
 
 @contextlib.contextmanager
-def cancel_scope(event: threading.Event) -> Iterator[None]:
+def cancel_scope(event: threading.Event,
+                 report: Callable[[int, int | None, str], None] | None = None) -> Iterator[None]:
     """Within this block, on this thread, :func:`check_cancelled` raises once ``event`` is set.
 
     The studio runs each job in a scope of its own event; long loops of the
     library (the net search, every :class:`Meter`) call :func:`check_cancelled`
     between chunks of work, so a cancelled job stops within a chunk.
+    ``report(done, total, desc)``, if given, hears the outermost meter's progress.
     """
-    before = getattr(_local, "event", None)
-    _local.event = event
+    before = (getattr(_local, "event", None), getattr(_local, "report", None), getattr(_local, "depth", 0))
+    _local.event, _local.report, _local.depth = event, report, 0
     try:
         yield
     finally:
-        _local.event = before
+        _local.event, _local.report, _local.depth = before
 
 
 def check_cancelled() -> None:

@@ -66,12 +66,21 @@ class Job:
     cancel: threading.Event = field(default_factory=threading.Event)
     place: int = 0
     detail: str = ""
+    counted: bool = False  # the job reports progress in steps of its own (more than one)
 
     def step(self, done: int, total: int, message: str = "") -> None:
         """Report progress (called from the worker thread; plain attribute writes)."""
         self.done, self.total = done, max(total, 1)
+        self.counted = self.counted or total > 1
         if message:
             self.message = message
+
+    def heard(self, done: int, total: int | None, desc: str) -> None:
+        """The library's own progress (its outermost meter), shown unless the job counts in steps of its own."""
+        if self.counted or not total:
+            return
+        self.done, self.total = min(done, total), total
+        self.message = desc
 
     @property
     def ended(self) -> bool:
@@ -110,6 +119,7 @@ class Jobs:
         self._jobs: OrderedDict[str, Job] = OrderedDict()
         self._queue: list[Job] = []  # submitted, not started, in order
         self._lock = threading.Lock()
+        self._closed = False
         self._tasks: queue.SimpleQueue[Callable[[], None] | None] = queue.SimpleQueue()
         self._workers = [threading.Thread(target=self._serve, name=f"studio-job-{i}", daemon=True)
                          for i in range(workers)]
@@ -139,9 +149,12 @@ class Jobs:
                 job.state, job.message = "running", ""
             job.started = time.monotonic()
             try:
-                with cancel_scope(job.cancel):
+                with cancel_scope(job.cancel, report=job.heard):
                     work(job)
-                job.state = "cancelled" if job.cancel.is_set() else "done"
+                if job.cancel.is_set():  # it ended before it saw the cancel: its result is not wanted
+                    job.message, job.state = "cancelled", "cancelled"
+                else:
+                    job.state = "done"
             except VoxfabError as exc:
                 if job.cancel.is_set():
                     job.message, job.state = "cancelled", "cancelled"
@@ -203,8 +216,14 @@ class Jobs:
             shutil.rmtree(old.folder, ignore_errors=True)
 
     def shutdown(self, wait: float = 1.0) -> None:
-        """Cancel every job, stop the workers, and wait up to ``wait`` seconds for the running jobs to stop."""
+        """Cancel every job, stop the workers, and wait up to ``wait`` seconds for the running jobs to stop.
+
+        Once only: a second call (the server's own after its application's) returns at once.
+        """
         with self._lock:
+            if self._closed:
+                return
+            self._closed = True
             jobs = [j for j in self._jobs.values() if not j.ended]
         for job in jobs:
             self.cancel(job)

@@ -60,8 +60,9 @@ def serve(*, host: str = "127.0.0.1", port: int = 8765, repo: Path, open_browser
     print(f"voxfab studio: {url}  (repository {repo}{opened}; Ctrl+C stops)", flush=True)
     if open_browser:
         threading.Timer(0.8, webbrowser.open, args=(url,)).start()
-    server = _server_class()(uvicorn.Config(app, host=host, port=port, log_level="warning", lifespan="on",
-                                                                      timeout_graceful_shutdown=SHUTDOWN_GRACE))
+    config = uvicorn.Config(app, host=host, port=port, log_level="warning", lifespan="on",
+                            timeout_graceful_shutdown=SHUTDOWN_GRACE)
+    server = _server_class()(config)
     server.on_stop = app.app.state.cancel_jobs
     try:
         server.run()

@@ -9,10 +9,19 @@ words on screen name the page's own controls.
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 from typing import Any
 
+
+def _choose(name: str, value: str) -> str:
+    """``(choose fill: on)`` for the option ``fill=True``: the page's control and its setting."""
+    return f"(choose {name.replace('_', ' ')}: {ON_OFF.get(value, value)})"
+
+
+ON_OFF = {"True": "on", "False": "off"}
+
 #: (pattern, replacement) in order; each names what the artist sees on the page.
-_PLAIN: tuple[tuple[re.Pattern[str], str], ...] = (
+_PLAIN: tuple[tuple[re.Pattern[str], str | Callable[[re.Match[str]], str]], ...] = (
     (re.compile(r"\s*\(pass draft=True to store it as a draft\)"),
      " (tick \u201cas a draft if not well formed\u201d to keep it anyway)"),
     (re.compile(r"\b(\d+) 6-connected pieces, expected 1"),
@@ -22,9 +31,14 @@ _PLAIN: tuple[tuple[re.Pattern[str], str], ...] = (
      "\\1\u00d7\\2\u00d7\\3 voxels: it must reach right across the \\4-voxel box in at least one direction"),
     (re.compile(r"\bextents \((\d+), (\d+), (\d+)\) do not fit in (\d+)x\d+x\d+"),
      "\\1\u00d7\\2\u00d7\\3 voxels: larger than the \\4\u00b3 box"),
+    # the library's "Python name and CLI option" notes: "(pieces='auto', CLI --pieces auto)", "(CLI --fill)"
+    (re.compile(r"\(([a-z_]+)=(?:'([^']*)'|(\w+)), CLI --[a-z-]+(?: [^()\s]+)?\)"),
+     lambda m: _choose(m.group(1), m.group(2) or m.group(3))),
+    (re.compile(r"\s*\(CLI --[a-z-]+(?: [^()\s]+)?\)"), ""),
+    (re.compile(r"\bpieces='auto'"), "pieces: auto"),
     # CLI options in parentheses, e.g. "(--pieces auto)", "(--sheet)": the page's choice of that name
     (re.compile(r"\(--([a-z][a-z-]*)(?: ([^()\s]+))?\)"),
-     lambda m: f"(choose {m.group(1).replace('-', ' ')}{': ' + m.group(2) if m.group(2) else ''})"),  # type: ignore[list-item]
+     lambda m: f"(choose {m.group(1).replace('-', ' ')}{': ' + m.group(2) if m.group(2) else ''})"),
     (re.compile(r"\bk-flake\b"), "wall"),
 )
 

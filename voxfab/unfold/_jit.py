@@ -18,4 +18,16 @@ if __name__.rpartition(".")[0].endswith("._pure"):
         return lambda f: f
 
 else:
-    from numba import njit  # noqa: F401
+    from numba import njit as _numba_njit
+
+    def njit(*args, **kwargs):  # noqa: ANN002, ANN003, ANN201 - mirrors numba.njit
+        """``numba.njit`` releasing the GIL (``nogil=True``) unless told otherwise.
+
+        The kernels touch only their own arrays, so they may run while other
+        threads run Python: a server searching nets on its worker threads still
+        answers requests, notices a cancel and stops on Ctrl-C at once (a compiled
+        annealing chunk of the queen holds the CPU for about 0.4 s), and two
+        searches share two cores.
+        """
+        kwargs.setdefault("nogil", True)
+        return _numba_njit(*args, **kwargs)

@@ -38,7 +38,9 @@ _CHUNK = 4000
 _BUDGET_PER_FACE = 120
 _MOVES_PER_FACE = 15
 _PATIENCE_PER_FACE = 1.5
-_ANNEAL_CHUNK = 20000
+#: (The run continues across calls, so any chunk gives the same net; 500 moves of the queen take
+#: about 10 ms, 40 ms on a busy machine, so the clock and a cancel are seen that soon.)
+_ANNEAL_CHUNK = 500
 #: Largest subtree one annealing move may remove.
 _RUIN_CAP = 20  # most moves
 _BIG_CAP = 200
