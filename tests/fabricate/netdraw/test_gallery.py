@@ -12,6 +12,7 @@ from voxfab.fabricate.netdraw import (
     DrawingOptions,
     NetOptions,
     draw_net,
+    draw_pieces,
     gallery_json,
     gallery_options,
     net_gallery,
@@ -122,6 +123,10 @@ def test_pieces_share_one_layout_and_sit_apart_on_their_sheets() -> None:
     assert lay["parent"].count(-1) == len(item.pieces)
     assert js["placement"]["sheets"] == js["fit"]["sheets"] > 1
     _check_on_sheets(lay, js["placement"])
+    # The seam labels are the ones the drawing of the pieces prints.
+    drawn = draw_pieces(grid, item.pieces, options=gallery.options)
+    assert sorted(x for v in lay["labels"].values() for x in v.split()) == sorted(drawn.seam_labels)
+    assert len(drawn.sheets) == js["placement"]["sheets"]
 
 
 def test_the_queen_on_a4_says_what_would_work() -> None:

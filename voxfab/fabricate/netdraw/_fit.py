@@ -159,7 +159,7 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     SheetFitError
         When no one-piece net fits and pieces were not allowed.
     """
-    from voxfab.unfold import NoFitError, unfold, unfold_many
+    from voxfab.unfold import NoFitError
 
     search = {k: v for k, v in search.items() if k != "fit"}
     faces = _surface_faces(grid, bool(search.get("fill", False)))
@@ -181,22 +181,17 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     failed: UnfoldError | None = None
     if room:
         try:
-            if count > 1 or progress is not None or cancelled is not None:
-                found = unfold_many(grid, count=count, rng=rng, fit=fit, budget=budget, progress=progress,
-                                    cancelled=cancelled, **search)
-            else:
-                found = [unfold(grid, rng=rng, fit=fit, **search)]
+            found = _nets(grid, count, rng, budget, progress, cancelled, {**search, "fit": fit})
         except UnfoldError as err:
             failed = err
     if found is None:
         if pieces == "auto":
             return SheetNets(_piece_nets(grid, rng, fit, count, budget, progress, cancelled, search, notes),
                              options, notes)
-        if failed is not None and not isinstance(failed, NoFitError) and count > 1:
-            raise failed  # every seed ran out of time: not a question of the sheet
-        if show_unfit and (failed is None or isinstance(failed, NoFitError)):
-            found = unfold_many(grid, count=count, rng=rng, budget=budget, progress=progress, cancelled=cancelled,
-                                **search)
+        if failed is not None and not isinstance(failed, NoFitError):
+            raise failed  # out of time, or marks that leave no net: not a question of the sheet
+        if show_unfit:
+            found = _nets(grid, count, rng, budget, progress, cancelled, search)
             notes.append(f"no one-piece net fits {options.sheet} at {options.pitch:g} mm faces")
         else:
             extent = _measured_extent(failed, grid, rng, search)
@@ -204,6 +199,20 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     if count > 1 and len(found) < count:
         notes.append(f"{len(found)} distinct nets found of the {count} asked for")
     return SheetNets([[n] for n in found], options, notes)
+
+
+def _nets(grid: Any, count: int, rng: int, budget: float, progress: Callable[[int, int], None] | None,
+          cancelled: Callable[[], bool] | None, search: dict[str, Any]) -> list[Net]:
+    """One-piece nets: the net of seed ``rng`` (``voxfab net``), or ``count`` distinct ones (``--count``)."""
+    from voxfab.unfold import unfold, unfold_many
+
+    if count > 1:
+        return unfold_many(grid, count=count, rng=rng, budget=budget, progress=progress, cancelled=cancelled,
+                           **search)
+    found = [unfold(grid, rng=rng, **search)]
+    if progress is not None:
+        progress(1, 1)
+    return found
 
 
 def _piece_nets(grid: Any, rng: int, fit: tuple[int, int], count: int, budget: float,
