@@ -90,9 +90,9 @@ def measured(path: Path, face: float) -> tuple[float, float]:
 
 
 def bench_recipes(tmp: Path) -> None:
+    from voxfab.fabricate import BuildContext, outputs
     from voxfab.recipe import load_recipe
     from voxfab.recipe._build import make_shape
-    from voxfab.recipe._outputs import outputs
 
     kind = outputs()["net"]
     print(f"\n{'recipe':<18}{'faces':>7}{'face mm':>9}{'sheet':>10}{'pieces':>7}{'sheets':>7}{'fill %':>10}"
@@ -102,13 +102,13 @@ def bench_recipes(tmp: Path) -> None:
         spec = next((o for o in recipe.outputs if o.name == "net"), None)
         if spec is None:
             continue
-        settings = kind.parse(dict(spec.options))
+        settings = kind.settings(dict(spec.options))
         settings = type(settings)(settings.net.replace(formats=("dxf",)), settings.drawing)
         shape = make_shape(recipe)
         out = tmp / recipe.name
         out.mkdir()
         t = time.perf_counter()
-        made = kind.run(shape, settings, out, name=recipe.name, seed=recipe.seed, recipe=recipe)
+        made = kind.run(shape, settings, out, name=recipe.name, seed=recipe.seed, context=BuildContext())
         elapsed = time.perf_counter() - t
         r = made.report
         text, tab = measured(out / made.files[-1].path, r["face_size_mm"])

@@ -22,6 +22,7 @@ __all__ = [
     "FabricationError",
     "LimitError",
     "OutputError",
+    "CancelledError",
     "VoxfabWarning",
     "EXIT_CODES",
     "quote",
@@ -132,6 +133,10 @@ class OutputError(InvalidShapeError):
 
     An output path is a parameter: its exit status is that of :class:`InvalidShapeError`.
     """
+
+
+class CancelledError(VoxfabError):
+    """Work stopped because it was asked to (the studio's Cancel, a server shutting down)."""
 
 
 class VoxfabWarning(UserWarning):

@@ -12,7 +12,6 @@ import pytest
 
 from voxfab import io
 from voxfab.cli import main
-from voxfab.cli._common import load_shape
 from voxfab.repo import Repository
 from voxfab.shape import crop, examples, mirror, rotate, volume
 
@@ -121,15 +120,6 @@ def test_show_text_and_list_text(tmp_path: Path, files: dict[str, Path], capsys)
     assert f"name: {names[0]}\n" in text
     assert "rank: 1\n" in text and "draft: no\n" in text
     assert f"meta.source: {files['b']}\n" in text
-
-
-def test_load_shape_reads_repository_names(tmp_path: Path, files: dict[str, Path]) -> None:
-    repo = tmp_path / "r.sqlite"
-    with Repository(repo) as r:
-        name = r.add(io.read(files["a"]).grid).name
-    shape, loaded_name, notes = load_shape(name, repo)
-    assert loaded_name == name and notes == []
-    assert np.array_equal(shape.grid, crop(io.read(files["a"]).grid))
 
 
 def test_default_repository_in_the_working_folder(tmp_path: Path, files: dict[str, Path]) -> None:

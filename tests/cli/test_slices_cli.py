@@ -36,7 +36,7 @@ def test_cli_reports_bad_input_as_a_voxfab_error(tmp_path, capsys, monkeypatch) 
     np.save(tmp_path / "b.npy", examples.box(2, 2, 2))
     monkeypatch.chdir(tmp_path)
     assert main(["slices", "b.npy", "-o", "out", "--sheet", "big"]) == 3
-    assert capsys.readouterr().err.startswith("voxfab: error: --sheet: expected WIDTHxHEIGHT")
+    assert capsys.readouterr().err.startswith("voxfab: error: --sheet: expected A5, A4")
     assert main(["slices", "b.npy", "-o", "out", "--pitch", "3", "--sheet", "5x5", "--margin", "1"]) == 10
     assert "does not fit" in capsys.readouterr().err
     assert main(["slices", "b.npy", "-o", "out", "--thickness", "-1"]) == 3

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from PIL import Image, ImageDraw
 
-from voxfab.digitize import load_curve, polyline_curve, surface
+from voxfab.digitize import load_curve, open_star_curve, polyline_curve, surface
 from voxfab.errors import FormatError, InvalidShapeError
 
 SQUARE = [[-3.0, -2.0], [3.0, -2.0], [3.0, 2.0], [-3.0, 2.0]]
@@ -114,3 +114,47 @@ def test_missing_and_empty_bitmaps(tmp_path):
     (tmp_path / "bad.png").write_bytes(b"not a png")
     with pytest.raises(FormatError, match="cannot read image"):
         load_curve("bad.png", base_dir=tmp_path)
+
+
+def test_an_open_stroke_is_part_of_a_closed_star_shaped_curve() -> None:
+    # 270° of a circle of radius 2: its box is centred on the circle's centre, the axis
+    t = np.radians(np.linspace(-90.0, 180.0, 200))
+    stroke = np.c_[2 * np.cos(t), 2 * np.sin(t)] + [5.0, 7.0]
+    drawn = open_star_curve(stroke[::-1])  # drawn either way round
+    start, end = drawn.arc
+    assert np.isclose(np.degrees(end - start), 270.0)
+    centre = (stroke.min(axis=0) + stroke.max(axis=0)) / 2
+    rel = stroke - centre
+    # every drawn point is on the completed curve, and points just inside/outside it have its sign
+    on = drawn.curve(rel[:, 0], rel[:, 1])
+    assert np.abs(on).max() < 1e-9
+    assert np.all(drawn.curve(0.9 * rel[:, 0], 0.9 * rel[:, 1]) < 0)
+    assert np.all(drawn.curve(1.1 * rel[:, 0], 1.1 * rel[:, 1]) > 0)
+    # across the gap the radius goes from one end's to the other's: the curve stays closed round the axis
+    gap = np.radians(np.linspace(0, 1, 9)) + end + 0.01
+    assert np.all(drawn.curve(0.01 * np.cos(gap), 0.01 * np.sin(gap)) < 0)
+
+
+@pytest.mark.parametrize(
+    ("points", "words"),
+    [
+        ([[1, 0], [0, 1], [1, 0.5]], "turn one way"),
+        ([[1, 0], [0, 0], [-1, 0]], "centre"),
+        ([[1, 0], [1, 0]], "2 distinct points"),
+    ],
+)
+def test_open_strokes_that_cannot_be_swept_are_refused(points, words) -> None:
+    with pytest.raises(InvalidShapeError, match=words):
+        open_star_curve(np.asarray(points, dtype=float))
+
+
+def test_an_open_curve_comes_from_one_stroke_of_a_drawing(tmp_path) -> None:
+    (tmp_path / "two.json").write_text(json.dumps({"polylines": [
+        {"points": [[1, 0], [0, 1]], "closed": False}, {"points": [[-1, 0], [0, -1]], "closed": False}]}))
+    with pytest.raises(InvalidShapeError, match="one stroke, got 2"):
+        open_star_curve("two.json", base_dir=tmp_path)
+    with pytest.raises(InvalidShapeError, match="arc = \\[start, end\\]"):
+        open_star_curve("x^2 + y^2 - 1")
+    t = np.radians(np.linspace(0.0, 400.0, 400))
+    with pytest.raises(InvalidShapeError, match="full turn"):
+        open_star_curve(np.c_[np.cos(t), np.sin(t)])

@@ -197,3 +197,18 @@ def test_ribbon_is_one_half_of_a_torus():
 def test_ribbon_needs_surface_mode():
     with pytest.raises(InvalidShapeError, match="surface"):
         tube(["3*cos(2*pi*t)", "3*sin(2*pi*t)", "0"], arc=[0, 90], mode="solid", scale=2.9, center=[0, 0, 0])
+
+
+@pytest.mark.parametrize("k", [0, 1, 2])
+def test_a_drawn_open_profile_is_the_arc_of_the_closed_one(tmp_path, k):
+    t = np.radians(np.linspace(0.0, 300.0, 601))
+    (tmp_path / "arc.json").write_text(__import__("json").dumps(
+        {"polylines": [{"points": np.c_[np.cos(t), np.sin(t)].tolist(), "closed": False}]}))
+    spine = ["3*cos(2*pi*t)", "3*sin(2*pi*t)", "0.5*sin(4*pi*t)"]
+    opts = dict(k=k, mode="surface", size=25, scale=2.9, center=[0.01, -0.02, 0.03], base_dir=tmp_path)
+    drawn = tube(spine, "arc.json", profile_open=True, **opts)
+    exact = tube(spine, "x^2 + y^2 - 1", arc=[0, 300], **opts)
+    assert exact.sum() > 500
+    assert np.array_equal(drawn, exact), int((drawn ^ exact).sum())
+    with pytest.raises(InvalidShapeError, match="profile_open.*not both"):
+        tube(spine, "arc.json", profile_open=True, arc=[0, 90], **opts)

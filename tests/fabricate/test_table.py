@@ -52,7 +52,7 @@ def test_a_build_writes_only_the_files_its_rows_declare(tmp_path, recipe):
     text = path.read_text()
     # Small and quick: a coarse tube, plates and pictures of it, the net on a large sheet.
     text = text.replace("[source]\n", "[source]\nsize = 12\n").replace("[outputs.pictures]", "[outputs.pictures]\nsize = 120")
-    text += "\n[outputs.animation]\nsteps = 2\nsize = 64\n"
+    text += "\n[outputs.animation]\nsteps = 2\nsize = 64\n\n[outputs.hunt]\nzipper_timeout = 1\n"
     path.write_text(text)
     built = build(load_recipe(path), tmp_path / "out")
     manifest = json.loads((built / "manifest.json").read_text())

@@ -26,7 +26,7 @@ def wait_job(client, job: str, limit: float = 120.0) -> dict:
     end = time.monotonic() + limit
     while time.monotonic() < end:
         s = client.get(f"/api/jobs/{job}").json()
-        if s["state"] != "running":
+        if s["state"] not in ("queued", "running"):
             return s
         time.sleep(0.1)
     raise AssertionError(f"job {job} still running after {limit} s")

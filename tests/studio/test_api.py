@@ -220,7 +220,7 @@ def test_tube_focal_and_implicit_previews(client):
 def test_check(client):
     g = small_shape()
     assert client.post("/api/check", json={"grid": pack(g)}).json()["facts"] == {
-        "volume": int(g.sum()), "extents": [5, 3, 25], "well_formed": True, "reasons": []}
+        "volume": int(g.sum()), "extents": [5, 3, 25], "well_formed": True, "reasons": [], "terms": []}
     g[0, 0, 0] = True
     facts = client.post("/api/check", json={"grid": pack(g)}).json()["facts"]
     assert not facts["well_formed"] and any("pieces" in r for r in facts["reasons"])

@@ -9,6 +9,7 @@ import sys
 
 import numpy as np
 import pytest
+from _zipper_checks import cuts_form_one_path
 
 pytest.importorskip("ortools")
 
@@ -142,35 +143,24 @@ def test_boxes_agree_with_every_spanning_tree(grid):
         assert (_exact(grid, box, zipper=True) is not None) == _fits(nets, box, zipper=True), box
 
 
-def _net_cuts_form_path(grid: np.ndarray, net) -> bool:
-    sg = surface_graph(grid)
-    folded = {tuple(sorted(p)) for p in net.folds.tolist()}
-    cut = [(int(sg.vertex[a, k]), int(sg.vertex[a, (k + 1) % 4])) for a, k, b, _ in _edges(sg)
-           if (min(a, b), max(a, b)) not in folded]
-    deg: dict[int, int] = {}
-    for u, v in cut:
-        deg[u], deg[v] = deg.get(u, 0) + 1, deg.get(v, 0) + 1
-    if not cut or max(deg.values()) > 2 or len(cut) != len(deg) - 1:
-        return False
-    adj: dict[int, set[int]] = {}
-    for u, v in cut:
-        adj.setdefault(u, set()).add(v)
-        adj.setdefault(v, set()).add(u)
-    seen, todo = {cut[0][0]}, [cut[0][0]]
-    while todo:
-        for v in adj[todo.pop()]:
-            if v not in seen:
-                seen.add(v)
-                todo.append(v)
-    return len(seen) == len(deg)
-
-
 def test_zipper_net_cuts_form_one_path():
     grid = np.zeros((3, 2, 2), dtype=bool)
     grid[:, 0, 0] = grid[0, :, 0] = grid[0, 0, :] = True  # three arms from a corner
     net = unfold(grid, rng=0, strategy="exact", fit=(20, 20), zipper=True, timeout=30)
     assert validate(grid, net).ok
-    assert _net_cuts_form_path(grid, net)
+    assert cuts_form_one_path(grid, net)
+
+
+@pytest.mark.parametrize("grid", [CUBE, DOMINO], ids=["cube", "domino"])
+def test_zipper_in_any_box_agrees_with_every_spanning_tree(grid):
+    """Without a box the zipper search answers "is there any zipper net": as the enumeration does."""
+    expected = any(path for _, path in _nets(grid))
+    try:
+        net = unfold(grid, rng=0, strategy="exact", zipper=True, timeout=30)
+    except NoNetExistsError:
+        net = None
+    assert expected and net is not None  # the cube and the domino both have zipper nets
+    assert validate(grid, net).ok and cuts_form_one_path(grid, net)
 
 
 def test_torus_has_no_zipper_net():
@@ -179,6 +169,8 @@ def test_torus_has_no_zipper_net():
     ring[1, 1, 0] = False
     with pytest.raises(NoNetExistsError):
         unfold(ring, rng=0, strategy="exact", fit=(32, 32), zipper=True, timeout=30)
+    with pytest.raises(NoNetExistsError, match="has a handle"):
+        unfold(ring, rng=0, strategy="exact", zipper=True, timeout=30)
 
 
 def _cli(*args, cwd):

@@ -1,9 +1,10 @@
-"""Progress bars that appear only when work takes longer than a second."""
+"""Progress bars that appear only when work takes longer than a second, and stopping work on request."""
 
 from __future__ import annotations
 
 import contextlib
 import sys
+import threading
 import time
 from collections.abc import Iterable, Iterator
 from typing import Any, TypeVar
@@ -32,7 +33,8 @@ class Meter:
         self._bar: Any = None
 
     def update(self, n: int = 1) -> None:
-        """Add ``n`` units of work done."""
+        """Add ``n`` units of work done (and stop here if the work was cancelled, see :func:`check_cancelled`)."""
+        check_cancelled()
         self.done += n
         if not self._live:
             return
@@ -66,3 +68,33 @@ def progress(items: Iterable[T], *, total: int | None = None, desc: str = "") ->
         for item in items:
             yield item
             m.update()
+
+
+# --- stopping work on request -----------------------------------------------------------------
+
+_local = threading.local()
+
+
+@contextlib.contextmanager
+def cancel_scope(event: threading.Event) -> Iterator[None]:
+    """Within this block, on this thread, :func:`check_cancelled` raises once ``event`` is set.
+
+    The studio runs each job in a scope of its own event; long loops of the
+    library (the net search, every :class:`Meter`) call :func:`check_cancelled`
+    between chunks of work, so a cancelled job stops within a chunk.
+    """
+    before = getattr(_local, "event", None)
+    _local.event = event
+    try:
+        yield
+    finally:
+        _local.event = before
+
+
+def check_cancelled() -> None:
+    """Raise :class:`~voxfab.errors.CancelledError` when this thread's work was cancelled; cheap otherwise."""
+    event = getattr(_local, "event", None)
+    if event is not None and event.is_set():
+        from voxfab.errors import CancelledError
+
+        raise CancelledError("stopped: cancelled")

@@ -7,7 +7,7 @@ worker writes ``DIR/<name>/`` atomically, the same files as ``voxfab build`` of 
 recipe with that shape and those outputs.  See :func:`run_batch`.
 """
 
-from ._index import write_index
+from ._index import HuntSummary, hunt_summary, write_index
 from ._run import BATCH_FORMAT, BatchReport, load_outputs, parse_name_range, run_batch, select_names
 from ._task import BatchTask, Outcome, build_task, recipe_text
 
@@ -15,8 +15,10 @@ __all__ = [
     "BATCH_FORMAT",
     "BatchReport",
     "BatchTask",
+    "HuntSummary",
     "Outcome",
     "build_task",
+    "hunt_summary",
     "load_outputs",
     "parse_name_range",
     "recipe_text",

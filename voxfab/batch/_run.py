@@ -15,7 +15,7 @@ from voxfab._shared.typing import PathLike
 from voxfab.errors import RecipeError, RepositoryError, VoxfabError
 
 from ._cluster import Cluster, check_dashboard, check_wait, check_workers, connect
-from ._index import THUMBS
+from ._index import THUMBS, HuntSummary, hunt_summary
 from ._task import RECIPES, BatchTask, Outcome, build_task, folder_problem, outputs_sha256, recipe_text
 
 __all__ = ["BatchReport", "load_outputs", "parse_name_range", "select_names", "run_batch", "BATCH_FORMAT"]
@@ -29,7 +29,11 @@ _SAVE_EVERY_S = 2.0
 
 @dataclasses.dataclass(frozen=True)
 class BatchReport:
-    """What :func:`run_batch` did: counts, run time and where the index is."""
+    """What :func:`run_batch` did: counts, run time, where the index is, and the hunt's outcomes.
+
+    ``hunt`` sorts the built shapes by what their ``hunt.json`` says (``[outputs.hunt]``);
+    None when no shape has one.
+    """
 
     built: int
     failed: int
@@ -38,6 +42,7 @@ class BatchReport:
     workers: int
     index: Path
     failures: tuple[tuple[str, str], ...]
+    hunt: HuntSummary | None = None
 
     @property
     def rate(self) -> float:
@@ -341,7 +346,9 @@ def run_batch(
         from ._index import write_index
 
         index = write_index(out, shapes)[0]
-    return BatchReport(built, len(failures), skipped, seconds, n_workers, index, tuple(failures))
+    hunted = hunt_summary(out, sorted(n for n, v in shapes.items() if v.get("status") == "built"))
+    return BatchReport(built, len(failures), skipped, seconds, n_workers, index, tuple(failures),
+                       hunted if hunted.shapes else None)
 
 
 def _run_tasks(cl: Cluster, tasks: Iterator[BatchTask], window: int, timeout: float,

@@ -10,12 +10,13 @@ from collections.abc import Iterator, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from voxfab.shape import VoxelShape
-
 if TYPE_CHECKING:
     from voxfab.repo import Repository
 
+#: The repository the commands use by default: ``voxfab.repo.DEFAULT_PATH``, named here so that
+#: parsing arguments does not import the repository (sqlite3).
 DEFAULT_REPOSITORY = Path("output") / "repository.sqlite"
+
 #: Exit status of a command run with ``--strict`` that ended with warnings.
 STRICT_EXIT = 11
 
@@ -95,49 +96,12 @@ def add_pitch_option(parser: argparse.ArgumentParser) -> None:
     add_option_arguments(parser, ShapeOptions)
 
 
-def load_shape(spec: str, repository: Path | None = None, **options: Any) -> tuple[VoxelShape, str | None, list[str]]:
-    """Load SHAPE from a file or the repository.
-
-    Returns
-    -------
-    shape, name, notes
-        ``name`` is the repository name when the shape was loaded by name.
-    """
-    shape, name, notes, _ = load_scaled_shape(spec, repository, **options)
-    return shape, name, notes
-
-
-def load_scaled_shape(
-    spec: str, repository: Path | None = None, *, pitch: float | None = None, **options: Any
-) -> tuple[VoxelShape, str | None, list[str], bool]:
-    """Load SHAPE at the scale given by ``pitch`` (``--pitch``), the file's own, or 1 mm.
-
-    Returns
-    -------
-    shape, name, notes, scaled
-        ``scaled`` tells whether the pitch was given (by ``pitch`` or the file)
-        rather than the 1 mm default: a command that can choose a scale itself
-        (a net fitted to its sheet) does so only when it was not.
-    """
-    from voxfab import io
-    from voxfab._shared.options import OptionError
+def shape_pitch(args: argparse.Namespace) -> float | None:
+    """The ``--pitch`` given, checked before any file is read (a bad value names the flag)."""
+    from voxfab.cli._options import options_from_args
     from voxfab.shape import ShapeOptions
 
-    try:
-        ShapeOptions(pitch=pitch)  # checked before reading
-    except OptionError as exc:
-        raise OptionError("--pitch", exc.reason) from None
-    from voxfab.repo import NAME_PATTERN
-
-    if NAME_PATTERN.match(spec) and not Path(spec).exists():
-        from voxfab.repo import Repository
-
-        with Repository(repository or DEFAULT_REPOSITORY, create=False) as repo:
-            grid = repo.get(spec)
-        return VoxelShape(grid, pitch or 1.0), spec, [], pitch is not None
-    result = io.read(spec, **options)
-    own = pitch if pitch is not None else result.pitch
-    return VoxelShape(result.grid, own or 1.0), None, list(result.notes), own is not None
+    return options_from_args(ShapeOptions, args).pitch
 
 
 def print_warnings(warnings: Sequence[str], *, strict: bool = False) -> int:

@@ -73,6 +73,11 @@ def run(args: argparse.Namespace) -> int:
             state["cm"].__exit__(None, None, None)  # type: ignore[attr-defined]
     print(f"{report.built} built, {report.skipped} skipped (built before), {report.failed} failed "
           f"in {report.seconds:.1f} s on {report.workers} workers ({report.rate:.1f} shapes/min)")
+    if report.hunt is not None:
+        net, zipper = report.hunt.counts()["net"], report.hunt.counts()["zipper"]
+        print(f"hunt of {report.hunt.shapes} shapes: one-piece net found by the random engine {net['random']}, "
+              f"only by the exact strategy {net['exact']}, proved none {net['none']}, undecided {net['undecided']}; "
+              f"zipper net found {zipper['found']}, proved none {zipper['none']}, undecided {zipper['undecided']}")
     if not args.no_index:
         print(f"index: {report.index}")
     if report.failed:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from ._common import add_shape_argument, load_shape, print_json, print_notes
+from ._common import add_shape_argument, print_json, print_notes
 
 HELP = "show volume, extents, components, well-formedness and repository name of a shape"
 
@@ -41,7 +41,9 @@ def _repository_name(args: argparse.Namespace, shape: Any) -> str | None:
 
 
 def run(args: argparse.Namespace) -> int:
-    shape, name, notes = load_shape(args.shape, args.repo)
+    from voxfab.repo import load_shape
+
+    shape, name, notes, _ = load_shape(args.shape, args.repo)
     print_notes(notes)
     info = shape_info(shape)
     info["name"] = name or (_repository_name(args, shape) if shape.well_formed else None)

@@ -9,10 +9,10 @@ from ._common import (
     add_pitch_option,
     add_shape_argument,
     add_strict_option,
-    load_scaled_shape,
     print_json,
     print_notes,
     print_warnings,
+    shape_pitch,
 )
 
 HELP = "write a print-ready solid (3MF, STL, OBJ or GLB), checked edge by edge"
@@ -50,7 +50,9 @@ def run(args: argparse.Namespace) -> int:
         from voxfab._shared.deps import require_extra
 
         require_extra("cad", "--label (an engraved label)")
-    shape, repo_name, notes, _ = load_scaled_shape(args.shape, args.repo, pitch=args.pitch)
+    from voxfab.repo import load_shape
+
+    shape, repo_name, notes, _ = load_shape(args.shape, args.repo, pitch=shape_pitch(args))
     print_notes(notes)
     name = repo_name or Path(args.shape).stem
     made = fabricate_mesh(shape, options, args.output, name=name)

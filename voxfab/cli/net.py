@@ -10,10 +10,10 @@ from ._common import (
     add_pitch_option,
     add_shape_argument,
     add_strict_option,
-    load_scaled_shape,
     print_json,
     print_notes,
     print_warnings,
+    shape_pitch,
 )
 from ._options import add_option_arguments, options_from_args
 
@@ -70,10 +70,12 @@ def run(args: argparse.Namespace) -> int:
     netdraw.check_request(search, args.output, box=args.fit is not None)  # before loading the shape
     # The paper scale: --face-size, else the shape's pitch (--pitch or the file's own); a shape
     # with neither is drawn at the largest face size that puts the net on the sheet (None).
-    shape_pitch = args.pitch
-    face_size = search.face_size if search.face_size is not None else shape_pitch
+    pitch = shape_pitch(args)
+    face_size = search.face_size if search.face_size is not None else pitch
     drawing = options_from_args(netdraw.DrawingOptions, args, pitch=face_size)  # checked before the search
-    shape, name, notes, scaled = load_scaled_shape(args.shape, args.repo, pitch=shape_pitch)
+    from voxfab.repo import load_shape
+
+    shape, name, notes, scaled = load_shape(args.shape, args.repo, pitch=pitch)
     print_notes(notes)
     if face_size is None and scaled:
         face_size = shape.pitch

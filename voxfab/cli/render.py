@@ -6,7 +6,7 @@ import argparse
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from voxfab.cli._common import add_repository_option, load_shape, print_json, print_notes
+from voxfab.cli._common import add_repository_option, print_json, print_notes
 from voxfab.errors import InvalidShapeError, UnknownFormatError
 
 if TYPE_CHECKING:
@@ -119,7 +119,9 @@ def run(args: argparse.Namespace) -> int:
     if args.shape is None:
         raise InvalidShapeError("render: SHAPE is required (a file or a repository name)")
     picture = _picture(args, out, args.net is not None)
-    shape, name, notes = load_shape(args.shape, args.repo)
+    from voxfab.repo import load_shape
+
+    shape, name, notes, _ = load_shape(args.shape, args.repo)
     print_notes(notes)
     title = name or Path(args.shape).stem
     net = _read_net(args.net) if args.net is not None else None

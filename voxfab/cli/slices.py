@@ -9,10 +9,10 @@ from voxfab.cli._common import (
     add_pitch_option,
     add_shape_argument,
     add_strict_option,
-    load_scaled_shape,
     print_json,
     print_notes,
     print_warnings,
+    shape_pitch,
 )
 
 HELP = ("slice a shape into laser-cut plates, stacked with dowel holes or slotted (interlocked, radial), "
@@ -39,7 +39,9 @@ def run(args: argparse.Namespace) -> int:
 
     options = options_from_args(PlateOptions, args)
     check_output(args.output, folder=True, marker="plates.json")  # an existing folder, before the work
-    shape, name, notes, _ = load_scaled_shape(args.shape, args.repo, pitch=args.pitch)
+    from voxfab.repo import load_shape
+
+    shape, name, notes, _ = load_shape(args.shape, args.repo, pitch=shape_pitch(args))
     print_notes(notes)
     title = name or Path(args.shape).stem
     made = fabricate_plates(shape, options, args.output, name=title)

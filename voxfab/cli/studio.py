@@ -3,15 +3,20 @@
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 
-from ._common import DEFAULT_REPOSITORY, check_repository_path
+from ._common import DEFAULT_REPOSITORY, add_pitch_option, check_repository_path
 
 HELP = "open the studio: draw, edit and keep shapes, choose nets, download files (local web app)"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the ``studio`` options."""
+    parser.add_argument("shape", nargs="?", metavar="SHAPE",
+                        help="open the page with this shape: a file voxfab reads (.npy, .vox, .binvox, ...) "
+                             "or a repository name such as 00797.001")
+    add_pitch_option(parser)
     parser.add_argument("--host", default="127.0.0.1",
                         help="address to listen on (default 127.0.0.1: this computer only)")
     parser.add_argument("--port", type=int, default=8765, help="port (default 8765)")
@@ -23,8 +28,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """Serve until Ctrl+C."""
     import ipaddress
+    import os
     import socket
-    import sys
 
     from voxfab.errors import InvalidShapeError
     from voxfab.studio import serve
@@ -32,6 +37,7 @@ def run(args: argparse.Namespace) -> int:
     if not args.host.strip():
         raise InvalidShapeError("--host: expected an address such as 127.0.0.1, got ''")
     check_repository_path(args.repo)  # now, not inside the page at the first keep
+    initial = _initial(args) if args.shape else None
     try:
         found = {info[4][0] for info in socket.getaddrinfo(args.host, None, type=socket.SOCK_STREAM)}
     except (socket.gaierror, UnicodeError) as exc:
@@ -40,5 +46,22 @@ def run(args: argparse.Namespace) -> int:
     if not all(ipaddress.ip_address(a.split("%")[0]).is_loopback for a in found):
         print(f"voxfab: warning: --host {args.host}: the studio is reachable from the network, by anyone who "
               "can reach this computer; use 127.0.0.1 to keep it to yourself", file=sys.stderr, flush=True)
-    serve(host=args.host, port=args.port, repo=args.repo, open_browser=not args.no_browser)
-    return 0
+    serve(host=args.host, port=args.port, repo=args.repo, open_browser=not args.no_browser, initial=initial)
+    # Stopped: jobs cancelled, the session's folder removed.  The interpreter's own teardown (the
+    # compiled kernels, the solver) takes another 0.5-1 s that would only delay Ctrl-C, so end here.
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(0)
+
+
+def _initial(args: argparse.Namespace):  # noqa: ANN202 - voxfab.studio._grid.InitialShape, imported lazily
+    """SHAPE as the page's first shape: read as every command reads it, checked to fit the 25³ editor now."""
+    from voxfab.repo import load_shape
+    from voxfab.studio._grid import InitialShape
+
+    from ._common import print_notes, shape_pitch
+
+    shape, name, notes, scaled = load_shape(args.shape, args.repo, pitch=shape_pitch(args))
+    print_notes(notes)
+    return InitialShape.of(shape.grid, label=name or Path(args.shape).name, name=name,
+                           pitch=float(shape.pitch) if scaled else None)

@@ -3,7 +3,15 @@
 Heavy helpers (scipy, numba, svgelements, pillow) are imported only when used.
 """
 
-from ._curves import Curve2D, bitmap_curve, implicit_curve, load_curve, polyline_curve
+from ._curves import (
+    Curve2D,
+    OpenCurve,
+    bitmap_curve,
+    implicit_curve,
+    load_curve,
+    open_star_curve,
+    polyline_curve,
+)
 from ._expr import Expression, compile_expression
 from ._fit import Field, Mode, fit
 from ._flake import digitize, flake_vertices, solid, surface
@@ -32,6 +40,8 @@ __all__ = [
     "Expression",
     "compile_expression",
     "Curve2D",
+    "OpenCurve",
+    "open_star_curve",
     "load_curve",
     "implicit_curve",
     "polyline_curve",

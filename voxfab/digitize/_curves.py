@@ -31,7 +31,9 @@ from ._expr import compile_expression
 
 __all__ = [
     "Curve2D",
+    "OpenCurve",
     "load_curve",
+    "open_star_curve",
     "implicit_curve",
     "polyline_curve",
     "bitmap_curve",
@@ -533,3 +535,93 @@ def star_radius(
     last_in = inside.shape[1] - 1 - np.argmax(inside[:, ::-1], axis=1)
     radius = float(rs[min(last_in.max() + 1, len(rs) - 1)])
     return bool(np.all(changes == 1)), radius
+
+
+# --- open drawn curves ------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class OpenCurve:
+    """An open drawn curve that turns one way about its centre, as a part of a closed star-shaped curve.
+
+    The flake digitizer needs a signed function around the whole flake, so the
+    open curve is completed into a closed star-shaped curve: its polar radius is
+    the drawing's within ``arc`` and, across the gap between the two ends, goes
+    linearly in angle from one end's radius to the other's.  Only the part within
+    ``arc`` is digitized (the flakes are cropped at the ends' half-planes), so the
+    completion never shows.
+
+    Attributes
+    ----------
+    curve : Curve2D
+        The completed curve, centred on the drawing's bounding box (as closed
+        drawings are), < 0 inside.
+    arc : (float, float)
+        The drawn part: angles ``start < end < start + 2π`` in radians about the centre.
+    """
+
+    curve: Curve2D
+    arc: tuple[float, float]
+
+
+def open_star_curve(
+    source: str | Sequence[Sequence[float]] | np.ndarray, *, base_dir: Path | None = None, name: str = "curve"
+) -> OpenCurve:
+    """Read one open polyline (a JSON, SVG or CSV drawing, or points) as an :class:`OpenCurve`.
+
+    Raises
+    ------
+    InvalidShapeError
+        Not one open polyline, or one that does not turn one way about its
+        centre (a ray from the centre would cross it twice), or turns a full turn.
+    """
+    if isinstance(source, str):
+        if Path(source).suffix.lower() not in DRAWING_SUFFIXES:
+            raise InvalidShapeError(f"{name}: an open curve comes from a drawing (.json, .svg or .csv); for an "
+                                    "expression give arc = [start, end] instead")
+        path = resolve_input(source, base_dir, name=name)
+        polys, _ = read_points(path, name=name)
+        label = f"{name} ({Path(source).name})"
+    else:
+        polys, label = [np.asarray(source, dtype=np.float64)], name
+    if len(polys) != 1:
+        raise InvalidShapeError(f"{label}: an open curve is one stroke, got {len(polys)}")
+    pts, _ = _clean_polyline(polys[0], name=label)
+    if len(pts) < 2:
+        raise InvalidShapeError(f"{label}: an open curve needs 2 distinct points")
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    centre = (lo + hi) / 2.0
+    rel = pts - centre
+    radii = np.hypot(rel[:, 0], rel[:, 1])
+    if np.any(radii <= 1e-12 * max(float(radii.max()), 1e-300)):
+        raise InvalidShapeError(f"{label}: an open curve may not pass through its centre, the axis")
+    turn = np.diff(np.unwrap(np.arctan2(rel[:, 1], rel[:, 0])))
+    if not (np.all(turn > 0) or np.all(turn < 0)):
+        raise InvalidShapeError(f"{label}: an open curve must turn one way about its centre (no ray from the centre "
+                                "may cross it twice)")
+    if turn[0] < 0:
+        rel, turn = rel[::-1], -turn[::-1]
+    angles = np.concatenate([[0.0], np.cumsum(turn)])  # from the first point, increasing
+    span = float(angles[-1])
+    if span >= 2 * np.pi - 1e-9:
+        raise InvalidShapeError(f"{label}: the curve turns a full turn about its centre; draw it closed instead")
+    start = float(np.arctan2(rel[0, 1], rel[0, 0]))
+    r_start, r_end = float(np.hypot(*rel[0])), float(np.hypot(*rel[-1]))
+
+    def polar_radius(theta: np.ndarray) -> np.ndarray:
+        rel_angle = np.mod(theta - start, 2 * np.pi)
+        seg = np.clip(np.searchsorted(angles, rel_angle, side="right") - 1, 0, len(rel) - 2)
+        p0, d = rel[seg], rel[seg + 1] - rel[seg]
+        ux, uy = np.cos(theta), np.sin(theta)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            drawn = (p0[..., 0] * d[..., 1] - p0[..., 1] * d[..., 0]) / (ux * d[..., 1] - uy * d[..., 0])
+        gap = (rel_angle - span) / (2 * np.pi - span)
+        return np.where(rel_angle <= span, drawn, r_end + (r_start - r_end) * gap)
+
+    def func(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+        x, y = np.broadcast_arrays(np.asarray(x, dtype=np.float64), np.asarray(y, dtype=np.float64))
+        return np.hypot(x, y) - polar_radius(np.arctan2(y, x))
+
+    # The box of the swept part: the drawn points and the axis (scaled copies of the curve fill it).
+    box = np.vstack([rel, [[0.0, 0.0]]])
+    curve = Curve2D(func, box.min(axis=0), box.max(axis=0), "drawn", label, (rel,), (False,))
+    return OpenCurve(curve, (start, start + span))

@@ -34,17 +34,19 @@ def make_revolution(
     z_range: list[float] | None = None,
     arc: list[float] | None = None,
     center: list[float] | None = None,
+    curve_open: bool = False,
 ) -> np.ndarray:
     """Surface of revolution: ``curve`` (expression in x, y or x, y, z; SVG/JSON/CSV/PNG file) times ``generatrix``.
 
     An explicit generatrix ``x = g(y)`` spans the heights ``z_range`` (default ``[-1, 1]``).
     ``arc = [start, end]`` (degrees) keeps only that open part of the curve: a swept surface.
+    ``curve_open = true`` takes a drawn ``curve`` as the open stroke it is (mode ``"surface"``).
     ``center`` (with ``scale``) is the model point at the grid's middle.
     """
     return revolution(
         curve, generatrix, k=k, mode=mode, size=size, scale=scale, at=at, base_dir=Path(base_dir),
         curve_threshold=curve_threshold, generatrix_threshold=generatrix_threshold, axis=axis, z_range=z_range,
-        arc=arc, center=center,
+        arc=arc, center=center, curve_open=curve_open,
     )
 
 
@@ -70,10 +72,12 @@ def make_tube(
     scale: float | None = None,
     arc: list[float] | None = None,
     center: list[float] | None = None,
+    profile_open: bool = False,
 ) -> np.ndarray:
     """Swept tube: ``spine`` = [x(t), y(t), z(t)] expressions, a 3D point file or a point list; any 2D ``profile``.
 
-    ``arc = [start, end]`` (degrees) keeps only that open part of the profile: a ribbon.
+    ``arc = [start, end]`` (degrees) keeps only that open part of the profile: a ribbon;
+    ``profile_open = true`` takes a drawn profile as the open stroke it is (a ribbon between its ends).
     ``center`` (with ``scale``) is the model point at the grid's middle.
     """
     spine_arg: object = spine
@@ -83,6 +87,7 @@ def make_tube(
         spine_arg, profile, radius=radius, twist=twist, phase=phase, frame=frame, cap=cap, closed=closed,
         t_min=t_min, t_max=t_max, samples=samples, k=k, mode=mode, size=size, scale=scale,
         base_dir=Path(base_dir), threshold=threshold, stroke=stroke, arc=arc, center=center,
+        profile_open=profile_open,
     )
 
 

@@ -32,7 +32,15 @@ import numpy.typing as npt
 
 from voxfab.errors import InvalidShapeError
 
-from ._curves import BITMAP_SUFFIXES, DRAWING_SUFFIXES, Curve2D, estimate_bounds, load_curve, star_radius
+from ._curves import (
+    BITMAP_SUFFIXES,
+    DRAWING_SUFFIXES,
+    Curve2D,
+    estimate_bounds,
+    load_curve,
+    open_star_curve,
+    star_radius,
+)
 from ._expr import Expression, compile_expression
 from ._fit import Field, Mode, fit
 from ._flake import check_arc, digitize_sector, flake_vertices, half_coordinates
@@ -228,6 +236,12 @@ def split_runs(points: npt.ArrayLike, *, name: str = "generatrix") -> list[Run]:
     return runs
 
 
+#: An open drawn generatrix's end this close to the axis (as a share of the drawing's size: its height or
+#: its diameter, whichever is larger) lies on the axis: one voxel of a 25³ shape.  A hand stroke from the
+#: axis round the profile and back never lands exactly on the axis, and an end off it left the axis
+#: column open, so "solid" gave a hollow shell.
+AXIS_SNAP = 0.04
+
 #: Samples of an explicit radius r(z) for its bounds and, with a curve that is not star-shaped, its run.
 _EXPLICIT_SAMPLES = 4097
 
@@ -313,11 +327,14 @@ def _load_generatrix(
                 f"{curve.name}: the generatrix crosses the axis (x = {ax:g}): it reaches x = {pts[:, 0].min():g}"
             )
         if not all(curve.closed):
-            polys = []
-            for p in curve.polylines:
-                q = p - np.array([ax, 0.0])
+            polys = [p - np.array([ax, 0.0]) for p in curve.polylines]
+            every = np.vstack(polys)
+            snap = AXIS_SNAP * max(2.0 * float(every[:, 0].max()), float(np.ptp(every[:, 1])))
+            for q in polys:
                 q[:, 0] = np.maximum(q[:, 0], 0.0)
-                polys.append(q)
+                for end in (0, -1):
+                    if q[end, 0] <= snap:
+                        q[end, 0] = 0.0
             return None, polys
         return curve.transformed((ax, 0.0), 1.0), []
     ax = (float(curve.lo[0]) if curve.kind == "bitmap" else 0.0) if axis is None else float(axis)
@@ -438,9 +455,12 @@ def _runs_digitizer(curve: RevolutionCurve, runs: list[Run]) -> Callable[..., tu
 
 
 def _sector_digitizer(
-    f: Callable[..., np.ndarray], rc: RevolutionCurve, arc: tuple[float, float]
+    f: Callable[..., np.ndarray], rc: RevolutionCurve, arc: tuple[float, float], option: str = "arc"
 ) -> Callable[..., tuple[np.ndarray, np.ndarray]]:
-    """Digitizer of the surface swept by the part of ``rc`` within the angles ``arc`` (radians)."""
+    """Digitizer of the surface swept by the part of ``rc`` within the angles ``arc`` (radians).
+
+    ``option`` names what made the curve open, in messages.
+    """
 
     def planar(*coords: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         return coords[0], coords[1]
@@ -449,9 +469,9 @@ def _sector_digitizer(
         shape: tuple[int, ...], origin: np.ndarray, step: np.ndarray, k: int, *, interior: bool = True
     ) -> tuple[np.ndarray, np.ndarray]:
         if interior:
-            raise InvalidShapeError('arc: an open curve of revolution bounds no solid; use mode = "surface"')
+            raise InvalidShapeError(f'{option}: an open curve of revolution bounds no solid; use mode = "surface"')
         if len(shape) != 3 or rc.dim != 2:
-            raise InvalidShapeError("arc: open curves of revolution make 3D shapes only")
+            raise InvalidShapeError(f"{option}: open curves of revolution make 3D shapes only")
         surf = digitize_sector(f, planar, arc, shape, k, origin, step)
         return surf, np.zeros_like(surf)
 
@@ -469,6 +489,7 @@ def revolution_field(
     curve_dim: int | None = None,
     z_range: Sequence[float] | None = None,
     arc: Sequence[float] | None = None,
+    curve_open: bool = False,
 ) -> Field:
     """The continuous surface of revolution as a :class:`Field` (3D, or 4D for a 3D curve).
 
@@ -493,10 +514,25 @@ def revolution_field(
         ``start .. end`` (degrees, counter-clockwise from +x about the axis).
         The result is the surface swept by that open curve (mode
         ``"surface"`` only), its flakes cropped at the two end half-planes.
+    curve_open : bool
+        The curve of revolution is an open drawn stroke (a JSON, SVG or CSV
+        drawing of one polyline turning one way about its bounding box's centre,
+        the axis): the surface swept by the stroke between its two ends, as
+        ``arc`` makes it for a closed curve (see :class:`voxfab.digitize.OpenCurve`).
     """
-    rc = curve if isinstance(curve, RevolutionCurve) else load_revolution_curve(
-        curve, base_dir=base_dir, threshold=curve_threshold, dim=curve_dim
-    )
+    sector, option = (check_arc(arc), "arc") if arc is not None else (None, "arc")
+    if curve_open:
+        if arc is not None:
+            raise InvalidShapeError("arc: an open drawn curve ends where it is drawn; give arc or curve_open, not both")
+        if isinstance(curve, (RevolutionCurve, Curve2D)) or callable(curve):
+            raise InvalidShapeError("curve_open: the curve of revolution must be a drawing (.json, .svg or .csv)")
+        drawn = open_star_curve(curve, base_dir=base_dir, name="curve")
+        rc = _normalised(drawn.curve, drawn.curve.lo, drawn.curve.hi, name=drawn.curve.name)
+        sector, option = drawn.arc, "curve_open"
+    else:
+        rc = curve if isinstance(curve, RevolutionCurve) else load_revolution_curve(
+            curve, base_dir=base_dir, threshold=curve_threshold, dim=curve_dim
+        )
     radius = explicit_radius(generatrix, name="generatrix") if isinstance(generatrix, str) else None
     if radius is not None:
         region, polys = _explicit_generatrix(radius, z_range, star=rc.star, name="generatrix")
@@ -521,11 +557,12 @@ def revolution_field(
 
         lo = np.append(rc.lo * rho_max, z0)
         hi = np.append(rc.hi * rho_max, z1)
-        if arc is not None:
-            return Field(None, lo, hi, "open surface of revolution", _sector_digitizer(f, rc, check_arc(arc)))
+        if sector is not None:
+            return Field(None, lo, hi, "open surface of revolution", _sector_digitizer(f, rc, sector, option))
         return Field(f, lo, hi, "surface of revolution")
-    if arc is not None:
-        raise InvalidShapeError("arc: an open curve of revolution needs a region generatrix (expression, closed drawing or bitmap)")
+    if sector is not None:
+        raise InvalidShapeError(f"{option}: an open curve of revolution needs a region generatrix (expression, "
+                                "closed drawing or bitmap)")
     runs = [r for p in polys for r in split_runs(p, name="generatrix")]
     rho_max = max(float(np.max(r.r)) for r in runs)
     if rho_max <= 0:
@@ -555,6 +592,7 @@ def revolution(
     z_range: Sequence[float] | None = None,
     arc: Sequence[float] | None = None,
     center: Sequence[float] | None = None,
+    curve_open: bool = False,
 ) -> np.ndarray:
     """Digital surface (or solid) of revolution fitted in a ``size``³ grid (``size``⁴ for a 3D curve).
 
@@ -565,6 +603,7 @@ def revolution(
     fld = revolution_field(
         curve, generatrix, base_dir=base_dir, curve_threshold=curve_threshold,
         generatrix_threshold=generatrix_threshold, axis=axis, curve_dim=curve_dim, z_range=z_range, arc=arc,
+        curve_open=curve_open,
     )
     return fit(fld, k=k, mode=mode, size=size, scale=scale, at=at, center=center)
 

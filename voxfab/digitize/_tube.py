@@ -28,7 +28,7 @@ from voxfab._shared.limits import MAX_SAMPLES, MAX_SEARCH_CELLS, check_count, pa
 from voxfab._shared.validate import check_choice, resolve_input
 from voxfab.errors import InvalidShapeError, LimitError, VoxfabError
 
-from ._curves import Curve2D, load_curve
+from ._curves import Curve2D, load_curve, open_star_curve
 from ._expr import compile_expression
 from ._fit import Field, Mode, _extent, fit, fit_scale, render
 from ._flake import check_arc, digitize_sector
@@ -434,12 +434,28 @@ def _build(
     threshold: float,
     stroke: float | None,
     arc: Sequence[float] | None = None,
+    profile_open: bool = False,
 ) -> Callable[[float], Field]:
     """Read the spine and the profile once; return the tube's field at a profile phase (degrees)."""
     pts, is_closed = load_spine(spine, base_dir=base_dir, t_min=t_min, t_max=t_max, samples=samples, closed=closed)
     sp = spine_frames(pts, is_closed, frame)
-    pr = _profile(profile, base_dir=base_dir, threshold=threshold, stroke=stroke)
+    if profile_open:
+        pr, arc = _open_profile(profile, arc, base_dir=base_dir)
+    else:
+        pr = _profile(profile, base_dir=base_dir, threshold=threshold, stroke=stroke)
     return functools.partial(_field_at_phase, sp, pr, radius, twist, cap, arc)
+
+
+def _open_profile(profile: Any, arc: Sequence[float] | None, *, base_dir: Path | None) -> tuple[Curve2D, list[float]]:
+    """An open drawn profile, normalised to largest radius 1, and the arc of its two ends (degrees)."""
+    if arc is not None:
+        raise InvalidShapeError("arc: an open drawn profile ends where it is drawn; give arc or profile_open, not both")
+    if not isinstance(profile, str):
+        raise InvalidShapeError("profile_open: the profile must be a drawing (.json, .svg or .csv)")
+    drawn = open_star_curve(profile, base_dir=base_dir, name="profile")
+    # normalised as a closed drawn profile is, so an open stroke is the same size as the closed one it is part of
+    curve = drawn.curve.transformed(np.zeros(2), 1.0 / _max_radius(drawn.curve, np.zeros(2)))
+    return curve, [float(np.degrees(a)) for a in drawn.arc]
 
 
 def _field_at_phase(
@@ -470,6 +486,7 @@ def tube(
     stroke: float | None = None,
     arc: Sequence[float] | None = None,
     center: Sequence[float] | None = None,
+    profile_open: bool = False,
 ) -> np.ndarray:
     """Digital swept tube fitted in a ``size``³ grid.
 
@@ -479,11 +496,14 @@ def tube(
     source (:func:`voxfab.digitize.load_curve`), centred and normalised to
     largest radius 1, then scaled to ``radius``. Other options: see
     :func:`tube_field` (``arc``: an open profile, a ribbon) and
-    :func:`voxfab.digitize.fit` (``center``: fixed placement).
+    :func:`voxfab.digitize.fit` (``center``: fixed placement). ``profile_open``
+    takes a drawn profile as the open stroke it is: a ribbon between its two ends
+    (see :class:`voxfab.digitize.OpenCurve`).
     """
     field_at = _build(
         spine, profile, radius=radius, twist=twist, cap=cap, base_dir=base_dir, t_min=t_min, t_max=t_max,
         samples=samples, closed=closed, frame=frame, threshold=threshold, stroke=stroke, arc=arc,
+        profile_open=profile_open,
     )
     return fit(field_at(phase), k=k, mode=mode, size=size, scale=scale, center=center)
 

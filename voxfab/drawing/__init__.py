@@ -40,6 +40,7 @@ from ._layers import (
 from ._legend import Legend
 from ._model import Drawing, Fill, Page, PlacedImage
 from ._polylines import Polylines
+from ._sheets import MAX_SHEET, SHEETS, parse_sheet, sheet_problem
 
 __all__ = [
     "DASH_PATTERNS",
@@ -52,14 +53,18 @@ __all__ = [
     "LayerStyle",
     "LineStyle",
     "Legend",
+    "MAX_SHEET",
     "Lines",
     "Page",
     "PlacedImage",
     "Polylines",
+    "SHEETS",
     "WriteOptions",
     "aci",
     "page_paths",
     "parse_colors",
+    "parse_sheet",
+    "sheet_problem",
     "text_polylines",
     "text_width",
     "write_drawing",

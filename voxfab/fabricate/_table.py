@@ -258,6 +258,15 @@ def _net_download(download: str, values: Mapping[str, Any]) -> dict[str, Any]:
     return table
 
 
+# ---- hunt ---------------------------------------------------------------------------------------
+
+def _run_hunt(shape: Any, options: Any, outdir: Path, *, name: str, seed: int, context: BuildContext) -> Artefact:
+    from voxfab.fabricate.hunt import fabricate_hunt
+
+    del context  # the hunt searches its own nets: a chosen net answers none of its questions
+    return fabricate_hunt(shape, options, outdir, name=name, seed=seed)
+
+
 # ---- animation ----------------------------------------------------------------------------------
 
 def _run_animation(shape: Any, options: Any, outdir: Path, *, name: str, seed: int,
@@ -300,6 +309,9 @@ def _table() -> dict[str, Output]:
         Output("animation", (OptionTable("voxfab.render:AnimationOptions", "animation"),),
                "voxfab.render:render_animation", ("animation.gif",), _run_animation,
                downloads=("animation.gif",), download_table=_animation_download, maker="tube", command="render"),
+        Output("hunt", (OptionTable("voxfab.fabricate.hunt:HuntOptions", "hunt"),),
+               "voxfab.fabricate.hunt:fabricate_hunt", ("hunt.json", "hunt-net.json", "hunt-zipper.json"),
+               _run_hunt, unfolds=True, command="build"),
         Output("mesh", (OptionTable("voxfab.fabricate.mesh:MeshOptions", "mesh"),),
                "voxfab.fabricate.mesh:fabricate_mesh", ("mesh.3mf", "mesh.stl", "mesh.obj", "mesh.glb", "mesh.json"),
                _run_mesh, downloads=("mesh.3mf", "mesh.stl"), download_table=_mesh_download, command="mesh",

@@ -33,7 +33,7 @@ from voxfab.errors import FormatError, InvalidShapeError, LimitError, VoxfabErro
 
 from ._registry import ReadResult, register
 
-__all__ = ["read_mesh", "voxelize", "mesh_grid", "MESH_EXTENSIONS", "DEFAULT_RESOLUTION"]
+__all__ = ["read_mesh_shape", "voxelize", "mesh_grid", "MESH_EXTENSIONS", "DEFAULT_RESOLUTION"]
 
 #: Extensions read as triangle meshes.
 MESH_EXTENSIONS = (".stl", ".obj", ".ply", ".3mf")
@@ -399,7 +399,7 @@ def _load(path: PathLike, file_type: str) -> tuple[np.ndarray, np.ndarray, bool]
     return vertices, faces, watertight
 
 
-def read_mesh(path: PathLike, *, resolution: int = DEFAULT_RESOLUTION) -> ReadResult:
+def read_mesh_shape(path: PathLike, *, resolution: int = DEFAULT_RESOLUTION) -> ReadResult:
     """Read a triangle mesh and voxelize it (see the module description).
 
     Parameters
@@ -448,4 +448,4 @@ def read_mesh(path: PathLike, *, resolution: int = DEFAULT_RESOLUTION) -> ReadRe
 
 
 for _ext in MESH_EXTENSIONS:
-    register(_ext, reader=read_mesh)
+    register(_ext, reader=read_mesh_shape)

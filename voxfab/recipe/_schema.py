@@ -72,7 +72,7 @@ class OutputSpec:
     options : tuple of (str, value)
         The recipe's keys as written.
     settings : object
-        The checked options object its pipeline takes (see :mod:`voxfab.recipe._outputs`).
+        The checked options object its pipeline takes (see :func:`voxfab.fabricate.outputs`).
     """
 
     name: str

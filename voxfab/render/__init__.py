@@ -15,6 +15,8 @@
 
 from __future__ import annotations
 
+from voxfab.drawing.png import png_bytes
+
 from ._animate import (
     animation_frames,
     render_animation,
@@ -26,7 +28,7 @@ from ._animate import (
 )
 from ._contact_sheet import contact_sheet, repository_contact_sheet, sheet_layout
 from ._fold import fold_angles, fold_frames, save_fold_animation
-from ._image import gif_bytes, pdf_bytes, png_bytes, save_picture
+from ._image import gif_bytes, pdf_bytes, save_picture
 from ._net import DEFAULT_STYLES, LineStyle, net_picture
 from ._options import AnimationOptions, PictureOptions
 from ._pictures import PICTURE_FORMATS, Picture, PictureKind, pictures_asked, render_pictures, view_filename

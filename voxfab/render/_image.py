@@ -13,12 +13,13 @@ from typing import TYPE_CHECKING
 
 from voxfab._shared.atomic import write_bytes
 from voxfab._shared.typing import PathLike
+from voxfab.drawing.png import png_bytes
 from voxfab.errors import InvalidShapeError, UnknownFormatError
 
 if TYPE_CHECKING:
     from PIL import Image
 
-__all__ = ["png_bytes", "pdf_bytes", "gif_bytes", "save_picture", "font"]
+__all__ = ["pdf_bytes", "gif_bytes", "save_picture", "font"]
 
 
 def font(size: int):  # noqa: ANN201 - a PIL font object
@@ -26,13 +27,6 @@ def font(size: int):  # noqa: ANN201 - a PIL font object
     from PIL import ImageFont
 
     return ImageFont.load_default(size=max(6, int(size)))
-
-
-def png_bytes(image: Image.Image) -> bytes:
-    """PNG bytes of ``image`` with no text or time chunks (the drawing PNG backend's encoder)."""
-    from voxfab.drawing.png import png_bytes as encode
-
-    return encode(image)
 
 
 def pdf_bytes(image: Image.Image, *, title: str = "", dpi: float = 150.0) -> bytes:

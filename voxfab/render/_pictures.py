@@ -219,9 +219,10 @@ def render_pictures(
         Before any drawing, when a picture's extension is not one of its kind's formats.
     """
     from voxfab._shared.atomic import write_bytes
+    from voxfab.drawing.png import png_bytes
     from voxfab.fabricate._outputs import Artefact, OutputFile
 
-    from ._image import gif_bytes, pdf_bytes, png_bytes
+    from ._image import gif_bytes, pdf_bytes
 
     out = Path(folder)
     asked = tuple(pictures) if pictures is not None else pictures_asked(options)

@@ -10,10 +10,10 @@ import numpy.typing as npt
 
 from voxfab._shared.typing import PathLike
 from voxfab._shared.validate import as_grid
+from voxfab.drawing.png import png_bytes
 from voxfab.errors import InvalidShapeError
 from voxfab.shape import VoxelShape, bounding_box, crop
 
-from ._image import png_bytes
 from ._raster import DEFAULT_COLOR, Frame, Raster, fit_frame, parse_color, rasterize, to_rgb
 from ._views import Camera, View, camera_for
 

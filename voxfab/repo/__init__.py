@@ -10,12 +10,15 @@ on request), are stored once, found through indexed canonical keys.
 Only this package touches :mod:`sqlite3`.  See :class:`Repository`.
 """
 
+from ._load import LoadedShape, load_shape
 from ._records import DRAFT_PATTERN, MAX_RANK, NAME_PATTERN, decode_bits, encode_bits, format_name
 from ._repository import DEFAULT_PATH, AddResult, Entry, Repository
 from ._sqlite import SCHEMA_VERSION
 
 __all__ = [
     "Repository",
+    "LoadedShape",
+    "load_shape",
     "AddResult",
     "Entry",
     "DEFAULT_PATH",

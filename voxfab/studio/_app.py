@@ -40,6 +40,7 @@ from starlette.routing import Route
 from voxfab.errors import InvalidShapeError, VoxfabError
 
 from . import _grid, _specs, _work
+from ._edit import edit_route
 from ._jobs import Jobs
 
 #: Thumbnails kept in memory (oldest dropped first).
@@ -77,12 +78,15 @@ class Settings:
         The session's work folder (a fresh temporary folder when None, removed at shutdown).
     warm_up : bool
         Compile the numba kernels in the background at start (see :func:`_work.warm_up`).
+    initial : InitialShape or None
+        The shape the page opens with (``voxfab studio SHAPE``); None: the page starts from its drawing.
     """
 
     repo: Path
     hosts: frozenset[str]
     work: Path | None = None
     warm_up: bool = True
+    initial: _grid.InitialShape | None = None
 
 
 def allowed_hosts(host: str, port: int) -> frozenset[str]:
@@ -156,7 +160,12 @@ def _plain(status: int, text: str) -> Response:
 
 
 def _error(status: int, message: str) -> JSONResponse:
-    return JSONResponse({"error": " ".join(message.split())}, status_code=status, headers=_HEADERS)
+    """``{"error": the artist's words}``, plus ``"detail"``: the technical line, when it differs (a tooltip)."""
+    from ._words import explained
+
+    said = explained(" ".join(message.split()))
+    body = {"error": said["text"], **({"detail": said["detail"]} if "detail" in said else {})}
+    return JSONResponse(body, status_code=status, headers=_HEADERS)
 
 
 def _static_table() -> dict[str, tuple[bytes, str]]:
@@ -206,14 +215,20 @@ def create_app(settings: Settings) -> Starlette:
 
         return Repository(settings.repo)
 
+    def private(message: str) -> str:
+        """The message with the repository named, not its folder: the page never learns paths on disk."""
+        for path in sorted({str(settings.repo.resolve()), str(settings.repo)}, key=len, reverse=True):
+            message = message.replace(path, settings.repo.name)
+        return message
+
     def api(handler: Callable[[Request], Awaitable[Any]]) -> Callable[[Request], Awaitable[Response]]:
         async def endpoint(request: Request) -> Response:
             try:
                 out = await handler(request)
             except VoxfabError as exc:
-                return _error(400, str(exc))
+                return _error(400, private(str(exc)))
             except Exception as exc:  # noqa: BLE001 - one line for the page, never a traceback
-                return _error(500, f"internal error ({type(exc).__name__}): {exc}")
+                return _error(500, private(f"internal error ({type(exc).__name__}): {exc}"))
             return out if isinstance(out, Response) else JSONResponse(out)
 
         return endpoint
@@ -244,6 +259,9 @@ def create_app(settings: Settings) -> Starlette:
         return {"version": __version__, "repository": settings.repo.name, "side": _grid.SIDE,
                 "max_body": MAX_BODY, "constraints": constraints, "artefacts": _work.artefacts(),
                 "max_nets": _work.MAX_NETS}
+
+    async def initial(request: Request) -> dict[str, Any]:
+        return {"shape": None if settings.initial is None else settings.initial.answer()}
 
     async def preview(request: Request) -> dict[str, Any]:
         spec = await _json(request)
@@ -372,8 +390,10 @@ def create_app(settings: Settings) -> Starlette:
                 raise InvalidShapeError("shape: empty; draw or add voxels first")
             with repository() as repo:
                 result = repo.add(grid, draft=draft)
+            from ._words import plain
+
             return {"name": result.name, "created": result.created, "draft": result.draft,
-                    "reasons": list(result.reasons)}
+                    "reasons": [plain(r) for r in result.reasons]}
 
         return await run_in_threadpool(run)
 
@@ -446,6 +466,11 @@ def create_app(settings: Settings) -> Starlette:
     async def job_status(request: Request) -> dict[str, Any]:
         return _job(request.path_params["job"]).status()
 
+    async def job_cancel(request: Request) -> dict[str, Any]:
+        job = _job(request.path_params["job"])
+        jobs().cancel(job)
+        return job.status()
+
     async def download(request: Request) -> Response:
         job = _job(request.path_params["job"])
         index = request.path_params["index"]
@@ -491,6 +516,7 @@ def create_app(settings: Settings) -> Starlette:
         Route("/favicon.ico", lambda request: Response(status_code=204)),
         Route("/static/{name:path}", static_file),
         Route("/api/info", api(info)),
+        Route("/api/initial", api(initial)),
         Route("/api/preview", api(preview), methods=["POST"]),
         Route("/api/check", api(check), methods=["POST"]),
         Route("/api/recipe", api(recipe), methods=["POST"]),
@@ -500,12 +526,15 @@ def create_app(settings: Settings) -> Starlette:
         Route("/api/repo/shape", api(repo_shape)),
         Route("/api/repo/thumb", api(repo_thumb)),
         Route("/api/nets", api(nets), methods=["POST"]),
+        Route("/api/nets/edit", api(edit_route(jobs)), methods=["POST"]),
         Route("/api/make", api(make), methods=["POST"]),
         Route("/api/jobs/{job}", api(job_status)),
+        Route("/api/jobs/{job}/cancel", api(job_cancel), methods=["POST"]),
         Route("/api/files/{job}/{index:int}", api(download)),
     ]
     app = Starlette(routes=routes, lifespan=lifespan,
                     exception_handlers={404: not_found, 405: method_not_allowed, 500: server_error})
     app.state.cleanup = cleanup
+    app.state.cancel_jobs = lambda: state["jobs"].cancel_all() if "jobs" in state else None
     return Guard(app, settings.hosts)  # type: ignore[return-value]
 

@@ -2,18 +2,20 @@
 
 from __future__ import annotations
 
+import queue
 import secrets
 import shutil
 import threading
 import time
 from collections import OrderedDict
 from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from voxfab.errors import VoxfabError
+
+from ._words import plain
 
 #: Jobs kept for polling and downloads; the oldest finished ones (and their files) go first.
 MAX_JOBS = 64
@@ -32,31 +34,38 @@ class Job:
     folder : Path
         The job's own folder under the session's work folder.
     state : str
-        ``"running"``, ``"done"`` or ``"error"``.
+        ``"queued"``, ``"running"``, ``"done"``, ``"error"`` or ``"cancelled"``.
     done, total : int
         Progress in the job's own units.
     message : str
-        What runs now, or the error.
+        What runs now, or the error in the artist's words (see ``_words.plain``).
+    detail : str
+        The error's technical line, when it has other words.
     result : dict
         JSON-ready result for the page.
     files : list of (str, Path)
         Download name and path of each file the job made.
     data : dict
         Objects kept for later requests (nets to draw), never sent.
+    cancel : threading.Event
+        Set to stop the job: the library's long loops check it (``voxfab._shared.progress.check_cancelled``).
     """
 
     id: str
     kind: str
     folder: Path
-    state: str = "running"
+    state: str = "queued"
     done: int = 0
     total: int = 1
-    message: str = ""
+    message: str = "waiting for a free worker"
     result: dict[str, Any] = field(default_factory=dict)
     files: list[tuple[str, Path]] = field(default_factory=list)
     data: dict[str, Any] = field(default_factory=dict)
     started: float = field(default_factory=time.monotonic)
     seconds: float = 0.0
+    cancel: threading.Event = field(default_factory=threading.Event)
+    place: int = 0
+    detail: str = ""
 
     def step(self, done: int, total: int, message: str = "") -> None:
         """Report progress (called from the worker thread; plain attribute writes)."""
@@ -64,12 +73,20 @@ class Job:
         if message:
             self.message = message
 
+    @property
+    def ended(self) -> bool:
+        """Whether the job is over (done, failed or cancelled)."""
+        return self.state in ("done", "error", "cancelled")
+
     def status(self) -> dict[str, Any]:
-        """What ``GET /api/jobs/ID`` answers."""
+        """What ``GET /api/jobs/ID`` answers; ``place`` is 0 once running, n for the n-th in the queue."""
         out: dict[str, Any] = {
-            "id": self.id, "kind": self.kind, "state": self.state, "done": self.done, "total": self.total,
-            "message": self.message, "seconds": round(self.seconds or time.monotonic() - self.started, 3),
+            "id": self.id, "kind": self.kind, "state": self.state, "place": self.place if self.state == "queued" else 0,
+            "done": self.done, "total": self.total, "message": self.message,
+            "seconds": round(self.seconds or time.monotonic() - self.started, 3),
         }
+        if self.state == "error" and self.detail != self.message:
+            out["detail"] = self.detail  # the technical line behind the plain message
         if self.state == "done":
             out["result"] = self.result
             out["files"] = [{"index": i, "name": name, "bytes": path.stat().st_size}
@@ -78,37 +95,70 @@ class Job:
 
 
 class Jobs:
-    """A thread pool and the table of recent jobs."""
+    """Worker threads, their queue, and the table of recent jobs.
+
+    The workers are daemon threads (not a ``ThreadPoolExecutor``, whose threads
+    the interpreter joins at exit): a server stopping with Ctrl-C cancels its
+    jobs and goes, even if one is inside a step that cannot be cut short (numba
+    compiling a kernel, the exact solver).
+    """
 
     def __init__(self, work: Path, workers: int = 2) -> None:
         self._work = work
-        self._pool = ThreadPoolExecutor(max_workers=workers, thread_name_prefix="studio-job")
         self._jobs: OrderedDict[str, Job] = OrderedDict()
+        self._queue: list[Job] = []  # submitted, not started, in order
         self._lock = threading.Lock()
+        self._tasks: queue.SimpleQueue[Callable[[], None] | None] = queue.SimpleQueue()
+        self._workers = [threading.Thread(target=self._serve, name=f"studio-job-{i}", daemon=True)
+                         for i in range(workers)]
+        for t in self._workers:
+            t.start()
+
+    def _serve(self) -> None:
+        while (task := self._tasks.get()) is not None:
+            task()
 
     def submit(self, kind: str, work: Callable[[Job], None]) -> Job:
-        """Start ``work(job)``; it fills ``job.result`` and ``job.files``; errors become the job's message."""
+        """Queue ``work(job)``; it fills ``job.result`` and ``job.files``; errors become the job's message."""
+        from voxfab._shared.progress import cancel_scope
+
         job = Job(secrets.token_hex(8), kind, self._work / "jobs" / "pending")
         job.folder = self._work / "jobs" / job.id
         job.folder.mkdir(parents=True)
-        with self._lock:
-            self._jobs[job.id] = job
-            self._prune()
 
         def run() -> None:
+            with self._lock:
+                if job in self._queue:
+                    self._queue.remove(job)
+                self._renumber()
+                if job.cancel.is_set():
+                    job.state, job.message = "cancelled", "cancelled before it started"
+                    return
+                job.state, job.message = "running", ""
+            job.started = time.monotonic()
             try:
-                work(job)
-                job.state = "done"
+                with cancel_scope(job.cancel):
+                    work(job)
+                job.state = "cancelled" if job.cancel.is_set() else "done"
             except VoxfabError as exc:
-                job.message = " ".join(str(exc).split())
-                job.state = "error"
+                if job.cancel.is_set():
+                    job.message, job.state = "cancelled", "cancelled"
+                else:
+                    job.detail = " ".join(str(exc).split())
+                    job.message = plain(job.detail)
+                    job.state = "error"
             except Exception as exc:  # noqa: BLE001 - the page gets one line, never a traceback
                 job.message = f"internal error ({type(exc).__name__}): {' '.join(str(exc).split())}"
                 job.state = "error"
             finally:
                 job.seconds = time.monotonic() - job.started
 
-        self._pool.submit(run)
+        with self._lock:
+            self._jobs[job.id] = job
+            self._queue.append(job)
+            self._renumber()
+            self._prune()
+            self._tasks.put(run)
         return job
 
     def get(self, job_id: str) -> Job | None:
@@ -116,14 +166,46 @@ class Jobs:
         with self._lock:
             return self._jobs.get(job_id)
 
+    def cancel(self, job: Job) -> None:
+        """Stop ``job``: a queued one never starts, a running one stops at the search's next check (milliseconds)."""
+        with self._lock:
+            if job.ended:
+                return
+            job.cancel.set()
+            if job.state == "queued":
+                job.state, job.message = "cancelled", "cancelled before it started"
+                if job in self._queue:
+                    self._queue.remove(job)
+                self._renumber()
+            else:
+                job.message = "cancelling"
+
+    def cancel_all(self) -> None:
+        """Ask every job to stop, without waiting and without the table's lock (safe in a signal handler)."""
+        for job in list(self._jobs.values()):
+            job.cancel.set()
+
+    def _renumber(self) -> None:
+        for i, queued in enumerate(self._queue):
+            queued.place = i + 1
+
     def _prune(self) -> None:
         while len(self._jobs) > MAX_JOBS:
-            old = next((j for j in self._jobs.values() if j.state != "running"), None)
+            old = next((j for j in self._jobs.values() if j.ended), None)
             if old is None:
                 break
             del self._jobs[old.id]
             shutil.rmtree(old.folder, ignore_errors=True)
 
-    def shutdown(self) -> None:
-        """Stop taking work; running jobs finish in their threads."""
-        self._pool.shutdown(wait=False, cancel_futures=True)
+    def shutdown(self, wait: float = 1.0) -> None:
+        """Cancel every job, stop the workers, and wait up to ``wait`` seconds for the running jobs to stop."""
+        with self._lock:
+            jobs = [j for j in self._jobs.values() if not j.ended]
+        for job in jobs:
+            self.cancel(job)
+        for _ in self._workers:
+            self._tasks.put(None)
+        end = time.monotonic() + wait
+        for job in jobs:
+            while not job.ended and time.monotonic() < end:
+                time.sleep(0.02)

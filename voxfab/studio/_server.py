@@ -5,9 +5,15 @@ from __future__ import annotations
 import socket
 import threading
 import webbrowser
+from collections.abc import Callable
 from pathlib import Path
+from types import FrameType
+from typing import Any
 
 from voxfab.errors import InvalidShapeError, MissingDependencyError
+
+#: Seconds a stopping server waits for requests in flight (then its jobs are cancelled: the whole stop is < 2 s).
+SHUTDOWN_GRACE = 0.5
 
 
 def _check_port(host: str, port: int) -> None:
@@ -22,7 +28,7 @@ def _check_port(host: str, port: int) -> None:
 
 
 def serve(*, host: str = "127.0.0.1", port: int = 8765, repo: Path, open_browser: bool = True,
-          work: Path | None = None) -> None:
+          work: Path | None = None, initial: Any = None) -> None:
     """Serve the studio until interrupted.
 
     Parameters
@@ -35,6 +41,8 @@ def serve(*, host: str = "127.0.0.1", port: int = 8765, repo: Path, open_browser
         Open the page in the default browser once the server listens.
     work : Path, optional
         The session's work folder (default: a temporary folder removed at exit).
+    initial : InitialShape, optional
+        The shape the page opens with (``voxfab studio SHAPE``).
     """
     try:
         import uvicorn
@@ -45,10 +53,47 @@ def serve(*, host: str = "127.0.0.1", port: int = 8765, repo: Path, open_browser
     if not 1 <= port <= 65535:
         raise InvalidShapeError(f"--port: expected 1..65535, got {port}")
     _check_port(host, port)
-    app = create_app(Settings(repo=Path(repo), hosts=allowed_hosts(host, port), work=work))
+    app = create_app(Settings(repo=Path(repo), hosts=allowed_hosts(host, port), work=work, initial=initial))
     shown = f"[{host}]" if ":" in host else host
     url = f"http://{shown}:{port}/"
-    print(f"voxfab studio: {url}  (repository {repo}; Ctrl+C stops)", flush=True)
+    opened = f"; opens {initial.label}" if initial is not None else ""
+    print(f"voxfab studio: {url}  (repository {repo}{opened}; Ctrl+C stops)", flush=True)
     if open_browser:
         threading.Timer(0.8, webbrowser.open, args=(url,)).start()
-    uvicorn.run(app, host=host, port=port, log_level="warning", lifespan="on")
+    server = _server_class()(uvicorn.Config(app, host=host, port=port, log_level="warning", lifespan="on",
+                                                                      timeout_graceful_shutdown=SHUTDOWN_GRACE))
+    server.on_stop = app.app.state.cancel_jobs
+    try:
+        server.run()
+    finally:
+        # Also after a second Ctrl-C, when uvicorn skips the application's shutdown: jobs cancelled,
+        # the session's folder removed (a no-op when the shutdown ran).
+        app.app.state.cleanup()
+    print("voxfab studio: stopped", flush=True)
+
+
+def _server_class() -> type:
+    import uvicorn
+
+    class Server(uvicorn.Server):
+        """uvicorn's server, stopping at once: Ctrl-C cancels the jobs there and then, a second one forces the exit.
+
+        uvicorn would first wait for the jobs' requests and then re-raise the
+        signal; here the searches stop while it closes its connections, and the
+        CLI ends normally.
+        """
+
+        on_stop: Callable[[], None] = staticmethod(lambda: None)
+
+        async def shutdown(self, sockets: list[socket.socket] | None = None) -> None:
+            await super().shutdown(sockets)
+            if self.force_exit:  # uvicorn skips it then; it is bounded here (jobs are waited for at most 1 s)
+                await self.lifespan.shutdown()
+
+        def handle_exit(self, sig: int, frame: FrameType | None) -> None:
+            self.on_stop()  # only sets the jobs' cancel events: safe inside a signal handler
+            super().handle_exit(sig, frame)
+            self._captured_signals.clear()
+
+    return Server
+

@@ -116,6 +116,7 @@ def net_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, net: Any, 
         raise
     job.data["nets"] = [item.pieces for item in gallery.nets]
     job.data["options"] = (net, gallery.options)
+    job.data["grid"] = grid  # for /api/nets/edit
     job.result = netdraw.gallery_json(gallery, grid)
 
 

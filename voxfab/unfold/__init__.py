@@ -3,12 +3,16 @@
 ``unfold`` searches a net, ``unfold_many`` several distinct ones, ``validate``
 refolds a net and checks it against the shape, ``seam_pairs`` and ``tab_room``
 describe its cut edges for glue tabs, ``EdgeConstraints`` names edges to cut
-or keep folded.
+or keep folded, ``cut_edge`` and ``join_edge`` edit one edge of a net and
+repair its layout around the change, ``hunt_shape`` tells whether a shape has a
+one-piece net and a zipper net.
 """
 
 from voxfab.errors import NoNetExistsError
 
 from ._constraints import EdgeConstraints
+from ._edit import EditResult, cut_edge, join_edge
+from ._hunt import HUNT_NET, HUNT_ZIPPER, HuntOutcome, hunt_shape
 from ._layout import seam_pairs, tab_room
 from ._net import NET_FORMAT, Net
 from ._outline import outline_key
@@ -18,16 +22,23 @@ from ._validate import ValidationReport, validate
 __all__ = [
     "NET_FORMAT",
     "EdgeConstraints",
+    "EditResult",
+    "HUNT_NET",
+    "HUNT_ZIPPER",
+    "HuntOutcome",
     "Net",
     "NoFitError",
     "NoNetExistsError",
     "Pieces",
     "Strategy",
+    "cut_edge",
     "ValidationReport",
     "outline_key",
+    "join_edge",
     "seam_pairs",
     "tab_room",
     "unfold",
     "unfold_many",
+    "hunt_shape",
     "validate",
 ]

@@ -8,8 +8,9 @@ import numpy as np
 import pytest
 import shapely
 
+from voxfab.drawing import parse_sheet
 from voxfab.errors import FabricationError, InvalidShapeError
-from voxfab.fabricate.plates import make_plates, nest_plates, parse_sheet
+from voxfab.fabricate.plates import make_plates, nest_plates
 from voxfab.shape import examples
 
 

@@ -34,7 +34,7 @@ from voxfab.shape import VoxelShape
 from ._assembly import assembly_3mf, write_assembly_3mf
 from ._dowels import Dowel, Joint, find_joints
 from ._labels import Label, text_strokes
-from ._nest import PlacedPart, Sheet, nest_plates, parse_sheet
+from ._nest import PlacedPart, PlateSheet, nest_plates
 from ._options import PlateOptions
 from ._order import construction_pdf, write_construction_pdf
 from ._outline import Axis, Piece, slice_layers
@@ -76,7 +76,7 @@ __all__ = [
     "PlateOptions",
     "PlateStack",
     "PlatesReport",
-    "Sheet",
+    "PlateSheet",
     "Slices",
     "assembly_pdf",
     "fabricate_plates",
@@ -85,7 +85,6 @@ __all__ = [
     "make_report",
     "make_slices",
     "nest_plates",
-    "parse_sheet",
     "plate_warnings",
     "sheet_dxf",
     "sheet_svg",
@@ -110,7 +109,7 @@ class Slices:
     """
 
     stack: PlateStack | None
-    sheets: tuple[Sheet, ...]
+    sheets: tuple[PlateSheet, ...]
     report: PlatesReport | ConstructionReport
     construction: Construction | None = None
 

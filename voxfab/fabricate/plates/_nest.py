@@ -11,12 +11,12 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import re
 
 import numpy as np
 import numpy.typing as npt
 
 from voxfab._shared.validate import check_positive
+from voxfab.drawing import parse_sheet
 from voxfab.errors import FabricationError, InvalidShapeError
 
 from ._stack import Plate
@@ -78,7 +78,7 @@ class PlacedPart:
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class Sheet:
+class PlateSheet:
     """One sheet of material with the parts nested on it.
 
     Attributes
@@ -100,17 +100,6 @@ class Sheet:
     def material_area(self) -> float:
         """Area in mm² of the plates on this sheet (exact dowel circles, no kerf)."""
         return float(sum(p.plate.area for p in self.parts))
-
-
-def parse_sheet(text: str) -> tuple[float, float]:
-    """Parse a sheet size ``"WxH"`` in mm, e.g. ``"600x400"``."""
-    m = re.fullmatch(r"\s*([0-9]*\.?[0-9]+)\s*[xX×]\s*([0-9]*\.?[0-9]+)\s*", str(text))
-    if not m:
-        raise InvalidShapeError(f"sheet: expected WIDTHxHEIGHT in mm such as '600x400', got {text!r}")
-    w, h = float(m.group(1)), float(m.group(2))
-    check_positive(w, name="sheet width")
-    check_positive(h, name="sheet height")
-    return w, h
 
 
 def _turn(xy: npt.NDArray[np.float64], turns: int) -> npt.NDArray[np.float64]:
@@ -211,7 +200,7 @@ def nest_plates(
     spacing: float = 2.0,
     kerf: float = 0.0,
     in_holes: bool = True,
-) -> tuple[Sheet, ...]:
+) -> tuple[PlateSheet, ...]:
     """Nest plates onto as few sheets as the packer finds.
 
     Small plates first go inside the voxel holes of bigger ones (part in
@@ -234,7 +223,7 @@ def nest_plates(
 
     Returns
     -------
-    sheets : tuple of Sheet
+    sheets : tuple of PlateSheet
 
     Raises
     ------
@@ -303,6 +292,6 @@ def nest_plates(
             )
         )
     return tuple(
-        Sheet(index=k + 1, width=w, height=h, parts=tuple(sorted(by_bin[b], key=lambda q: q.plate.number)))
+        PlateSheet(index=k + 1, width=w, height=h, parts=tuple(sorted(by_bin[b], key=lambda q: q.plate.number)))
         for k, b in enumerate(sorted(by_bin))
     )

@@ -5,24 +5,7 @@ from __future__ import annotations
 import dataclasses
 
 from voxfab._shared.options import Options, option
-
-#: Largest sheet side accepted, mm (the largest laser beds and cutting services stay under 3 m).
-MAX_SHEET = 5000.0
-
-
-def sheet_problem(value: str) -> str | None:
-    """Why ``value`` is not a usable sheet ``"WxH"`` in mm, or None."""
-    from voxfab.errors import InvalidShapeError
-
-    from ._nest import parse_sheet
-
-    try:
-        w, h = parse_sheet(value)
-    except InvalidShapeError:
-        return "expected WIDTHxHEIGHT in mm such as 600x400"
-    if max(w, h) > MAX_SHEET:
-        return f"expected sides of at most {MAX_SHEET:g} mm"
-    return None
+from voxfab.drawing import sheet_problem
 
 
 @dataclasses.dataclass(frozen=True)
@@ -47,8 +30,8 @@ class PlateOptions(Options):
     clearance: float = option(0.1, help="interlocked, radial: slot width beyond the material thickness, for the fit",
                               unit="mm", low=0.0, high=5.0)
     thickness: float = option(3.0, help="measured plate thickness", unit="mm", low=0.1, high=100.0)
-    sheet: str = option("600x400", help="sheet (laser bed) size WIDTHxHEIGHT", unit="mm", check=sheet_problem,
-                        metavar="WxH")
+    sheet: str = option("600x400", help="sheet (laser bed): a name such as laser, or WxH", unit="mm",
+                        check=sheet_problem, metavar="WxH")
     margin: float = option(5.0, help="empty border of the sheet", unit="mm", low=0.0, high=1000.0)
     spacing: float = option(2.0, help="gap between parts on a sheet", unit="mm", low=0.0, high=1000.0)
     kerf: float = option(0.0, help="laser kerf; outlines grow and holes shrink by half of it", unit="mm",
@@ -65,8 +48,7 @@ class PlateOptions(Options):
     def check(self) -> None:
         """The margins must leave room on the sheet; STEP is for the stacked style."""
         from voxfab._shared.options import OptionError
-
-        from ._nest import parse_sheet
+        from voxfab.drawing import parse_sheet
 
         if self.step and self.style != "stacked":
             raise OptionError("step", f"STEP and STL are written for the stacked style only, not {self.style}; "

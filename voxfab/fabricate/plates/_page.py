@@ -6,10 +6,10 @@ import numpy as np
 
 from voxfab.drawing import Page, Polylines
 
-from ._nest import Sheet
+from ._nest import PlateSheet
 
 
-def sheet_page(sheet: Sheet) -> Page:
+def sheet_page(sheet: PlateSheet) -> Page:
     """The drawing page of one sheet (mm, lower-left corner at the origin).
 
     Cut rings (outlines and voxel holes) and dowel circles go on CUT, the

@@ -5,7 +5,7 @@ from __future__ import annotations
 import dataclasses
 from typing import Any
 
-from ._nest import Sheet
+from ._nest import PlateSheet
 from ._stack import PlateStack
 
 FORMAT = "voxfab-plates/1"
@@ -107,7 +107,7 @@ def _dowel_plates(counts: tuple[int, ...]) -> int:
     return max(a + b for a, b in zip(counts[:-1], counts[1:]))
 
 
-def make_report(stack: PlateStack, sheets: tuple[Sheet, ...], *, kerf: float = 0.0) -> PlatesReport:
+def make_report(stack: PlateStack, sheets: tuple[PlateSheet, ...], *, kerf: float = 0.0) -> PlatesReport:
     """Build the report of a plate stack nested on ``sheets``."""
     material = sum(p.area for p in stack.plates)
     width = sheets[0].width if sheets else 0.0
@@ -236,7 +236,7 @@ class ConstructionReport:
         return {"format": FORMAT, **data}
 
 
-def make_construction_report(construction: Any, sheets: tuple[Sheet, ...], *, kerf: float = 0.0,
+def make_construction_report(construction: Any, sheets: tuple[PlateSheet, ...], *, kerf: float = 0.0,
                              min_width: float = 0.0) -> ConstructionReport:
     """Build the report of a slotted construction nested on ``sheets``.
 

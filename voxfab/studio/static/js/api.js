@@ -1,14 +1,17 @@
 // Talking to the studio server: JSON requests, job polling with progress, downloads.
 
-export class ApiError extends Error {}
+// An error the server explained: `message` in the artist's words, `detail` the technical line (a tooltip).
+export class ApiError extends Error {
+  constructor(message, detail = '') { super(message); this.detail = detail || ''; }
+}
 
 async function answer(resp) {
   const type = resp.headers.get('content-type') || '';
   if (!resp.ok) {
-    let msg = `${resp.status} ${resp.statusText}`;
-    if (type.includes('json')) msg = (await resp.json()).error || msg;
+    let msg = `${resp.status} ${resp.statusText}`, detail = '';
+    if (type.includes('json')) { const j = await resp.json(); msg = j.error || msg; detail = j.detail || ''; }
     else msg = (await resp.text()).trim() || msg;
-    throw new ApiError(msg);
+    throw new ApiError(msg, detail);
   }
   return type.includes('json') ? resp.json() : resp.blob();
 }
@@ -24,15 +27,38 @@ export async function get(url) {
   return answer(await fetch(url));
 }
 
-// Poll a job until it ends; onProgress(done, total, message) on each answer.
+// The jobs being waited for now (what the Cancel button stops).
+const waiting = new Set();
+export function waitingJobs() { return [...waiting]; }
+
+export class Cancelled extends ApiError {}
+
+function ordinal(n) { return n === 1 ? '1st' : n === 2 ? '2nd' : n === 3 ? '3rd' : `${n}th`; }
+
+// What a job is doing, in words: its place in the queue, or its own progress message.
+export function jobText(s) {
+  if (s.state === 'queued') return `waiting: ${ordinal(s.place)} in the queue`;
+  if (s.state === 'cancelled') return 'cancelled';
+  return s.message || 'working';
+}
+
+// Ask the server to stop a job (it stops within about a second).
+export function cancelJob(id) { return post(`/api/jobs/${id}/cancel`, {}); }
+
+// Poll a job until it ends; onProgress(done, total, text, status) on each answer.
+// Throws ApiError when it failed, Cancelled when it was cancelled.
 export async function waitJob(id, onProgress, intervalMs = 150) {
-  for (;;) {
-    const s = await get(`/api/jobs/${id}`);
-    if (onProgress) onProgress(s.done, s.total, s.message);
-    if (s.state === 'done') return s;
-    if (s.state === 'error') throw new ApiError(s.message);
-    await new Promise((r) => setTimeout(r, intervalMs));
-  }
+  waiting.add(id);
+  try {
+    for (;;) {
+      const s = await get(`/api/jobs/${id}`);
+      if (onProgress) onProgress(s.done, s.total, jobText(s), s);
+      if (s.state === 'done') return s;
+      if (s.state === 'error') throw new ApiError(s.message, s.detail);
+      if (s.state === 'cancelled') throw new Cancelled('Cancelled.');
+      await new Promise((r) => setTimeout(r, intervalMs));
+    }
+  } finally { waiting.delete(id); }
 }
 
 // Save a blob under a name through a temporary link (the browser's download).

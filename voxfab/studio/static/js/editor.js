@@ -3,7 +3,7 @@
 export class LayerEditor {
   constructor(canvas, {onEdit}) {
     this.canvas = canvas; this.onEdit = onEdit;
-    this.grid = null; this.layer = 12; this.undoStack = []; this.redoStack = [];
+    this.grid = null; this.layer = 12; this.undoStack = []; this.redoStack = []; this.tag = null;
     let painting = null; // 1: adding, 0: removing, null: idle
     const cellAt = (e) => {
       const r = canvas.getBoundingClientRect();
@@ -41,26 +41,40 @@ export class LayerEditor {
     this.paint();
   }
 
-  setLayer(z) { this.layer = Math.max(0, Math.min(this.grid ? this.grid.nz - 1 : 24, z)); this.paint(); }
+  // Each undo step keeps the grid and a `tag` the page attaches to it (the drawing's shape then),
+  // restored with it: the page knows which hand edits each step had.
+  entry(grid) { return {grid: grid.clone(), tag: this.tag}; }
 
-  snapshot() {
-    this.undoStack.push(this.grid.clone());
+  // Keep a shape that is about to be replaced (by a new drawing, an opened shape) one Undo away.
+  remember(grid, tag) {
+    if (!grid || !grid.count()) return;
+    this.undoStack.push({grid: grid.clone(), tag});
     if (this.undoStack.length > 200) this.undoStack.shift();
     this.redoStack = [];
   }
 
+  setLayer(z) { this.layer = Math.max(0, Math.min(this.grid ? this.grid.nz - 1 : 24, z)); this.paint(); }
+
+  snapshot() {
+    this.undoStack.push(this.entry(this.grid));
+    if (this.undoStack.length > 200) this.undoStack.shift();
+    this.redoStack = [];
+  }
+
+  restore(e) { this.grid.data.set(e.grid.data); this.tag = e.tag; this.paint(); }
+
   undo() {
     if (!this.undoStack.length) return false;
-    this.redoStack.push(this.grid.clone());
-    this.grid.data.set(this.undoStack.pop().data);
-    this.paint(); return true;
+    this.redoStack.push(this.entry(this.grid));
+    this.restore(this.undoStack.pop());
+    return true;
   }
 
   redo() {
     if (!this.redoStack.length) return false;
-    this.undoStack.push(this.grid.clone());
-    this.grid.data.set(this.redoStack.pop().data);
-    this.paint(); return true;
+    this.undoStack.push(this.entry(this.grid));
+    this.restore(this.redoStack.pop());
+    return true;
   }
 
   clearLayer() {

@@ -1,10 +1,11 @@
 // voxfab studio: wiring of the tabs, the shape being worked on, and the server calls.
 
-import {fileUrl, get, post, saveBlob, waitJob} from './api.js';
+import {cancelJob, fileUrl, get, post, saveBlob, waitJob, waitingJobs} from './api.js';
 import {CurveSource, FociInput, SpineDrawing} from './draw.js';
 import {LayerEditor} from './editor.js';
 import {Grid} from './grid.js';
-import {drawNet, NetMarker} from './nets.js';
+import {drawNet} from './nets.js';
+import {NetView} from './netview.js';
 import {Viewer} from './viewer.js';
 
 const $ = (sel) => document.querySelector(sel);
@@ -20,6 +21,9 @@ const SPINES = {
 const state = {
   shape: new Grid(), // the current 25³ shape
   drawn: null, // the drawing that made it, while unedited (for the recipe)
+  base: null, // the drawing's own shape (the last preview): hand edits are what differs from it
+  opened: false, // the shape came from the repository or the command line, not from the drawing
+  parked: null, // {shape, base}: hand edits set aside while the drawing has an error
   edited: false,
   name: null, // repository name once saved
   gallery: null, // {job, nets}
@@ -28,43 +32,118 @@ const state = {
 
 // --- messages and progress ---------------------------------------------------------------------
 
+// Say what happened in the status line; an error from the server keeps its technical line as a tooltip.
 function say(text, info = false) {
   const m = $('#message');
+  const detail = text instanceof Error ? text.detail || '' : '';
+  if (text instanceof Error) text = text.message;
   m.textContent = text; m.classList.toggle('info', info);
+  if (detail) m.title = detail; else m.removeAttribute('title');
 }
 
-function progress(done, total, text) {
+// A job's progress in the status line: its place in the queue while it waits, then done of total.
+function progress(done, total, text, status = null) {
+  const queued = status && status.state === 'queued';
   $('#progress').classList.remove('hidden');
-  $('#progress-bar').style.width = `${Math.round(300 * done / Math.max(total, 1))}px`;
-  $('#progress-text').textContent = text || '';
+  $('#progress').dataset.state = status ? status.state : 'running';
+  $('#progress').dataset.place = String(status ? status.place || 0 : 0);
+  $('#progress-bar').style.width = queued ? '0px' : `${Math.round(300 * done / Math.max(total, 1))}px`;
+  $('#progress-text').textContent = queued || !total || total <= 1 ? text || '' : `${text || ''} (${done} of ${total})`;
 }
 
-function progressDone() { $('#progress').classList.add('hidden'); }
+function progressDone() { $('#progress').classList.add('hidden'); delete $('#progress').dataset.state; }
+
+$('#job-cancel').addEventListener('click', async () => {
+  $('#progress-text').textContent = 'cancelling…';
+  for (const id of waitingJobs()) await cancelJob(id).catch(() => {});
+});
 
 // --- the shape and its facts --------------------------------------------------------------------
 
 const viewer = new Viewer($('#viewer'));
 
+const NO_FACTS = {volume: 0, extents: [0, 0, 0], well_formed: false, reasons: [], none: true};
+
 function showFacts(f) {
   const wf = $('#wf');
-  wf.textContent = f.well_formed ? 'well formed' : 'not well formed';
-  wf.className = `badge ${f.well_formed ? 'ok' : 'bad'}`;
+  // no shape (the drawing has an error): neither a green nor a red badge over a shape that is not there
+  wf.textContent = f.none ? 'no shape' : f.well_formed ? 'well formed' : 'not well formed';
+  wf.className = `badge ${f.none ? '' : f.well_formed ? 'ok' : 'bad'}`;
   wf.dataset.wellFormed = String(f.well_formed);
-  $('#volume').textContent = `${f.volume} voxels · ${f.extents.join('×')}`;
+  $('#volume').textContent = f.none ? '' : `${f.volume} voxels · ${f.extents.join('×')}`;
   $('#volume').dataset.volume = String(f.volume);
-  $('#reasons').replaceChildren(...f.reasons.map((r) => Object.assign(document.createElement('li'), {textContent: r})));
+  $('#reasons').replaceChildren(...f.reasons.map((r, i) => {
+    const li = Object.assign(document.createElement('li'), {textContent: r});
+    if (f.terms && f.terms[i] && f.terms[i] !== r) li.title = f.terms[i]; // the technical words, on hover
+    return li;
+  }));
 }
 
-function setShape(grid, facts, {drawn = null, name = null} = {}) {
-  state.shape = grid; state.drawn = drawn; state.edited = false; state.name = name;
+// What belonged to the shape before it changed: its saved name's note, its nets and the marks on them.
+function forgetShapeState() {
   state.gallery = null; state.chosen = null;
+  $('#save-result').textContent = ''; delete $('#save-result').dataset.name;
+  $('#net-summary').textContent = '';
+  marker.setLayout(null);
+  if (marker.marks && marker.marks.size) marker.clear();
+}
+
+function setShape(grid, facts, {drawn = null, name = null, keepHistory = false} = {}) {
+  state.shape = grid; state.drawn = drawn; state.edited = false; state.name = name;
+  forgetShapeState();
   $('#shape-name').textContent = name || 'unsaved';
   viewer.stop();
   viewer.setGrid(grid, currentTab() === 'edit' ? editor.layer : null);
-  editor.setGrid(grid);
+  editor.setGrid(grid, {keepHistory});
+  editor.tag = state.base;
   showFacts(facts);
   recipeNote();
   netNote();
+}
+
+// The hand edits (voxels where `shape` differs from `base`) laid on `fresh`; returns [grid, count].
+function carryEdits(base, shape, fresh) {
+  const out = fresh.clone();
+  let n = 0;
+  for (let i = 0; i < out.data.length; i++) {
+    if (shape.data[i] !== base.data[i]) { out.data[i] = shape.data[i]; n++; }
+  }
+  return [out, n];
+}
+
+// A new preview of the drawing: hand edits are kept on it, and a shape it replaces stays one Undo away.
+function drawingChanged(fresh, facts, spec) {
+  const before = state.shape, beforeBase = state.base;
+  // the edits on the shape now, or those set aside while the drawing had an error
+  const carry = state.edited && beforeBase ? {shape: before, base: beforeBase} : state.parked;
+  state.parked = null;
+  if (carry) {
+    // the drawing still gives the same shape: the edits stand as they are
+    if (carry.shape === before && carry.base.equals(fresh)) return;
+    const [kept, n] = carryEdits(carry.base, carry.shape, fresh);
+    state.base = fresh;
+    editor.remember(before, beforeBase);
+    setShape(kept, facts, {keepHistory: true});
+    state.edited = true; $('#shape-name').textContent = 'unsaved';
+    check();
+    say(`The drawing changed: your ${n} hand-edited voxel${n === 1 ? ' is' : 's are'} kept on the new shape (Undo in Edit goes back).`, true);
+    return;
+  }
+  const replacing = (state.opened || state.edited) && before.count() > 0;
+  state.base = fresh.clone(); state.opened = false;
+  if (replacing) editor.remember(before, beforeBase);
+  setShape(fresh, facts, {drawn: spec, keepHistory: replacing});
+  if (replacing) say('The drawing replaced the opened shape (Undo in Edit brings it back).', true);
+}
+
+// The drawing cannot make a shape: show none rather than the last one under its old badge.
+function drawingFailed() {
+  if (state.shape.count() === 0 && !state.edited) { showFacts(NO_FACTS); viewer.setGrid(state.shape); return; }
+  const before = state.shape, beforeBase = state.base;
+  if (state.edited && beforeBase) state.parked = {shape: before.clone(), base: beforeBase}; // back when it is fixed
+  state.base = null;
+  editor.remember(before, beforeBase);
+  setShape(new Grid(), NO_FACTS, {keepHistory: true});
 }
 
 // --- Draw ---------------------------------------------------------------------------------------
@@ -76,7 +155,9 @@ function schedule(final) {
   if (!inFlight) runPreview();
 }
 
-function drawnEmpty(src) { return src.kind === 'drawn' && !src.polylines.some((p) => p.points.length >= 2); }
+function drawnEmpty(src) {
+  return (src.kind === 'drawn' && !src.polylines.some((p) => p.points.length >= 2)) || (src.kind === 'bitmap' && !src.bitmap);
+}
 
 function currentSpec() {
   const maker = $('#maker').value;
@@ -120,18 +201,20 @@ async function runPreview() {
   const req = pending; pending = null;
   const spec = currentSpec();
   const missing = emptyDrawing(spec);
-  if (missing) { say(`Draw the ${missing} to see the shape.`, true); return; }
+  // an unfinished drawing has no shape yet: none is shown rather than the last one
+  if (missing) { say(`Draw or choose the ${missing} to see the shape.`, true); drawingFailed(); return; }
   inFlight = true;
   try {
     const r = await post('/api/preview', spec);
-    setShape(Grid.unpack(r.grid), r.facts, {drawn: spec});
+    say('');
+    drawingChanged(Grid.unpack(r.grid), r.facts, spec);
     const ms = performance.now() - req.t;
     const lat = $('#latency');
     lat.textContent = `preview ${Math.round(ms)} ms (digitizing ${Math.round(r.ms)} ms)`;
     if (req.final) { lat.dataset.ms = String(Math.round(ms)); lat.dataset.count = String(Number(lat.dataset.count || 0) + 1); }
-    say('');
   } catch (e) {
-    say(e.message);
+    say(e);
+    drawingFailed();
   } finally {
     inFlight = false;
     if (pending) runPreview();
@@ -175,7 +258,7 @@ $('#play').addEventListener('click', async () => {
     viewer.play(r.frames.map(Grid.unpack));
     $('#anim-status').textContent = `${r.frames.length} frames`;
     $('#anim-status').dataset.frames = String(r.frames.length);
-  } catch (e) { $('#anim-status').textContent = ''; say(e.message); }
+  } catch (e) { $('#anim-status').textContent = ''; say(e); }
 });
 $('#stop').addEventListener('click', () => { viewer.stop(); viewer.setGrid(state.shape); $('#anim-status').textContent = ''; });
 
@@ -189,15 +272,15 @@ async function check() {
   try {
     const r = await post('/api/check', {grid: state.shape.pack()});
     showFacts(r.facts);
-  } catch (e) { say(e.message); } finally {
+  } catch (e) { say(e); } finally {
     checking = false;
     if (recheck) { recheck = false; check(); }
   }
 }
 
 function edited() {
-  state.edited = true; state.drawn = null; state.name = null;
-  state.gallery = null; state.chosen = null;
+  state.edited = true; state.drawn = null; state.name = null; state.parked = null;
+  forgetShapeState();
   $('#shape-name').textContent = 'unsaved';
   viewer.setGrid(state.shape, editor.layer);
   recipeNote(); netNote();
@@ -214,14 +297,16 @@ function setLayer(z) {
 $('#layer').addEventListener('input', () => setLayer(Number($('#layer').value)));
 $('#layer-up').addEventListener('click', () => setLayer(editor.layer + 1));
 $('#layer-down').addEventListener('click', () => setLayer(editor.layer - 1));
-$('#undo').addEventListener('click', () => { if (editor.undo()) edited(); });
-$('#redo').addEventListener('click', () => { if (editor.redo()) edited(); });
+// Undo and redo also step back over a drawing change or a refused drawing: the base goes with the shape.
+function stepped() { state.base = editor.tag; edited(); }
+$('#undo').addEventListener('click', () => { if (editor.undo()) stepped(); });
+$('#redo').addEventListener('click', () => { if (editor.redo()) stepped(); });
 $('#clear-layer').addEventListener('click', () => { editor.clearLayer(); edited(); });
 $('#fill-layer').addEventListener('click', () => { editor.copyBelow(); edited(); });
 document.addEventListener('keydown', (e) => {
   if (currentTab() !== 'edit' || !(e.ctrlKey || e.metaKey)) return;
-  if (e.key === 'z' && !e.shiftKey) { e.preventDefault(); if (editor.undo()) edited(); }
-  if (e.key === 'y' || (e.key === 'z' && e.shiftKey)) { e.preventDefault(); if (editor.redo()) edited(); }
+  if (e.key === 'z' && !e.shiftKey) { e.preventDefault(); if (editor.undo()) stepped(); }
+  if (e.key === 'y' || (e.key === 'z' && e.shiftKey)) { e.preventDefault(); if (editor.redo()) stepped(); }
 });
 
 // --- Keep ---------------------------------------------------------------------------------------
@@ -242,7 +327,7 @@ $('#save-repo').addEventListener('click', async () => {
     $('#save-result').textContent = text; $('#save-result').dataset.name = r.name;
     say(text, true);
     refreshRepo();
-  } catch (e) { $('#save-result').textContent = ''; say(e.message); }
+  } catch (e) { $('#save-result').textContent = ''; say(e); }
 });
 
 $('#save-recipe').addEventListener('click', async () => {
@@ -253,7 +338,7 @@ $('#save-recipe').addEventListener('click', async () => {
     const name = /filename="([^"]+)"/.exec(resp.headers.get('content-disposition'))[1];
     saveBlob(await resp.blob(), name);
     say(`Recipe saved as ${name}: voxfab build ${name.replace('.zip', '/…toml')} makes this shape.`, true);
-  } catch (e) { say(e.message); }
+  } catch (e) { say(e); }
 });
 
 async function refreshRepo(after = null) {
@@ -273,7 +358,7 @@ async function refreshRepo(after = null) {
     if (after) $('#repo-grid').append(...figures); else $('#repo-grid').replaceChildren(...figures);
     $('#repo-more').classList.toggle('hidden', !r.more);
     $('#repo-more').dataset.after = r.shapes.length ? r.shapes[r.shapes.length - 1].name : '';
-  } catch (e) { say(e.message); }
+  } catch (e) { say(e); }
 }
 $('#repo-refresh').addEventListener('click', () => refreshRepo());
 $('#repo-more').addEventListener('click', () => refreshRepo($('#repo-more').dataset.after));
@@ -281,14 +366,17 @@ $('#repo-more').addEventListener('click', () => refreshRepo($('#repo-more').data
 async function openShape(name) {
   try {
     const r = await get(`/api/repo/shape?name=${encodeURIComponent(name)}`);
-    setShape(Grid.unpack(r.grid), r.facts, {name});
+    const before = state.shape, beforeBase = state.base;
+    state.base = null; state.opened = true;
+    editor.remember(before, beforeBase); // Undo in Edit returns to the shape it replaced
+    setShape(Grid.unpack(r.grid), r.facts, {name, keepHistory: true});
     say(`Opened ${name}`, true);
-  } catch (e) { say(e.message); }
+  } catch (e) { say(e); }
 }
 
 // --- Net ----------------------------------------------------------------------------------------
 
-const marker = new NetMarker($('#net-canvas'), {onChange: () => {
+const marker = new NetView($('#net-canvas'), {viewer, shape: () => state.shape, say, fold: $('#net-fold'), play: $('#net-fold-play'), undo: $('#net-undo'), onChange: () => {
   const c = marker.constraints();
   $('#marks-count').textContent = `${c.cut.length} cut, ${c.keep.length} kept`;
   $('#marks-count').dataset.constraints = JSON.stringify(c);
@@ -345,7 +433,7 @@ async function gallery(withMarks) {
 function choose(i) {
   state.chosen = i;
   $$('#net-gallery figure').forEach((f, j) => f.classList.toggle('chosen', i === j));
-  marker.setLayout(state.gallery.nets[i].layout);
+  marker.setNet(state.gallery.job, i, state.gallery.nets[i].layout);
   $('#net-chosen-label').textContent = `#${i + 1} (seed ${state.gallery.nets[i].seed})`;
   $('#net-chosen-label').dataset.index = String(i);
   netNote();
@@ -364,7 +452,7 @@ async function make(artefact) {
     title: state.name || $('#recipe-name').value || 'studio',
     options: {face_mm: face ? Number(face) : null, sheet: $('#net-sheet').value, thickness: Number($('#thickness').value),
       timeout: Number($('#net-timeout').value), style: $('#plate-style').value, plate_sheet: $('#plate-sheet').value},
-    net: state.gallery && state.chosen !== null ? {job: state.gallery.job, index: state.chosen} : null,
+    net: state.gallery && state.chosen !== null ? {job: marker.job, index: marker.index} : null,
     shape: artefact === 'animation.gif' ? state.drawn : undefined};
   try {
     const {job} = await post('/api/make', body);
@@ -413,6 +501,17 @@ $$('#tabs button').forEach((b) => b.addEventListener('click', () => {
   if (b.dataset.tab === 'keep') refreshRepo();
 }));
 
+// The first shape: the one `voxfab studio SHAPE` was given, else the drawing's preview.
+async function start() {
+  const {shape} = await get('/api/initial');
+  if (!shape) { schedule(true); return; }
+  state.opened = true;
+  setShape(Grid.unpack(shape.grid), shape.facts, {name: shape.name});
+  $('#shape-name').textContent = shape.label;
+  if (shape.pitch) $('#pitch').value = String(shape.pitch);
+  say(`Opened ${shape.label}`, true);
+}
+
 recipeNote(); netNote();
-schedule(true);
-makeButtons().then(() => { document.body.dataset.ready = 'true'; }, (e) => say(e.message));
+start().catch((e) => say(e));
+makeButtons().then(() => { document.body.dataset.ready = 'true'; }, (e) => say(e));

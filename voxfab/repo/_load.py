@@ -1,0 +1,68 @@
+"""A shape by file name or repository name, at its scale: what every command, the studio and batch runs load."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any, NamedTuple
+
+from voxfab._shared.typing import PathLike
+from voxfab.shape import VoxelShape
+
+from ._records import NAME_PATTERN
+from ._repository import DEFAULT_PATH
+
+
+class LoadedShape(NamedTuple):
+    """A loaded shape and where its scale came from.
+
+    Attributes
+    ----------
+    shape : VoxelShape
+        The voxels at their pitch (mm per voxel).
+    name : str or None
+        The repository name, when the shape was loaded by name.
+    notes : list of str
+        The file reader's notes (a mesh's resolution, a cropped margin).
+    scaled : bool
+        Whether the pitch was given (by ``pitch`` or the file itself) rather than
+        the 1 mm default: an output that can choose a scale itself (a net fitted to
+        its sheet) does so only when it was not.
+    """
+
+    shape: VoxelShape
+    name: str | None
+    notes: list[str]
+    scaled: bool
+
+
+def load_shape(source: str, repository: PathLike | None = None, *, pitch: float | None = None,
+               **options: Any) -> LoadedShape:
+    """Load ``source``, a shape file or a repository name (``VVVVV.NNN``, ``draft-N``), at its scale.
+
+    Parameters
+    ----------
+    source : str
+        A file any reader of :mod:`voxfab.io` takes, or a repository name; an
+        existing file of that name wins.
+    repository : path, optional
+        The repository database (default ``output/repository.sqlite``); it must exist.
+    pitch : float, optional
+        mm per voxel; default the file's own, else 1 mm.
+    **options
+        Reader options (a mesh's ``resolution``).
+    """
+    from voxfab import io
+    from voxfab.shape import ShapeOptions
+
+    ShapeOptions(pitch=pitch)  # checked before reading
+    from ._records import DRAFT_PATTERN
+
+    if (NAME_PATTERN.match(source) or DRAFT_PATTERN.match(source)) and not Path(source).exists():
+        from ._repository import Repository
+
+        with Repository(repository or DEFAULT_PATH, create=False) as repo:
+            grid = repo.get(source)
+        return LoadedShape(VoxelShape(grid, pitch or 1.0), source, [], pitch is not None)
+    result = io.read(source, **options)
+    own = pitch if pitch is not None else result.pitch
+    return LoadedShape(VoxelShape(result.grid, own or 1.0), None, list(result.notes), own is not None)

@@ -1,0 +1,188 @@
+"""``POST /api/nets/edit``: cut or join one edge of a chosen net, or undo the last edit.
+
+The edit itself is :func:`voxfab.unfold.cut_edge` / :func:`voxfab.unfold.join_edge`
+(a local repair, validated); this module only finds the net the page names,
+keeps the result as a new job (its net 0, so ``/api/make`` can use it) with the
+marks made so far and the nets before it (for undo), and answers with the net
+laid out for the page.
+
+Body: ``{"job": ID, "index": N, "cut": [faceA, faceB]}`` or ``"join": [...]`` or
+``"undo": true``, faces as ``[x, y, z, "+z"]``; ``"grid"`` (packed) is needed only
+when the gallery job did not keep its shape, ``"marks"`` (``{"cut": [...], "keep":
+[...]}``) starts the marks of a net that has none yet (one fresh from a gallery).  Answer: ``{"job": NEWID, "net": ITEM}``
+with ITEM as a gallery item plus ``"marks"``, ``"moved"``, ``"cut"``, ``"joined"``
+and ``"undo"`` (edits that undo can take back).
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Awaitable, Callable
+from typing import Any
+
+import numpy as np
+
+from voxfab.errors import InvalidShapeError
+
+#: Edits one chain of edits remembers for undo.
+MAX_UNDO = 50
+
+
+def _pieces(net: Any) -> list[Any]:
+    return [net] if hasattr(net, "corners2d") else list(net)
+
+
+def net_layout(grid: np.ndarray, net: Any) -> dict[str, Any]:
+    """The page's LAYOUT of a net or its pieces (the studio net contract), faces in surface-graph order.
+
+    ``corners`` are each face's 2D corners in its piece's frame, ``parent`` the
+    face it hinges on in the fold-up (the tree :func:`voxfab.render.fold_tree`
+    walks), ``labels`` the seam code of each cut edge pair in the drawings'
+    alphabet, numbered in the order of the pairs.
+    """
+    from voxfab.fabricate.netdraw._labels import label_length, seam_label
+    from voxfab.render._fold import fold_tree
+    from voxfab.shape import fill_cavities, surface_graph
+    from voxfab.unfold._constraints import NORMALS, face_index
+
+    pieces = _pieces(net)
+    sg = surface_graph(fill_cavities(grid) if pieces[0].filled else grid)
+    f = sg.face_count
+    corners = np.zeros((f, 4, 2), dtype=np.int64)
+    piece = np.full(f, -1, dtype=np.int64)
+    parent = np.full(f, -1, dtype=np.int64)
+    folds: list[tuple[int, int]] = []
+    for p, part in enumerate(pieces):
+        names = [(*v, NORMALS[2 * int(np.flatnonzero(n)[0]) + (0 if sum(n) > 0 else 1)])
+                 for v, n in zip(part.voxel.tolist(), part.normal.tolist())]
+        ids = face_index(sg, names)
+        if (ids < 0).any():
+            raise InvalidShapeError("net: its faces are not the faces of this shape")
+        corners[ids] = part.corners2d
+        piece[ids] = p
+        if part.face_count > 1:
+            _, up, _ = fold_tree(part)
+            parent[ids] = np.where(up >= 0, ids[np.maximum(up, 0)], -1)
+        folds += [(int(min(ids[i], ids[j])), int(max(ids[i], ids[j]))) for i, j in part.folds.tolist()]
+    folded = set(folds)
+    seams = sorted({(min(i, int(j)), max(i, int(j))) for i in range(f) for j in sg.neighbor[i].tolist()
+                    if j >= 0 and (min(i, j), max(i, j)) not in folded})
+    chars = label_length(max(len(seams), 1))
+    return {
+        "faces": [[int(v[0]), int(v[1]), int(v[2]), NORMALS[int(d)]] for v, d in zip(sg.voxel, sg.direction)],
+        "corners": corners.reshape(-1).tolist(),
+        "corners3d": sg.corners.reshape(-1).tolist(),
+        "folds": [c for pair in sorted(folds) for c in pair],
+        "neighbor": sg.neighbor.reshape(-1).tolist(),
+        "fold_type": sg.fold.reshape(-1).tolist(),
+        "piece": piece.tolist(),
+        "parent": parent.tolist(),
+        "labels": {f"{i}-{j}": seam_label(n + 1, chars) for n, (i, j) in enumerate(seams)},
+    }
+
+
+def net_item(grid: np.ndarray, net: Any, marks: Any, *, history: int, extra: dict[str, Any]) -> dict[str, Any]:
+    """A gallery item for an edited net, with its marks and how many edits undo can take back."""
+    pieces = _pieces(net)
+    first = pieces[0]
+    return {
+        "index": 0, "seed": int(first.seed), "faces": sum(p.face_count for p in pieces), "pieces": len(pieces),
+        "mountain": sum(int(p.mountain) for p in pieces), "valley": sum(int(p.valley) for p in pieces),
+        "seams_without_tab_room": sum(int(p.seams_without_tab_room) for p in pieces),
+        "layout": net_layout(grid, net),
+        "marks": marks.to_dict() if marks else {"cut": [], "keep": []},
+        "undo": history, **extra,
+    }
+
+
+def _edge(value: Any, name: str) -> tuple[tuple, tuple]:
+    from voxfab.unfold._constraints import _edge as parse_edge
+
+    return parse_edge(value, name)
+
+
+def apply_edit(job: Any, data: dict[str, Any]) -> dict[str, Any]:
+    """What one edit makes: the record a new job keeps (``nets``, ``grid``, ``marks``, ``history``) and its answer."""
+    from voxfab.unfold import EdgeConstraints, cut_edge, join_edge
+
+    from . import _grid
+
+    nets = job.data.get("nets") or []
+    if not nets:
+        raise InvalidShapeError(f"job: job {job.id} has no nets to edit")
+    index = data.get("index", 0)
+    if isinstance(index, bool) or not isinstance(index, int) or not 0 <= index < len(nets):
+        raise InvalidShapeError(f"index: expected a net of job {job.id}, 0 to {len(nets) - 1}, got {index!r:.20}")
+    grid = job.data.get("grid")
+    if grid is None:
+        if data.get("grid") is None:
+            raise InvalidShapeError("grid: this gallery did not keep its shape; send the shape as \"grid\"")
+        grid = _grid.unpack(data.get("grid"))
+    net = nets[index]
+    marks = job.data.get("marks")
+    if marks is None and job.data.get("constraints") is not None:
+        marks = job.data["constraints"]
+    if marks is None and data.get("marks"):
+        # a net fresh from a gallery: the marks the page made so far start its record
+        from voxfab.unfold import EdgeConstraints as Marks
+
+        marks = Marks.from_dict(data["marks"])
+    history = list(job.data.get("history", []))
+    kinds = [k for k in ("cut", "join", "undo") if data.get(k) not in (None, False)]
+    if len(kinds) != 1:
+        raise InvalidShapeError("edit: give exactly one of \"cut\": [face, face], \"join\": [face, face], "
+                                "\"undo\": true")
+    kind = kinds[0]
+    start = time.perf_counter()
+    if kind == "undo":
+        if not history:
+            raise InvalidShapeError("undo: no edit of this net to take back")
+        net, marks = history.pop()
+        extra: dict[str, Any] = {"moved": 0, "cut": [], "joined": []}
+    else:
+        a, b = _edge(data[kind], kind)
+        edit = cut_edge if kind == "cut" else join_edge
+        result = edit(grid, _pieces(net), a, b, constraints=marks if isinstance(marks, EdgeConstraints) else None)
+        history = (history + [(net, marks)])[-MAX_UNDO:]
+        net = result.pieces[0] if len(result.pieces) == 1 else result.pieces
+        marks = result.marks
+        extra = {"moved": result.moved, "cut": [[list(x), list(y)] for x, y in result.cut],
+                 "joined": [[list(x), list(y)] for x, y in result.joined]}
+    extra["edit"] = kind
+    extra["seconds"] = round(time.perf_counter() - start, 3)
+    item = net_item(grid, net, marks, history=len(history), extra=extra)
+    return {"record": {"nets": [net], "grid": grid, "marks": marks, "history": history}, "item": item}
+
+
+def edit_route(jobs: Callable[[], Any]) -> Callable[[Any], Awaitable[dict[str, Any]]]:
+    """The handler of ``POST /api/nets/edit`` over the session's jobs (wrap it in the app's ``api``)."""
+    import json
+
+    from starlette.concurrency import run_in_threadpool
+
+    async def edit(request: Any) -> dict[str, Any]:
+        body = await request.body()
+        try:
+            data = json.loads(body or b"null")
+        except (ValueError, RecursionError):
+            raise InvalidShapeError("request: the body is not JSON") from None
+        if not isinstance(data, dict) or not isinstance(data.get("job"), str):
+            raise InvalidShapeError("request: expected {\"job\": ID, \"index\": N, \"cut\" | \"join\": [face, face]"
+                                    " | \"undo\": true}")
+        source = jobs().get(data["job"]) if len(data["job"]) <= 40 else None
+        if source is None:
+            raise InvalidShapeError(f"job: no job {data['job'][:20]!r} in this session")
+        if source.state != "done":
+            raise InvalidShapeError(f"job: job {source.id} has not finished")
+        made = await run_in_threadpool(apply_edit, source, data)
+        record, item = made["record"], made["item"]
+
+        def keep(job: Any) -> None:
+            job.data.update(record)
+            job.result = {"asked": 1, "found": 1, "seconds": item["seconds"], "nets": [item]}
+
+        job = jobs().submit("edit", keep)
+        keep(job)  # at once too, so /api/make finds the net before the pool has run the job
+        return {"job": job.id, "net": item}
+
+    return edit
