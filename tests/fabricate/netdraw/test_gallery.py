@@ -131,7 +131,7 @@ def test_pieces_share_one_layout_and_sit_apart_on_their_sheets() -> None:
 
 def test_the_queen_on_a4_says_what_would_work() -> None:
     grid = _queen()
-    net, drawing = gallery_options({"sheet": "A4", "timeout": 5})
+    net, drawing = gallery_options({"sheet": "A4", "timeout": 30})
     gallery = net_gallery(grid, net, drawing, count=3, seed=0)
     assert gallery.options.pitch == 8.6  # the smallest face size with legible marks
     assert len({outline_key(i.pieces[0]) for i in gallery.nets}) == len(gallery.nets) >= 2
@@ -163,12 +163,26 @@ def test_faces_too_small_fail_with_ways_out() -> None:
     assert {"numbers": False, "tabs": False} in options and any("face_size" in o for o in options)
 
 
-def test_the_search_stops_when_cancelled_and_reports_progress() -> None:
-    seen: list[tuple[int, int]] = []
+def test_the_search_reports_progress_and_stops_when_cancelled() -> None:
+    import threading
+
+    from voxfab._shared.progress import cancel_scope
+    from voxfab.errors import CancelledError
+
     net, drawing = gallery_options({"sheet": "A3", "face_size": 10, "timeout": 10})
-    gallery = net_gallery(examples.ball(2), net, drawing, count=6, seed=1, progress=lambda d, t: seen.append((d, t)),
-                          cancelled=lambda: bool(seen))
-    assert len(gallery.nets) == 1 and seen == [(1, 6)]
+    seen: list[tuple[int, int]] = []
+    gallery = net_gallery(examples.ball(2), net, drawing, count=3, seed=1, progress=lambda d, t: seen.append((d, t)))
+    assert seen == [(i + 1, 3) for i in range(len(gallery.nets))] and len(gallery.nets) == 3
+    stop = threading.Event()
+    seen.clear()
+
+    def step(done: int, total: int) -> None:
+        seen.append((done, total))
+        stop.set()  # the stop button, pressed once the first net is in
+
+    with cancel_scope(stop), pytest.raises(CancelledError):
+        net_gallery(examples.ball(2), net, drawing, count=6, seed=1, progress=step)
+    assert seen == [(1, 6)]
 
 
 def test_options_are_checked_by_the_dataclasses() -> None:

@@ -111,8 +111,8 @@ def gallery_face_size(grid: Any, net: NetOptions, drawing: DrawingOptions) -> tu
 
 
 def net_gallery(grid: Any, net: NetOptions, drawing: DrawingOptions, *, count: int, seed: int,
-                constraints: EdgeConstraints | None = None, progress: Callable[[int, int], None] | None = None,
-                cancelled: Callable[[], bool] | None = None) -> Gallery:
+                constraints: EdgeConstraints | None = None,
+                progress: Callable[[int, int], None] | None = None) -> Gallery:
     """Search ``count`` nets of ``grid`` that look different once cut out, ordered by fit to the sheet.
 
     Parameters
@@ -130,9 +130,9 @@ def net_gallery(grid: Any, net: NetOptions, drawing: DrawingOptions, *, count: i
         ``voxfab net --count``).
     constraints : EdgeConstraints, optional
         Edges to cut or keep folded.
-    progress, cancelled : callable, optional
-        ``progress(found, count)`` after each net; ``cancelled()`` ends the search early
-        with the nets found so far.
+    progress : callable, optional
+        ``progress(found, count)`` after each net.  A cancelled studio job stops the
+        search (:func:`voxfab._shared.progress.check_cancelled`).
 
     Returns
     -------
@@ -154,7 +154,7 @@ def net_gallery(grid: Any, net: NetOptions, drawing: DrawingOptions, *, count: i
     if constraints is not None:
         search["constraints"] = constraints
     found = find_sheet_nets(grid, options, rng=seed, pieces=net.pieces, count=count, budget=net.budget,
-                            show_unfit=True, progress=progress, cancelled=cancelled, **search)
+                            show_unfit=True, progress=progress, **search)
     options = found.options
     notes += found.notes
     for pieces in found.nets:  # every net shown is a valid net of the shape (and of the marks)

@@ -72,8 +72,7 @@ def check_request(net: NetOptions, outputs: Sequence[str | Path], *, box: bool) 
 
 def search_nets(grid: Any, net: NetOptions, drawing: DrawingOptions | None, *, seed: int,
                 constraints: EdgeConstraints | None = None, box: tuple[int, int] | None = None,
-                progress: Callable[[int, int], None] | None = None,
-                cancelled: Callable[[], bool] | None = None) -> SheetNets:
+                progress: Callable[[int, int], None] | None = None) -> SheetNets:
     """The nets of a net job: fitted to the sheet of ``drawing``, or free (in ``box``) for JSON only.
 
     Parameters
@@ -102,11 +101,11 @@ def search_nets(grid: Any, net: NetOptions, drawing: DrawingOptions | None, *, s
         from ._fit import find_sheet_nets
 
         return find_sheet_nets(grid, drawing, rng=seed, pieces=net.pieces, count=net.count, budget=net.budget,
-                               progress=progress, cancelled=cancelled, **search)
+                               progress=progress, **search)
     notes: list[str] = []
     if net.count > 1:
         found = unfold_many(grid, count=net.count, rng=seed, budget=net.budget, fit=box, progress=progress,
-                            cancelled=cancelled, **search)
+                            **search)
         if len(found) < net.count:
             notes.append(f"{len(found)} distinct nets found of the {net.count} asked for "
                          f"within the {net.budget:g} s budget")
