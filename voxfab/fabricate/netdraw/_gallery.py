@@ -59,6 +59,8 @@ class Gallery:
     nets : list of GalleryNet
     options : DrawingOptions
         The drawing options with the face size settled.
+    search : NetOptions
+        The search options.
     asked : int
         Nets asked for.
     seconds : float
@@ -69,6 +71,7 @@ class Gallery:
 
     nets: list[GalleryNet]
     options: DrawingOptions
+    search: NetOptions
     asked: int
     seconds: float
     notes: list[str]
@@ -161,7 +164,7 @@ def net_gallery(grid: Any, net: NetOptions, drawing: DrawingOptions, *, count: i
         validate_net(grid, pieces, constraints=constraints)
     items = [GalleryNet(pieces, *_fit_and_place(pieces, options)) for pieces in found.nets]
     items.sort(key=lambda g: fit_order(g.fit))
-    return Gallery(items, options, count, round(time.monotonic() - start, 3), notes)
+    return Gallery(items, options, net, count, round(time.monotonic() - start, 3), notes)
 
 
 def fit_order(fit: dict[str, Any]) -> tuple[Any, ...]:
@@ -368,6 +371,11 @@ def fold_parents(faces: int, folds: npt.NDArray[np.int64], roots: Any) -> npt.ND
     return parent
 
 
+def _fields(options: Any) -> dict[str, Any]:
+    return {f.name: (list(v) if isinstance(v := getattr(options, f.name), tuple) else v)
+            for f in dataclasses.fields(options)}
+
+
 def gallery_json(gallery: Gallery, grid: Any) -> dict[str, Any]:
     """The gallery as the studio's job result: ``asked``, ``found``, ``seconds``, ``options`` and ``nets``."""
     from voxfab.shape import fill_cavities, surface_graph
@@ -390,6 +398,8 @@ def gallery_json(gallery: Gallery, grid: Any) -> dict[str, Any]:
             "fit": item.fit, "layout": net_layout(grid, item.pieces, graph=graph(first.filled)),
             "placement": item.placement,
         })
-    return {"asked": gallery.asked, "found": len(nets), "seconds": gallery.seconds,
-            "options": {"face_size": float(gallery.options.pitch), "sheet": gallery.options.sheet},
+    # The options as settled, by their field names (face_size: the face size chosen).
+    settled = {**_fields(gallery.search), **_fields(gallery.options), "face_size": float(gallery.options.pitch)}
+    settled.pop("pitch")
+    return {"asked": gallery.asked, "found": len(nets), "seconds": gallery.seconds, "options": settled,
             "notes": list(gallery.notes), "nets": nets}
