@@ -21,9 +21,8 @@ from voxfab.errors import InvalidShapeError
 
 from ._jobs import Job
 
-#: Limits of a gallery: nets, seconds per net, seconds in all.
+#: Most nets in a gallery, and its default budget in seconds (the search options are NetOptions').
 MAX_NETS = 12
-MAX_NET_SECONDS = 60.0
 MAX_GALLERY_SECONDS = 180.0
 
 
@@ -68,11 +67,7 @@ def gallery_options(values: Any) -> tuple[Any, Any]:
 
     if values is None:
         values = {}
-    net, drawing = netdraw.gallery_options(values, defaults=GALLERY_DEFAULTS)
-    if net.timeout > MAX_NET_SECONDS:
-        raise InvalidShapeError(f"timeout: the studio searches a net for at most {MAX_NET_SECONDS:g} s, "
-                                f"got {net.timeout:g}")
-    return net, drawing
+    return netdraw.gallery_options(values, defaults=GALLERY_DEFAULTS)
 
 
 def net_layout(net: Any, grid: np.ndarray) -> dict[str, Any]:
