@@ -195,3 +195,17 @@ def test_options_are_checked_by_the_dataclasses() -> None:
     with pytest.raises(OptionError) as cli:
         NetOptions(face_size=-1)
     assert str(ours.value) == str(cli.value)
+
+
+def test_without_marks_the_face_size_is_the_largest_that_fits() -> None:
+    net, drawing = gallery_options({"sheet": "A4", "numbers": False, "tabs": False, "timeout": 10})
+    gallery = net_gallery(examples.ball(2), net, drawing, count=1, seed=0)
+    (item,) = gallery.nets
+    ex, ey = item.fit["extent"]
+    p = gallery.options.pitch
+    # A4 inside its 10 mm margin and above the title line: it fits, and 0.1 mm more would not.
+    assert item.fit["fits"] and p == item.fit["largest_face_size"]
+    def room(q: float) -> bool:  # 190 x 272 mm: A4 less the margins and the 5 mm title band
+        return min(ex, ey) * q <= 190 and max(ex, ey) * q <= 272
+
+    assert room(p) and not room(p + 0.2)

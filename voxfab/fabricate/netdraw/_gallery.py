@@ -101,15 +101,19 @@ def gallery_options(values: Mapping[str, Any], *, defaults: Mapping[str, Any] | 
 
 
 def gallery_face_size(grid: Any, net: NetOptions, drawing: DrawingOptions) -> tuple[DrawingOptions, list[str]]:
-    """The drawing options with a face size: the one asked for, else the smallest with legible marks."""
+    """The drawing options with a face size: the one asked for, else the smallest with legible marks.
+
+    Without marks (no numbers, no tabs) any face size is legible: the pitch stays None and
+    the search takes the largest at which a one-piece net fits the sheet, as ``voxfab net``.
+    """
     if drawing.pitch is not None:
         return drawing, []
     from ._fit import _surface_faces, label_chars
     from ._legible import smallest_face_size
 
     p = smallest_face_size(drawing, label_chars(_surface_faces(grid, net.fill), net.pieces))
-    if p <= 0:  # no marks to size: the shape's own unit
-        p = 10.0
+    if p <= 0:
+        return drawing, []
     return drawing.replace(pitch=p), [f"face size {p:g} mm: the smallest with legible marks"]
 
 
@@ -129,8 +133,9 @@ def net_gallery(grid: Any, net: NetOptions, drawing: DrawingOptions, *, count: i
     count : int
         Nets wanted.
     seed : int
-        Seed of the search (net ``t`` is the net of the ``t``-th seed drawn from it, as
-        ``voxfab net --count``).
+        Seed of the search: one net is the net of ``seed``, several are the nets of the
+        seeds drawn from it, as ``voxfab net --seed`` and ``--count`` (each item's seed
+        gives its net again).
     constraints : EdgeConstraints, optional
         Edges to cut or keep folded.
     progress : callable, optional
