@@ -157,8 +157,8 @@ def _named(path: Path, *tags: str) -> Path:
 
 
 def net_files(grid: Any, net: NetOptions, drawing: DrawingOptions, outputs: Sequence[str | Path], *, title: str,
-              seed: int, constraints: EdgeConstraints | None = None, box: tuple[int, int] | None = None,
-              chosen: list[list[Net]] | None = None) -> NetFiles:
+              seed: int, constraints: EdgeConstraints | None = None,
+              box: tuple[int, int] | None = None) -> NetFiles:
     """Search, validate and write the nets of ``grid`` to ``outputs`` (``voxfab net``).
 
     ``NET.json`` outputs get the nets as voxfab-net/1 JSON (``NAME-pieceN.json`` per
@@ -178,8 +178,6 @@ def net_files(grid: Any, net: NetOptions, drawing: DrawingOptions, outputs: Sequ
     constraints : EdgeConstraints, optional
     box : (int, int), optional
         JSON nets only: the box in faces.
-    chosen : list of list of Net, optional
-        Nets chosen already (each as its pieces), written after the same validation.
 
     Returns
     -------
@@ -192,11 +190,10 @@ def net_files(grid: Any, net: NetOptions, drawing: DrawingOptions, outputs: Sequ
 
     paths = [Path(p) for p in outputs]
     drawings = check_request(net, paths, box=box is not None)
-    if chosen is None:
-        found = search_nets(grid, net, drawing if drawings else None, seed=seed, constraints=constraints, box=box)
-        results, drawing, notes = found.nets, found.options if drawings else drawing, list(found.notes)
-    else:
-        results, notes = chosen, []
+    found = search_nets(grid, net, drawing if drawings else None, seed=seed, constraints=constraints, box=box)
+    results, notes = found.nets, list(found.notes)
+    if drawings:
+        drawing = found.options  # the face size settled
     g = fill_cavities(grid) if results[0][0].filled else grid
     summary, warnings, report = [], [], []
     with atomic_files(*paths) as fileset:
