@@ -18,7 +18,7 @@ from voxfab.fabricate.netdraw import (
     net_gallery,
     net_layout,
 )
-from voxfab.shape import examples
+from voxfab.shape import examples, surface_graph
 from voxfab.unfold import outline_key, unfold, validate
 
 
@@ -120,6 +120,12 @@ def test_pieces_share_one_layout_and_sit_apart_on_their_sheets() -> None:
     js = gallery_json(gallery, grid)["nets"][0]
     lay = js["layout"]
     assert len(lay["faces"]) == 54 and sorted(set(lay["piece"])) == list(range(len(item.pieces)))
+    # Face ids are the surface graph's, as for a one-piece net.
+    sg = surface_graph(grid)
+    dirs = ["+x", "-x", "+y", "-y", "+z", "-z"]
+    assert lay["faces"] == [[*v, dirs[d]] for v, d in zip(sg.voxel.tolist(), sg.direction.tolist())]
+    folds = {tuple(sorted(p)) for p in np.array(lay["folds"]).reshape(-1, 2).tolist()}
+    assert all(p == -1 or tuple(sorted((i, p))) in folds for i, p in enumerate(lay["parent"]))
     assert lay["parent"].count(-1) == len(item.pieces)
     assert js["placement"]["sheets"] == js["fit"]["sheets"] > 1
     _check_on_sheets(lay, js["placement"])

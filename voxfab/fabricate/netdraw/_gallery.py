@@ -279,12 +279,14 @@ def _shifted(c: npt.NDArray[np.int64]) -> npt.NDArray[np.int64]:
 def net_layout(grid: Any, pieces: Net | list[Net], *, graph: Any = None) -> dict[str, Any]:
     """What the page draws and marks, over all the pieces of a net: the LAYOUT of the studio contract.
 
-    Face ids run over the pieces in order.  ``corners`` are each face's 2D corners in its
-    piece's own frame, ``corners3d`` its 3D corners (same corner order); ``neighbor`` and
-    ``fold_type`` give, per edge ``k`` (corner ``k`` to ``k + 1``), the face across it and
-    the fold there as seen from outside; ``piece`` and ``parent`` the piece of each face
-    and the face it is hinged on (-1 for each piece's root); ``labels`` the seam label of
-    every cut edge, by face pair ``"i-j"`` (i < j), as printed on the drawings.
+    Face ids are the faces' order in the surface graph (for a net in pieces as well).
+    ``corners`` are each face's 2D corners in its piece's own frame, ``corners3d`` its 3D
+    corners (same corner order); ``neighbor`` and ``fold_type`` give, per edge ``k``
+    (corner ``k`` to ``k + 1``), the face across it and the fold there as seen from
+    outside; ``piece`` and ``parent`` the piece of each face and the face it is hinged on
+    in the fold-up (:func:`voxfab.render.fold_tree`; -1 for each piece's root);
+    ``labels`` the seam label of every cut edge, by face pair ``"i-j"`` (i < j), as
+    printed on the drawings.
 
     Parameters
     ----------
@@ -294,6 +296,7 @@ def net_layout(grid: Any, pieces: Net | list[Net], *, graph: Any = None) -> dict
     graph : SurfaceGraph, optional
         ``surface_graph(grid)`` when the caller has it already.
     """
+    from voxfab.render._fold import fold_tree
     from voxfab.shape import fill_cavities, surface_graph
 
     from ._geometry import face_map
@@ -301,33 +304,45 @@ def net_layout(grid: Any, pieces: Net | list[Net], *, graph: Any = None) -> dict
     nets = [pieces] if isinstance(pieces, Net) else list(pieces)
     if graph is None:
         graph = surface_graph(fill_cavities(grid) if nets[0].filled else grid)
-    fmap = np.concatenate([face_map(graph, n) for n in nets])
+    fmap = np.concatenate([face_map(graph, n) for n in nets])  # surface face of each face, pieces in turn
+    order = np.argsort(fmap, kind="stable")
+    rank = np.empty_like(order)
+    rank[order] = np.arange(order.size)  # layout id of each face, pieces in turn
     local = np.full(graph.face_count, -1, dtype=np.int64)
-    local[fmap] = np.arange(fmap.size)
+    local[fmap[order]] = np.arange(order.size)
     counts = [n.face_count for n in nets]
     offsets = np.cumsum([0] + counts)[:-1]
-    folds = np.concatenate([n.folds.reshape(-1, 2) + o for n, o in zip(nets, offsets)]) if nets else \
-        np.zeros((0, 2), dtype=np.int64)
-    corners = np.concatenate([n.corners2d for n in nets])
+    folds = np.concatenate([n.folds.reshape(-1, 2) + o for n, o in zip(nets, offsets)])
     # The pieces side by side, apart, for the seam numbering of the drawings (no seam closes between pieces).
     apart = np.concatenate([n.corners2d - n.corners2d.reshape(-1, 2).min(axis=0) + (int(q) * 100_000, 0)
                             for q, n in enumerate(nets)])
     combined = Net(voxel=np.concatenate([n.voxel for n in nets]), normal=np.concatenate([n.normal for n in nets]),
                    corners3d=np.concatenate([n.corners3d for n in nets]), corners2d=apart, folds=folds,
                    seed=nets[0].seed, strategy=nets[0].strategy, filled=nets[0].filled)
-    labels = seam_labels_of(graph, combined)
-    piece = np.repeat(np.arange(len(nets)), counts)
+    labels: dict[str, str] = {}
+    for key, label in seam_labels_of(graph, combined).items():
+        i, j = (int(rank[int(x)]) for x in key.split("-"))
+        labels[f"{min(i, j)}-{max(i, j)}"] = label
+    parent = np.full(order.size, -1, dtype=np.int64)
+    for n, o in zip(nets, offsets):
+        if n.face_count > 1:
+            _, up, _ = fold_tree(n)
+            parent[o:o + n.face_count] = np.where(up >= 0, up + o, -1)
+    parent = np.where(parent >= 0, rank[np.maximum(parent, 0)], -1)[order]
+    corners = np.concatenate([n.corners2d for n in nets])[order]
+    piece = np.repeat(np.arange(len(nets)), counts)[order]
+    sg_ids = fmap[order]
     return {
         "faces": [[int(v[0]), int(v[1]), int(v[2]), _DIRS[int(d)]]
-                  for v, d in zip(graph.voxel[fmap].tolist(), graph.direction[fmap].tolist())],
+                  for v, d in zip(graph.voxel[sg_ids].tolist(), graph.direction[sg_ids].tolist())],
         "corners": corners.reshape(-1).tolist(),
-        "corners3d": combined.corners3d.reshape(-1).tolist(),
-        "folds": folds.reshape(-1).tolist(),
-        "neighbor": local[graph.neighbor[fmap]].reshape(-1).tolist(),
-        "fold_type": graph.fold[fmap].reshape(-1).tolist(),
+        "corners3d": combined.corners3d[order].reshape(-1).tolist(),
+        "folds": rank[folds].reshape(-1).tolist(),
+        "neighbor": local[graph.neighbor[sg_ids]].reshape(-1).tolist(),
+        "fold_type": graph.fold[sg_ids].reshape(-1).tolist(),
         "piece": piece.tolist(),
-        "parent": fold_parents(combined.face_count, folds, offsets).tolist(),
-        "labels": labels,
+        "parent": parent.tolist(),
+        "labels": dict(sorted(labels.items(), key=lambda kv: tuple(map(int, kv[0].split("-"))))),
     }
 
 
@@ -351,29 +366,6 @@ def seam_labels_of(graph: Any, net: Net) -> dict[str, str]:
         # A face pair may meet along two edges (a one-voxel wide strip): both labels, in order.
         out[key] = f"{out[key]} {label}" if key in out else label
     return out
-
-
-def fold_parents(faces: int, folds: npt.NDArray[np.int64], roots: Any) -> npt.NDArray[np.int64]:
-    """The face each face is hinged on, breadth first from each piece's first face (-1 for the roots)."""
-    from collections import deque
-
-    adj: list[list[int]] = [[] for _ in range(faces)]
-    for a, b in folds.reshape(-1, 2).tolist():
-        adj[a].append(b)
-        adj[b].append(a)
-    parent = np.full(faces, -2, dtype=np.int64)
-    for r in [int(r) for r in roots] + list(range(faces)):
-        if r >= faces or parent[r] != -2:
-            continue
-        parent[r] = -1
-        queue = deque([r])
-        while queue:
-            i = queue.popleft()
-            for j in adj[i]:
-                if parent[j] == -2:
-                    parent[j] = i
-                    queue.append(j)
-    return parent
 
 
 def _fields(options: Any) -> dict[str, Any]:
