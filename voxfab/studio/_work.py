@@ -48,7 +48,6 @@ def check_number(value: Any, *, name: str, lo: float, hi: float, integer: bool =
 #: What the page gets unless it says otherwise: short searches, as a gallery is browsed, not waited for.
 GALLERY_DEFAULTS = {"timeout": 5.0, "budget": MAX_GALLERY_SECONDS}
 
-
 #: The fields of a POST /api/nets body.
 GALLERY_BODY = ("grid", "seed", "count", "options", "constraints")
 
@@ -68,13 +67,6 @@ def gallery_options(values: Any) -> tuple[Any, Any]:
     if values is None:
         values = {}
     return netdraw.gallery_options(values, defaults=GALLERY_DEFAULTS)
-
-
-def net_layout(net: Any, grid: np.ndarray) -> dict[str, Any]:
-    """The page's LAYOUT of a net (or of its pieces): see :func:`voxfab.fabricate.netdraw.net_layout`."""
-    from voxfab.fabricate import netdraw
-
-    return netdraw.net_layout(grid, net)
 
 
 def edge_constraints(data: Any) -> Any:
