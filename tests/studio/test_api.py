@@ -335,6 +335,7 @@ def test_net_gallery_distinct_valid_nets_then_files(client, tmp_path):
     assert s["state"] == "done", s
     nets = s["result"]["nets"]
     assert s["result"]["found"] == 3 == len(nets) and s["result"]["options"]["face_size"] == 10
+    assert s["result"]["options"]["sheet"] == "A3" and s["result"]["options"]["timeout"] == 5
     for n in nets:
         lay = n["layout"]
         assert len(lay["corners"]) == 8 * len(lay["faces"]) == 8 * n["faces"]

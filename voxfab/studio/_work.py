@@ -21,9 +21,8 @@ from voxfab.errors import InvalidShapeError
 
 from ._jobs import Job
 
-#: Limits of a gallery: nets, seconds per net, seconds in all.
+#: Most nets in a gallery, and its default budget in seconds (the search options are NetOptions').
 MAX_NETS = 12
-MAX_NET_SECONDS = 60.0
 MAX_GALLERY_SECONDS = 180.0
 
 
@@ -49,7 +48,6 @@ def check_number(value: Any, *, name: str, lo: float, hi: float, integer: bool =
 #: What the page gets unless it says otherwise: short searches, as a gallery is browsed, not waited for.
 GALLERY_DEFAULTS = {"timeout": 5.0, "budget": MAX_GALLERY_SECONDS}
 
-
 #: The fields of a POST /api/nets body.
 GALLERY_BODY = ("grid", "seed", "count", "options", "constraints")
 
@@ -68,18 +66,7 @@ def gallery_options(values: Any) -> tuple[Any, Any]:
 
     if values is None:
         values = {}
-    net, drawing = netdraw.gallery_options(values, defaults=GALLERY_DEFAULTS)
-    if net.timeout > MAX_NET_SECONDS:
-        raise InvalidShapeError(f"timeout: the studio searches a net for at most {MAX_NET_SECONDS:g} s, "
-                                f"got {net.timeout:g}")
-    return net, drawing
-
-
-def net_layout(net: Any, grid: np.ndarray) -> dict[str, Any]:
-    """The page's LAYOUT of a net (or of its pieces): see :func:`voxfab.fabricate.netdraw.net_layout`."""
-    from voxfab.fabricate import netdraw
-
-    return netdraw.net_layout(grid, net)
+    return netdraw.gallery_options(values, defaults=GALLERY_DEFAULTS)
 
 
 def edge_constraints(data: Any) -> Any:

@@ -94,6 +94,9 @@ def build_net(
 
 def _face_ids(sg: SurfaceGraph, net: Net) -> npt.NDArray[np.int64]:
     """Surface-graph index of each net face, matched by (voxel, normal)."""
+    if net.face_count == sg.face_count and np.array_equal(net.voxel, sg.voxel) and np.array_equal(
+            net.normal, sg.normal):
+        return np.arange(sg.face_count, dtype=np.int64)  # a whole net lists the faces in surface-graph order
     key_sg = {
         (tuple(v), tuple(n)): i for i, (v, n) in enumerate(zip(sg.voxel.tolist(), sg.normal.tolist()))
     }
@@ -127,18 +130,16 @@ def seam_pairs(grid: npt.ArrayLike, net: Net) -> npt.NDArray[np.int64]:
     ids = _face_ids(sg, net)
     local = np.full(sg.face_count, -1, dtype=np.int64)
     local[ids] = np.arange(ids.size)
-    folded = set()
-    for i, j in net.folds.tolist():
-        folded.add((min(i, j), max(i, j)))
-    rows = []
-    for t, f in enumerate(ids.tolist()):
-        for k in range(4):
-            g = int(sg.neighbor[f, k])
-            u = int(local[g])
-            if u <= t or (t, u) in folded:
-                continue
-            rows.append([[t, k], [u, int(sg.neighbor_edge[f, k])]])
-    return np.array(rows, dtype=np.int64).reshape(-1, 2, 2)
+    n = ids.size
+    folds = net.folds.reshape(-1, 2)
+    folded = np.minimum(folds[:, 0], folds[:, 1]) * n + np.maximum(folds[:, 0], folds[:, 1])
+    other = local[sg.neighbor[ids]]  # (n, 4) net face across each edge, -1 outside this net
+    t = np.arange(n)[:, None]
+    keep = (other > t) & ~np.isin(t * n + other, folded)
+    tt, kk = np.nonzero(keep)  # face by face, edge by edge
+    uu = other[tt, kk]
+    return np.stack([np.stack([tt, kk], axis=1), np.stack([uu, sg.neighbor_edge[ids[tt], kk]], axis=1)],
+                    axis=1).astype(np.int64)
 
 
 def tab_room(grid: npt.ArrayLike, net: Net) -> npt.NDArray[np.bool_]:
@@ -151,16 +152,19 @@ def tab_room(grid: npt.ArrayLike, net: Net) -> npt.NDArray[np.bool_]:
         least one of its two entries is True.
     """
     seams = seam_pairs(grid, net)
-    cells = net.corners2d.min(axis=1)
-    occupied = {tuple(c) for c in cells.tolist()}
-    out = np.zeros(seams.shape[:2], dtype=bool)
-    for s, sides in enumerate(seams.tolist()):
-        for side, (f, k) in enumerate(sides):
-            p = net.corners2d[f, k]
-            q = net.corners2d[f, (k + 1) % 4]
-            step = np.array([q[1] - p[1], p[0] - q[0]])  # right of a CCW edge = outside
-            out[s, side] = tuple((cells[f] + step).tolist()) not in occupied
-    return out
+    c2 = net.corners2d
+    cells = c2.min(axis=1)
+    f, k = seams[:, :, 0], seams[:, :, 1]
+    p, q = c2[f, k], c2[f, (k + 1) % 4]
+    step = np.stack([q[..., 1] - p[..., 1], p[..., 0] - q[..., 0]], axis=-1)  # right of a CCW edge = outside
+    beyond = cells[f] + step
+    lo = cells.min(axis=0) - 1
+    span = int((cells.max(axis=0) - lo).max()) + 2
+
+    def key(c: npt.NDArray[np.int64]) -> npt.NDArray[np.int64]:
+        return (c[..., 0] - lo[0]) * span + (c[..., 1] - lo[1])
+
+    return ~np.isin(key(beyond), key(cells))
 
 
 def count_without_tab_room(grid: npt.ArrayLike, net: Net) -> int:

@@ -34,9 +34,12 @@ def outline_key(net: Net) -> bytes:
         centres = (2 * cells + 1) @ m.T
         fm = folds @ m.T
         shift = centres.min(axis=0) - 1
-        a = np.unique((centres - shift).reshape(-1, 2), axis=0)
-        b = np.unique((fm - shift).reshape(-1, 2), axis=0)
-        key = np.int64(a.shape[0]).tobytes() + a.tobytes() + b.tobytes()
+        # Cells and fold midpoints are each distinct: sorted scalar codes (x, y) -> x * span + y name them.
+        a, b = centres - shift, fm - shift
+        span = int(max(a.max(initial=0), b.max(initial=0))) + 1
+        ka = np.sort(a[:, 0] * span + a[:, 1])
+        kb = np.sort(b[:, 0] * span + b[:, 1])
+        key = np.int64(a.shape[0]).tobytes() + np.int64(span).tobytes() + ka.tobytes() + kb.tobytes()
         if best is None or key < best:
             best = key
     return best

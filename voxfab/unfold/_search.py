@@ -755,7 +755,6 @@ def unfold_many(
     rng: np.random.Generator | int,
     budget: float = DEFAULT_BUDGET,
     progress: Callable[[int, int], None] | None = None,
-    cancelled: Callable[[], bool] | None = None,
     **options: object,
 ) -> list[Net]:
     """Find up to ``count`` nets that look different on the sheet.
@@ -775,10 +774,6 @@ def unfold_many(
         8`` seeds, so a surface with few nets ends early.
     progress : callable, optional
         ``progress(found, count)`` after each new net.
-    cancelled : callable, optional
-        Asked before each seed: when it returns True the search stops with the
-        nets found so far (a caller's stop button; each seed is bounded by
-        ``timeout``).
 
     Returns
     -------
@@ -808,7 +803,7 @@ def unfold_many(
     with meter(n, desc="nets") as bar:
         while len(nets) < n and tries < 4 * n + 8:
             left = end - time.monotonic()
-            if left <= 0 or (cancelled is not None and cancelled()):
+            if left <= 0:
                 break
             tries += 1
             seed = int(gen.integers(0, 2**31 - 1))

@@ -12,12 +12,13 @@ from voxfab.fabricate.netdraw import (
     DrawingOptions,
     NetOptions,
     draw_net,
+    draw_pieces,
     gallery_json,
     gallery_options,
     net_gallery,
     net_layout,
 )
-from voxfab.shape import examples
+from voxfab.shape import examples, surface_graph
 from voxfab.unfold import outline_key, unfold, validate
 
 
@@ -119,14 +120,24 @@ def test_pieces_share_one_layout_and_sit_apart_on_their_sheets() -> None:
     js = gallery_json(gallery, grid)["nets"][0]
     lay = js["layout"]
     assert len(lay["faces"]) == 54 and sorted(set(lay["piece"])) == list(range(len(item.pieces)))
+    # Face ids are the surface graph's, as for a one-piece net.
+    sg = surface_graph(grid)
+    dirs = ["+x", "-x", "+y", "-y", "+z", "-z"]
+    assert lay["faces"] == [[*v, dirs[d]] for v, d in zip(sg.voxel.tolist(), sg.direction.tolist())]
+    folds = {tuple(sorted(p)) for p in np.array(lay["folds"]).reshape(-1, 2).tolist()}
+    assert all(p == -1 or tuple(sorted((i, p))) in folds for i, p in enumerate(lay["parent"]))
     assert lay["parent"].count(-1) == len(item.pieces)
     assert js["placement"]["sheets"] == js["fit"]["sheets"] > 1
     _check_on_sheets(lay, js["placement"])
+    # The seam labels are the ones the drawing of the pieces prints.
+    drawn = draw_pieces(grid, item.pieces, options=gallery.options)
+    assert sorted(x for v in lay["labels"].values() for x in v.split()) == sorted(drawn.seam_labels)
+    assert len(drawn.sheets) == js["placement"]["sheets"]
 
 
 def test_the_queen_on_a4_says_what_would_work() -> None:
     grid = _queen()
-    net, drawing = gallery_options({"sheet": "A4", "timeout": 5})
+    net, drawing = gallery_options({"sheet": "A4", "timeout": 30})
     gallery = net_gallery(grid, net, drawing, count=3, seed=0)
     assert gallery.options.pitch == 8.6  # the smallest face size with legible marks
     assert len({outline_key(i.pieces[0]) for i in gallery.nets}) == len(gallery.nets) >= 2
@@ -158,12 +169,26 @@ def test_faces_too_small_fail_with_ways_out() -> None:
     assert {"numbers": False, "tabs": False} in options and any("face_size" in o for o in options)
 
 
-def test_the_search_stops_when_cancelled_and_reports_progress() -> None:
-    seen: list[tuple[int, int]] = []
+def test_the_search_reports_progress_and_stops_when_cancelled() -> None:
+    import threading
+
+    from voxfab._shared.progress import cancel_scope
+    from voxfab.errors import CancelledError
+
     net, drawing = gallery_options({"sheet": "A3", "face_size": 10, "timeout": 10})
-    gallery = net_gallery(examples.ball(2), net, drawing, count=6, seed=1, progress=lambda d, t: seen.append((d, t)),
-                          cancelled=lambda: bool(seen))
-    assert len(gallery.nets) == 1 and seen == [(1, 6)]
+    seen: list[tuple[int, int]] = []
+    gallery = net_gallery(examples.ball(2), net, drawing, count=3, seed=1, progress=lambda d, t: seen.append((d, t)))
+    assert seen == [(i + 1, 3) for i in range(len(gallery.nets))] and len(gallery.nets) == 3
+    stop = threading.Event()
+    seen.clear()
+
+    def step(done: int, total: int) -> None:
+        seen.append((done, total))
+        stop.set()  # the stop button, pressed once the first net is in
+
+    with cancel_scope(stop), pytest.raises(CancelledError):
+        net_gallery(examples.ball(2), net, drawing, count=6, seed=1, progress=step)
+    assert seen == [(1, 6)]
 
 
 def test_options_are_checked_by_the_dataclasses() -> None:
@@ -176,3 +201,17 @@ def test_options_are_checked_by_the_dataclasses() -> None:
     with pytest.raises(OptionError) as cli:
         NetOptions(face_size=-1)
     assert str(ours.value) == str(cli.value)
+
+
+def test_without_marks_the_face_size_is_the_largest_that_fits() -> None:
+    net, drawing = gallery_options({"sheet": "A4", "numbers": False, "tabs": False, "timeout": 10})
+    gallery = net_gallery(examples.ball(2), net, drawing, count=1, seed=0)
+    (item,) = gallery.nets
+    ex, ey = item.fit["extent"]
+    p = gallery.options.pitch
+    # A4 inside its 10 mm margin and above the title line: it fits, and 0.1 mm more would not.
+    assert item.fit["fits"] and p == item.fit["largest_face_size"]
+    def room(q: float) -> bool:  # 190 x 272 mm: A4 less the margins and the 5 mm title band
+        return min(ex, ey) * q <= 190 and max(ex, ey) * q <= 272
+
+    assert room(p) and not room(p + 0.2)

@@ -119,8 +119,7 @@ def label_chars(faces: int, pieces: str) -> int:
 
 def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str = "one", count: int = 1,
                     budget: float = 60.0, show_unfit: bool = False,
-                    progress: Callable[[int, int], None] | None = None,
-                    cancelled: Callable[[], bool] | None = None, **search: Any) -> SheetNets:
+                    progress: Callable[[int, int], None] | None = None, **search: Any) -> SheetNets:
     """Search nets of ``grid`` that fit the sheet of ``options``.
 
     Parameters
@@ -141,9 +140,9 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     show_unfit : bool
         When no one-piece net fits the sheet, return nets searched without the
         sheet (the gallery shows how each fits) instead of raising.
-    progress, cancelled : callable, optional
-        ``progress(found, count)`` after each net; ``cancelled()`` stops the
-        search with the nets found so far.
+    progress : callable, optional
+        ``progress(found, count)`` after each net.  A cancelled studio job stops
+        the search (:func:`voxfab._shared.progress.check_cancelled`).
     **search
         ``strategy``, ``timeout``, ``fill``, ``compact``, ``tab_aware`` for
         :func:`voxfab.unfold.unfold`.
@@ -159,7 +158,7 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     SheetFitError
         When no one-piece net fits and pieces were not allowed.
     """
-    from voxfab.unfold import NoFitError, unfold, unfold_many
+    from voxfab.unfold import NoFitError
 
     search = {k: v for k, v in search.items() if k != "fit"}
     faces = _surface_faces(grid, bool(search.get("fill", False)))
@@ -175,28 +174,23 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     # A surface larger than the sheet has no one-piece net on it: no search can find one.
     room = faces <= fit[0] * fit[1]
     if pieces == "auto" and not room:
-        return SheetNets(_piece_nets(grid, rng, fit, count, budget, progress, cancelled, search, notes), options,
+        return SheetNets(_piece_nets(grid, rng, fit, count, budget, progress, search, notes), options,
                          notes)
     found: list[Net] | None = None
     failed: UnfoldError | None = None
     if room:
         try:
-            if count > 1 or progress is not None or cancelled is not None:
-                found = unfold_many(grid, count=count, rng=rng, fit=fit, budget=budget, progress=progress,
-                                    cancelled=cancelled, **search)
-            else:
-                found = [unfold(grid, rng=rng, fit=fit, **search)]
+            found = _nets(grid, count, rng, budget, progress, {**search, "fit": fit})
         except UnfoldError as err:
             failed = err
     if found is None:
         if pieces == "auto":
-            return SheetNets(_piece_nets(grid, rng, fit, count, budget, progress, cancelled, search, notes),
+            return SheetNets(_piece_nets(grid, rng, fit, count, budget, progress, search, notes),
                              options, notes)
-        if failed is not None and not isinstance(failed, NoFitError) and count > 1:
-            raise failed  # every seed ran out of time: not a question of the sheet
-        if show_unfit and (failed is None or isinstance(failed, NoFitError)):
-            found = unfold_many(grid, count=count, rng=rng, budget=budget, progress=progress, cancelled=cancelled,
-                                **search)
+        if failed is not None and not isinstance(failed, NoFitError):
+            raise failed  # out of time, or marks that leave no net: not a question of the sheet
+        if show_unfit:
+            found = _nets(grid, count, rng, budget, progress, search)
             notes.append(f"no one-piece net fits {options.sheet} at {options.pitch:g} mm faces")
         else:
             extent = _measured_extent(failed, grid, rng, search)
@@ -206,12 +200,26 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     return SheetNets([[n] for n in found], options, notes)
 
 
+def _nets(grid: Any, count: int, rng: int, budget: float, progress: Callable[[int, int], None] | None,
+          search: dict[str, Any]) -> list[Net]:
+    """One-piece nets: the net of seed ``rng`` (``voxfab net``), or ``count`` distinct ones (``--count``)."""
+    from voxfab.unfold import unfold, unfold_many
+
+    if count > 1:
+        return unfold_many(grid, count=count, rng=rng, budget=budget, progress=progress, **search)
+    found = [unfold(grid, rng=rng, **search)]
+    if progress is not None:
+        progress(1, 1)
+    return found
+
+
 def _piece_nets(grid: Any, rng: int, fit: tuple[int, int], count: int, budget: float,
-                progress: Callable[[int, int], None] | None, cancelled: Callable[[], bool] | None,
-                search: dict[str, Any], notes: list[str]) -> list[list[Net]]:
+                progress: Callable[[int, int], None] | None, search: dict[str, Any],
+                notes: list[str]) -> list[list[Net]]:
     """Nets in the fewest pieces that fit, one per seed (seed ``rng`` first, then seeds drawn from it)."""
     import time
 
+    from voxfab._shared.progress import check_cancelled
     from voxfab.unfold import outline_key, unfold
 
     if count == 1:
@@ -223,8 +231,7 @@ def _piece_nets(grid: Any, rng: int, fit: tuple[int, int], count: int, budget: f
     seen: set[bytes] = set()
     tries = 0
     while len(out) < count and tries < 4 * count + 8 and time.monotonic() < end:
-        if cancelled is not None and cancelled():
-            break
+        check_cancelled()
         tries += 1
         seed = int(gen.integers(0, 2**31 - 1))
         try:

@@ -59,6 +59,8 @@ class Gallery:
     nets : list of GalleryNet
     options : DrawingOptions
         The drawing options with the face size settled.
+    search : NetOptions
+        The search options.
     asked : int
         Nets asked for.
     seconds : float
@@ -69,6 +71,7 @@ class Gallery:
 
     nets: list[GalleryNet]
     options: DrawingOptions
+    search: NetOptions
     asked: int
     seconds: float
     notes: list[str]
@@ -98,21 +101,25 @@ def gallery_options(values: Mapping[str, Any], *, defaults: Mapping[str, Any] | 
 
 
 def gallery_face_size(grid: Any, net: NetOptions, drawing: DrawingOptions) -> tuple[DrawingOptions, list[str]]:
-    """The drawing options with a face size: the one asked for, else the smallest with legible marks."""
+    """The drawing options with a face size: the one asked for, else the smallest with legible marks.
+
+    Without marks (no numbers, no tabs) any face size is legible: the pitch stays None and
+    the search takes the largest at which a one-piece net fits the sheet, as ``voxfab net``.
+    """
     if drawing.pitch is not None:
         return drawing, []
     from ._fit import _surface_faces, label_chars
     from ._legible import smallest_face_size
 
     p = smallest_face_size(drawing, label_chars(_surface_faces(grid, net.fill), net.pieces))
-    if p <= 0:  # no marks to size: the shape's own unit
-        p = 10.0
+    if p <= 0:
+        return drawing, []
     return drawing.replace(pitch=p), [f"face size {p:g} mm: the smallest with legible marks"]
 
 
 def net_gallery(grid: Any, net: NetOptions, drawing: DrawingOptions, *, count: int, seed: int,
-                constraints: EdgeConstraints | None = None, progress: Callable[[int, int], None] | None = None,
-                cancelled: Callable[[], bool] | None = None) -> Gallery:
+                constraints: EdgeConstraints | None = None,
+                progress: Callable[[int, int], None] | None = None) -> Gallery:
     """Search ``count`` nets of ``grid`` that look different once cut out, ordered by fit to the sheet.
 
     Parameters
@@ -126,13 +133,14 @@ def net_gallery(grid: Any, net: NetOptions, drawing: DrawingOptions, *, count: i
     count : int
         Nets wanted.
     seed : int
-        Seed of the search (net ``t`` is the net of the ``t``-th seed drawn from it, as
-        ``voxfab net --count``).
+        Seed of the search: one net is the net of ``seed``, several are the nets of the
+        seeds drawn from it, as ``voxfab net --seed`` and ``--count`` (each item's seed
+        gives its net again).
     constraints : EdgeConstraints, optional
         Edges to cut or keep folded.
-    progress, cancelled : callable, optional
-        ``progress(found, count)`` after each net; ``cancelled()`` ends the search early
-        with the nets found so far.
+    progress : callable, optional
+        ``progress(found, count)`` after each net.  A cancelled studio job stops the
+        search (:func:`voxfab._shared.progress.check_cancelled`).
 
     Returns
     -------
@@ -154,14 +162,14 @@ def net_gallery(grid: Any, net: NetOptions, drawing: DrawingOptions, *, count: i
     if constraints is not None:
         search["constraints"] = constraints
     found = find_sheet_nets(grid, options, rng=seed, pieces=net.pieces, count=count, budget=net.budget,
-                            show_unfit=True, progress=progress, cancelled=cancelled, **search)
+                            show_unfit=True, progress=progress, **search)
     options = found.options
     notes += found.notes
     for pieces in found.nets:  # every net shown is a valid net of the shape (and of the marks)
         validate_net(grid, pieces, constraints=constraints)
     items = [GalleryNet(pieces, *fit_and_placement(pieces, options)) for pieces in found.nets]
     items.sort(key=lambda g: fit_order(g.fit))
-    return Gallery(items, options, count, round(time.monotonic() - start, 3), notes)
+    return Gallery(items, options, net, count, round(time.monotonic() - start, 3), notes)
 
 
 def fit_order(fit: dict[str, Any]) -> tuple[Any, ...]:
@@ -239,12 +247,14 @@ def legible_ways_out(ways: list[dict[str, Any]], options: DrawingOptions, pieces
 def net_layout(grid: Any, pieces: Net | list[Net], *, graph: Any = None) -> dict[str, Any]:
     """What the page draws and marks, over all the pieces of a net: the LAYOUT of the studio contract.
 
-    Face ids run over the pieces in order.  ``corners`` are each face's 2D corners in its
-    piece's own frame, ``corners3d`` its 3D corners (same corner order); ``neighbor`` and
-    ``fold_type`` give, per edge ``k`` (corner ``k`` to ``k + 1``), the face across it and
-    the fold there as seen from outside; ``piece`` and ``parent`` the piece of each face
-    and the face it is hinged on (-1 for each piece's root); ``labels`` the seam label of
-    every cut edge, by face pair ``"i-j"`` (i < j), as printed on the drawings.
+    Face ids are the faces' order in the surface graph (for a net in pieces as well).
+    ``corners`` are each face's 2D corners in its piece's own frame, ``corners3d`` its 3D
+    corners (same corner order); ``neighbor`` and ``fold_type`` give, per edge ``k``
+    (corner ``k`` to ``k + 1``), the face across it and the fold there as seen from
+    outside; ``piece`` and ``parent`` the piece of each face and the face it is hinged on
+    in the fold-up (:func:`voxfab.render.fold_tree`; -1 for each piece's root);
+    ``labels`` the seam label of every cut edge, by face pair ``"i-j"`` (i < j), as
+    printed on the drawings.
 
     Parameters
     ----------
@@ -254,6 +264,7 @@ def net_layout(grid: Any, pieces: Net | list[Net], *, graph: Any = None) -> dict
     graph : SurfaceGraph, optional
         ``surface_graph(grid)`` when the caller has it already.
     """
+    from voxfab.render._fold import fold_tree
     from voxfab.shape import fill_cavities, surface_graph
 
     from ._geometry import face_map
@@ -261,33 +272,45 @@ def net_layout(grid: Any, pieces: Net | list[Net], *, graph: Any = None) -> dict
     nets = [pieces] if isinstance(pieces, Net) else list(pieces)
     if graph is None:
         graph = surface_graph(fill_cavities(grid) if nets[0].filled else grid)
-    fmap = np.concatenate([face_map(graph, n) for n in nets])
+    fmap = np.concatenate([face_map(graph, n) for n in nets])  # surface face of each face, pieces in turn
+    order = np.argsort(fmap, kind="stable")
+    rank = np.empty_like(order)
+    rank[order] = np.arange(order.size)  # layout id of each face, pieces in turn
     local = np.full(graph.face_count, -1, dtype=np.int64)
-    local[fmap] = np.arange(fmap.size)
+    local[fmap[order]] = np.arange(order.size)
     counts = [n.face_count for n in nets]
     offsets = np.cumsum([0] + counts)[:-1]
-    folds = np.concatenate([n.folds.reshape(-1, 2) + o for n, o in zip(nets, offsets)]) if nets else \
-        np.zeros((0, 2), dtype=np.int64)
-    corners = np.concatenate([n.corners2d for n in nets])
+    folds = np.concatenate([n.folds.reshape(-1, 2) + o for n, o in zip(nets, offsets)])
     # The pieces side by side, apart, for the seam numbering of the drawings (no seam closes between pieces).
     apart = np.concatenate([n.corners2d - n.corners2d.reshape(-1, 2).min(axis=0) + (int(q) * 100_000, 0)
                             for q, n in enumerate(nets)])
     combined = Net(voxel=np.concatenate([n.voxel for n in nets]), normal=np.concatenate([n.normal for n in nets]),
                    corners3d=np.concatenate([n.corners3d for n in nets]), corners2d=apart, folds=folds,
                    seed=nets[0].seed, strategy=nets[0].strategy, filled=nets[0].filled)
-    labels = seam_labels_of(graph, combined)
-    piece = np.repeat(np.arange(len(nets)), counts)
+    labels: dict[str, str] = {}
+    for key, label in seam_labels_of(graph, combined).items():
+        i, j = (int(rank[int(x)]) for x in key.split("-"))
+        labels[f"{min(i, j)}-{max(i, j)}"] = label
+    parent = np.full(order.size, -1, dtype=np.int64)
+    for n, o in zip(nets, offsets):
+        if n.face_count > 1:
+            _, up, _ = fold_tree(n)
+            parent[o:o + n.face_count] = np.where(up >= 0, up + o, -1)
+    parent = np.where(parent >= 0, rank[np.maximum(parent, 0)], -1)[order]
+    corners = np.concatenate([n.corners2d for n in nets])[order]
+    piece = np.repeat(np.arange(len(nets)), counts)[order]
+    sg_ids = fmap[order]
     return {
         "faces": [[int(v[0]), int(v[1]), int(v[2]), _DIRS[int(d)]]
-                  for v, d in zip(graph.voxel[fmap].tolist(), graph.direction[fmap].tolist())],
+                  for v, d in zip(graph.voxel[sg_ids].tolist(), graph.direction[sg_ids].tolist())],
         "corners": corners.reshape(-1).tolist(),
-        "corners3d": combined.corners3d.reshape(-1).tolist(),
-        "folds": folds.reshape(-1).tolist(),
-        "neighbor": local[graph.neighbor[fmap]].reshape(-1).tolist(),
-        "fold_type": graph.fold[fmap].reshape(-1).tolist(),
+        "corners3d": combined.corners3d[order].reshape(-1).tolist(),
+        "folds": rank[folds].reshape(-1).tolist(),
+        "neighbor": local[graph.neighbor[sg_ids]].reshape(-1).tolist(),
+        "fold_type": graph.fold[sg_ids].reshape(-1).tolist(),
         "piece": piece.tolist(),
-        "parent": fold_parents(combined.face_count, folds, offsets).tolist(),
-        "labels": labels,
+        "parent": parent.tolist(),
+        "labels": dict(sorted(labels.items(), key=lambda kv: tuple(map(int, kv[0].split("-"))))),
     }
 
 
@@ -313,27 +336,9 @@ def seam_labels_of(graph: Any, net: Net) -> dict[str, str]:
     return out
 
 
-def fold_parents(faces: int, folds: npt.NDArray[np.int64], roots: Any) -> npt.NDArray[np.int64]:
-    """The face each face is hinged on, breadth first from each piece's first face (-1 for the roots)."""
-    from collections import deque
-
-    adj: list[list[int]] = [[] for _ in range(faces)]
-    for a, b in folds.reshape(-1, 2).tolist():
-        adj[a].append(b)
-        adj[b].append(a)
-    parent = np.full(faces, -2, dtype=np.int64)
-    for r in [int(r) for r in roots] + list(range(faces)):
-        if r >= faces or parent[r] != -2:
-            continue
-        parent[r] = -1
-        queue = deque([r])
-        while queue:
-            i = queue.popleft()
-            for j in adj[i]:
-                if parent[j] == -2:
-                    parent[j] = i
-                    queue.append(j)
-    return parent
+def _fields(options: Any) -> dict[str, Any]:
+    return {f.name: (list(v) if isinstance(v := getattr(options, f.name), tuple) else v)
+            for f in dataclasses.fields(options)}
 
 
 def gallery_json(gallery: Gallery, grid: Any) -> dict[str, Any]:
@@ -358,6 +363,8 @@ def gallery_json(gallery: Gallery, grid: Any) -> dict[str, Any]:
             "fit": item.fit, "layout": net_layout(grid, item.pieces, graph=graph(first.filled)),
             "placement": item.placement,
         })
-    return {"asked": gallery.asked, "found": len(nets), "seconds": gallery.seconds,
-            "options": {"face_size": float(gallery.options.pitch), "sheet": gallery.options.sheet},
+    # The options as settled, by their field names (face_size: the face size chosen).
+    settled = {**_fields(gallery.search), **_fields(gallery.options), "face_size": float(gallery.options.pitch)}
+    settled.pop("pitch")
+    return {"asked": gallery.asked, "found": len(nets), "seconds": gallery.seconds, "options": settled,
             "notes": list(gallery.notes), "nets": nets}

@@ -72,8 +72,7 @@ def check_request(net: NetOptions, outputs: Sequence[str | Path], *, box: bool) 
 
 def search_nets(grid: Any, net: NetOptions, drawing: DrawingOptions | None, *, seed: int,
                 constraints: EdgeConstraints | None = None, box: tuple[int, int] | None = None,
-                progress: Callable[[int, int], None] | None = None,
-                cancelled: Callable[[], bool] | None = None) -> SheetNets:
+                progress: Callable[[int, int], None] | None = None) -> SheetNets:
     """The nets of a net job: fitted to the sheet of ``drawing``, or free (in ``box``) for JSON only.
 
     Parameters
@@ -102,11 +101,11 @@ def search_nets(grid: Any, net: NetOptions, drawing: DrawingOptions | None, *, s
         from ._fit import find_sheet_nets
 
         return find_sheet_nets(grid, drawing, rng=seed, pieces=net.pieces, count=net.count, budget=net.budget,
-                               progress=progress, cancelled=cancelled, **search)
+                               progress=progress, **search)
     notes: list[str] = []
     if net.count > 1:
         found = unfold_many(grid, count=net.count, rng=seed, budget=net.budget, fit=box, progress=progress,
-                            cancelled=cancelled, **search)
+                            **search)
         if len(found) < net.count:
             notes.append(f"{len(found)} distinct nets found of the {net.count} asked for "
                          f"within the {net.budget:g} s budget")
@@ -158,8 +157,8 @@ def _named(path: Path, *tags: str) -> Path:
 
 
 def net_files(grid: Any, net: NetOptions, drawing: DrawingOptions, outputs: Sequence[str | Path], *, title: str,
-              seed: int, constraints: EdgeConstraints | None = None, box: tuple[int, int] | None = None,
-              chosen: list[list[Net]] | None = None) -> NetFiles:
+              seed: int, constraints: EdgeConstraints | None = None,
+              box: tuple[int, int] | None = None) -> NetFiles:
     """Search, validate and write the nets of ``grid`` to ``outputs`` (``voxfab net``).
 
     ``NET.json`` outputs get the nets as voxfab-net/1 JSON (``NAME-pieceN.json`` per
@@ -179,8 +178,6 @@ def net_files(grid: Any, net: NetOptions, drawing: DrawingOptions, outputs: Sequ
     constraints : EdgeConstraints, optional
     box : (int, int), optional
         JSON nets only: the box in faces.
-    chosen : list of list of Net, optional
-        Nets chosen already (each as its pieces), written after the same validation.
 
     Returns
     -------
@@ -193,11 +190,10 @@ def net_files(grid: Any, net: NetOptions, drawing: DrawingOptions, outputs: Sequ
 
     paths = [Path(p) for p in outputs]
     drawings = check_request(net, paths, box=box is not None)
-    if chosen is None:
-        found = search_nets(grid, net, drawing if drawings else None, seed=seed, constraints=constraints, box=box)
-        results, drawing, notes = found.nets, found.options if drawings else drawing, list(found.notes)
-    else:
-        results, notes = chosen, []
+    found = search_nets(grid, net, drawing if drawings else None, seed=seed, constraints=constraints, box=box)
+    results, notes = found.nets, list(found.notes)
+    if drawings:
+        drawing = found.options  # the face size settled
     g = fill_cavities(grid) if results[0][0].filled else grid
     summary, warnings, report = [], [], []
     with atomic_files(*paths) as fileset:
