@@ -78,6 +78,14 @@ def edge_constraints(data: Any) -> Any:
     return EdgeConstraints.from_dict(data)
 
 
+class NoNetFitsError(InvalidShapeError):
+    """No net of the gallery fits the sheet: the best one's words, and the choices that would work."""
+
+    def __init__(self, message: str, ways_out: list[dict[str, Any]]) -> None:
+        super().__init__(message)
+        self.ways_out = ways_out
+
+
 def net_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, net: Any, drawing: Any,
                 constraints: Any) -> None:
     """The library's gallery (:func:`voxfab.fabricate.netdraw.net_gallery`) as a job: nets kept for /api/make.
@@ -90,6 +98,10 @@ def net_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, net: Any, 
     job.step(0, count, "searching nets")
     gallery = netdraw.net_gallery(grid, net, drawing, count=count, seed=seed, constraints=constraints,
                                   progress=lambda done, total: job.step(done, total, f"{done} of {total} nets"))
+    if gallery.nets and not any(item.fit["fits"] for item in gallery.nets):
+        # Nothing to print on this sheet: the page says so in the CLI's words and offers each way out.
+        best = gallery.nets[0].fit
+        raise NoNetFitsError(best["message"], list(best.get("ways_out", [])))
     job.data["nets"] = [item.pieces for item in gallery.nets]
     job.data["options"] = (net, gallery.options)
     job.data["grid"] = grid  # for /api/nets/edit

@@ -20,7 +20,6 @@ from collections.abc import Callable, Mapping
 from typing import Any
 
 import numpy as np
-import numpy.typing as npt
 
 from voxfab.errors import InvalidShapeError
 from voxfab.unfold import EdgeConstraints, Net
