@@ -152,8 +152,7 @@ def test_save_to_the_repository_and_browse_it(server, browser):
 def test_net_gallery_pick_and_download_svg(server, browser):
     from lxml import etree
 
-    from voxfab.fabricate.netdraw import write_drawing
-    from voxfab.shape import VoxelShape
+    from voxfab.fabricate.netdraw import DrawingOptions, write_net_drawing
     from voxfab.unfold import Net, validate
 
     open_page(browser, server)
@@ -211,10 +210,8 @@ def test_net_gallery_pick_and_download_svg(server, browser):
         grid = centred(repo.get(name))
     assert validate(grid, net).ok
     again = svg.with_name("again.svg")
-    import argparse
-
     face = float(re.search(r"faces ([0-9.]+) mm", browser.find_element("id", "net-summary").text).group(1))
-    write_drawing(VoxelShape(grid, 2.0), net, again, argparse.Namespace(pitch=face, sheet="A4"), title=name)
+    write_net_drawing(grid, net, again, DrawingOptions(pitch=face, sheet="A4"), title=name)
     assert again.read_bytes() == svg.read_bytes()
     assert np.count_nonzero(grid) == int(name[:5])
 

@@ -308,7 +308,7 @@ def test_a_net_that_does_not_fit_says_so_plainly_and_one_click_splits_it(server,
     # The net pipeline's words, without the CLI's flags.
     assert "does not fit sheet A5 at 20 mm faces" in status and "--" not in status, status
     labels = [b.text for b in buttons]
-    assert labels[0] == "split into pieces" and all("--" not in t for t in labels)
+    assert labels[0] == "split it into pieces" and all("--" not in t for t in labels)
     browser.save_screenshot(str(SHOTS / "net-ways-out.png"))
     buttons[0].click()
     items = wait(browser, lambda d: by_id(d, "net-gallery-item", many=True), timeout=240, what="the split net")

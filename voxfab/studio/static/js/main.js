@@ -86,7 +86,7 @@ function forgetShapeState() {
   $('#save-result').textContent = ''; delete $('#save-result').dataset.name;
   $('#net-summary').textContent = '';
   marker.setLayout(null);
-  if (marker.marks && marker.marks.size) marker.clear();
+  if (marker.marks && (marker.marks.cut.length || marker.marks.keep.length)) marker.clear();
 }
 
 function setShape(grid, facts, {drawn = null, name = null, keepHistory = false} = {}) {
@@ -395,7 +395,6 @@ const board = new SheetBoard($('#net-sheets'), {
     const g = state.gallery;
     if (!g || state.chosen === null) return;
     g.placement = placement;
-    marker.setLayout(placedLayout(g.layout, placement));
     // Moves and turns in quick succession make one set of files, for the last layout.
     clearNetFiles();
     clearTimeout(netFiles.timer);
@@ -530,7 +529,7 @@ function choose(i) {
   const g = state.gallery;
   state.chosen = i; g.placement = g.nets[i].placement; g.layout = g.nets[i].layout;
   $$('#net-gallery figure').forEach((f, j) => f.classList.toggle('chosen', i === j));
-  marker.setNet(g.job, i, g.placement ? placedLayout(g.nets[i].layout, g.placement) : g.nets[i].layout);
+  marker.setNet(g.job, i, g.nets[i].layout);
   board.setNet(g.nets[i].layout, g.placement);
   $('#net-chosen-label').textContent = `#${i + 1} (seed ${g.nets[i].seed})`;
   $('#net-chosen-label').dataset.index = String(i);
