@@ -133,8 +133,40 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
             if pieces != "auto":
                 extent = _measured_extent(err, grid, rng, search)
                 raise fit_error(extent, options, float(options.pitch), what="the most compact net found") from None
-    nets = unfold(grid, rng=rng, fit=fit, pieces="auto", **search)
-    return SheetNets([list(nets)], options, notes)
+    return SheetNets([_fewest_sheets(grid, options, fit, rng, search)], options, notes)
+
+
+def _fewest_sheets(grid: Any, options: DrawingOptions, fit: tuple[int, int], rng: int,
+                   search: dict[str, Any]) -> list[Net]:
+    """Pieces from flat patches when they pack within the goal of sheets, else the better of both ways.
+
+    Pieces from flat patches are compact and pack densely, but there are more
+    of them; the few large pieces of ``"auto"`` are tried when the flat ones
+    miss ``ceil(1.25 A / U)`` sheets (:func:`sheets_needed`), and the fewer
+    sheets win, then the fewer pieces.
+    """
+    from voxfab.fabricate.netdraw._drawing import sheets_needed
+    from voxfab.shape import fill_cavities
+    from voxfab.unfold import unfold
+
+    g = np.asarray(grid, dtype=bool)
+    shape = fill_cavities(g) if search.get("fill", False) else g
+    best: tuple[int, int, list[Net]] | None = None
+    for mode in ("flat", "auto"):
+        try:
+            nets = list(unfold(grid, rng=rng, fit=fit, pieces=mode, **search))
+        except UnfoldError:
+            if mode == "auto" and best is None:
+                raise
+            continue
+        sheets, goal = sheets_needed(shape, nets, options)
+        key = (sheets, len(nets))
+        if best is None or key < best[:2]:
+            best = (*key, nets)
+        if sheets <= goal:
+            break
+    assert best is not None
+    return best[2]
 
 
 def _auto_face_size(grid: Any, options: DrawingOptions, *, rng: int, pieces: str, chars: int,
