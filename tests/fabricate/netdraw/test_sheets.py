@@ -58,7 +58,6 @@ CASES = [
 
 @pytest.mark.parametrize(("name", "make", "face", "sheet"), CASES, ids=[c[0] for c in CASES])
 def test_pieces_on_sheets_read_back_from_the_files(tmp_path: Path, name, make, face, sheet) -> None:
-    import shapely
 
     grid = make()
     drawing = DrawingOptions(pitch=face, sheet=sheet, label_height=2.0)

@@ -274,13 +274,15 @@ def _dilated(mask: npt.NDArray[np.bool_], r: int) -> npt.NDArray[np.bool_]:
     return out
 
 
-def _best_spot(blocked: npt.NDArray[np.bool_], mask: npt.NDArray[np.bool_]) -> tuple[int, int, int, int] | None:
+def _best_spot(blocked: npt.NDArray[np.bool_], mask: npt.NDArray[np.bool_],
+               touch: bool = True) -> tuple[int, int, int, int] | None:
     """Where ``mask`` meets no blocked step and touches most of them: ``(-touch, top, ox, oy)``.
 
     Touch counts the blocked steps (the sheet's edge counting as blocked)
     just round the mask: a piece that hugs the others and the edge leaves the
     fewest slivers of paper between them.  Ties go to the lowest top, then
-    the leftmost spot.
+    the leftmost spot.  Without ``touch``: the lowest top, then the leftmost
+    right, ``(top, right, ox, oy)``.
     """
     from scipy.signal import fftconvolve
 
@@ -292,12 +294,55 @@ def _best_spot(blocked: npt.NDArray[np.bool_], mask: npt.NDArray[np.bool_]) -> t
     ox, oy = np.nonzero(hits < 0.5)
     if ox.size == 0:
         return None
+    if not touch:
+        j = int(np.lexsort((ox + w, oy + h))[0])
+        return (int(oy[j]) + h, int(ox[j]) + w, int(ox[j]), int(oy[j]))
     ring = _dilated(mask, 1) & ~np.pad(mask, 1)
     walled = np.pad(blocked, 1, constant_values=True)
     touch = np.rint(fftconvolve(walled.astype(np.float32), ring[::-1, ::-1].astype(np.float32), mode="valid"))
     t = touch[ox, oy].astype(np.int64)
     j = int(np.lexsort((ox, oy + h, -t))[0])
     return (-int(t[j]), int(oy[j]) + h, int(ox[j]), int(oy[j]))
+
+
+def _pack_once(shapes: list[list[_Shape]], order: list[int], raster: tuple[int, int], clear: int,
+               touch: bool) -> tuple[int, dict]:
+    """One packing of the pieces in ``order``: the sheets used, and per piece ``(sheet, shape, offset)``.
+
+    The offset (in steps) is that of the piece's cell (0, 0); shape None for a
+    piece that meets no spot even on an empty sheet (it gets a sheet alone).
+    """
+    blocked: list[npt.NDArray[np.bool_]] = []
+    where: dict[int, tuple[int, _Shape | None, tuple[int, int]]] = {}
+    for i in order:
+        spot = None
+        for s in range(len(blocked) + 1):
+            if s == len(blocked):
+                blocked.append(np.zeros(raster, dtype=bool))
+            best = None
+            for t, sh in enumerate(shapes[i]):
+                found = _best_spot(blocked[s], sh.mask, touch)
+                if found is not None and (best is None or found[:2] + (t,) < best[0]):
+                    best = (found[:2] + (t,), t, found[2:])
+            if best is not None:
+                spot = (s, best[1], best[2])
+                break
+            if not blocked[s].any():  # even an empty sheet has no spot for it
+                break
+        if spot is None:
+            s = len(blocked) - 1
+            blocked[s][:] = True
+            where[i] = (s, None, (0, 0))
+            continue
+        s, t, (ox, oy) = spot
+        sh = shapes[i][t]
+        grown = _dilated(sh.mask, clear)
+        gx, gy = ox - clear, oy - clear
+        a0, b0 = max(gx, 0), max(gy, 0)
+        a1, b1 = min(gx + grown.shape[0], raster[0]), min(gy + grown.shape[1], raster[1])
+        blocked[s][a0:a1, b0:b1] |= grown[a0 - gx:a1 - gx, b0 - gy:b1 - gy]
+        where[i] = (s, sh, (ox - sh.start[0], oy - sh.start[1]))
+    return len(blocked), where
 
 
 def pack_pieces(pieces: list[npt.NDArray[np.int64]], options: DrawingOptions,
@@ -310,7 +355,9 @@ def pack_pieces(pieces: list[npt.NDArray[np.int64]], options: DrawingOptions,
     take a glue tab), a band a full tab deep beyond the edge.  Pieces go largest
     first, each on the first sheet that takes it, turned by the quarter turn
     and moved to the spot whose top is lowest (then whose right is leftmost),
-    with :data:`_CLEARANCE_MM` of paper kept free round every other piece.  So
+    with :data:`_CLEARANCE_MM` of paper kept free round every other piece.
+    Two orders (by faces, by paper) and two rules (most touch, lowest top) are
+    tried, and the packing on the fewest sheets kept.  So
     tabs of two pieces interleave in the gap between them, and a piece fills a
     notch of another.  A piece that meets no spot even on an empty sheet (its
     tabs need a step more than the room) goes on a sheet of its own, centred.
@@ -342,44 +389,32 @@ def pack_pieces(pieces: list[npt.NDArray[np.int64]], options: DrawingOptions,
     clear = max(1, int(math.ceil(_CLEARANCE_MM / step - 1e-9)))
     x0, y0, x1, y1 = drawable_area(options)
     raster = (int(math.floor((x1 - x0) / step + 1e-9)), int(math.floor((y1 - y0) / step + 1e-9)))
-    blocked: list[npt.NDArray[np.bool_]] = []
+    # A quarter turn keeps each face's corner order, so the tab edges stay the same pairs.
+    shapes = [[_shape(_quarter_turns(c, t), tab_edges[i], k, depth) for t in range(4)] for i, c in enumerate(pieces)]
+    area = [int(sh[0].mask.sum()) for sh in shapes]
+    least = math.ceil(sum(area) / (raster[0] * raster[1]))
     where: dict[int, tuple[int, npt.NDArray[np.int64], npt.NDArray[np.float64]]] = {}
-    order = sorted(range(len(pieces)), key=lambda i: (-pieces[i].shape[0], i))
-    for i in order:
-        # A quarter turn keeps each face's corner order, so the tab edges stay the same pairs.
-        shapes = [_shape(_quarter_turns(pieces[i], t), tab_edges[i], k, depth) for t in range(4)]
-        spot = None
-        for s in range(len(blocked) + 1):
-            if s == len(blocked):
-                blocked.append(np.zeros(raster, dtype=bool))
-            best = None
-            for t, sh in enumerate(shapes):
-                found = _best_spot(blocked[s], sh.mask)
-                if found is not None and (best is None or found[:2] + (t,) < best[0]):
-                    best = (found[:2] + (t,), t, found[2:])
-            if best is not None:
-                spot = (s, best[1], best[2])
+    count = 0
+    # Orders and rules tried in turn, the fewest sheets kept (the first on a tie); a packing on as
+    # few sheets as the paper needs ends the tries.
+    for touch in (True, False):
+        for by in (lambda i: (-pieces[i].shape[0], i), lambda i: (-area[i], i)):
+            n, spots = _pack_once(shapes, sorted(range(len(pieces)), key=by), raster, clear, touch)
+            if not where or n < count:
+                count, where = n, spots
+            if count <= least:
                 break
-            if not blocked[s].any():  # even an empty sheet has no spot for it
-                break
-        if spot is None:
-            s = len(blocked) - 1
-            blocked[s][:] = True
+        if count <= least:
+            break
+    for i, (s, sh, at) in list(where.items()):
+        if sh is None:  # a piece alone on its sheet, centred
             c = _quarter_turns(pieces[i], 0)
             ex, ey = c.reshape(-1, 2).max(axis=0)
-            t = fits((int(ex), int(ey)), options, pitch)
-            c = _quarter_turns(pieces[i], 1 if t else 0)
+            c = _quarter_turns(pieces[i], 1 if fits((int(ex), int(ey)), options, pitch) else 0)
             ex, ey = c.reshape(-1, 2).max(axis=0)
             where[i] = (s, c, np.array([(x1 - x0 - ex * pitch) / 2, (y1 - y0 - ey * pitch) / 2]))
-            continue
-        s, t, (ox, oy) = spot
-        sh = shapes[t]
-        grown = _dilated(sh.mask, clear)
-        gx, gy = ox - clear, oy - clear
-        a0, b0 = max(gx, 0), max(gy, 0)
-        a1, b1 = min(gx + grown.shape[0], raster[0]), min(gy + grown.shape[1], raster[1])
-        blocked[s][a0:a1, b0:b1] |= grown[a0 - gx:a1 - gx, b0 - gy:b1 - gy]
-        where[i] = (s, sh.corners, np.array([(ox - sh.start[0]) * step, (oy - sh.start[1]) * step]))
+        else:
+            where[i] = (s, sh.corners, np.asarray(at, dtype=np.float64) * step)
     # Each piece in cells of its own, two cells apart from the next: no two
     # pieces ever share or touch a cell, so edges of different pieces never meet.
     placed, sheets, shifts = [], [], []
@@ -390,7 +425,7 @@ def pack_pieces(pieces: list[npt.NDArray[np.int64]], options: DrawingOptions,
         sheets.append(np.full(c.shape[0], s, dtype=np.int64))
         shifts.append(np.tile(at - (bx * pitch, 0.0), (c.shape[0], 1)))
         bx += int(corners[..., 0].max()) + 2
-    origin = np.tile([x0, y0], (len(blocked), 1)).astype(np.float64)
+    origin = np.tile([x0, y0], (count, 1)).astype(np.float64)
     plan = SheetPlan(pitch, False, np.concatenate(placed), np.concatenate(sheets), origin, (x0, y0, x1, y1),
                      options.sheet_size, np.concatenate(shifts))
     return plan, placed
