@@ -78,7 +78,7 @@ def _partition(job: _Job, faces: npt.NDArray[np.int64]) -> list[tuple[_Board, np
     """
     if job.constraints is None and job.fit is not None and job.flat:
         try:
-            return _balance(job, _patch_pieces(job, faces))
+            return _balance(job, _merge_small(job, _patch_pieces(job, faces), mend_only=True))
         except UnfoldError:
             pass  # no split from patches keeps the size rule: cut as "auto" does
     if job.constraints is None and job.fit is not None:
@@ -260,11 +260,12 @@ def _steps_left(job: _Job, faces: int) -> int:
     return (_FIT_STEPS_PER_FACE if time.monotonic() < job.deadline else 4) * int(faces)
 
 
-def _merge_small(job: _Job, pieces: list) -> list:
+def _merge_small(job: _Job, pieces: list, mend_only: bool = False) -> list:
     """Join neighbouring pieces, the smallest first, while their union grows inside the box.
 
     A join is tried only when no piece would end under a tenth of the
-    largest, or when it swallows a piece that breaks that rule.
+    largest, or when it swallows a piece that breaks that rule; with
+    ``mend_only``, only while some piece breaks it.
     """
     sg = job.sg
     area = math.inf if job.fit is None else job.fit[0] * job.fit[1]
@@ -277,7 +278,7 @@ def _merge_small(job: _Job, pieces: list) -> list:
         sizes = [int(bp[1].size) for bp in pieces]
         # Joins for fewer pieces stop with the clock or the tries; joins that
         # mend the size rule go on while a pair is left to try.
-        if not _too_small(sizes) and (time.monotonic() > job.deadline or len(tried) >= _JOIN_TRIES):
+        if not _too_small(sizes) and (mend_only or time.monotonic() > job.deadline or len(tried) >= _JOIN_TRIES):
             break
         joined = False
         for q in range(len(pieces)):

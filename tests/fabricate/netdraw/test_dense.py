@@ -63,7 +63,7 @@ def _pieces_of(rings: list[np.ndarray]):
 CASES = [
     ("ball r=6", lambda: examples.ball(6), 10.0, "A4"),
     ("torus", lambda: examples.torus(7.0, 3.0), 10.0, "mat12"),
-    ("tunnel cube", lambda: examples.tunnel_cube(8), 10.0, "A4"),
+    ("tunnel cube", lambda: examples.tunnel_cube(9), 10.0, "A4"),
     ("queen", _queen, 8.6, "mat12"),
 ]
 

@@ -321,32 +321,33 @@ def draw_pieces(grid: npt.ArrayLike, pieces: list[Net], *, options: DrawingOptio
     """
     opts = options or DrawingOptions()
     graph = surface_graph(grid)
-    net, plan, swap, face_piece, _ = _packed(graph, pieces, opts)
+    net, plan, swap, face_piece, _, _ = _packed(graph, pieces, opts)
     return _draw(graph, net, plan, opts, name=name, face_piece=face_piece, swap=swap)
 
 
-def sheets_needed(grid: npt.ArrayLike, pieces: list[Net], options: DrawingOptions) -> tuple[int, int]:
-    """Sheets that :func:`draw_pieces` packs ``pieces`` on, and the goal ``ceil(1.25 A / U)``, without drawing.
+def sheets_needed(grid: npt.ArrayLike, pieces: list[Net], options: DrawingOptions) -> tuple[int, int, int]:
+    """How :func:`draw_pieces` packs ``pieces``, without drawing them: ``(sheets, goal, untabbed)``.
 
-    ``A`` is the paper of the faces and of a full tab per seam that has room
-    for one, ``U`` a sheet's drawable area.
+    ``goal`` is ``ceil(1.25 A / U)``, ``A`` the paper of the faces and of a
+    full tab per seam that has room for one, ``U`` a sheet's drawable area;
+    ``untabbed`` counts the seams with no free cell beyond either side.
     """
     import math
 
-    net, plan, _, _, tabs = _packed(surface_graph(grid), pieces, options)
+    net, plan, _, _, tabs, seams = _packed(surface_graph(grid), pieces, options)
     p = plan.pitch
     inset, h = tab_heights(p, options.tab_width, options.tab_angle)
     base = p - 2 * inset
     top = max(base - 2 * h / math.tan(math.radians(options.tab_angle)), 0.0)
     paper = net.face_count * p * p + tabs * (base + top) / 2 * h
     x0, y0, x1, y1 = plan.area
-    return plan.count, math.ceil(1.25 * paper / ((x1 - x0) * (y1 - y0)) - 1e-9)
+    return plan.count, math.ceil(1.25 * paper / ((x1 - x0) * (y1 - y0)) - 1e-9), seams - tabs
 
 
 def _packed(graph: SurfaceGraph, pieces: list[Net], opts: DrawingOptions
-            ) -> tuple[Net, SheetPlan, npt.NDArray[np.bool_], npt.NDArray[np.int64], int]:
-    """The pieces as one net packed on sheets: the net, its plan, each seam's tab side, each face's piece
-    and the number of tabs the packer kept room for."""
+            ) -> tuple[Net, SheetPlan, npt.NDArray[np.bool_], npt.NDArray[np.int64], int, int]:
+    """The pieces as one net packed on sheets: the net, its plan, each seam's tab side, each face's piece,
+    the number of tabs the packer kept room for and the number of seams."""
     for piece in pieces:
         check_net(graph, piece)
     counts = np.cumsum([0] + [p.face_count for p in pieces])
@@ -375,7 +376,7 @@ def _packed(graph: SurfaceGraph, pieces: list[Net], opts: DrawingOptions
                      for i in range(len(pieces))]
     plan, placed = pack_pieces([p.corners2d for p in pieces], opts, tab_edges)
     tabs = 0 if tab_edges is None else sum(int(t.shape[0]) for t in tab_edges)
-    return joined_net(placed), plan, swap, face_piece, tabs
+    return joined_net(placed), plan, swap, face_piece, tabs, int(sides.shape[0]) if opts.tabs else 0
 
 
 def _apart(corners: list[npt.NDArray[np.int64]]) -> list[npt.NDArray[np.int64]]:

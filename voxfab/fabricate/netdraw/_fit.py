@@ -143,7 +143,8 @@ def _fewest_sheets(grid: Any, options: DrawingOptions, fit: tuple[int, int], rng
     Pieces from flat patches are compact and pack densely, but there are more
     of them; the few large pieces of ``"auto"`` are tried when the flat ones
     miss ``ceil(1.25 A / U)`` sheets (:func:`sheets_needed`), and the fewer
-    sheets win, then the fewer pieces.
+    sheets win, then the fewer seams without room for a tab, then the fewer
+    pieces.
     """
     from voxfab.fabricate.netdraw._drawing import sheets_needed
     from voxfab.shape import fill_cavities
@@ -151,7 +152,7 @@ def _fewest_sheets(grid: Any, options: DrawingOptions, fit: tuple[int, int], rng
 
     g = np.asarray(grid, dtype=bool)
     shape = fill_cavities(g) if search.get("fill", False) else g
-    best: tuple[int, int, list[Net]] | None = None
+    best: tuple[tuple[int, int, int], list[Net]] | None = None
     for mode in ("flat", "auto"):
         try:
             nets = list(unfold(grid, rng=rng, fit=fit, pieces=mode, **search))
@@ -159,14 +160,14 @@ def _fewest_sheets(grid: Any, options: DrawingOptions, fit: tuple[int, int], rng
             if mode == "auto" and best is None:
                 raise
             continue
-        sheets, goal = sheets_needed(shape, nets, options)
-        key = (sheets, len(nets))
-        if best is None or key < best[:2]:
-            best = (*key, nets)
-        if sheets <= goal:
+        sheets, goal, untabbed = sheets_needed(shape, nets, options)
+        key = (sheets, untabbed, len(nets))
+        if best is None or key < best[0]:
+            best = (key, nets)
+        if sheets <= goal and untabbed == 0:
             break
     assert best is not None
-    return best[2]
+    return best[1]
 
 
 def _auto_face_size(grid: Any, options: DrawingOptions, *, rng: int, pieces: str, chars: int,
