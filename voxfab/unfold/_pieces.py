@@ -77,7 +77,13 @@ def _partition(job: _Job, faces: npt.NDArray[np.int64]) -> list[tuple[_Board, np
     ruin-and-recreate packs into the box from the faces left over.
     """
     if job.constraints is None and job.fit is not None and job.flat:
+        patches = _patch_pieces(job, faces)
         try:
+            return _balance(job, list(patches))
+        except UnfoldError:
+            pass
+        try:
+            # Branches did not mend the size rule: join the small pieces to neighbours first.
             return _balance(job, _merge_small(job, _patch_pieces(job, faces), mend_only=True))
         except UnfoldError:
             pass  # no split from patches keeps the size rule: cut as "auto" does
