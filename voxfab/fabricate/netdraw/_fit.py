@@ -7,8 +7,8 @@ The default order of a paper net (issue: buildable objects):
 2. when none is found, an error naming the largest face size at which a net
    fits this sheet and the smallest sheet that takes it at this face size,
    both measured from the most compact net found; never a silent split;
-3. with ``pieces="auto"``, the fewest large pieces, packed on as few sheets as
-   possible by :func:`draw_pieces`.
+3. with ``pieces="auto"``, pieces from flat patches or the fewest large
+   pieces, whichever packs on fewer sheets by :func:`draw_pieces`.
 
 Faces too small for legible marks are refused before any search.
 """
@@ -84,7 +84,8 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     rng : int
         Seed of the search.
     pieces : {"one", "auto"}
-        ``"auto"``: when one piece does not fit, split into the fewest pieces that do.
+        ``"auto"``: when one piece does not fit, split into pieces that do, cut
+        the way that packs on the fewest sheets (:func:`_fewest_sheets`).
     count : int
         Distinct one-piece nets wanted.
     budget : float
