@@ -42,18 +42,20 @@ def net_item(grid: np.ndarray, net: Any, marks: Any, *, history: int, extra: dic
     are the library gallery's own (:mod:`voxfab.fabricate.netdraw`).
     """
     from voxfab.fabricate.netdraw import fit_and_placement, net_layout
+    from voxfab.shape import fill_cavities, surface_graph
 
     pieces = _pieces(net)
     first = pieces[0]
+    graph = surface_graph(fill_cavities(grid) if first.filled else grid)
     placed: dict[str, Any] = {}
     if drawing is not None:
-        fit, placement = fit_and_placement(pieces, drawing)
+        fit, placement = fit_and_placement(pieces, drawing, graph)
         placed = {"fit": fit, "placement": placement}
     return {**placed,
         "index": 0, "seed": int(first.seed), "faces": sum(p.face_count for p in pieces), "pieces": len(pieces),
         "mountain": sum(int(p.mountain) for p in pieces), "valley": sum(int(p.valley) for p in pieces),
         "seams_without_tab_room": sum(int(p.seams_without_tab_room) for p in pieces),
-        "layout": net_layout(grid, pieces),
+        "layout": net_layout(grid, pieces, graph=graph),
         "marks": marks.to_dict() if marks else {"cut": [], "keep": []},
         "undo": history, **extra,
     }

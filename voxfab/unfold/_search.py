@@ -75,6 +75,7 @@ class Pieces(enum.StrEnum):
 
     ONE = "one"
     AUTO = "auto"
+    FLAT = "flat"
 
 
 def _settings(strategy: Strategy, faces: int) -> Growth:
@@ -405,6 +406,7 @@ class _Job:
     deadline: float
     timeout: float
     constraints: EdgeConstraints | None
+    flat: bool = False
 
     def growth(self, faces: int):
         return _settings(self.strategy, faces)
@@ -462,13 +464,16 @@ def unfold(
         the final count is in ``Net.seams_without_tab_room``.
     fill : bool
         Fill enclosed cavities first (their surfaces cannot join the outer one).
-    pieces : {"one", "auto"}
+    pieces : {"one", "auto", "flat"}
         ``"one"``: return one Net or raise UnfoldError.  ``"auto"``: always return a
         list of Nets, as few pieces as the budget allows: one per separate
         surface part (cavity walls, separate components), and when no one-piece
         net fits ``fit`` few large pieces that each fit it, none of a surface
         part's pieces under a tenth of its largest (UnfoldError when no such
-        split is found).  Face ``i`` of a piece is then
+        split is found).  ``"flat"``: like ``"auto"``, but the pieces are grown
+        from whole flat patches of the surface, each as compact as the surface
+        itself, with room for a tab at every seam: more pieces that pack densely
+        on sheets (with constraints or without ``fit``, as ``"auto"``).  Face ``i`` of a piece is then
         *not* face ``i`` of the surface graph: faces are identified by
         ``(voxel, normal)``.
     compact : bool
@@ -530,7 +535,8 @@ def unfold(
         except UnfoldError as exc:
             raise NoNetExistsError(*fit, why=str(exc)) from None
     _check_groups_fit(resolved, fit)
-    job = _Job(g, sg, seed, strat, fit, tab_aware, compact, deadline, float(timeout), constraints)
+    job = _Job(g, sg, seed, strat, fit, tab_aware, compact, deadline, float(timeout), constraints,
+               mode is Pieces.FLAT)
     parts = _surface_parts(sg)
     if strat is Strategy.EXACT:
         if len(parts) > 1:

@@ -32,7 +32,7 @@ def _moved(placement: Placement, piece: int, **change) -> Placement:
 
 def test_the_packing_read_as_a_placement_draws_the_same_sheets(ball_pieces, tmp_path: Path) -> None:
     grid, pieces = ball_pieces
-    placement = placement_for(pieces, OPTIONS)
+    placement = placement_for(grid, pieces, OPTIONS)
     assert len(placement.pieces) == len(pieces) and placement.face_size == 10.0
     assert Placement.from_dict(placement.to_dict()) == placement
     packed = draw_pieces(grid, pieces, options=OPTIONS)
@@ -48,7 +48,7 @@ def test_a_moved_and_turned_piece_lands_where_the_placement_says(ball_pieces, tm
     import ezdxf
 
     grid, pieces = ball_pieces
-    placement = placement_for(pieces, OPTIONS)
+    placement = placement_for(grid, pieces, OPTIONS)
     # The smallest piece alone on a new sheet, turned half a turn, about the middle of the sheet.
     small = min(range(len(pieces)), key=lambda i: pieces[i].face_count)
     start = placement.pieces[small]
@@ -81,7 +81,7 @@ def test_a_moved_and_turned_piece_lands_where_the_placement_says(ball_pieces, tm
 
 def test_pieces_over_each_other_or_across_the_margin_are_refused(ball_pieces) -> None:
     grid, pieces = ball_pieces
-    placement = placement_for(pieces, OPTIONS)
+    placement = placement_for(grid, pieces, OPTIONS)
     a, b = placement.pieces[0], placement.pieces[1]
     # Piece 2 put exactly where piece 1 is, on its sheet.
     with pytest.raises(PlacementError, match=r"^pieces 1 and 2 (overlap|touch) on sheet \d+"):

@@ -326,29 +326,131 @@ def draw_pieces(grid: npt.ArrayLike, pieces: list[Net], *, options: DrawingOptio
     """
     opts = options or DrawingOptions()
     graph = surface_graph(grid)
+    net, plan, swap, face_piece, _, _ = _packed(graph, pieces, opts, placement)
+    return _draw(graph, net, plan, opts, name=name, face_piece=face_piece, swap=swap)
+
+
+def sheet_plan(graph: SurfaceGraph, pieces: list[Net], options: DrawingOptions) -> SheetPlan:
+    """The sheets the drawing puts ``pieces`` on: a one-piece net on its own sheets, pieces packed with
+    room for their tabs, as :func:`draw_net` and :func:`draw_pieces` place them."""
+    if len(pieces) == 1:
+        return plan_sheets(pieces[0].corners2d, options)
+    return _packed(graph, pieces, options)[1]
+
+
+def sheets_needed(grid: npt.ArrayLike, pieces: list[Net], options: DrawingOptions) -> tuple[int, int, int]:
+    """How :func:`draw_pieces` packs ``pieces``, without drawing them: ``(sheets, goal, untabbed)``.
+
+    ``goal`` is ``ceil(1.25 A / U)``, ``A`` the paper of the faces and of a
+    full tab per seam that has room for one, ``U`` a sheet's drawable area;
+    ``untabbed`` counts the seams with no free cell beyond either side.
+    """
+    import math
+
+    net, plan, _, _, tabs, seams = _packed(surface_graph(grid), pieces, options)
+    p = plan.pitch
+    inset, h = tab_heights(p, options.tab_width, options.tab_angle)
+    base = p - 2 * inset
+    top = max(base - 2 * h / math.tan(math.radians(options.tab_angle)), 0.0)
+    paper = net.face_count * p * p + tabs * (base + top) / 2 * h
+    x0, y0, x1, y1 = plan.area
+    return plan.count, math.ceil(1.25 * paper / ((x1 - x0) * (y1 - y0)) - 1e-9), seams - tabs
+
+
+def _packed(graph: SurfaceGraph, pieces: list[Net], opts: DrawingOptions, placement: Placement | None = None
+            ) -> tuple[Net, SheetPlan, npt.NDArray[np.bool_], npt.NDArray[np.int64], int, int]:
+    """The pieces as one net packed on sheets: the net, its plan, each seam's tab side, each face's piece,
+    the number of tabs the packer kept room for and the number of seams.
+
+    A ``placement`` (the studio's layout) puts the pieces where it says, checked, instead of packing them.
+    """
     for piece in pieces:
         check_net(graph, piece)
-    corners = [p.corners2d for p in pieces]
-    plan, placed = pack_pieces(corners, opts) if placement is None else plan_placement(placement, corners, opts)
     counts = np.cumsum([0] + [p.face_count for p in pieces])
-    combined = Net(
-        voxel=np.concatenate([p.voxel for p in pieces]), normal=np.concatenate([p.normal for p in pieces]),
-        corners3d=np.concatenate([p.corners3d for p in pieces]), corners2d=np.concatenate(placed),
-        folds=np.concatenate([p.folds.reshape(-1, 2) + c for p, c in zip(pieces, counts[:-1])]),
-        seed=pieces[0].seed, strategy=pieces[0].strategy, filled=pieces[0].filled,
-    )
+
+    def joined_net(corners: list[npt.NDArray[np.int64]]) -> Net:
+        return Net(
+            voxel=np.concatenate([p.voxel for p in pieces]), normal=np.concatenate([p.normal for p in pieces]),
+            corners3d=np.concatenate([p.corners3d for p in pieces]), corners2d=np.concatenate(corners),
+            folds=np.concatenate([p.folds.reshape(-1, 2) + c for p, c in zip(pieces, counts[:-1])]),
+            seed=pieces[0].seed, strategy=pieces[0].strategy, filled=pieces[0].filled,
+        )
+
+    # Tab sides are chosen on the pieces laid apart (a quarter turn changes none), so the packer can
+    # keep room for exactly those tabs.
+    apart = _apart([p.corners2d for p in pieces])
+    corners = np.concatenate(apart)
+    edges = classify_edges(graph, joined_net(apart), corners)
+    sides = _seam_sides(edges, edges.joined)
+    swap, reserved = _tab_sides(corners, sides)
     face_piece = np.repeat(np.arange(len(pieces)), [p.face_count for p in pieces])
-    return _draw(graph, combined, plan, opts, name=name, face_piece=face_piece)
+    tab_edges = None
+    if opts.tabs:
+        chosen = np.where(swap[:, None], sides[:, 1], sides[:, 0])[reserved]
+        of = face_piece[chosen[:, 0]]
+        tab_edges = [np.stack([chosen[of == i, 0] - counts[i], chosen[of == i, 1]], axis=1)
+                     for i in range(len(pieces))]
+    if placement is None:
+        plan, placed = pack_pieces([p.corners2d for p in pieces], opts, tab_edges)
+    else:
+        plan, placed = plan_placement(placement, [p.corners2d for p in pieces], opts)
+    tabs = 0 if tab_edges is None else sum(int(t.shape[0]) for t in tab_edges)
+    return joined_net(placed), plan, swap, face_piece, tabs, int(sides.shape[0]) if opts.tabs else 0
+
+
+def _apart(corners: list[npt.NDArray[np.int64]]) -> list[npt.NDArray[np.int64]]:
+    """Pieces' corners moved to start at cell (0, 0) and laid side by side two cells apart."""
+    out, x = [], 0
+    for c in corners:
+        c = c - c.reshape(-1, 2).min(axis=0)
+        out.append(c + (x, 0))
+        x += int(c[..., 0].max()) + 2
+    return out
+
+
+def _tab_sides(corners: npt.NDArray[np.int64], sides: npt.NDArray[np.int64]
+               ) -> tuple[npt.NDArray[np.bool_], npt.NDArray[np.bool_]]:
+    """Which side of every seam takes its tab: ``(swap, reserved)``, each ``(S,)``.
+
+    A side has room when the cell beyond its edge holds no face; of two sides
+    with room the one whose cell has more faces round it wins (its tab then
+    sits in a notch of its own piece, where it costs the sheet no paper), the
+    first on a tie.  ``swap`` is True where the second side wins, ``reserved``
+    where either has room.
+    """
+    step = np.array([[0, -1], [1, 0], [0, 1], [-1, 0]], dtype=np.int64)
+    cells = corners.min(axis=1)
+    m = int(corners.max()) + 4
+    occupied = np.unique((cells[:, 0] + 1) * m + cells[:, 1] + 1)
+
+    def taken(c: npt.NDArray[np.int64]) -> npt.NDArray[np.bool_]:
+        return np.isin((c[..., 0] + 1) * m + c[..., 1] + 1, occupied)
+
+    room, score = [], []
+    for j in (0, 1):
+        f, k = sides[:, j, 0], sides[:, j, 1]
+        a, b = corners[f, k], corners[f, _NEXT[k]]
+        d = b - a
+        beyond = cells[f] + np.stack([d[:, 1], -d[:, 0]], axis=1)  # faces run counter-clockwise
+        room.append(~taken(beyond))
+        score.append(sum(taken(beyond + st).astype(np.int64) for st in step))
+    swap = (room[1] & ~room[0]) | (room[0] & room[1] & (score[1] > score[0]))
+    return swap, room[0] | room[1]
 
 
 def _draw(graph: SurfaceGraph, net: Net, plan: SheetPlan, opts: DrawingOptions, *, name: str,
-          face_piece: npt.NDArray[np.int64]) -> NetDrawing:
-    """Draw ``net`` (a whole net, a piece, or pieces side by side, ``face_piece`` saying which) on ``plan``."""
+          face_piece: npt.NDArray[np.int64], swap: npt.NDArray[np.bool_] | None = None) -> NetDrawing:
+    """Draw ``net`` (a whole net, a piece, or pieces side by side, ``face_piece`` saying which) on ``plan``.
+
+    ``swap`` (one per seam) puts a seam's second side first, so its tab goes there when it has room.
+    """
     pieces = int(face_piece.max(initial=0)) + 1
     edges = classify_edges(graph, net, plan.corners2d)
     fs = plan.face_sheet
     joined = edges.joined
     sides = _seam_sides(edges, joined)
+    if swap is not None:
+        sides = np.where(swap[:, None, None], sides[:, ::-1], sides)
     seam_type = edges.fold_type[sides[:, 0, 0], sides[:, 0, 1]].astype(np.int64)
     external = sides[:, 1, 0] < 0
     # A seam to another piece takes its tab on the copy seen from the lower surface face.
@@ -412,14 +514,23 @@ def _draw_sheet(
     fs = plan.face_sheet
     on = fs == s
     cells = plan.corners2d
-    origin = plan.origin[s]
     canon = edges.canonical()
     on_e = np.broadcast_to(on[:, None], joined.shape)
     a_cell, b_cell = cells, cells[:, _NEXT]
+    # Faces of one piece share a cell (0, 0) on the sheet; pieces packed apart each have their own.
+    face_origin = plan.face_origin()
+    origins, group = np.unique(face_origin[on], axis=0, return_inverse=True)
+    in_group = np.full(fs.shape[0], -1, dtype=np.int64)
+    in_group[on] = group.ravel()
 
     def runs(mask: npt.NDArray[np.bool_]) -> tuple[np.ndarray, np.ndarray]:
-        st, en = merge_unit_segments(a_cell[mask], b_cell[mask])
-        return origin + st * p, origin + en * p
+        starts, ends = [np.zeros((0, 2))], [np.zeros((0, 2))]
+        for g, origin in enumerate(origins):
+            m = mask & (in_group == g)[:, None]
+            st, en = merge_unit_segments(a_cell[m], b_cell[m])
+            starts.append(origin + st * p)
+            ends.append(origin + en * p)
+        return np.concatenate(starts), np.concatenate(ends)
 
     layers: dict[str, list[Polylines]] = {name: [] for name in LAYERS}
     lines_by_type: dict[int, tuple[np.ndarray, np.ndarray]] = {}
@@ -452,7 +563,16 @@ def _draw_sheet(
     fe = tab_edge[tab_here]
     # Going along the edge with the face on the left, the tab is on the right: a, top a, top b, b.
     detour[fe[:, 0], fe[:, 1]] = tab_poly[:, [0, 3, 2, 1]]
-    rings, pieces = trace_outlines(a_cell[boundary], b_cell[boundary], detour[boundary], origin=origin, pitch=p)
+    outer: list[npt.NDArray[np.float64]] = []
+    holes: list[npt.NDArray[np.float64]] = []
+    pieces = 0
+    for g, origin in enumerate(origins):
+        m = boundary & (in_group == g)[:, None]
+        rings, n = trace_outlines(a_cell[m], b_cell[m], detour[m], origin=origin, pitch=p)
+        outer += rings[:n]
+        holes += rings[n:]
+        pieces += n
+    rings = outer + holes
     layers["CUT"].insert(0, Polylines.from_list(rings, [True] * len(rings)))
     layers["CUT"].insert(1, Polylines.from_segments(slit_a, slit_b))
     # The label on both edges of every seam, inside the face, standing on the edge and reading along it.

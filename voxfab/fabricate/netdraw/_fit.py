@@ -7,8 +7,8 @@ The default order of a paper net (issue: buildable objects):
 2. when none is found, an error naming the largest face size at which a net
    fits this sheet and the smallest sheet that takes it at this face size,
    both measured from the most compact net found; never a silent split;
-3. with ``pieces="auto"``, the fewest large pieces, packed on as few sheets as
-   possible by :func:`draw_pieces`.
+3. with ``pieces="auto"``, pieces from flat patches or the fewest large
+   pieces, whichever packs on fewer sheets by :func:`draw_pieces`.
 
 Faces too small for legible marks are refused before any search.
 """
@@ -131,7 +131,8 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     rng : int
         Seed of the search.
     pieces : {"one", "auto"}
-        ``"auto"``: when one piece does not fit, split into the fewest pieces that do.
+        ``"auto"``: when one piece does not fit, split into pieces that do, cut
+        the way that packs on the fewest sheets (:func:`_fewest_sheets`).
     count : int
         Distinct nets wanted (:func:`voxfab.unfold.unfold_many`; with
         ``pieces="auto"`` each is the unfolding of one of its seeds).
@@ -174,7 +175,7 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     # A surface larger than the sheet has no one-piece net on it: no search can find one.
     room = faces <= fit[0] * fit[1]
     if pieces == "auto" and not room:
-        return SheetNets(_piece_nets(grid, rng, fit, count, budget, progress, search, notes), options,
+        return SheetNets(_piece_nets(grid, options, rng, fit, count, budget, progress, search, notes), options,
                          notes)
     found: list[Net] | None = None
     failed: UnfoldError | None = None
@@ -185,7 +186,7 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
             failed = err
     if found is None:
         if pieces == "auto":
-            return SheetNets(_piece_nets(grid, rng, fit, count, budget, progress, search, notes),
+            return SheetNets(_piece_nets(grid, options, rng, fit, count, budget, progress, search, notes),
                              options, notes)
         if failed is not None and not isinstance(failed, NoFitError):
             raise failed  # out of time, or marks that leave no net: not a question of the sheet
@@ -213,17 +214,17 @@ def _nets(grid: Any, count: int, rng: int, budget: float, progress: Callable[[in
     return found
 
 
-def _piece_nets(grid: Any, rng: int, fit: tuple[int, int], count: int, budget: float,
+def _piece_nets(grid: Any, options: DrawingOptions, rng: int, fit: tuple[int, int], count: int, budget: float,
                 progress: Callable[[int, int], None] | None, search: dict[str, Any],
                 notes: list[str]) -> list[list[Net]]:
-    """Nets in the fewest pieces that fit, one per seed (seed ``rng`` first, then seeds drawn from it)."""
+    """Nets in pieces that pack on the fewest sheets, one per seed (seed ``rng`` first, then seeds drawn from it)."""
     import time
 
     from voxfab._shared.progress import check_cancelled
-    from voxfab.unfold import outline_key, unfold
+    from voxfab.unfold import outline_key
 
     if count == 1:
-        return [list(unfold(grid, rng=rng, fit=fit, pieces="auto", **search))]
+        return [_fewest_sheets(grid, options, fit, rng, search)]
     gen = np.random.default_rng(rng)
     end = time.monotonic() + budget
     timeout = float(search.pop("timeout", 60.0))
@@ -235,8 +236,7 @@ def _piece_nets(grid: Any, rng: int, fit: tuple[int, int], count: int, budget: f
         tries += 1
         seed = int(gen.integers(0, 2**31 - 1))
         try:
-            nets = list(unfold(grid, rng=seed, fit=fit, pieces="auto", timeout=min(timeout, end - time.monotonic()),
-                               **search))
+            nets = _fewest_sheets(grid, options, fit, seed, {**search, "timeout": min(timeout, end - time.monotonic())})
         except UnfoldError:
             continue
         key = b"|".join(sorted(outline_key(n) for n in nets))
@@ -251,6 +251,40 @@ def _piece_nets(grid: Any, rng: int, fit: tuple[int, int], count: int, budget: f
     if len(out) < count:
         notes.append(f"{len(out)} distinct nets found of the {count} asked for")
     return out
+
+
+def _fewest_sheets(grid: Any, options: DrawingOptions, fit: tuple[int, int], rng: int,
+                   search: dict[str, Any]) -> list[Net]:
+    """Pieces from flat patches when they pack within the goal of sheets, else the better of both ways.
+
+    Pieces from flat patches are compact and pack densely, but there are more
+    of them; the few large pieces of ``"auto"`` are tried when the flat ones
+    miss ``ceil(1.25 A / U)`` sheets (:func:`sheets_needed`), and the fewer
+    sheets win, then the fewer seams without room for a tab, then the fewer
+    pieces.
+    """
+    from voxfab.fabricate.netdraw._drawing import sheets_needed
+    from voxfab.shape import fill_cavities
+    from voxfab.unfold import unfold
+
+    g = np.asarray(grid, dtype=bool)
+    shape = fill_cavities(g) if search.get("fill", False) else g
+    best: tuple[tuple[int, int, int], list[Net]] | None = None
+    for mode in ("flat", "auto"):
+        try:
+            nets = list(unfold(grid, rng=rng, fit=fit, pieces=mode, **search))
+        except UnfoldError:
+            if mode == "auto" and best is None:
+                raise
+            continue
+        sheets, goal, untabbed = sheets_needed(shape, nets, options)
+        key = (sheets, untabbed, len(nets))
+        if best is None or key < best[0]:
+            best = (key, nets)
+        if sheets <= goal and untabbed == 0:
+            break
+    assert best is not None
+    return best[1]
 
 
 def _auto_face_size(grid: Any, options: DrawingOptions, *, rng: int, pieces: str, chars: int,

@@ -39,7 +39,7 @@ class GalleryNet:
     pieces : list of Net
         The net as its pieces (one Net for a one-piece net).
     fit : dict
-        How it sits on the sheet (:func:`sheet_fit`).
+        How it sits on the sheet (fit to the sheet).
     placement : dict or None
         Where its pieces go on the sheets (the PLACEMENT of :mod:`._placement`); None when it does not fit.
     """
@@ -152,6 +152,8 @@ def net_gallery(grid: Any, net: NetOptions, drawing: DrawingOptions, *, count: i
     UnfoldError
         No net found at all.
     """
+    from voxfab.shape import fill_cavities, surface_graph
+
     from ._fit import find_sheet_nets
     from ._pipeline import validate_net
 
@@ -166,7 +168,12 @@ def net_gallery(grid: Any, net: NetOptions, drawing: DrawingOptions, *, count: i
     notes += found.notes
     for pieces in found.nets:  # every net shown is a valid net of the shape (and of the marks)
         validate_net(grid, pieces, constraints=constraints)
-    items = [GalleryNet(pieces, *fit_and_placement(pieces, options)) for pieces in found.nets]
+    graphs: dict[bool, Any] = {}
+    for pieces in found.nets:  # one surface graph for the whole gallery
+        if pieces[0].filled not in graphs:
+            graphs[pieces[0].filled] = surface_graph(fill_cavities(grid) if pieces[0].filled else grid)
+    items = [GalleryNet(pieces, *fit_and_placement(pieces, options, graphs[pieces[0].filled]))
+             for pieces in found.nets]
     items.sort(key=lambda g: fit_order(g.fit))
     return Gallery(items, options, net, count, round(time.monotonic() - start, 3), notes)
 
@@ -178,30 +185,29 @@ def fit_order(fit: dict[str, Any]) -> tuple[Any, ...]:
     return (not fit["fits"], fit.get("sheets") or 1 << 30, -round(sum(fill) / len(fill), 6), ex * ey, max(ex, ey))
 
 
-def sheet_fit(pieces: list[Net], options: DrawingOptions) -> dict[str, Any]:
-    """How a net (its pieces) sits on the sheet of ``options`` at face size ``options.pitch``.
+def fit_and_placement(pieces: list[Net], options: DrawingOptions, graph: Any
+                      ) -> tuple[dict[str, Any], dict[str, Any] | None]:
+    """The net's fit to the sheet and the PLACEMENT of its pieces on the sheets (None when it does not fit).
+
+    ``graph`` is the surface graph of the shape the pieces unfold; the sheets are the drawing's own
+    (:func:`._drawing.sheet_plan`), so what the studio shows is what the files hold.
 
     Returns
     -------
-    dict
+    fit : dict
         ``sheet``, ``face_size``, ``extent`` (faces, of the largest piece), ``fits``, ``sheets``
         (None when it does not fit), ``fill`` (share of each sheet covered by faces),
         ``largest_face_size`` (the largest at which the largest piece fits one sheet) and,
         when it does not fit, ``message`` (the CLI's words) and ``ways_out``.
+    placement : dict or None
     """
-    return fit_and_placement(pieces, options)[0]
-
-
-def fit_and_placement(pieces: list[Net], options: DrawingOptions) -> tuple[dict[str, Any], dict[str, Any] | None]:
-    """The net's :func:`sheet_fit` and the PLACEMENT of its pieces on the sheets (None when it does not fit)."""
+    from ._drawing import sheet_plan
     from ._placement import placement_of
     from ._sheets import (
         SheetFitError,
         extent_of,
         fit_error,
         largest_face_size,
-        pack_pieces,
-        plan_sheets,
     )
 
     pitch = float(options.pitch)
@@ -211,10 +217,7 @@ def fit_and_placement(pieces: list[Net], options: DrawingOptions) -> tuple[dict[
     fit: dict[str, Any] = {"sheet": options.sheet, "face_size": pitch, "extent": list(extent),
                            "largest_face_size": largest_face_size(extent, options)}
     try:
-        if len(pieces) == 1:
-            plan = plan_sheets(big.corners2d, options)
-        else:
-            plan = pack_pieces([p.corners2d for p in pieces], options)[0]
+        plan = sheet_plan(graph, pieces, options)
     except SheetFitError:
         err = fit_error(extent, options, pitch, what="the net" if len(pieces) == 1 else "a piece")
         fit.update(fits=False, sheets=None, fill=[], message=str(err),

@@ -286,10 +286,12 @@ def _check_clear(placement: Placement, local: list[npt.NDArray[np.int64]], renum
                                      "face of paper between them for the glue tabs")
 
 
-def placement_for(pieces: list[Any], options: DrawingOptions) -> Placement:
-    """The placement the drawing code gives a net (one :class:`~voxfab.unfold.Net` per piece) by itself."""
-    from ._sheets import pack_pieces, plan_sheets
+def placement_for(grid: Any, pieces: list[Any], options: DrawingOptions) -> Placement:
+    """The placement the drawing code gives a net of ``grid`` (one :class:`~voxfab.unfold.Net` per piece) by itself."""
+    from voxfab.shape import fill_cavities, surface_graph
 
-    corners = [p.corners2d for p in pieces]
-    plan = plan_sheets(corners[0], options) if len(corners) == 1 else pack_pieces(corners, options)[0]
-    return placement_of(plan, corners, float(options.margin))
+    from ._drawing import sheet_plan
+
+    g = np.asarray(grid, dtype=bool)
+    graph = surface_graph(fill_cavities(g) if pieces[0].filled else g)
+    return placement_of(sheet_plan(graph, pieces, options), [p.corners2d for p in pieces], float(options.margin))

@@ -78,6 +78,10 @@ class SheetPlan:
         ``(x0, y0, x1, y1)`` drawable rectangle of every sheet, mm.
     size : tuple of 2 floats
         Sheet width and height, mm.
+    shift : (F, 2) float ndarray or None
+        Offset in mm of each face from ``origin + corners2d * pitch``: pieces
+        packed on a sheet sit at any millimetre, not only on whole cells.  The
+        same for all faces of one piece.
     """
 
     pitch: float
@@ -87,6 +91,7 @@ class SheetPlan:
     origin: npt.NDArray[np.float64]
     area: tuple[float, float, float, float]
     size: tuple[float, float]
+    shift: npt.NDArray[np.float64] | None = None
 
     @property
     def count(self) -> int:
@@ -95,7 +100,12 @@ class SheetPlan:
 
     def face_positions(self) -> npt.NDArray[np.float64]:
         """``(F, 4, 2)`` face corners in mm on their own sheet."""
-        return self.origin[self.face_sheet][:, None, :] + self.corners2d * self.pitch
+        return self.face_origin()[:, None, :] + self.corners2d * self.pitch
+
+    def face_origin(self) -> npt.NDArray[np.float64]:
+        """``(F, 2)`` position in mm of cell (0, 0) for each face: its sheet's origin plus its shift."""
+        o = self.origin[self.face_sheet]
+        return o if self.shift is None else o + self.shift
 
 
 def drawable_area(options: DrawingOptions, size: tuple[float, float] | None = None) -> tuple[float, float, float, float]:
@@ -215,54 +225,164 @@ def _quarter_turns(c: npt.NDArray[np.int64], turns: int) -> npt.NDArray[np.int64
     return c - c.reshape(-1, 2).min(axis=0)
 
 
-def _mask(corners: npt.NDArray[np.int64]) -> npt.NDArray[np.bool_]:
-    """``(w, h)`` cells covered by the faces at ``corners`` (n, 4, 2), which start at cell (0, 0)."""
-    cells = corners.min(axis=1)
-    w, h = corners.reshape(-1, 2).max(axis=0)
+#: Raster step of packing, about this many mm: pieces and their tabs are
+#: rasterized at a whole fraction of the face size, so faces stay on it.
+_STEP_MM = 1.0
+#: Clear paper between two pieces (with their tabs) on a sheet, mm at least.
+_CLEARANCE_MM = 1.0
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class _Shape:
+    """One piece turned a number of quarter turns, as a raster mask.
+
+    ``corners`` are its face corners in cells from (0, 0); ``mask`` its faces
+    and reserved tabs in steps, whose step (0, 0) is at ``start`` steps from
+    the piece's cell (0, 0).
+    """
+
+    corners: npt.NDArray[np.int64]
+    mask: npt.NDArray[np.bool_]
+    start: tuple[int, int]
+
+
+def _edge_normals(corners: npt.NDArray[np.int64], edges: npt.NDArray[np.int64]
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Both ends ``(n, 2)`` and the outward unit normal ``(n, 2)`` of ``edges`` (face, edge) of faces at ``corners``."""
+    f, k = edges[:, 0], edges[:, 1]
+    p0 = corners[f, k]
+    p1 = corners[f, (k + 1) % 4]
+    d = p1 - p0
+    # Faces run counter-clockwise: outside is on the right of each edge.
+    return p0, p1, np.stack([d[:, 1], -d[:, 0]], axis=1)
+
+
+def _shape(corners: npt.NDArray[np.int64], tab_edges: npt.NDArray[np.int64], k: int, depth: int) -> _Shape:
+    """The raster of a piece at ``k`` steps per cell: its faces and a band ``depth`` steps deep per tab edge."""
+    lo = corners.reshape(-1, 2).min(axis=0)
+    c = corners - lo
+    w, h = (c.reshape(-1, 2).max(axis=0) + 2) * k  # a cell of room all round for tabs
     m = np.zeros((int(w), int(h)), dtype=bool)
-    m[cells[:, 0], cells[:, 1]] = True
-    return m
+    for x, y in (c.min(axis=1) + 1).tolist():
+        m[x * k:(x + 1) * k, y * k:(y + 1) * k] = True
+    if tab_edges.size:
+        p0, p1, n = _edge_normals(c + 1, tab_edges)
+        a = np.minimum(p0, p1) * k
+        b = np.maximum(p0, p1) * k
+        out = n * depth
+        lo_b = np.minimum(a, a + out)
+        hi_b = np.maximum(b, b + out)
+        # A band on a vertical edge spans the edge's steps across and depth steps out, and so on.
+        for (x0, y0), (x1, y1) in zip(lo_b.tolist(), hi_b.tolist()):
+            m[x0:x1, y0:y1] = True
+    xs, ys = np.nonzero(m)
+    x0, y0 = int(xs.min()), int(ys.min())
+    return _Shape(c, m[x0:xs.max() + 1, y0:ys.max() + 1], (x0 - k, y0 - k))
 
 
-def _grown(mask: npt.NDArray[np.bool_]) -> npt.NDArray[np.bool_]:
-    """``mask`` and the cells beside it across an edge: where no face of another piece may lie."""
-    g = mask.copy()
-    g[1:] |= mask[:-1]
-    g[:-1] |= mask[1:]
-    g[:, 1:] |= mask[:, :-1]
-    g[:, :-1] |= mask[:, 1:]
-    return g
+def _dilated(mask: npt.NDArray[np.bool_], r: int) -> npt.NDArray[np.bool_]:
+    """``mask`` grown by ``r`` steps each way (a square), padded by ``r`` all round."""
+    out = np.zeros((mask.shape[0] + 2 * r, mask.shape[1] + 2 * r), dtype=bool)
+    for dx in range(2 * r + 1):
+        for dy in range(2 * r + 1):
+            out[dx:dx + mask.shape[0], dy:dy + mask.shape[1]] |= mask
+    return out
 
 
-def _free_offsets(blocked: npt.NDArray[np.bool_], mask: npt.NDArray[np.bool_]) -> npt.NDArray[np.int64]:
-    """``(k, 2)`` offsets at which ``mask`` meets no blocked cell of a sheet, bottom row first."""
-    from numpy.lib.stride_tricks import sliding_window_view
+def _best_spot(blocked: npt.NDArray[np.bool_], mask: npt.NDArray[np.bool_],
+               touch: bool = True) -> tuple[int, int, int, int] | None:
+    """Where ``mask`` meets no blocked step and touches most of them: ``(-touch, top, ox, oy)``.
+
+    Touch counts the blocked steps (the sheet's edge counting as blocked)
+    just round the mask: a piece that hugs the others and the edge leaves the
+    fewest slivers of paper between them.  Ties go to the lowest top, then
+    the leftmost spot.  Without ``touch``: the lowest top, then the leftmost
+    right, ``(top, right, ox, oy)``.
+    """
+    from scipy.signal import fftconvolve
 
     w, h = mask.shape
     if w > blocked.shape[0] or h > blocked.shape[1]:
-        return np.zeros((0, 2), dtype=np.int64)
-    windows = sliding_window_view(blocked, (w, h))
-    hits = np.einsum("xyij,ij->xy", windows.astype(np.int32), mask.astype(np.int32))
-    ox, oy = np.nonzero(hits == 0)
-    order = np.lexsort((ox, oy))
-    return np.stack([ox[order], oy[order]], axis=1).astype(np.int64)
+        return None
+    # Overlap counts for every offset at once (a correlation), exact in floats up to rounding.
+    hits = fftconvolve(blocked.astype(np.float32), mask[::-1, ::-1].astype(np.float32), mode="valid")
+    ox, oy = np.nonzero(hits < 0.5)
+    if ox.size == 0:
+        return None
+    if not touch:
+        j = int(np.lexsort((ox + w, oy + h))[0])
+        return (int(oy[j]) + h, int(ox[j]) + w, int(ox[j]), int(oy[j]))
+    ring = _dilated(mask, 1) & ~np.pad(mask, 1)
+    walled = np.pad(blocked, 1, constant_values=True)
+    touch = np.rint(fftconvolve(walled.astype(np.float32), ring[::-1, ::-1].astype(np.float32), mode="valid"))
+    t = touch[ox, oy].astype(np.int64)
+    j = int(np.lexsort((ox, oy + h, -t))[0])
+    return (-int(t[j]), int(oy[j]) + h, int(ox[j]), int(oy[j]))
 
 
-def pack_pieces(pieces: list[npt.NDArray[np.int64]], options: DrawingOptions) -> tuple[SheetPlan, list[npt.NDArray[np.int64]]]:
+def _pack_once(shapes: list[list[_Shape]], order: list[int], raster: tuple[int, int], clear: int,
+               touch: bool) -> tuple[int, dict]:
+    """One packing of the pieces in ``order``: the sheets used, and per piece ``(sheet, shape, offset)``.
+
+    The offset (in steps) is that of the piece's cell (0, 0); shape None for a
+    piece that meets no spot even on an empty sheet (it gets a sheet alone).
+    """
+    blocked: list[npt.NDArray[np.bool_]] = []
+    where: dict[int, tuple[int, _Shape | None, tuple[int, int]]] = {}
+    for i in order:
+        spot = None
+        for s in range(len(blocked) + 1):
+            if s == len(blocked):
+                blocked.append(np.zeros(raster, dtype=bool))
+            best = None
+            for t, sh in enumerate(shapes[i]):
+                found = _best_spot(blocked[s], sh.mask, touch)
+                if found is not None and (best is None or found[:2] + (t,) < best[0]):
+                    best = (found[:2] + (t,), t, found[2:])
+            if best is not None:
+                spot = (s, best[1], best[2])
+                break
+            if not blocked[s].any():  # even an empty sheet has no spot for it
+                break
+        if spot is None:
+            s = len(blocked) - 1
+            blocked[s][:] = True
+            where[i] = (s, None, (0, 0))
+            continue
+        s, t, (ox, oy) = spot
+        sh = shapes[i][t]
+        grown = _dilated(sh.mask, clear)
+        gx, gy = ox - clear, oy - clear
+        a0, b0 = max(gx, 0), max(gy, 0)
+        a1, b1 = min(gx + grown.shape[0], raster[0]), min(gy + grown.shape[1], raster[1])
+        blocked[s][a0:a1, b0:b1] |= grown[a0 - gx:a1 - gx, b0 - gy:b1 - gy]
+        where[i] = (s, sh, (ox - sh.start[0], oy - sh.start[1]))
+    return len(blocked), where
+
+
+def pack_pieces(pieces: list[npt.NDArray[np.int64]], options: DrawingOptions,
+                tab_edges: list[npt.NDArray[np.int64]] | None = None,
+                ) -> tuple[SheetPlan, list[npt.NDArray[np.int64]]]:
     """Pack several pieces (their ``(n_i, 4, 2)`` corners in cells) on as few sheets as possible.
 
-    The sheet is a raster of face cells (:func:`sheet_cells`, a tab's depth
-    kept free all round).  The pieces go largest first, each in the first sheet
-    that takes it, turned by the quarter turn and moved to the spot that keeps
-    the sheet's filled rows lowest (then leftmost).  A piece's faces never lie
-    on or beside (across an edge) a cell of another piece: every cell beside a
-    piece stays free paper for its tabs, which go up to four to a cell, one
-    from each side, without touching.
+    Each piece is a raster mask of about a millimetre a step: its faces and,
+    for each edge of ``tab_edges`` (its ``(t_i, 2)`` face and edge pairs that
+    take a glue tab), a band a full tab deep beyond the edge.  Pieces go largest
+    first, each on the first sheet that takes it, turned by the quarter turn
+    and moved to the spot whose top is lowest (then whose right is leftmost),
+    with :data:`_CLEARANCE_MM` of paper kept free round every other piece.
+    Two orders (by faces, by paper) and two rules (most touch, lowest top) are
+    tried, and the packing on the fewest sheets kept.  So
+    tabs of two pieces interleave in the gap between them, and a piece fills a
+    notch of another.  A piece that meets no spot even on an empty sheet (its
+    tabs need a step more than the room) goes on a sheet of its own, centred.
 
     Returns
     -------
     plan : SheetPlan
-        For the faces of all pieces in order.
+        For the faces of all pieces in order; each piece's cells lie apart from
+        every other piece's (two cells at least), its place on the sheet is its
+        faces' ``shift``.
     placed : list of (n_i, 4, 2) int ndarray
         Each piece's corners in the plan's cells.
 
@@ -273,52 +393,54 @@ def pack_pieces(pieces: list[npt.NDArray[np.int64]], options: DrawingOptions) ->
     """
     extents = [extent_of(c) for c in pieces]
     pitch = auto_face_size(max(extents, key=lambda e: e[0] * e[1]), options)
-    cw, ch = sheet_cells(options, pitch)
     for e in extents:
         if fits(e, options, pitch) is None:
             raise fit_error(e, options, pitch, what="a piece")
-    blocked: list[npt.NDArray[np.bool_]] = []
-    where: dict[int, tuple[int, npt.NDArray[np.int64]]] = {}
-    order = sorted(range(len(pieces)), key=lambda i: (-pieces[i].shape[0], i))
-    for i in order:
-        base = pieces[i] - pieces[i].reshape(-1, 2).min(axis=0)
-        turns = [_quarter_turns(base, t) for t in range(4)]
-        masks = [_mask(c) for c in turns]
-        spot = None
-        for s in range(len(blocked) + 1):
-            if s == len(blocked):
-                blocked.append(np.zeros((cw, ch), dtype=bool))
-            best = None
-            for t, m in enumerate(masks):
-                offsets = _free_offsets(blocked[s], m)
-                if offsets.shape[0] == 0:
-                    continue
-                tops = offsets[:, 1] + m.shape[1]
-                j = int(np.lexsort((offsets[:, 0] + m.shape[0], tops))[0])
-                key = (int(tops[j]), int(offsets[j, 0] + m.shape[0]), t)
-                if best is None or key < best[0]:
-                    best = (key, t, offsets[j])
-            if best is not None:
-                spot = (s, best[1], best[2])
-                break
-        assert spot is not None  # a piece that fits the sheet fits an empty one
-        s, t, (ox, oy) = spot
-        m = masks[t]
-        grown = _grown(np.pad(m, 1))
-        x0c, y0c = int(ox) - 1, int(oy) - 1
-        gx0, gy0 = max(x0c, 0), max(y0c, 0)
-        gx1, gy1 = min(x0c + grown.shape[0], cw), min(y0c + grown.shape[1], ch)
-        blocked[s][gx0:gx1, gy0:gy1] |= grown[gx0 - x0c:gx1 - x0c, gy0 - y0c:gy1 - y0c]
-        where[i] = (s, turns[t] + (int(ox), int(oy)))
-    # Sheet s holds columns from s * stride on, so no two sheets share a cell.
-    stride = cw + 2
-    placed = [where[i][1] + (where[i][0] * stride, 0) for i in range(len(pieces))]
-    sheets = [np.full(c.shape[0], where[i][0], dtype=np.int64) for i, c in enumerate(pieces)]
+    if tab_edges is None:
+        tab_edges = [np.zeros((0, 2), dtype=np.int64) for _ in pieces]
+    k = max(2, int(round(pitch / _STEP_MM)))
+    step = pitch / k
+    depth = int(math.ceil(tab_depth(options, pitch) / step - 1e-9))
+    clear = max(1, int(math.ceil(_CLEARANCE_MM / step - 1e-9)))
     x0, y0, x1, y1 = drawable_area(options)
-    pad = tab_depth(options, pitch)
-    left = x0 + pad + (x1 - x0 - 2 * pad - cw * pitch) / 2
-    bottom = y0 + pad + (y1 - y0 - 2 * pad - ch * pitch) / 2
-    origin = np.array([[left - s * stride * pitch, bottom] for s in range(len(blocked))], dtype=np.float64)
+    raster = (int(math.floor((x1 - x0) / step + 1e-9)), int(math.floor((y1 - y0) / step + 1e-9)))
+    # A quarter turn keeps each face's corner order, so the tab edges stay the same pairs.
+    shapes = [[_shape(_quarter_turns(c, t), tab_edges[i], k, depth) for t in range(4)] for i, c in enumerate(pieces)]
+    area = [int(sh[0].mask.sum()) for sh in shapes]
+    least = math.ceil(sum(area) / (raster[0] * raster[1]))
+    where: dict[int, tuple[int, npt.NDArray[np.int64], npt.NDArray[np.float64]]] = {}
+    count = 0
+    # Orders and rules tried in turn, the fewest sheets kept (the first on a tie); a packing on as
+    # few sheets as the paper needs ends the tries.
+    for touch in (True, False):
+        for by in (lambda i: (-pieces[i].shape[0], i), lambda i: (-area[i], i)):
+            n, spots = _pack_once(shapes, sorted(range(len(pieces)), key=by), raster, clear, touch)
+            if not where or n < count:
+                count, where = n, spots
+            if count <= least:
+                break
+        if count <= least:
+            break
+    for i, (s, sh, at) in list(where.items()):
+        if sh is None:  # a piece alone on its sheet, centred
+            c = _quarter_turns(pieces[i], 0)
+            ex, ey = c.reshape(-1, 2).max(axis=0)
+            c = _quarter_turns(pieces[i], 1 if fits((int(ex), int(ey)), options, pitch) else 0)
+            ex, ey = c.reshape(-1, 2).max(axis=0)
+            where[i] = (s, c, np.array([(x1 - x0 - ex * pitch) / 2, (y1 - y0 - ey * pitch) / 2]))
+        else:
+            where[i] = (s, sh.corners, np.asarray(at, dtype=np.float64) * step)
+    # Each piece in cells of its own, two cells apart from the next: no two
+    # pieces ever share or touch a cell, so edges of different pieces never meet.
+    placed, sheets, shifts = [], [], []
+    bx = 0
+    for i, c in enumerate(pieces):
+        s, corners, at = where[i]
+        placed.append(corners + (bx, 0))
+        sheets.append(np.full(c.shape[0], s, dtype=np.int64))
+        shifts.append(np.tile(at - (bx * pitch, 0.0), (c.shape[0], 1)))
+        bx += int(corners[..., 0].max()) + 2
+    origin = np.tile([x0, y0], (count, 1)).astype(np.float64)
     plan = SheetPlan(pitch, False, np.concatenate(placed), np.concatenate(sheets), origin, (x0, y0, x1, y1),
-                     options.sheet_size)
+                     options.sheet_size, np.concatenate(shifts))
     return plan, placed
