@@ -10,6 +10,7 @@ or keep folded,
 from voxfab.errors import NoNetExistsError
 
 from ._constraints import EdgeConstraints
+from ._exact import Undecided
 from ._hunt import HUNT_NET, HUNT_ZIPPER, HuntOutcome, hunt_shape
 from ._layout import seam_pairs, tab_room
 from ._net import NET_FORMAT, Net
@@ -28,6 +29,7 @@ __all__ = [
     "NoNetExistsError",
     "Pieces",
     "Strategy",
+    "Undecided",
     "ValidationReport",
     "outline_key",
     "seam_pairs",
