@@ -145,6 +145,31 @@ def _short_overlaps(sg: SurfaceGraph, faces: npt.NDArray[np.int64], edges: list[
     return sorted(found)
 
 
+def _slits(sg: SurfaceGraph, edges: list[tuple[int, int, int, int]], cut: list, solver,  # noqa: ANN001
+           cell: npt.NDArray[np.int64], rot: npt.NDArray[np.int64]) -> list[tuple[int, int]]:
+    """The two faces of each cut edge inside the path whose sides meet in the plane anyway.
+
+    Such an edge closes up (the net keeps it as a fold), which splits the cut
+    path in two: not a zipper.  At an end of the path it only shortens the path.
+    """
+    ends: dict[int, int] = {}
+    cuts = []
+    for (a, k, b, kb), (uv, vu) in zip(edges, cut):
+        if solver.BooleanValue(uv) or solver.BooleanValue(vu):
+            cuts.append((a, k, b, kb))
+            for v in (int(sg.vertex[a, k]), int(sg.vertex[a, (k + 1) % 4])):
+                ends[v] = ends.get(v, 0) + 1
+    out = []
+    for a, k, b, kb in cuts:
+        if ends[int(sg.vertex[a, k])] == 1 or ends[int(sg.vertex[a, (k + 1) % 4])] == 1:
+            continue
+        s = (k + int(rot[a])) % 4
+        if (tuple(cell[b]) == (int(cell[a, 0]) + _SIDE_STEP[s][0], int(cell[a, 1]) + _SIDE_STEP[s][1])
+                and int(rot[b]) == (s + 2 - kb) % 4):
+            out.append((a, b))
+    return out
+
+
 def zipper_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], deadline: float) -> ExactLayout:
     """A zipper net of the surface part ``faces`` in any box, or a proof that none exists.
 
@@ -232,13 +257,16 @@ def zipper_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], deadline: floa
             else:
                 owner[c] = a
         if not clashes:
+            clashes = _slits(sg, edges, cut, solver, cell, rot)
+        if not clashes:
             xy = cell[faces]
             lo = xy.min(axis=0)
             out = cell - lo
             w, h = (xy.max(axis=0) - lo + 1).tolist()
             return ExactLayout(out, rot, parent, (int(w), int(h)))
         for u, v in clashes:
-            # Every tree holding these folds lays u and v on one cell: one of them must be cut.
+            # Every tree holding these folds lays u and v on one cell (or side by side across their
+            # cut edge): one of them must be cut.
             m.AddBoolOr([lit for i in _tree_path(u, v, parent, via) for lit in fold_cut[i]])
         rounds += 1
         # Start the next search from this path: most of it is far from the overlaps.
