@@ -230,6 +230,10 @@ def zipper_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], deadline: floa
     prm = solver.parameters
     prm.num_search_workers = 1  # one worker, one seed: the same search every run
     prm.random_seed = _SOLVER_SEED
+    # The model is solved again after each round of no-goods: presolving it each time costs more
+    # than it saves, and it drops the previous path given as a hint (measured: 10 of 12 explored
+    # shapes decided in 8 s without presolve, 3 with it).
+    prm.cp_model_presolve = False
     rounds = 0
     while True:
         left = deadline - time.monotonic()
