@@ -20,7 +20,9 @@ stronger propagator than a tree encoded by depths), with no cells at all:
 The loop ends with a net, with a proof that none exists (the path model
 with its no-goods, each of them valid, is infeasible), or at the deadline.
 A surface with a handle has no zipper net (its cut edges hold a cycle), which
-the Euler count shows with no search.  One worker and a fixed seed make every
+the Euler count shows with no search; nor has a surface whose vertices of the
+two lattice colours (``x + y + z`` even or odd) differ by more than one, since
+every edge joins two colours (the 2x2x2 cube: 14 and 12).  One worker and a fixed seed make every
 step, and so the net, the same on every run.
 """
 
@@ -206,6 +208,14 @@ def zipper_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], deadline: floa
         raise NoNetExistsError(n, n, why=(
             f"the {n}-face surface has a handle (Euler characteristic {2 - genus2}), so the cut edges of any "
             "of its nets hold a cycle: no zipper net exists"))
+    # Vertices of the voxel lattice take two colours (x + y + z even or odd) and every edge joins
+    # two colours, so a path through all of them has as many of each, give or take one.
+    colour = sg.vertex_position[verts].sum(axis=1) % 2
+    even, odd = int((colour == 0).sum()), int((colour == 1).sum())
+    if abs(even - odd) > 1:
+        raise NoNetExistsError(n, n, why=(
+            f"the {n}-face surface has {even} vertices of one colour and {odd} of the other (x + y + z even "
+            "or odd), and a cut path alternates colours: no zipper net exists"))
     cp_model = _cp_model()
     m = cp_model.CpModel()
     dummy = int(verts.size)
