@@ -76,3 +76,27 @@ def test_hunt_over_explored_shapes(tmp_path):
     again = run_batch(repo_path, outputs, out, workers=2, dashboard=None)
     assert (again.built, again.skipped) == (0, 5)
     assert again.hunt.counts() == counts == hunt_summary(out, names).counts()
+
+
+def test_voxfab_batch_prints_the_hunt(tmp_path):
+    """``voxfab batch --outputs hunt.toml``: the last lines give the hunt's counts, as the folders say."""
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    from _batch_fixtures import make_repo
+
+    names = make_repo(tmp_path / "r.sqlite")[:2]
+    outputs = write_outputs(tmp_path / "hunt.toml", HUNT)
+    root = Path(__file__).resolve().parents[2]
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(root), os.environ.get("PYTHONPATH", "")]))
+    r = subprocess.run([sys.executable, "-m", "voxfab", "batch", "--repo", str(tmp_path / "r.sqlite"), "--outputs",
+                        str(outputs), "-o", str(tmp_path / "out"), "--limit", "2", "--no-dashboard", "--no-index"],
+                       capture_output=True, text=True, timeout=300, env=env)
+    assert r.returncode == 0, r.stderr
+    zipped = [json.loads((tmp_path / "out" / n / "hunt.json").read_text())["zipper"] for n in names]
+    line = next(x for x in r.stdout.splitlines() if x.startswith("hunt of "))
+    assert line == (f"hunt of 2 shapes: one-piece net found by the random engine 2, only by the exact strategy 0, "
+                    f"proved none 0, undecided 0; zipper net found {zipped.count('found')}, proved none "
+                    f"{zipped.count('none')}, undecided {zipped.count('undecided')}")

@@ -90,3 +90,17 @@ def test_zipper_with_constraints_needs_a_box():
         unfold(ARMS, rng=0, strategy="exact", zipper=True, constraints=keep)
     with pytest.raises(NoNetExistsError):
         unfold(RING, rng=0, strategy="exact", zipper=True)
+
+
+def test_unbalanced_colours_have_no_zipper_net():
+    """The 2x2x2 cube's vertices: 14 with x + y + z even, 12 odd; a cut path alternates, so none exists."""
+    from voxfab.shape import surface_graph
+
+    cube = np.ones((2, 2, 2), dtype=bool)
+    sg = surface_graph(cube)
+    pos = sg.vertex_position[np.unique(sg.vertex)]
+    assert sorted(np.bincount(pos.sum(axis=1) % 2).tolist()) == [12, 14]  # counted here, independently
+    with pytest.raises(NoNetExistsError, match="14 vertices of one colour and 12 of the other"):
+        unfold(cube, rng=0, strategy="exact", zipper=True)
+    out = hunt_shape(cube)
+    assert (out.net, out.zipper) == ("random", "none")

@@ -39,7 +39,7 @@ from starlette.routing import Route
 
 from voxfab.errors import InvalidShapeError, VoxfabError
 
-from . import _grid, _specs, _work
+from . import _fits, _grid, _specs, _work
 from ._edit import edit_route
 from ._jobs import Jobs
 
@@ -536,6 +536,7 @@ def create_app(settings: Settings) -> Starlette:
         Route("/api/repo/thumb", api(repo_thumb)),
         Route("/api/nets", api(nets), methods=["POST"]),
         Route("/api/nets/edit", api(edit_route(jobs)), methods=["POST"]),
+        Route("/api/fits", api(_fits.endpoint(jobs)), methods=["POST"]),
         Route("/api/make", api(make), methods=["POST"]),
         Route("/api/jobs/{job}", api(job_status)),
         Route("/api/jobs/{job}/cancel", api(job_cancel), methods=["POST"]),

@@ -12,6 +12,7 @@ from voxfab.errors import NoNetExistsError
 
 from ._constraints import EdgeConstraints
 from ._edit import EditResult, cut_edge, join_edge
+from ._exact import Undecided
 from ._hunt import HUNT_NET, HUNT_ZIPPER, HuntOutcome, hunt_shape
 from ._layout import seam_pairs, tab_room
 from ._net import NET_FORMAT, Net
@@ -32,6 +33,7 @@ __all__ = [
     "Pieces",
     "Strategy",
     "cut_edge",
+    "Undecided",
     "ValidationReport",
     "outline_key",
     "join_edge",
