@@ -316,3 +316,24 @@ def test_a_net_that_does_not_fit_says_so_plainly_and_one_click_splits_it(server,
     assert not browser.find_elements("css selector", '[data-testid="net-ways-out"] button')
     assert "pieces on" in items[0].text
     browser.save_screenshot(str(SHOTS / "net-split.png"))
+
+
+def test_does_one_piece_fit_this_sheet_is_answered_exactly(server, browser):
+    from selenium.webdriver.support.ui import Select
+
+    from .test_browser import set_expression
+
+    open_page(browser, server)
+    set_expression(browser, "src-generatrix", "x = 0.12")  # the slim column again
+    wait(browser, lambda d: int(attr(d, "volume", "data-volume")) < 400, what="the slim column")
+    by_id(browser, "tab-net").click()
+    Select(by_id(browser, "net-sheet")).select_by_value("A3")
+    face = by_id(browser, "net-face-size")
+    face.clear()
+    face.send_keys("10")
+    by_id(browser, "net-fits").click()
+    answer = wait(browser, lambda d: by_id(d, "net-fits-answer").get_attribute("data-answer"), timeout=120,
+                  what="the exact answer")
+    text = by_id(browser, "net-fits-answer").text
+    assert answer == "yes" and "fits" in text and "--" not in text, text
+    browser.save_screenshot(str(SHOTS / "net-fits.png"))

@@ -25,14 +25,14 @@ def _cube() -> np.ndarray:
 
 
 def test_the_cube_is_proved_not_to_fit_and_then_fits(client):
-    r = client.post("/api/fits", json={"grid": pack(_cube()), "sheet": "60x70", "face_mm": 10})
+    r = client.post("/api/fits", json={"grid": pack(_cube()), "options": {"sheet": "60x70", "face_size": 10}})
     assert r.status_code == 200, r.text
     done = wait_job(client, r.json()["job"])
     assert done["state"] == "done", done
     assert done["result"]["answer"] == "no" and done["result"]["box"] == [3, 3]
     assert "(proved)" in done["result"]["message"] and "net" not in done["result"]
 
-    r = client.post("/api/fits", json={"grid": pack(_cube()), "sheet": "60x90", "face_mm": 10})
+    r = client.post("/api/fits", json={"grid": pack(_cube()), "options": {"sheet": "60x90", "face_size": 10}})
     job = r.json()["job"]
     done = wait_job(client, job)
     res = done["result"]
@@ -42,7 +42,7 @@ def test_the_cube_is_proved_not_to_fit_and_then_fits(client):
     # The net that fits is the job's net 0: Make draws that very net.
     made = client.post("/api/make", json={"grid": pack(_cube()), "artefact": "net.json", "pitch": 10.0,
                                           "title": "cube", "net": {"job": job, "index": 0},
-                                          "options": {"face_mm": 10, "sheet": "60x90"}})
+                                          "options": {"face_size": 10, "sheet": "60x90"}})
     assert made.status_code == 200, made.text
     status = wait_job(client, made.json()["job"])
     assert status["state"] == "done", status
@@ -57,7 +57,7 @@ def test_the_cube_is_proved_not_to_fit_and_then_fits(client):
 
 def test_the_queen_fits_a2_at_10_mm(client):
     queen = make_shape(load_recipe(QUEEN)).grid
-    r = client.post("/api/fits", json={"grid": pack(queen), "sheet": "A2", "face_mm": 10, "timeout": 120})
+    r = client.post("/api/fits", json={"grid": pack(queen), "options": {"sheet": "A2", "face_size": 10, "timeout": 120}})
     done = wait_job(client, r.json()["job"], limit=300)
     res = done["result"]
     assert res["answer"] == "yes" and res["box"] == [39, 56] and res["faces"] == 1270
@@ -67,10 +67,10 @@ def test_the_queen_fits_a2_at_10_mm(client):
 
 
 @pytest.mark.parametrize(("body", "word"), [
-    ({"sheet": "B99"}, "sheet"), ({"face_mm": 0}, "face_mm"), ({"timeout": 1e9}, "timeout"), ({"sheet": 4}, "sheet"),
+    ({"sheet": "B99"}, "sheet"), ({"face_size": 0}, "face_size"), ({"timeout": 1e9}, "timeout"), ({"sheet": 4}, "sheet"),
 ])
 def test_bad_requests_are_one_line_400s(client, body, word):
-    r = client.post("/api/fits", json={"grid": pack(_cube()), **body})
+    r = client.post("/api/fits", json={"grid": pack(_cube()), "options": body})
     assert r.status_code == 400 and word in r.json()["error"]
 
 

@@ -42,6 +42,7 @@ if TYPE_CHECKING:
         Gallery,
         GalleryNet,
         fit_and_placement,
+        gallery_face_size,
         gallery_json,
         gallery_options,
         net_gallery,
@@ -75,6 +76,7 @@ __all__ = [
     "net_gallery",
     "net_layout",
     "fit_and_placement",
+    "gallery_face_size",
     "drawing_formats",
     "fabricate_net",
     "parse_colors",
@@ -100,8 +102,8 @@ def __getattr__(name: str) -> Any:
         from . import _pipeline
 
         return getattr(_pipeline, name)
-    if name in ("Gallery", "GalleryNet", "fit_and_placement", "gallery_json", "gallery_options", "net_gallery",
-                "net_layout"):
+    if name in ("Gallery", "GalleryNet", "fit_and_placement", "gallery_face_size", "gallery_json", "gallery_options",
+                "net_gallery", "net_layout"):
         from . import _gallery
 
         return getattr(_gallery, name)

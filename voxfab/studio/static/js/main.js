@@ -573,6 +573,19 @@ async function makeNetFiles() {
 }
 
 $('#net-go').addEventListener('click', () => gallery(false));
+
+// "Does one piece fit this sheet?": the exact strategy's yes (with the net), no (proved) or undecided.
+$('#net-fits').addEventListener('click', async () => {
+  const out = $('#net-fits-answer');
+  out.textContent = ''; delete out.dataset.answer;
+  try {
+    const {job} = await post('/api/fits', {grid: state.shape.pack(), options: netOptions()});
+    const s = await waitJob(job, progress);
+    progressDone();
+    out.textContent = s.result.message; out.dataset.answer = s.result.answer;
+    say(s.result.message, true);
+  } catch (e) { progressDone(); sayError(e); }
+});
 $('#net-regen').addEventListener('click', () => gallery(true));
 $('#marks-clear').addEventListener('click', () => marker.clear());
 
