@@ -422,6 +422,7 @@ function netOptions() {
   const face = $('#net-face').value;
   return {sheet: sheetValue(), face_size: face ? Number(face) : null, pieces: $('#net-pieces').value,
     numbers: $('#net-numbers').checked, tabs: $('#net-tabs').checked, fill: $('#net-fill').checked,
+    compact: $('#net-compact').checked,
     timeout: Number($('#net-timeout').value)};
 }
 
