@@ -14,7 +14,6 @@ Medians and maxima over runs; on a shared, busy machine the figures move: say so
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import random
 import signal
@@ -24,21 +23,11 @@ import subprocess
 import sys
 import tempfile
 import time
-import urllib.request
 from pathlib import Path
 
+from bench_studio import _get, _post  # the same small HTTP client
+
 ROOT = Path(__file__).resolve().parents[1]
-
-
-def _post(url: str, body: dict) -> dict:
-    req = urllib.request.Request(url, data=json.dumps(body).encode(), headers={"Content-Type": "application/json"})
-    with urllib.request.urlopen(req, timeout=30) as r:
-        return json.loads(r.read())
-
-
-def _get(url: str) -> dict:
-    with urllib.request.urlopen(url, timeout=30) as r:
-        return json.loads(r.read())
 
 
 def _start(folder: Path) -> tuple[subprocess.Popen, str]:
@@ -80,7 +69,7 @@ def main() -> None:
     from voxfab.studio._grid import pack
 
     queen = make_shape(load_recipe(ROOT / "recipes" / "chess" / "queen.toml")).grid
-    body = {"grid": pack(queen), "count": 12, "timeout": 30.0, "options": {"timeout": 30.0}}
+    body = {"grid": pack(queen), "count": 12, "options": {"timeout": 30.0}}
     rng = random.Random(0)
     cancel, stop = [], {1: [], 2: []}
     with tempfile.TemporaryDirectory() as tmp:

@@ -41,36 +41,47 @@ def free_port() -> int:
         return s.getsockname()[1]
 
 
+def start_studio(folder: Path, *extra: str, repo: Path | None = None) -> tuple[subprocess.Popen, str]:
+    """``voxfab studio [extra]`` as a real uvicorn process on 127.0.0.1 and a free port, once it answers."""
+    port = free_port()
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]))
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "voxfab", "studio", *extra, "--port", str(port), "--repo",
+         str(repo or folder / "repo.sqlite"), "--no-browser"],
+        env=env, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+    )
+    url = f"http://127.0.0.1:{port}"
+    end = time.monotonic() + 60
+    while True:
+        try:
+            with urllib.request.urlopen(f"{url}/api/info", timeout=1):
+                return proc, url
+        except OSError:
+            if proc.poll() is not None or time.monotonic() > end:
+                proc.kill()
+                raise AssertionError(f"studio did not start: {proc.communicate()[0].decode()[-2000:]}") from None
+            time.sleep(0.1)
+
+
+def stop_studio(proc: subprocess.Popen) -> None:
+    """Stop a studio started by :func:`start_studio`, killing it if it does not end in 10 s."""
+    proc.terminate()
+    try:
+        proc.wait(10)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.wait(5)
+
+
 @pytest.fixture(scope="module")
 def server(tmp_path_factory):
     """``voxfab studio`` as a real uvicorn process on 127.0.0.1 and a free port; always stopped."""
     folder = tmp_path_factory.mktemp("studio")
-    port = free_port()
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]))
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "voxfab", "studio", "--port", str(port), "--repo", str(folder / "repo.sqlite"),
-         "--no-browser"],
-        env=env, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-    )
-    url = f"http://127.0.0.1:{port}"
+    proc, url = start_studio(folder)
     try:
-        end = time.monotonic() + 30
-        while True:
-            try:
-                with urllib.request.urlopen(f"{url}/api/info", timeout=1):
-                    break
-            except OSError:
-                if proc.poll() is not None or time.monotonic() > end:
-                    raise AssertionError(f"studio did not start: {proc.stdout.read().decode()[-2000:]}") from None
-                time.sleep(0.1)
         yield {"url": url, "repo": folder / "repo.sqlite", "folder": folder}
     finally:
-        proc.terminate()
-        try:
-            proc.wait(10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait(5)
+        stop_studio(proc)
 
 
 @pytest.fixture(scope="module")

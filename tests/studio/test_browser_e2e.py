@@ -8,17 +8,11 @@ every face back on the shape.  A screenshot of each step goes under ``output/stu
 
 from __future__ import annotations
 
-import os
-import subprocess
-import sys
-import time
-import urllib.request
-
 import numpy as np
 import pytest
 
 from ._helpers import SHOTS
-from .conftest import ROOT, free_port
+from .conftest import start_studio, stop_studio
 from .test_browser import attr, wait
 from .test_browser_net import _check_files, _downloads, _files_ready, _hrefs, _placement, _queen, by_id
 from .test_browser_netedit import _edit_by_click, _layout
@@ -31,32 +25,11 @@ def queen_studio(tmp_path_factory):
     """``voxfab studio queen.npy`` as a real server on 127.0.0.1; always stopped."""
     folder = tmp_path_factory.mktemp("queen-studio")
     np.save(folder / "queen.npy", _queen())
-    port = free_port()
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]))
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "voxfab", "studio", "queen.npy", "--port", str(port), "--repo",
-         str(folder / "repo.sqlite"), "--no-browser"],
-        env=env, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-    )
-    url = f"http://127.0.0.1:{port}"
+    proc, url = start_studio(folder, "queen.npy")
     try:
-        end = time.monotonic() + 60
-        while True:
-            try:
-                with urllib.request.urlopen(f"{url}/api/info", timeout=1):
-                    break
-            except OSError:
-                if proc.poll() is not None or time.monotonic() > end:
-                    raise AssertionError(f"studio did not start: {proc.stdout.read().decode()[-2000:]}") from None
-                time.sleep(0.1)
         yield {"url": url, "folder": folder}
     finally:
-        proc.terminate()
-        try:
-            proc.wait(10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait(5)
+        stop_studio(proc)
 
 
 def test_the_queen_from_voxfab_studio_to_checked_files_edited_and_folded(queen_studio, browser):

@@ -17,29 +17,9 @@ import pytest
 from voxfab.recipe import load_recipe, make_shape
 from voxfab.studio._grid import pack
 
-from .conftest import ROOT, free_port
+from .conftest import ROOT, free_port, start_studio
 
 QUEEN = ROOT / "recipes" / "chess" / "queen.toml"
-
-
-def _start(folder: Path, *extra: str) -> tuple[subprocess.Popen, str]:
-    port = free_port()
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]))
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "voxfab", "studio", *extra, "--port", str(port), "--repo", str(folder / "repo.sqlite"),
-         "--no-browser"],
-        env=env, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
-    url = f"http://127.0.0.1:{port}"
-    end = time.monotonic() + 60
-    while True:
-        try:
-            with urllib.request.urlopen(f"{url}/api/info", timeout=1):
-                return proc, url
-        except OSError:
-            if proc.poll() is not None or time.monotonic() > end:
-                proc.kill()
-                raise AssertionError(f"studio did not start: {proc.communicate()[0].decode()[-2000:]}") from None
-            time.sleep(0.1)
 
 
 def _post(url: str, body: dict) -> dict:
@@ -56,7 +36,7 @@ def _get(url: str) -> dict:
 @pytest.mark.parametrize("presses", [1, 2])
 def test_ctrl_c_stops_the_server_within_two_seconds_while_nets_are_searched(tmp_path, presses):
     queen = make_shape(load_recipe(QUEEN)).grid
-    proc, url = _start(tmp_path)
+    proc, url = start_studio(tmp_path)
     try:
         body = {"grid": pack(queen), "count": 12, "options": {"timeout": 30.0}}
         ids = [_post(f"{url}/api/nets", dict(body, seed=s))["job"] for s in range(3)]
@@ -96,7 +76,7 @@ def test_studio_shape_file_opens_with_that_shape(tmp_path):
     from voxfab.studio._grid import unpack
 
     path, queen = _queen_file(tmp_path)
-    proc, url = _start(tmp_path, str(path))
+    proc, url = start_studio(tmp_path, str(path))
     try:
         got = _get(f"{url}/api/initial")["shape"]
         assert got["label"] == "queen.npy" and got["name"] is None
@@ -117,7 +97,7 @@ def test_studio_repository_name_opens_that_shape(tmp_path):
     _, queen = _queen_file(tmp_path)
     with Repository(tmp_path / "repo.sqlite") as repo:
         name = repo.add(queen).name
-    proc, url = _start(tmp_path, name)
+    proc, url = start_studio(tmp_path, name)
     try:
         got = _get(f"{url}/api/initial")["shape"]
         assert (got["label"], got["name"]) == (name, name)
