@@ -20,7 +20,6 @@ Security, as a local server must have it:
 from __future__ import annotations
 
 import io
-import json
 import re
 import shutil
 import tempfile
@@ -41,6 +40,7 @@ from voxfab.errors import InvalidShapeError, VoxfabError
 
 from . import _fits, _grid, _specs, _work
 from ._edit import edit_route
+from ._http import read_json
 from ._jobs import Jobs
 
 #: Thumbnails kept in memory (oldest dropped first).
@@ -184,14 +184,6 @@ def _static_table() -> dict[str, tuple[bytes, str]]:
     return table
 
 
-async def _json(request: Request) -> Any:
-    body = await request.body()
-    try:
-        return json.loads(body or b"null")
-    except (ValueError, RecursionError):
-        raise InvalidShapeError("request: the body is not JSON") from None
-
-
 def create_app(settings: Settings) -> Starlette:
     """The studio application for ``settings`` (see :class:`Settings`)."""
     static = _static_table()
@@ -265,7 +257,7 @@ def create_app(settings: Settings) -> Starlette:
         return {"shape": None if settings.initial is None else settings.initial.answer()}
 
     async def preview(request: Request) -> dict[str, Any]:
-        spec = await _json(request)
+        spec = await read_json(request)
 
         def run() -> dict[str, Any]:
             t0 = time.perf_counter()
@@ -277,12 +269,12 @@ def create_app(settings: Settings) -> Starlette:
         return await run_in_threadpool(run)
 
     async def check(request: Request) -> dict[str, Any]:
-        data = await _json(request)
+        data = await read_json(request)
         grid = _grid.unpack(data.get("grid") if isinstance(data, dict) else None)
         return {"facts": await run_in_threadpool(_grid.facts, grid)}
 
     async def recipe(request: Request) -> Response:
-        data = await _json(request)
+        data = await read_json(request)
         if not isinstance(data, dict):
             raise InvalidShapeError("request: expected {\"shape\": ..., \"name\": ...}")
         name = data.get("name") or "studio"
@@ -307,7 +299,7 @@ def create_app(settings: Settings) -> Starlette:
                         headers={"Content-Disposition": f'attachment; filename="{fname}"'})
 
     async def animate(request: Request) -> dict[str, Any]:
-        data = await _json(request)
+        data = await read_json(request)
         if not isinstance(data, dict):
             raise InvalidShapeError("request: expected {\"shape\": ..., \"steps\": N}")
         steps = _work.check_number(data.get("steps", 24), name="steps", lo=2, hi=72, integer=True)
@@ -382,7 +374,7 @@ def create_app(settings: Settings) -> Starlette:
         return Response(await run_in_threadpool(run), media_type="image/png")
 
     async def repo_add(request: Request) -> dict[str, Any]:
-        data = await _json(request)
+        data = await read_json(request)
         grid = _grid.unpack(data.get("grid") if isinstance(data, dict) else None)
         draft = bool(data.get("draft", False))
 
@@ -401,7 +393,7 @@ def create_app(settings: Settings) -> Starlette:
     # --- nets and files -----------------------------------------------------------------------
 
     async def nets(request: Request) -> dict[str, Any]:
-        data = await _json(request)
+        data = await read_json(request)
         if not isinstance(data, dict):
             raise InvalidShapeError("request: expected {\"grid\": ..., \"count\": N, \"options\": {...}}")
         _work.check_gallery_body(data)
@@ -428,7 +420,7 @@ def create_app(settings: Settings) -> Starlette:
         return job
 
     async def make(request: Request) -> dict[str, Any]:
-        data = await _json(request)
+        data = await read_json(request)
         if not isinstance(data, dict):
             raise InvalidShapeError("request: expected {\"grid\": ..., \"artefact\": ...}")
         artefact = data.get("artefact")

@@ -132,16 +132,12 @@ def apply_edit(job: Any, data: dict[str, Any]) -> dict[str, Any]:
 
 def edit_route(jobs: Callable[[], Any]) -> Callable[[Any], Awaitable[dict[str, Any]]]:
     """The handler of ``POST /api/nets/edit`` over the session's jobs (wrap it in the app's ``api``)."""
-    import json
-
     from starlette.concurrency import run_in_threadpool
 
+    from ._http import read_json
+
     async def edit(request: Any) -> dict[str, Any]:
-        body = await request.body()
-        try:
-            data = json.loads(body or b"null")
-        except (ValueError, RecursionError):
-            raise InvalidShapeError("request: the body is not JSON") from None
+        data = await read_json(request)
         if not isinstance(data, dict) or not isinstance(data.get("job"), str):
             raise InvalidShapeError("request: expected {\"job\": ID, \"index\": N, \"cut\" | \"join\": [face, face]"
                                     " | \"undo\": true}")

@@ -19,6 +19,7 @@ from starlette.requests import Request
 from voxfab.errors import InvalidShapeError
 
 from . import _grid, _work
+from ._http import read_json
 from ._jobs import Jobs
 
 __all__ = ["endpoint", "MAX_FITS_SECONDS"]
@@ -33,9 +34,7 @@ def endpoint(jobs: Callable[[], Jobs]) -> Callable[[Request], Awaitable[dict[str
     async def fits(request: Request) -> dict[str, Any]:
         from voxfab.shape import well_formed_reasons
 
-        from ._app import _json
-
-        data = await _json(request)
+        data = await read_json(request)
         if not isinstance(data, dict):
             raise InvalidShapeError('request: expected {"grid": ..., "options": {"sheet": "A4", "face_size": 10}}')
         grid = _grid.unpack(data.get("grid"))

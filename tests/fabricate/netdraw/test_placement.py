@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 
 from voxfab.fabricate.netdraw import DrawingOptions, NetOptions, draw_pieces, fabricate_net, find_sheet_nets
-from voxfab.fabricate.netdraw._placement import Placement, PlacementError, placement_for, turned
+from voxfab.fabricate.netdraw._drawing import placement_for
+from voxfab.fabricate.netdraw._placement import Placement, PlacementError, turned
 from voxfab.shape import VoxelShape, examples
 
 OPTIONS = DrawingOptions(pitch=10.0, sheet="A4", label_height=2.0)

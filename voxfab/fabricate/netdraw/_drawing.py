@@ -18,7 +18,7 @@ from ._geometry import NetEdges, check_net, classify_edges, merge_unit_segments,
 from ._labels import label_length, seam_labels
 from ._legible import LABEL_ADVANCE, NUMBER_INSET, legibility_problem, number_height, number_start
 from ._options import DrawingOptions, Perforate
-from ._placement import Placement, plan_placement
+from ._placement import Placement, placement_of, plan_placement
 from ._sheets import SheetPlan, pack_pieces, plan_sheets
 from ._tabs import TabPlan, place_tabs, tab_heights
 
@@ -336,6 +336,15 @@ def sheet_plan(graph: SurfaceGraph, pieces: list[Net], options: DrawingOptions) 
     if len(pieces) == 1:
         return plan_sheets(pieces[0].corners2d, options)
     return _packed(graph, pieces, options)[1]
+
+
+def placement_for(grid: npt.ArrayLike, pieces: list[Net], options: DrawingOptions) -> Placement:
+    """The placement the drawing code gives a net of ``grid`` (one :class:`~voxfab.unfold.Net` per piece) by itself."""
+    from voxfab.shape import fill_cavities
+
+    g = np.asarray(grid, dtype=bool)
+    graph = surface_graph(fill_cavities(g) if pieces[0].filled else g)
+    return placement_of(sheet_plan(graph, pieces, options), [p.corners2d for p in pieces], float(options.margin))
 
 
 def sheets_needed(grid: npt.ArrayLike, pieces: list[Net], options: DrawingOptions) -> tuple[int, int, int]:

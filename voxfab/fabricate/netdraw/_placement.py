@@ -284,14 +284,3 @@ def _check_clear(placement: Placement, local: list[npt.NDArray[np.int64]], renum
                 a, b = sorted((piece, other))
                 raise PlacementError(f"pieces {a + 1} and {b + 1} touch on sheet {renumber[sheet] + 1}: leave a "
                                      "face of paper between them for the glue tabs")
-
-
-def placement_for(grid: Any, pieces: list[Any], options: DrawingOptions) -> Placement:
-    """The placement the drawing code gives a net of ``grid`` (one :class:`~voxfab.unfold.Net` per piece) by itself."""
-    from voxfab.shape import fill_cavities, surface_graph
-
-    from ._drawing import sheet_plan
-
-    g = np.asarray(grid, dtype=bool)
-    graph = surface_graph(fill_cavities(g) if pieces[0].filled else g)
-    return placement_of(sheet_plan(graph, pieces, options), [p.corners2d for p in pieces], float(options.margin))
