@@ -42,7 +42,10 @@ def test_the_packing_read_as_a_placement_draws_the_same_sheets(ball_pieces, tmp_
     for a, b in zip(packed.sheets, placed.sheets):
         assert np.allclose(a.faces, b.faces)
         for layer in a.layers:
-            assert np.allclose(a.layers[layer].points, b.layers[layer].points)
+            # the same lines, perhaps traced in another order
+            pa, pb = a.layers[layer].points, b.layers[layer].points
+            assert pa.shape == pb.shape
+            assert np.allclose(pa[np.lexsort(pa.T[::-1])], pb[np.lexsort(pb.T[::-1])])
 
 
 def test_a_moved_and_turned_piece_lands_where_the_placement_says(ball_pieces, tmp_path: Path) -> None:
@@ -85,17 +88,14 @@ def test_pieces_over_each_other_or_across_the_margin_are_refused(ball_pieces) ->
     placement = placement_for(grid, pieces, OPTIONS)
     a, b = placement.pieces[0], placement.pieces[1]
     # Piece 2 put exactly where piece 1 is, on its sheet.
-    with pytest.raises(PlacementError, match=r"^pieces 1 and 2 (overlap|touch) on sheet \d+"):
+    with pytest.raises(PlacementError, match=r"^pieces 1 and 2 overlap or touch on sheet \d+"):
         draw_pieces(grid, pieces, options=OPTIONS, placement=_moved(placement, 1, sheet=a.sheet, x=a.x, y=a.y,
                                                                     turns=a.turns))
     with pytest.raises(PlacementError, match=r"^piece 2 crosses the margin of sheet \d+"):
         draw_pieces(grid, pieces, options=OPTIONS, placement=_moved(placement, 1, x=b.x - 300.0))
-    # A piece 3 mm off the face grid of the piece before it on a shared sheet.
-    shared = [(p, q) for p in placement.pieces for q in placement.pieces if p.piece < q.piece and p.sheet == q.sheet]
-    assert shared, "two pieces share a sheet"
-    later = shared[0][1]
-    with pytest.raises(PlacementError, match=f"^piece {later.piece + 1}: not on the face grid"):
-        draw_pieces(grid, pieces, options=OPTIONS, placement=_moved(placement, later.piece, x=later.x + 3.0))
+    # A piece half a millimetre off the packer's 1 mm raster.
+    with pytest.raises(PlacementError, match="^piece 2: not on the packing grid"):
+        draw_pieces(grid, pieces, options=OPTIONS, placement=_moved(placement, 1, x=b.x + 0.5))
     with pytest.raises(PlacementError, match="mirrored"):
         draw_pieces(grid, pieces, options=OPTIONS, placement=_moved(placement, 1, mirror=True))
     with pytest.raises(PlacementError, match="made for a 5 mm margin"):

@@ -402,7 +402,7 @@ def _packed(graph: SurfaceGraph, pieces: list[Net], opts: DrawingOptions, placem
     if placement is None:
         plan, placed = pack_pieces([p.corners2d for p in pieces], opts, tab_edges)
     else:
-        plan, placed = plan_placement(placement, [p.corners2d for p in pieces], opts)
+        plan, placed = plan_placement(placement, [p.corners2d for p in pieces], opts, tab_edges)
     tabs = 0 if tab_edges is None else sum(int(t.shape[0]) for t in tab_edges)
     return joined_net(placed), plan, swap, face_piece, tabs, int(sides.shape[0]) if opts.tabs else 0
 

@@ -5,13 +5,12 @@ where its own frame's origin lands on the sheet in mm (origin at the sheet's
 lower-left corner).  :func:`placement_of` reads one from a
 :class:`~._sheets.SheetPlan` (what the packer chose); :func:`plan_placement`
 turns one back into a plan the drawing code draws, after checking that the
-pieces with the room their glue tabs need stay inside the margin and keep
-clear of each other (the packer's own rule: no face of one piece on or beside
-a face of another, so every seam keeps free paper for its tab).
+pieces with their glue tabs stay inside the margin and keep clear of each
+other, by the packer's own raster masks and clearance.
 
-The studio's page moves and turns pieces by whole faces, so every piece of a
-sheet stays on one grid of face cells: a piece off that grid is refused, as
-is a mirrored piece (printed mirrored, its folds would turn inside out).
+The studio's page moves and turns pieces by whole faces, so every piece stays
+on the packing raster: a piece off it is refused, as is a mirrored piece
+(printed mirrored, its folds would turn inside out).
 """
 
 from __future__ import annotations
@@ -25,7 +24,6 @@ import numpy.typing as npt
 
 from voxfab.errors import InvalidShapeError
 
-from ._legible import tab_depth
 from ._options import DrawingOptions
 from ._sheets import SheetPlan, drawable_area
 
@@ -167,6 +165,7 @@ def placement_of(plan: SheetPlan, pieces: list[npt.NDArray[np.int64]], margin: f
     """
     places = []
     start = 0
+    face_origin = plan.face_origin()  # the sheet's origin plus the packer's shift of the face, mm
     for i, own in enumerate(pieces):
         own = np.asarray(own, dtype=np.int64)
         placed = plan.corners2d[start:start + own.shape[0]]
@@ -177,16 +176,23 @@ def placement_of(plan: SheetPlan, pieces: list[npt.NDArray[np.int64]], margin: f
                 break
         else:  # pragma: no cover - the packer only turns and moves pieces
             raise PlacementError(f"piece {i + 1}: its place on the sheet is not a quarter turn of its net")
-        x, y = plan.origin[sheet] + shift[0] * plan.pitch
+        x, y = face_origin[start] + shift[0] * plan.pitch
         places.append(PiecePlace(i, sheet, _mm(x), _mm(y), t, False))
         start += own.shape[0]
     return Placement((float(plan.size[0]), float(plan.size[1])), float(margin), float(plan.pitch), plan.count,
                      tuple(places))
 
 
-def plan_placement(placement: Placement, pieces: list[npt.NDArray[np.int64]],
-                   options: DrawingOptions) -> tuple[SheetPlan, list[npt.NDArray[np.int64]]]:
-    """The sheet plan of a given placement, checked against the sheet, the margin and the other pieces.
+def plan_placement(placement: Placement, pieces: list[npt.NDArray[np.int64]], options: DrawingOptions,
+                   tab_edges: list[npt.NDArray[np.int64]] | None = None
+                   ) -> tuple[SheetPlan, list[npt.NDArray[np.int64]]]:
+    """The sheet plan of a given placement, checked as the packer checks its own.
+
+    Each piece is the packer's raster mask (:func:`._sheets.piece_mask`): its
+    faces and a band a tab deep beyond each edge of ``tab_edges``.  The masks
+    must lie inside the drawable area (a piece alone on its sheet may let its
+    tabs reach into the margin, as the packer centres a piece too big for it
+    otherwise) and keep the packer's clearance from each other.
 
     Parameters
     ----------
@@ -196,20 +202,24 @@ def plan_placement(placement: Placement, pieces: list[npt.NDArray[np.int64]],
     options : DrawingOptions
         The drawing's sheet, margin, tabs and face size (``pitch``; None takes
         the placement's).
+    tab_edges : list of (t_i, 2) int ndarray, optional
+        Each piece's (face, edge) pairs that take a glue tab.
 
     Returns
     -------
     plan : SheetPlan
     placed : list of (n_i, 4, 2) int ndarray
-        Each piece's corners in the plan's cells.
+        Each piece's corners in the plan's cells (pieces two cells apart).
 
     Raises
     ------
     PlacementError
         A placement for another sheet, margin, face size or number of pieces; a mirrored
-        piece; a piece off its sheet's face grid; a piece (with room for its tabs)
-        across the margin; or two pieces on or beside each other.
+        piece; a piece off the packing raster; a piece across the margin; or two pieces
+        on or too close to each other.
     """
+    from ._sheets import dilated, piece_mask, raster_of
+
     size = options.sheet_size
     if abs(placement.sheet[0] - size[0]) > 1e-3 or abs(placement.sheet[1] - size[1]) > 1e-3:
         raise PlacementError(f"placement: made for a {placement.sheet[0]:g} x {placement.sheet[1]:g} mm sheet, "
@@ -222,65 +232,56 @@ def plan_placement(placement: Placement, pieces: list[npt.NDArray[np.int64]],
         raise PlacementError(f"placement: made for {placement.face_size:g} mm faces, the drawing has {pitch:g} mm")
     if len(placement.pieces) != len(pieces):
         raise PlacementError(f"placement: {len(placement.pieces)} pieces placed, the net has {len(pieces)}")
+    if tab_edges is None:
+        tab_edges = [np.zeros((0, 2), dtype=np.int64) for _ in pieces]
     used = sorted({p.sheet for p in placement.pieces})
     renumber = {s: k for k, s in enumerate(used)}  # an emptied sheet is dropped, not printed blank
+    alone = {s: sum(p.sheet == s for p in placement.pieces) == 1 for s in used}
     x0, y0, x1, y1 = drawable_area(options)
-    pad = tab_depth(options, pitch)
-    anchor: dict[int, npt.NDArray[np.float64]] = {}
-    local: list[npt.NDArray[np.int64]] = []
-    for place, own in zip(placement.pieces, pieces):
-        name = f"piece {place.piece + 1}"
+    step, clear, raster = raster_of(options, pitch)
+    boards = {s: np.full(raster, -1, dtype=np.int64) for s in used}
+    placed, shifts = [], []
+    offset = 0
+    for place, own, tabs in zip(placement.pieces, pieces, tab_edges):
+        name, sheet = f"piece {place.piece + 1}", renumber[place.sheet]
         if place.mirror:
             raise PlacementError(f"{name}: a mirrored piece would fold inside out; place it unmirrored")
-        at = np.array([place.x, place.y])
-        ref = anchor.setdefault(place.sheet, at)
-        steps = (at - ref) / pitch
-        if np.abs(steps - np.rint(steps)).max() * pitch > 1e-4:
-            raise PlacementError(f"{name}: not on the face grid of sheet {renumber[place.sheet] + 1}; "
-                                 "move pieces by whole faces")
-        cells = turned(np.asarray(own, dtype=np.int64), place.turns) + np.rint(steps).astype(np.int64)
-        local.append(cells)
-        mm = ref + cells.reshape(-1, 2) * pitch
-        lo, hi = mm.min(axis=0), mm.max(axis=0)
-        if lo[0] < x0 + pad - TOLERANCE or lo[1] < y0 + pad - TOLERANCE or hi[0] > x1 - pad + TOLERANCE \
-                or hi[1] > y1 - pad + TOLERANCE:
-            room = f" and {pad:.1f} mm for its tabs" if pad else ""
-            raise PlacementError(f"{name} crosses the margin of sheet {renumber[place.sheet] + 1}: keep it "
-                                 f"{options.margin:g} mm from the edges{room}")
-    _check_clear(placement, local, renumber)
-    # Each sheet's cells start at 0, sheets side by side in cell space (as the packer lays them).
-    low = {s: np.min([c.reshape(-1, 2).min(axis=0) for p, c in zip(placement.pieces, local) if p.sheet == s],
-                     axis=0) for s in used}
-    high = max(int((c.reshape(-1, 2) - low[p.sheet]).max()) for p, c in zip(placement.pieces, local))
-    stride = high + 2
-    placed = [c - low[p.sheet] + (renumber[p.sheet] * stride, 0) for p, c in zip(placement.pieces, local)]
-    origin = np.array([anchor[s] + low[s] * pitch - (renumber[s] * stride * pitch, 0.0) for s in used])
+        cells = turned(np.asarray(own, dtype=np.int64), place.turns)
+        lo = cells.reshape(-1, 2).min(axis=0)
+        mask, start = piece_mask(cells, tabs, options, pitch)
+        base = np.array([place.x, place.y]) + lo * pitch  # mm of the piece's lowest cell corner
+        at = (base - (x0, y0)) / step + start
+        if np.abs(at - np.rint(at)).max() > 1e-3:
+            raise PlacementError(f"{name}: not on the packing grid of {step:.3g} mm; move pieces by whole faces")
+        ax, ay = (int(v) for v in np.rint(at))
+        inside = ax >= 0 and ay >= 0 and ax + mask.shape[0] <= raster[0] and ay + mask.shape[1] <= raster[1]
+        faces_mm = base + (cells - lo).reshape(-1, 2) * pitch
+        faces_in = (faces_mm.min(axis=0) >= (x0 - TOLERANCE, y0 - TOLERANCE)).all() and \
+            (faces_mm.max(axis=0) <= (x1 + TOLERANCE, y1 + TOLERANCE)).all()
+        if not (inside or (alone[place.sheet] and faces_in)):
+            raise PlacementError(f"{name} crosses the margin of sheet {sheet + 1}: keep it and its glue tabs "
+                                 f"{options.margin:g} mm from the edges")
+        board = boards[place.sheet]
+        if not alone[place.sheet]:
+            # the mask grown by the clearance, clipped to the sheet, against the pieces placed before it
+            gx0, gy0 = max(ax - clear, 0), max(ay - clear, 0)
+            gx1 = min(ax + mask.shape[0] + clear, raster[0])
+            gy1 = min(ay + mask.shape[1] + clear, raster[1])
+            grown = dilated(mask, clear)[gx0 - ax + clear:gx1 - ax + clear, gy0 - ay + clear:gy1 - ay + clear]
+            hit = board[gx0:gx1, gy0:gy1][grown]
+            hit = hit[hit >= 0]
+            if hit.size:
+                a, b = sorted((int(hit[0]), place.piece))
+                raise PlacementError(f"pieces {a + 1} and {b + 1} overlap or touch on sheet {sheet + 1}: leave "
+                                     "paper between them for the glue tabs")
+            board[ax:ax + mask.shape[0], ay:ay + mask.shape[1]][mask] = place.piece
+        local = cells - lo + (offset, 0)
+        placed.append(local)
+        shifts.append(np.repeat([base - (offset * pitch, 0.0)], own.shape[0], axis=0))
+        offset += int(local[..., 0].max()) + 2
     face_sheet = np.concatenate([np.full(c.shape[0], renumber[p.sheet], dtype=np.int64)
-                                 for p, c in zip(placement.pieces, local)])
+                                 for p, c in zip(placement.pieces, placed)])
     single = len(pieces) == 1 and placement.pieces[0].turns % 2 == 1
-    plan = SheetPlan(pitch, single, np.concatenate(placed), face_sheet, origin, (x0, y0, x1, y1), size)
+    plan = SheetPlan(pitch, single, np.concatenate(placed), face_sheet, np.zeros((len(used), 2)),
+                     (x0, y0, x1, y1), size, np.concatenate(shifts))
     return plan, placed
-
-
-def _check_clear(placement: Placement, local: list[npt.NDArray[np.int64]], renumber: dict[int, int]) -> None:
-    """Refuse two pieces of one sheet whose faces share a cell or lie side by side (no paper left for tabs).
-
-    Faces meeting only at a corner are allowed, as the packer allows them: the
-    tabs of the two edges there go into different free cells.
-    """
-    owner: dict[tuple[int, int, int], int] = {}
-    for place, cells in zip(placement.pieces, local):
-        for cx, cy in cells.min(axis=1).tolist():
-            key = (place.sheet, cx, cy)
-            other = owner.get(key)
-            if other is not None and other != place.piece:
-                raise PlacementError(f"pieces {other + 1} and {place.piece + 1} overlap on sheet "
-                                     f"{renumber[place.sheet] + 1}")
-            owner[key] = place.piece
-    for (sheet, cx, cy), piece in owner.items():
-        for dx, dy in ((1, 0), (0, 1)):
-            other = owner.get((sheet, cx + dx, cy + dy))
-            if other is not None and other != piece:
-                a, b = sorted((piece, other))
-                raise PlacementError(f"pieces {a + 1} and {b + 1} touch on sheet {renumber[sheet] + 1}: leave a "
-                                     "face of paper between them for the glue tabs")

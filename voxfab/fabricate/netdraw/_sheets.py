@@ -360,6 +360,31 @@ def _pack_once(shapes: list[list[_Shape]], order: list[int], raster: tuple[int, 
     return len(blocked), where
 
 
+def raster_of(options: DrawingOptions, pitch: float) -> tuple[float, int, tuple[int, int]]:
+    """The packer's raster at face size ``pitch``: its step (mm), the clearance (steps) kept between
+    pieces and the drawable area's size in steps."""
+    k = max(2, int(round(pitch / _STEP_MM)))
+    step = pitch / k
+    clear = max(1, int(math.ceil(_CLEARANCE_MM / step - 1e-9)))
+    x0, y0, x1, y1 = drawable_area(options)
+    return step, clear, (int(math.floor((x1 - x0) / step + 1e-9)), int(math.floor((y1 - y0) / step + 1e-9)))
+
+
+def piece_mask(corners: npt.NDArray[np.int64], tab_edges: npt.NDArray[np.int64], options: DrawingOptions,
+               pitch: float) -> tuple[npt.NDArray[np.bool_], tuple[int, int]]:
+    """A piece (its corners in cells, as it lies) as the packer sees it: its raster mask of faces and tab
+    bands, and the step of the mask's (0, 0) from the piece's lowest cell corner."""
+    k = max(2, int(round(pitch / _STEP_MM)))
+    depth = int(math.ceil(tab_depth(options, pitch) / (pitch / k) - 1e-9))
+    shape = _shape(corners, tab_edges, k, depth)
+    return shape.mask, shape.start
+
+
+def dilated(mask: npt.NDArray[np.bool_], r: int) -> npt.NDArray[np.bool_]:
+    """``mask`` grown by ``r`` steps each way (a square), padded by ``r`` all round: the packer's clearance."""
+    return _dilated(mask, r)
+
+
 def pack_pieces(pieces: list[npt.NDArray[np.int64]], options: DrawingOptions,
                 tab_edges: list[npt.NDArray[np.int64]] | None = None,
                 ) -> tuple[SheetPlan, list[npt.NDArray[np.int64]]]:
@@ -398,12 +423,10 @@ def pack_pieces(pieces: list[npt.NDArray[np.int64]], options: DrawingOptions,
             raise fit_error(e, options, pitch, what="a piece")
     if tab_edges is None:
         tab_edges = [np.zeros((0, 2), dtype=np.int64) for _ in pieces]
-    k = max(2, int(round(pitch / _STEP_MM)))
-    step = pitch / k
+    step, clear, raster = raster_of(options, pitch)
+    k = int(round(pitch / step))
     depth = int(math.ceil(tab_depth(options, pitch) / step - 1e-9))
-    clear = max(1, int(math.ceil(_CLEARANCE_MM / step - 1e-9)))
     x0, y0, x1, y1 = drawable_area(options)
-    raster = (int(math.floor((x1 - x0) / step + 1e-9)), int(math.floor((y1 - y0) / step + 1e-9)))
     # A quarter turn keeps each face's corner order, so the tab edges stay the same pairs.
     shapes = [[_shape(_quarter_turns(c, t), tab_edges[i], k, depth) for t in range(4)] for i, c in enumerate(pieces)]
     area = [int(sh[0].mask.sum()) for sh in shapes]
