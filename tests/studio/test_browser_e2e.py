@@ -20,6 +20,26 @@ from .test_browser_netedit import _edit_by_click, _layout
 pytestmark = pytest.mark.slow
 
 
+def _edit_zoomed(browser, canvas, layout, pairs, kind):
+    """Zoom the 2D view onto each edge in turn (a face of the queen's net is a few pixels wide at full
+    view) and click it, until one edit is made; the edge and the new layout."""
+    from .test_browser_netedit import _edge_mid
+
+    for i, j in pairs[:8]:
+        k = layout["neighbor"][4 * i: 4 * i + 4].index(j)
+        mx, my = (float(v) for v in _edge_mid(layout, i, k))
+        browser.execute_script("""
+            const v = window.voxfabNetView, c = v.canvas, s = 40;
+            v.view = Object.assign({}, v.view, {s, ox: c.width / 2 - arguments[0] * s, oy: c.height / 2 + arguments[1] * s});
+            v.draw();""", mx, my)
+        try:
+            return _edit_by_click(browser, canvas, layout, [(i, j)], kind, timeout=120)
+        except AssertionError as exc:
+            if "could be made" not in str(exc):
+                raise
+    raise AssertionError(f"no {kind} could be made")
+
+
 @pytest.fixture(scope="module")
 def queen_studio(tmp_path_factory):
     """``voxfab studio queen.npy`` as a real server on 127.0.0.1; always stopped."""
@@ -62,16 +82,18 @@ def test_the_queen_from_voxfab_studio_to_checked_files_edited_and_folded(queen_s
     browser.execute_script("arguments[0].scrollIntoView({block: 'center'});", canvas)
     layout = _layout(browser)
     folds = {tuple(p) for p in np.array(layout["folds"]).reshape(-1, 2).tolist()}
-    (a, b), cut = _edit_by_click(browser, canvas, layout, sorted(folds, reverse=True), "cut")
+    (a, b), cut = _edit_zoomed(browser, canvas, layout, sorted(folds, reverse=True), "cut")
     assert (a, b) not in {tuple(p) for p in np.array(cut["folds"]).reshape(-1, 2).tolist()}
     assert float(attr(browser, "net-canvas", "data-seconds")) < 10
     browser.save_screenshot(str(SHOTS / "e2e-3-cut.png"))
     nb = np.array(cut["neighbor"]).reshape(-1, 4)
     cut_folds = {tuple(p) for p in np.array(cut["folds"]).reshape(-1, 2).tolist()}
+    piece = cut["piece"]
+    # a seam inside one piece: joining it closes a loop, which the editor opens elsewhere
     seams = [(i, int(j)) for i in range(nb.shape[0]) for j in nb[i]
-             if i < j and (i, j) not in cut_folds and (i, j) != (a, b)]
+             if i < j and (i, j) not in cut_folds and (i, j) != (a, b) and piece[i] == piece[j]]
     before = _hrefs(browser)
-    (c, d), joined = _edit_by_click(browser, canvas, cut, seams, "join")
+    (c, d), joined = _edit_zoomed(browser, canvas, cut, seams, "join")
     assert (c, d) in {tuple(p) for p in np.array(joined["folds"]).reshape(-1, 2).tolist()}
     browser.save_screenshot(str(SHOTS / "e2e-4-joined.png"))
 

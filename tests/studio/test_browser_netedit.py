@@ -46,7 +46,7 @@ def _layout(browser):
     return browser.execute_script("return window.voxfabNetView.layout;")
 
 
-def _edit_by_click(browser, canvas, layout, pairs, kind):
+def _edit_by_click(browser, canvas, layout, pairs, kind, timeout=30):
     """Click the edges in turn until one edit is made; the edge, and the new layout."""
     for i, j in pairs:
         k = layout["neighbor"][4 * i: 4 * i + 4].index(j)
@@ -54,7 +54,7 @@ def _edit_by_click(browser, canvas, layout, pairs, kind):
         browser.execute_script("delete document.getElementById('net-canvas').dataset.error;")
         _move_to_net_point(browser, canvas, *_edit_point(browser, layout, i, k), click=True)
         wait(browser, lambda d, v=version: int(attr(d, "net-canvas", "data-version")) > v
-             or attr(d, "net-canvas", "data-error"), timeout=30, what=f"the {kind}")
+             or attr(d, "net-canvas", "data-error"), timeout=timeout, what=f"the {kind}")
         if int(attr(browser, "net-canvas", "data-version")) > version:
             assert attr(browser, "net-canvas", "data-edit") == kind
             return (i, j), _layout(browser)
