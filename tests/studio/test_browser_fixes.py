@@ -191,11 +191,11 @@ def test_voxfab_studio_shape_opens_the_page_on_it(browser, tmp_path):
     """``voxfab studio queen.npy``: the page opens on the queen, not on its default drawing."""
     import numpy as np
 
-    from .test_server import _start
+    from .conftest import start_studio
 
     queen = make_shape(load_recipe(ROOT / "recipes" / "chess" / "queen.toml")).grid
     np.save(tmp_path / "queen.npy", queen)
-    proc, url = _start(tmp_path, str(tmp_path / "queen.npy"))
+    proc, url = start_studio(tmp_path, str(tmp_path / "queen.npy"))
     try:
         browser.get(url + "/")
         wait(browser, lambda d: d.find_element("id", "shape-name").text == "queen.npy", what="the queen opened")

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import io
 import json
+import re
 import time
 import urllib.request
 import zipfile
@@ -53,7 +54,9 @@ def _files(raw: bytes, ext: str) -> list[bytes]:
     if raw[:2] != b"PK":
         return [raw]
     with zipfile.ZipFile(io.BytesIO(raw)) as zf:
-        names = sorted(n for n in zf.namelist() if n.endswith(ext))
+        # in number order: net.piece-2 before net.piece-10
+        names = sorted((n for n in zf.namelist() if n.endswith(ext)),
+                       key=lambda n: [int(t) if t.isdigit() else t for t in re.split(r"(\d+)", n)])
         return [zf.read(n) for n in names]
 
 
@@ -102,7 +105,7 @@ def _check_files(files: dict[str, bytes], grid: np.ndarray, placement: dict) -> 
     assert len(dxfs) == placement["sheets"]
     for raw in dxfs:
         lo, hi = _dxf_cut_bounds(raw)
-        assert (lo >= m - 1e-6).all() and hi[0] <= w - m + 1e-6 and hi[1] <= h - m + 1e-6
+        assert (lo >= m - 1e-3).all() and hi[0] <= w - m + 1e-3 and hi[1] <= h - m + 1e-3  # DXF keeps 4 decimals
     svgs = _files(files["svg"], ".svg")
     assert len(svgs) == placement["sheets"]
     for raw in svgs:
@@ -178,7 +181,6 @@ def test_queen_to_a4_in_pieces_moved_on_the_page(server, browser):
     from voxfab.fabricate.netdraw._legible import tab_depth
 
     q = min(range(len(pieces)), key=lambda i: pieces[i].face_count)
-    place = placement["pieces"][q]
     f = placement["face_size"]
 
     def expected_box(p: dict) -> tuple[np.ndarray, np.ndarray]:
@@ -188,6 +190,35 @@ def test_queen_to_a4_in_pieces_moved_on_the_page(server, browser):
         mm = np.array([p["x"], p["y"]]) + c * f
         return mm.min(axis=0), mm.max(axis=0)
 
+    # Drop it on the empty sheet: it goes to the middle of a sheet of its own, the files follow.
+    browser.execute_script("arguments[0].scrollIntoView({block: 'start'})", by_id(browser, "net-sheets"))
+    views = by_id(browser, "net-sheet-view", many=True)
+    source = views[placement["pieces"][q]["sheet"]]
+    scale = (source.size["width"] - 2) / placement["sheet"][0]  # less the 1 px border
+    # A point of the piece: the middle of its first face.
+    face = pieces[q].corners2d[0].astype(float)
+    for _ in range(placement["pieces"][q]["turns"]):
+        face = np.stack([-face[:, 1], face[:, 0]], axis=1)
+    cx, cy = np.array([placement["pieces"][q]["x"], placement["pieces"][q]["y"]]) + face.mean(axis=0) * f
+    before = _hrefs(browser)
+    ActionChains(browser, duration=20).move_to_element_with_offset(
+        source, cx * scale - source.size["width"] / 2 + 1, source.size["height"] / 2 - 1 - cy * scale
+    ).click_and_hold().move_by_offset(4, 4).move_to_element(views[-1]).move_by_offset(2, 2).release().perform()
+    wait(browser, lambda d: _placement(d)["pieces"][q]["sheet"] == _placement(d)["sheets"] - 1
+         and _placement(d) != placement, what="the piece on a sheet of its own")
+    wait(browser, lambda d: _files_ready(d, before), timeout=240, what="the files with the new sheet")
+    browser.save_screenshot(str(SHOTS / "net-6-new-sheet.png"))
+    alone = _placement(browser)
+    assert sum(p["sheet"] == alone["pieces"][q]["sheet"] for p in alone["pieces"]) == 1
+    lo, hi = expected_box(alone["pieces"][q])
+    assert np.abs((lo + hi) / 2 - np.array(alone["sheet"]) / 2).max() <= f, "in the middle of its sheet"
+    files = _downloads(browser, server)
+    _check_files(files, grid, alone)
+    got_lo, got_hi = _dxf_cut_bounds(_files(files["dxf"], ".dxf")[-1])
+    assert (got_lo <= lo + 1e-3).all() and (got_hi >= hi - 1e-3).all()
+    placement, old_files = alone, files
+
+    place = placement["pieces"][q]
     lo, hi = expected_box(place)
     pad = tab_depth(DrawingOptions(), f)
     room = np.floor((np.array(placement["sheet"]) - placement["margin"] - pad - hi) / f + 1e-9).astype(int)
@@ -234,8 +265,8 @@ def test_queen_to_a4_in_pieces_moved_on_the_page(server, browser):
     # The sheet holds that piece where the page shows it: its outline is the faces plus their tabs.
     lo, hi = _dxf_cut_bounds(last)
     want_lo, want_hi = expected_box(moved["pieces"][q])
-    assert (lo <= want_lo + 1e-6).all() and (hi >= want_hi - 1e-6).all()
-    assert (lo >= want_lo - 5.0 - 1e-6).all() and (hi <= want_hi + 5.0 + 1e-6).all()
+    assert (lo <= want_lo + 1e-3).all() and (hi >= want_hi - 1e-3).all()
+    assert (lo >= want_lo - 5.0 - 1e-3).all() and (hi <= want_hi + 5.0 + 1e-3).all()
 
     # Turn it half a turn with the R key (two quarter turns): the download follows again.
     before = _hrefs(browser)
@@ -250,33 +281,8 @@ def test_queen_to_a4_in_pieces_moved_on_the_page(server, browser):
     _check_files(files, grid, turned_place)
     lo, hi = _dxf_cut_bounds(_files(files["dxf"], ".dxf")[place["sheet"]])
     want_lo, want_hi = expected_box(turned_place["pieces"][q])
-    assert (lo <= want_lo + 1e-6).all() and (hi >= want_hi - 1e-6).all()
+    assert (lo <= want_lo + 1e-3).all() and (hi >= want_hi - 1e-3).all()
     assert attr(browser, "download-net-dxf", "href") not in before
-
-    # Drop it on the empty sheet: it goes to the middle of a sheet of its own, the files follow.
-    views = by_id(browser, "net-sheet-view", many=True)
-    source = views[turned_place["pieces"][q]["sheet"]]
-    # A point of the piece: the middle of its first face.
-    face = pieces[q].corners2d[0].astype(float)
-    for _ in range(turned_place["pieces"][q]["turns"]):
-        face = np.stack([-face[:, 1], face[:, 0]], axis=1)
-    cx, cy = np.array([turned_place["pieces"][q]["x"], turned_place["pieces"][q]["y"]]) + face.mean(axis=0) * f
-    before = _hrefs(browser)
-    ActionChains(browser, duration=20).move_to_element_with_offset(
-        source, cx * scale - source.size["width"] / 2 + 1, source.size["height"] / 2 - 1 - cy * scale
-    ).click_and_hold().move_by_offset(4, 4).move_to_element(views[-1]).move_by_offset(2, 2).release().perform()
-    wait(browser, lambda d: _placement(d)["pieces"][q]["sheet"] == _placement(d)["sheets"] - 1
-         and _placement(d) != turned_place, what="the piece on a sheet of its own")
-    wait(browser, lambda d: _files_ready(d, before), timeout=240, what="the files with the new sheet")
-    browser.save_screenshot(str(SHOTS / "net-6-new-sheet.png"))
-    alone = _placement(browser)
-    assert sum(p["sheet"] == alone["pieces"][q]["sheet"] for p in alone["pieces"]) == 1
-    lo, hi = expected_box(alone["pieces"][q])
-    assert np.abs((lo + hi) / 2 - np.array(alone["sheet"]) / 2).max() <= f, "in the middle of its sheet"
-    files = _downloads(browser, server)
-    _check_files(files, grid, alone)
-    got_lo, got_hi = _dxf_cut_bounds(_files(files["dxf"], ".dxf")[-1])
-    assert (got_lo <= lo + 1e-6).all() and (got_hi >= hi - 1e-6).all()
 
 
 def test_a_net_that_does_not_fit_says_so_plainly_and_one_click_splits_it(server, browser):

@@ -210,10 +210,13 @@ def _draw_any(grid: Any, nets: Net | list[Net], options: DrawingOptions, title: 
 
     pieces = [nets] if isinstance(nets, Net) else list(nets)
     if placement is not None:
+        from ._drawing import placement_for
         from ._placement import Placement
 
         where = placement if isinstance(placement, Placement) else Placement.from_dict(placement)
-        return _draw_many(grid, pieces, options=options, name=title, placement=where)
+        # A one-piece net where the drawing puts it by itself is drawn as the CLI draws it, byte for byte.
+        if not (len(pieces) == 1 and where == placement_for(grid, pieces, options)):
+            return _draw_many(grid, pieces, options=options, name=title, placement=where)
     if len(pieces) == 1:
         return _draw_one(grid, pieces[0], options=options, name=title)
     return _draw_many(grid, pieces, options=options, name=title)

@@ -251,9 +251,11 @@ def plan_placement(placement: Placement, pieces: list[npt.NDArray[np.int64]], op
         mask, start = piece_mask(cells, tabs, options, pitch)
         base = np.array([place.x, place.y]) + lo * pitch  # mm of the piece's lowest cell corner
         at = (base - (x0, y0)) / step + start
-        if np.abs(at - np.rint(at)).max() > 1e-3:
+        # A piece alone on its sheet may sit anywhere (a one-piece net is centred, not packed); pieces
+        # that share a sheet stay on the packer's raster, where their clearance is checked.
+        if not alone[place.sheet] and np.abs(at - np.rint(at)).max() > 1e-3:
             raise PlacementError(f"{name}: not on the packing grid of {step:.3g} mm; move pieces by whole faces")
-        ax, ay = (int(v) for v in np.rint(at))
+        ax, ay = (int(v) for v in np.floor(at + 1e-3))
         inside = ax >= 0 and ay >= 0 and ax + mask.shape[0] <= raster[0] and ay + mask.shape[1] <= raster[1]
         faces_mm = base + (cells - lo).reshape(-1, 2) * pitch
         faces_in = (faces_mm.min(axis=0) >= (x0 - TOLERANCE, y0 - TOLERANCE)).all() and \
