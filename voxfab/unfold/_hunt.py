@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import dataclasses
 import time
+from collections.abc import Callable
 
 import numpy.typing as npt
 
@@ -120,7 +121,6 @@ def hunt_shape(grid: npt.ArrayLike, *, seed: int = 0, timeout: float = 10.0, exa
     from voxfab._shared.validate import as_grid
     from voxfab.shape import component_count, fill_cavities, surface_graph
 
-    from ._exact import Undecided
     from ._search import unfold
 
     limits = [_check_limit(v, n) for v, n in ((timeout, "timeout"), (exact_timeout, "exact_timeout"),
@@ -142,30 +142,27 @@ def hunt_shape(grid: npt.ArrayLike, *, seed: int = 0, timeout: float = 10.0, exa
         found = ""
     seconds[0] = time.perf_counter() - t
     if not found:
-        t = time.perf_counter()
-        try:
-            one_piece = unfold(g, rng=0, strategy="exact", fit=_any_box(faces),  # type: ignore[assignment]
-                               timeout=limits[1])
-            found = "exact"
-        except NoNetExistsError as exc:
-            found = "none"
-            why.append(" ".join(str(exc).split()))
-        except Undecided as exc:
-            found = "undecided"
-            why.append(" ".join(str(exc).split()))
-        seconds[1] = time.perf_counter() - t
-
+        found, one_piece, seconds[1] = _exact(lambda: unfold(g, rng=0, strategy="exact", fit=_any_box(faces),
+                                                            timeout=limits[1]), "exact", why)
     zipped, zipper_net = "skipped", None
     if zipper:
-        t = time.perf_counter()
-        try:
-            zipper_net = unfold(g, rng=0, strategy="exact", zipper=True, timeout=limits[2])
-            zipped = "found"
-        except NoNetExistsError as exc:
-            zipped = "none"
-            why.append(" ".join(str(exc).split()))
-        except Undecided as exc:
-            zipped = "undecided"
-            why.append(" ".join(str(exc).split()))
-        seconds[2] = time.perf_counter() - t
+        zipped, zipper_net, seconds[2] = _exact(lambda: unfold(g, rng=0, strategy="exact", zipper=True,
+                                                              timeout=limits[2]), "found", why)
     return HuntOutcome(faces, found, zipped, one_piece, zipper_net, tuple(why), tuple(seconds))  # type: ignore[arg-type]
+
+
+def _exact(search: Callable[[], Net], found: str, why: list[str]) -> tuple[str, Net | None, float]:
+    """Run one exact search: ``found`` with its net, ``"none"`` (proved) or ``"undecided"``, and its seconds;
+    the reason of a "none" or "undecided" goes into ``why``."""
+    from ._exact import Undecided
+
+    t = time.perf_counter()
+    try:
+        return found, search(), time.perf_counter() - t
+    except NoNetExistsError as exc:
+        outcome = "none"
+        why.append(" ".join(str(exc).split()))
+    except Undecided as exc:
+        outcome = "undecided"
+        why.append(" ".join(str(exc).split()))
+    return outcome, None, time.perf_counter() - t
