@@ -6,17 +6,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from _net_sheets import pieces_of, queen, read_pieces
 
 from voxfab.fabricate.netdraw import DrawingOptions, NetOptions, fabricate_net
-from voxfab.shape import VoxelShape, examples, surface_graph
-from voxfab.unfold import Net, validate
-
-
-def _queen() -> np.ndarray:
-    from voxfab.recipe import load_recipe
-    from voxfab.recipe._build import make_shape
-
-    return make_shape(load_recipe(Path(__file__).parents[3] / "recipes/chess/queen.toml")).grid
+from voxfab.shape import VoxelShape, examples
 
 
 def _rings(path: Path) -> list[np.ndarray]:
@@ -31,28 +24,10 @@ def _rings(path: Path) -> list[np.ndarray]:
     return out
 
 
-def _pieces_of(rings: list[np.ndarray]):
-    """Polygons of the pieces on a sheet: outer rings run counter-clockwise, holes clockwise.
-
-    A piece may lie in a hole of another, so each hole belongs to the smallest outer ring round it.
-    """
-    import shapely
-
-    outers = [shapely.Polygon(r) for r in rings if shapely.LinearRing(r).is_ccw]
-    holes: list[list[np.ndarray]] = [[] for _ in outers]
-    for r in rings:
-        if shapely.LinearRing(r).is_ccw:
-            continue
-        hole = shapely.Polygon(r)
-        around = [i for i, o in enumerate(outers) if o.contains(hole.representative_point())]
-        holes[min(around, key=lambda i: outers[i].area)].append(r)
-    return [shapely.Polygon(o.exterior.coords, h) for o, h in zip(outers, holes)]
-
-
 CASES = [
     ("ball r=6", lambda: examples.ball(6), 10.0, "A4"),
     ("ball r=6 on the mat", lambda: examples.ball(6), 12.0, "mat12"),
-    ("queen", _queen, 8.6, "mat12"),
+    ("queen", queen, 8.6, "mat12"),
 ]
 
 
@@ -64,13 +39,8 @@ def test_pieces_on_sheets_read_back_from_the_files(tmp_path: Path, name, make, f
     made = fabricate_net(VoxelShape(grid), NetOptions(face_size=face, pieces="auto", fill=True,
                                                         formats=("dxf", "pdf")),
                          drawing, tmp_path, name=name, seed=1)
-    pieces = [Net.from_json(p.read_text()) for p in sorted(tmp_path.glob("net.piece-*.json"))]
-    assert len(pieces) > 1, "the surface is larger than the sheet"
-    sg = surface_graph(grid)
-    # Every face of the surface exactly once across the pieces, and the pieces refold to it.
-    keys = [(tuple(v), tuple(n)) for p in pieces for v, n in zip(p.voxel.tolist(), p.normal.tolist())]
-    assert len(keys) == len(set(keys)) == sg.face_count
-    assert validate(grid, pieces).ok
+    pieces = read_pieces(tmp_path, grid)
+    faces = sum(p.face_count for p in pieces)
     # Each sheet: one closed outline per piece on it, none meeting another, all inside the margin.
     sheets = sorted(tmp_path.glob("net.sheet-*.dxf"))
     assert len(sheets) == made.report["sheets"]
@@ -78,7 +48,7 @@ def test_pieces_on_sheets_read_back_from_the_files(tmp_path: Path, name, make, f
     m = drawing.margin
     outer = 0
     for path in sheets:
-        shells = _pieces_of(_rings(path))
+        shells = pieces_of(_rings(path))
         outer += len(shells)
         for i, a in enumerate(shells):
             x0, y0, x1, y1 = a.bounds
@@ -88,7 +58,7 @@ def test_pieces_on_sheets_read_back_from_the_files(tmp_path: Path, name, make, f
     assert outer == len(pieces)
     # Seams marked for tape instead of a tab: a few at most (the goal is none).
     marked = [int(line.split()[0]) for line in made.warnings if "without room for a tab" in line]
-    assert sum(marked) <= 0.01 * sg.face_count
+    assert sum(marked) <= 0.01 * faces
     # The PDF: an assembly page, then the sheets.
     assert (tmp_path / "net.pdf").read_bytes().count(b"/Type /Page ") == len(sheets) + 1
 
