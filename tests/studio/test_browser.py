@@ -69,6 +69,13 @@ def set_expression(driver, box_id, text):
     field.send_keys(text, Keys.TAB)
 
 
+def slim_column(driver):
+    """Type the slim column's generatrix and wait for its shape (not the empty one seen while typing)."""
+    set_expression(driver, "src-generatrix", "x = 0.12")
+    wait(driver, lambda d: 0 < int(attr(d, "volume", "data-volume")) < 400
+         and attr(d, "wf", "data-well-formed") == "true", what="the slim column")
+
+
 def test_draw_a_generatrix_and_see_the_preview_change(server, browser):
     open_page(browser, server)
     before = int(attr(browser, "volume", "data-volume"))
@@ -157,8 +164,7 @@ def test_net_gallery_pick_and_download_svg(server, browser):
 
     open_page(browser, server)
     # a slim column, so the nets are quick to find
-    set_expression(browser, "src-generatrix", "x = 0.12")
-    wait(browser, lambda d: int(attr(d, "volume", "data-volume")) < 400, what="the slim column")
+    slim_column(browser)
     tab(browser, "keep")
     browser.find_element("id", "save-repo").click()
     name = wait(browser, lambda d: attr(d, "save-result", "data-name"), what="the saved name")
@@ -233,8 +239,7 @@ def test_mark_an_edge_then_regenerate_honours_it(server, browser):
     from voxfab.unfold import Net
 
     open_page(browser, server)
-    set_expression(browser, "src-generatrix", "x = 0.12")
-    wait(browser, lambda d: int(attr(d, "volume", "data-volume")) < 400, what="the slim column")
+    slim_column(browser)
     tab(browser, "net")
     _gallery(browser, 2)
     browser.find_element("id", "net-go").click()

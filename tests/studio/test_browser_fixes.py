@@ -215,11 +215,10 @@ def test_voxfab_studio_shape_opens_the_page_on_it(browser, tmp_path):
 def test_the_chosen_net_and_its_marks_go_when_the_shape_changes(server, browser):
     from selenium.webdriver import ActionChains
 
-    from .test_browser import _gallery, set_expression
+    from .test_browser import _gallery, slim_column
 
     open_page(browser, server)
-    set_expression(browser, "src-generatrix", "x = 0.12")
-    wait(browser, lambda d: _volume(d) < 400, what="the slim column")
+    slim_column(browser)
     tab(browser, "net")
     _gallery(browser, 2)
     browser.find_element("css selector", '[data-testid="net-generate"], #net-go').click()

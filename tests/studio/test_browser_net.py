@@ -288,11 +288,10 @@ def test_queen_to_a4_in_pieces_moved_on_the_page(server, browser):
 def test_a_net_that_does_not_fit_says_so_plainly_and_one_click_splits_it(server, browser):
     from selenium.webdriver.support.ui import Select
 
-    from .test_browser import set_expression
+    from .test_browser import slim_column
 
     open_page(browser, server)
-    set_expression(browser, "src-generatrix", "x = 0.12")  # a slim column: 25 faces tall
-    wait(browser, lambda d: int(attr(d, "volume", "data-volume")) < 400, what="the slim column")
+    slim_column(browser)
     by_id(browser, "tab-net").click()
     # A laser bed of any size: the custom field shows for it only.
     assert not by_id(browser, "net-sheet-custom").is_displayed()
@@ -327,11 +326,10 @@ def test_a_net_that_does_not_fit_says_so_plainly_and_one_click_splits_it(server,
 def test_does_one_piece_fit_this_sheet_is_answered_exactly(server, browser):
     from selenium.webdriver.support.ui import Select
 
-    from .test_browser import set_expression
+    from .test_browser import slim_column
 
     open_page(browser, server)
-    set_expression(browser, "src-generatrix", "x = 0.12")  # the slim column again
-    wait(browser, lambda d: int(attr(d, "volume", "data-volume")) < 400, what="the slim column")
+    slim_column(browser)
     by_id(browser, "tab-net").click()
     Select(by_id(browser, "net-sheet")).select_by_value("A3")
     face = by_id(browser, "net-face-size")

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from ._helpers import SHOTS
-from .test_browser import _gallery, attr, open_page, set_expression, tab, wait
+from .test_browser import _gallery, attr, open_page, slim_column, tab, wait
 from .test_edit_api import as_net
 
 pytestmark = pytest.mark.slow
@@ -75,8 +75,7 @@ def test_edit_the_net_in_linked_views_and_fold_it_up(server, browser):
     from voxfab.unfold._layout import count_without_tab_room
 
     open_page(browser, server)
-    set_expression(browser, "src-generatrix", "x = 0.12")
-    wait(browser, lambda d: int(attr(d, "volume", "data-volume")) < 400, what="the slim column")
+    slim_column(browser)
     view = browser.find_element("css selector", '[data-testid="view-3d"]')
     # Dark sides: every face the camera sees is lit, none near black.
     dark = browser.execute_script("""
