@@ -41,6 +41,8 @@ __all__ = [
     "OptionError",
     "OptionSpec",
     "Options",
+    "SEED_HIGH",
+    "SeedOptions",
     "check_values",
     "from_mapping",
     "markdown_table",
@@ -187,13 +189,18 @@ class OptionSpec:
             return ", ".join(self.choices)
         if self.low is not None and self.high is not None:
             if self.low_open:
-                return f"> {self.low:g} and <= {self.high:g}"
-            return f"{self.low:g} to {self.high:g}"
+                return f"> {_number(self.low)} and <= {_number(self.high)}"
+            return f"{_number(self.low)} to {_number(self.high)}"
         if self.low is not None:
-            return f"{'>' if self.low_open else '>='} {self.low:g}"
+            return f"{'>' if self.low_open else '>='} {_number(self.low)}"
         if self.high is not None:
-            return f"<= {self.high:g}"
+            return f"<= {_number(self.high)}"
         return ""
+
+
+def _number(x: float) -> str:
+    """A bound in words: integers in full (a seed's 9223372036854775807), other numbers short."""
+    return str(x) if isinstance(x, int) else f"{x:g}"
 
 
 def _kind(tp: Any) -> tuple[type, bool]:
@@ -248,7 +255,7 @@ def _expected(spec: OptionSpec) -> str:
     if spec.kind in (int, float) and spec.low == 0 and spec.low_open:
         # "a positive number of mm up to 1000" reads better than "> 0 and <= 1000"
         base = base.replace("a number", "a positive number").replace("an integer", "a positive integer")
-        return base + (f" up to {spec.high:g}" if spec.high is not None else "")
+        return base + (f" up to {_number(spec.high)}" if spec.high is not None else "")
     rng = spec.describe_range()
     if rng and spec.choices is None:
         base += f" {rng}" if rng[0] in "<>" else f" from {rng}"
@@ -338,6 +345,18 @@ class Options:
     def replace(self: T, **changes: Any) -> T:
         """A copy with some options changed (checked again)."""
         return dataclasses.replace(self, **changes)
+
+
+#: Largest seed: seeds are stored as signed 64-bit integers (SQLite, numba kernels).
+SEED_HIGH = 2**63 - 1
+
+
+@dataclasses.dataclass(frozen=True)
+class SeedOptions(Options):
+    """The seed of a run's random choices (nets, candidates), declared once for every front end."""
+
+    seed: int = option(0, help="random seed: the same inputs and seed give byte-identical files",
+                       low=0, high=SEED_HIGH)
 
 
 def check_values(cls: type, values: Mapping[str, Any]) -> dict[str, Any]:
