@@ -235,18 +235,18 @@ def recipe_trees(draw: st.DrawFn, *, with_outputs: bool = True, strict: bool = F
     ``strict``: the structure and value types are right (the values may still be
     extreme), so most recipes reach the makers.
     """
-    from voxfab.digitize import available_makers, get_maker
+    from voxfab.digitize import available_makers, maker_params
     from voxfab.fabricate import outputs as output_kinds
-    from voxfab.recipe._schema import _OPERATIONS, keyword_options
+    from voxfab.recipe._schema import _OPERATIONS
 
     def source() -> dict:
         if strict and draw(st.booleans()):
             # A working source with one key changed: the build reaches deep into the maker.
             src = dict(draw(st.sampled_from(GOOD_SOURCES)))
             src["size"] = draw(st.integers(4, 10))
-            options = keyword_options(get_maker(src["maker"]), skip={"base_dir"})
+            options = maker_params(src["maker"])
             key = draw(st.sampled_from(sorted(options)))
-            src[key] = draw(value_for(options[key][0], strict))
+            src[key] = draw(value_for(options[key].hint, strict))
             return src
         if draw(st.integers(0, 4)) == 0:
             src: dict = {"file": draw(st.sampled_from(RECIPE_FILES))}
@@ -257,10 +257,9 @@ def recipe_trees(draw: st.DrawFn, *, with_outputs: bool = True, strict: bool = F
         src = {"maker": maker}
         if maker == "nonsense":
             return src
-        options = keyword_options(get_maker(maker), skip={"base_dir"})
-        for key, (tp, required) in options.items():
-            if required and draw(st.integers(0, 9)) > 0 or draw(st.integers(0, 3)) == 0:
-                src[key] = draw(value_for(tp, strict))
+        for key, param in maker_params(maker).items():
+            if param.required and draw(st.integers(0, 9)) > 0 or draw(st.integers(0, 3)) == 0:
+                src[key] = draw(value_for(param.hint, strict))
         if "size" in src and isinstance(src["size"], int) and not isinstance(src["size"], bool):
             src["size"] = draw(st.sampled_from([src["size"], 5, 8, 12]))
         if not strict and draw(st.integers(0, 9)) == 0:

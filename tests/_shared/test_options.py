@@ -116,7 +116,8 @@ def test_specs_and_table():
 
 
 def readme_tables() -> dict[str, str]:
-    """The README's option tables as the code declares them, by marker name: the shape's, then every output's."""
+    """The README's option tables as the code declares them, by marker name: the shape's, every output's, every maker's."""
+    from voxfab.digitize import MAKERS, maker_markdown
     from voxfab.fabricate import outputs
     from voxfab.fabricate._table import resolve
     from voxfab.shape import ShapeOptions
@@ -125,6 +126,7 @@ def readme_tables() -> dict[str, str]:
     for output in outputs().values():
         for t in output.options:
             tables[t.readme] = markdown_table(resolve(t.cls), exclude=t.exclude)
+    tables.update({f"maker-{name}": maker_markdown(name) for name in MAKERS})
     return tables
 
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import inspect
 import tomllib
 import typing
@@ -10,7 +11,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from voxfab.digitize import MAKERS, available_makers, get_maker
+from voxfab.digitize import (
+    MAKERS,
+    available_makers,
+    get_maker,
+    get_random_params,
+    maker_params,
+    random_makers,
+)
 from voxfab.errors import InvalidShapeError, UnknownFormatError
 from voxfab.shape import well_formed_reasons
 
@@ -24,6 +32,52 @@ def test_registry():
     assert available_makers() == sorted(MAKERS)
     with pytest.raises(UnknownFormatError, match="unknown maker 'nope'"):
         get_maker("nope")
+
+
+@pytest.mark.parametrize("name", sorted(MAKERS))
+def test_every_keyword_has_a_row(name):
+    """The table describes exactly the maker's keywords, each with words; type and default come from the code."""
+    sig = inspect.signature(get_maker(name))
+    keywords = {p for p in sig.parameters if p != "base_dir"}
+    params = maker_params(name)
+    assert set(params) == keywords
+    for key, param in params.items():
+        assert param.help and param.hint is not None, key
+        assert param.required == (sig.parameters[key].default is inspect.Parameter.empty)
+        if not param.required:
+            assert param.default == sig.parameters[key].default
+
+
+def test_a_row_that_drifts_from_its_function_is_refused(monkeypatch):
+    row = MAKERS["focal"]
+    monkeypatch.setitem(MAKERS, "focal", dataclasses.replace(row, params=row.params[:-1]))
+    maker_params.cache_clear()
+    try:
+        with pytest.raises(TypeError, match="its row describes"):
+            maker_params("focal")
+    finally:
+        maker_params.cache_clear()
+
+
+def test_params_check_type_and_range():
+    k = maker_params("revolution")["k"]
+    assert k.problem(2) is None
+    assert k.problem(3) == "expected an integer in 0..2, got 3"
+    assert k.problem(-1) == "expected an integer in 0..2, got -1"
+    assert maker_params("tube")["samples"].problem(1) == "expected an integer in 2..100000, got 1"
+    assert maker_params("tube")["radius"].problem(float("nan")) == "expected a finite number, got nan"
+    assert k.problem(True).startswith("expected int, got bool")
+    mode = maker_params("revolution")["mode"]
+    assert mode.problem("surface") is None and "'solid' or 'surface'" in mode.problem("hollow")
+    assert mode.is_scalar and maker_params("revolution")["axis"].is_scalar
+    assert maker_params("tube")["radius"].is_scalar and not maker_params("tube")["spine"].is_scalar
+
+
+def test_random_makers_come_from_the_table():
+    assert random_makers() == tuple(n for n, row in MAKERS.items() if row.random)
+    assert "implicit" not in random_makers()
+    with pytest.raises(UnknownFormatError, match="no random parameters"):
+        get_random_params("implicit")
 
 
 @pytest.mark.parametrize("name", sorted(MAKERS))

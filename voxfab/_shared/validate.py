@@ -2,13 +2,17 @@
 
 from __future__ import annotations
 
+import collections.abc
 import contextlib
+import inspect
 import os
+import types
+import typing
 from collections.abc import Iterator
 from contextvars import ContextVar
 from enum import Enum
 from pathlib import Path
-from typing import TypeVar
+from typing import Any, Literal, TypeVar, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -154,3 +158,53 @@ def check_confined(path: str | os.PathLike[str], root: str | os.PathLike[str], *
             f"{name}: {quote(shown or str(path))} is outside the recipe's folder {os.path.abspath(root)}; "
             "pass --allow-outside to read files elsewhere"
         )
+
+
+# --- TOML and JSON values against type hints (recipe and studio keys) -------------------------
+
+def type_name(tp: Any) -> str:
+    """A type hint in words, for messages: ``list of float``, ``'solid' or 'surface'``."""
+    origin = typing.get_origin(tp)
+    if origin is Literal:
+        return " or ".join(repr(a) for a in typing.get_args(tp))
+    if origin in (Union, types.UnionType):
+        return " or ".join(type_name(a) for a in typing.get_args(tp))
+    if origin in (list, tuple):
+        args = typing.get_args(tp)
+        return f"list of {type_name(args[0])}" if args else "list"
+    if tp is type(None):
+        return "none"
+    return getattr(tp, "__name__", str(tp))
+
+
+def type_fits(value: Any, tp: Any) -> bool:
+    """Whether a TOML value fits a type hint (int fits float; bool fits only bool)."""
+    if tp is Any or tp is inspect.Parameter.empty:
+        return True
+    origin = typing.get_origin(tp)
+    if origin is Literal:
+        return value in typing.get_args(tp)
+    if origin in (Union, types.UnionType):
+        return any(type_fits(value, a) for a in typing.get_args(tp))
+    if origin in (list, tuple, collections.abc.Sequence):
+        if not isinstance(value, list):
+            return False
+        args = typing.get_args(tp)
+        if not args:
+            return True
+        if origin is tuple and not (len(args) == 2 and args[1] is Ellipsis):
+            return len(value) == len(args) and all(type_fits(v, a) for v, a in zip(value, args))
+        return all(type_fits(v, args[0]) for v in value)
+    if origin is dict:
+        return isinstance(value, dict)
+    if tp is float:
+        return isinstance(value, (int, float)) and not isinstance(value, bool)
+    if tp is int:
+        return isinstance(value, int) and not isinstance(value, bool)
+    if tp is Path:
+        return isinstance(value, str)
+    if tp is type(None):
+        return value is None
+    if isinstance(tp, type):
+        return isinstance(value, tp)
+    return True

@@ -11,11 +11,13 @@ HELP = "generate N new well-formed shapes (distinct up to the 48 cube symmetries
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--count", type=int, required=True, metavar="N", help="new shapes to store")
-    parser.add_argument("--seed", type=int, default=0, metavar="S",
-                        help="seed of the candidates: the same seed on the same repository stores the same shapes "
-                             "(default 0)")
-    parser.add_argument("--generator", default="growth", choices=("growth", "revolution", "tube", "focal", "mix"),
-                        help="growth: random face-connected growth spanning the grid; revolution, tube, focal: "
+    from voxfab._shared.options import SeedOptions
+    from voxfab.cli._options import add_option_arguments
+    from voxfab.generate import GENERATORS, MAKER_GENERATORS
+
+    add_option_arguments(parser, SeedOptions)  # the same seed on the same repository stores the same shapes
+    parser.add_argument("--generator", default="growth", choices=GENERATORS,
+                        help=f"growth: random face-connected growth spanning the grid; {', '.join(MAKER_GENERATORS)}: "
                              "random parameters for that maker; mix: a blend (default growth)")
     parser.add_argument("--volume", metavar="MIN:MAX",
                         help="keep volumes in MIN..MAX (inclusive); growth aims inside it (default: growth aims "
@@ -26,14 +28,17 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from voxfab._shared.options import SeedOptions
     from voxfab._shared.progress import meter
+    from voxfab.cli._options import options_from_args
     from voxfab.generate import check_explore, explore, parse_volume_range, volume_bins
 
+    seed = options_from_args(SeedOptions, args).seed
     volume = parse_volume_range(args.volume) if args.volume is not None else None
-    check_explore(args.count, seed=args.seed, generator=args.generator, volume=volume,
+    check_explore(args.count, seed=seed, generator=args.generator, volume=volume,
                   max_attempts=args.max_attempts)  # before the repository is made
     with open_repository_for_writing(args.repo) as repo, meter(args.count, desc="exploring") as bar:
-        report = explore(repo, args.count, seed=args.seed, generator=args.generator, volume=volume,
+        report = explore(repo, args.count, seed=seed, generator=args.generator, volume=volume,
                          max_attempts=args.max_attempts, on_added=bar.update)
     volumes = [v for _, v in report.added]
     print(f"{len(report.added)} new shapes in {args.repo} ({report.attempts} candidates, "

@@ -22,13 +22,14 @@ HELP = "unfold the surface into a one-piece paper net (JSON, or drawings .svg .d
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the ``net`` options."""
+    from voxfab._shared.options import SeedOptions
     from voxfab.fabricate.netdraw import DrawingOptions, NetOptions
 
     add_shape_argument(parser)
     parser.add_argument("-o", "--output", action="append", required=True, metavar="PATH",
                         help="NET.json, or a drawing (.svg .dxf laser files, .pdf .png to look at and print); "
                              "repeat for several files of the same net")
-    parser.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    add_option_arguments(parser, SeedOptions)
     parser.add_argument("--fit", "--box", metavar="WxH",
                         help="JSON nets: keep the net inside W×H (voxels, or mm when the face size is known); "
                              "drawings always fit their sheet")
@@ -64,8 +65,10 @@ def _constraints(path: str | None):  # noqa: ANN202 - EdgeConstraints or None
 
 def run(args: argparse.Namespace) -> int:
     """Search, validate and write the nets: :func:`voxfab.fabricate.netdraw.net_files`."""
+    from voxfab._shared.options import SeedOptions
     from voxfab.fabricate import netdraw
 
+    seed = options_from_args(SeedOptions, args).seed
     search = options_from_args(netdraw.NetOptions, args)
     netdraw.check_request(search, args.output, box=args.fit is not None)  # before loading the shape
     # The paper scale: --face-size, else the shape's pitch (--pitch or the file's own); a shape
@@ -81,7 +84,7 @@ def run(args: argparse.Namespace) -> int:
         face_size = shape.pitch
         drawing = drawing.replace(pitch=face_size)
     made = netdraw.net_files(shape.grid, search, drawing, args.output, title=name or Path(args.shape).stem,
-                             seed=args.seed, constraints=_constraints(args.constraints),
+                             seed=seed, constraints=_constraints(args.constraints),
                              box=netdraw.parse_box(args.fit, face_size))
     print_notes(made.notes)
     for file, line in made.report:

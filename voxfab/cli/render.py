@@ -20,6 +20,7 @@ _VIEWS = ("iso", "x", "-x", "y", "-y", "z", "-z")
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the ``render`` options."""
+    from voxfab._shared.options import SeedOptions
     from voxfab.cli._options import add_option_arguments
     from voxfab.render import PictureOptions
 
@@ -40,7 +41,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--net", type=Path, metavar="NET.json",
                         help="a voxfab-net/1 file: draw it (or use it in --triptych) instead of unfolding")
     parser.add_argument("--view", choices=_VIEWS, default="iso", help="3D view (default iso)")
-    parser.add_argument("--seed", type=int, default=0, metavar="N", help="seed of the triptych's net (default 0)")
+    add_option_arguments(parser, SeedOptions)  # the triptych's net
     add_option_arguments(parser, PictureOptions)
 
 
@@ -105,6 +106,7 @@ def run(args: argparse.Namespace) -> int:
     """Draw the requested picture through the pictures pipeline and print a JSON summary."""
     from voxfab import render
     from voxfab._shared.atomic import check_output
+    from voxfab._shared.options import SeedOptions
     from voxfab.cli._options import options_from_args
 
     out: Path = args.output
@@ -114,6 +116,7 @@ def run(args: argparse.Namespace) -> int:
         o = options_from_args(render.PictureOptions, args, size=args.size if args.size is not None else 200)
         return _contact_sheet(args, out, o.size, o.background)
     o = options_from_args(render.PictureOptions, args)
+    seed = options_from_args(SeedOptions, args).seed
     if args.fold is not None:
         return _fold(args, out, args.size)
     if args.shape is None:
@@ -125,13 +128,13 @@ def run(args: argparse.Namespace) -> int:
     print_notes(notes)
     title = name or Path(args.shape).stem
     net = _read_net(args.net) if args.net is not None else None
-    made = render.render_pictures(shape, o, out.parent, name=title, seed=args.seed, net=net, pictures=(picture,))
+    made = render.render_pictures(shape, o, out.parent, name=title, seed=seed, net=net, pictures=(picture,))
     drawn = dict(made.report["pictures"][0])
     kind = drawn.pop("kind")
     del drawn["path"]
     summary: dict[str, object] = {"output": str(out), "shape": title, "kind": kind}
     if kind == "triptych":
-        summary["seed"] = args.seed
+        summary["seed"] = seed
     elif kind == "view":
         summary["view"] = args.view
     summary.update(drawn)

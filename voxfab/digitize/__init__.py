@@ -17,7 +17,18 @@ from ._fit import Field, Mode, fit
 from ._flake import digitize, flake_vertices, solid, surface
 from ._focal import fermat_weber, focal, focal_field
 from ._implicit import implicit, implicit_field
-from ._makers import MAKERS, available_makers, get_maker
+from ._makers import (
+    MAKERS,
+    Maker,
+    Param,
+    available_makers,
+    get_maker,
+    get_random_params,
+    maker_markdown,
+    maker_params,
+    random_makers,
+)
+from ._recipes import rounded_param
 from ._revolution import (
     RevolutionCurve,
     Run,
@@ -31,8 +42,15 @@ from ._tube import Cap, Frame, Spine, load_spine, spine_frames, tube, tube_field
 
 __all__ = [
     "MAKERS",
+    "Maker",
+    "Param",
     "available_makers",
     "get_maker",
+    "get_random_params",
+    "maker_markdown",
+    "maker_params",
+    "random_makers",
+    "rounded_param",
     "surface",
     "solid",
     "digitize",

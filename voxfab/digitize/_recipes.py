@@ -1,9 +1,14 @@
-"""Shape makers for recipes: keyword-only, TOML-typed wrappers of the digitizers."""
+"""Shape makers for recipes: keyword-only, TOML-typed wrappers of the digitizers, and their random keys.
+
+Each ``make_*`` function is one row of :data:`voxfab.digitize.MAKERS`; a ``random_*``
+function draws that maker's keys from a ``numpy.random.Generator`` for ``voxfab explore``.
+"""
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 
@@ -13,7 +18,8 @@ from ._implicit import implicit_field
 from ._revolution import revolution
 from ._tube import tube
 
-__all__ = ["make_revolution", "make_tube", "make_focal", "make_implicit"]
+__all__ = ["make_revolution", "make_tube", "make_focal", "make_implicit", "random_revolution", "random_tube",
+           "random_focal", "rounded_param"]
 
 ModeName = Literal["solid", "surface"]
 
@@ -122,3 +128,54 @@ def make_implicit(
     if fld.ndim == 4 and at is None:
         at = float((fld.lo[-1] + fld.hi[-1]) / 2.0)
     return fit(fld, k=k, mode=mode, size=size, scale=scale, at=at)
+
+
+# --- random keys for ``voxfab explore`` --------------------------------------------------------
+
+def rounded_param(x: float) -> float:
+    """``x`` to 4 decimals: parameters are stored in the repository's metadata, and the stored values are
+    exactly the ones used."""
+    return round(float(x), 4)
+
+
+def random_revolution(rng: np.random.Generator) -> dict[str, Any]:
+    """Random keys of :func:`make_revolution` for ``voxfab explore``: a superellipse, circle or star turned about a wavy generatrix."""
+    kind = int(rng.integers(3))
+    if kind == 0:
+        curve = "x^2 + y^2 - 1"
+    elif kind == 1:
+        p, q = (rounded_param(v) for v in rng.choice([1.0, 1.5, 3.0, 4.0], size=2))
+        curve = f"abs(x)^{p} + abs(y)^{q} - 1"
+    else:
+        curve = f"sqrt(x^2 + y^2) - 1 - {rounded_param(rng.uniform(0.1, 0.35))}*cos({int(rng.integers(3, 9))}*atan2(y, x))"
+    r0 = rounded_param(rng.uniform(0.35, 1.0))
+    amp = rounded_param(rng.uniform(0.0, 0.3) * r0)
+    freq, phase, height = rounded_param(rng.uniform(0.5, 5.0)), rounded_param(rng.uniform(0.0, math.tau)), rounded_param(rng.uniform(0.6, 2.5))
+    generatrix = f"max(x - ({r0} + {amp}*sin({freq}*y + {phase})), abs(y) - {height})"
+    return {"curve": curve, "generatrix": generatrix, "mode": str(rng.choice(["solid", "solid", "surface"]))}
+
+
+def random_tube(rng: np.random.Generator) -> dict[str, Any]:
+    """Random keys of :func:`make_tube`: a helix or a Lissajous spine with a round, square or diamond profile."""
+    if rng.integers(2) == 0:
+        turns, r = rounded_param(rng.uniform(0.5, 3.0)), rounded_param(rng.uniform(0.3, 1.5))
+        spine = [f"{r}*cos(tau*{turns}*t)", f"{r}*sin(tau*{turns}*t)", "t"]
+    else:
+        a, b, c = (int(v) for v in rng.integers(1, 5, size=3))
+        ph = rounded_param(rng.uniform(0.0, math.tau))
+        spine = [f"sin(tau*{a}*t + {ph})", f"sin(tau*{b}*t)", f"t + 0.3*sin(tau*{c}*t)"]
+    profile = str(rng.choice(["x^2 + y^2 - 1", "abs(x)^4 + abs(y)^4 - 1", "abs(x) + abs(y) - 1"]))
+    return {"spine": spine, "profile": profile, "radius": rounded_param(rng.uniform(0.06, 0.25)),
+            "twist": rounded_param(rng.uniform(0.0, 2.0)), "cap": str(rng.choice(["flat", "round"]))}
+
+
+def random_focal(rng: np.random.Generator) -> dict[str, Any]:
+    """Random keys of :func:`make_focal`: two to four weighted foci and a radius just above the smallest."""
+    n = int(rng.integers(2, 5))
+    foci = np.round(rng.uniform(-1.5, 1.5, size=(n, 3)), 4)
+    weights = np.round(rng.uniform(0.5, 3.0, size=n), 4)
+    # The level set is empty below the smallest weighted sum, reached at a focus.
+    least = min(float(np.sum(weights * np.linalg.norm(foci - f, axis=1))) for f in foci)
+    radius = rounded_param(least * rng.uniform(1.05, 1.6) + float(weights.sum()) * rng.uniform(0.2, 1.0))
+    return {"foci": foci.tolist(), "weights": weights.tolist(), "radius": radius,
+            "mode": str(rng.choice(["solid", "solid", "surface"]))}

@@ -9,6 +9,7 @@ from collections.abc import Callable
 import numpy as np
 
 from voxfab._shared.limits import MAX_EXPLORE_ATTEMPTS, MAX_EXPLORE_COUNT, check_count
+from voxfab._shared.options import SeedOptions
 from voxfab.errors import InvalidShapeError, RepositoryError
 from voxfab.shape import GRID_SIDE, crop, well_formed_reasons
 
@@ -105,8 +106,7 @@ def check_explore(
         if value is not None and (isinstance(value, bool) or int(value) != value or value < 1):
             raise InvalidShapeError(f"{name}: expected a whole number >= 1, got {value!r}")
     check_count(int(count), MAX_EXPLORE_COUNT, name="count")
-    if isinstance(seed, bool) or int(seed) != seed or seed < 0:
-        raise InvalidShapeError(f"seed: expected a whole number >= 0, got {seed!r}")
+    SeedOptions(seed=seed)  # the one declaration of a seed's type and range
     if volume is not None and int(volume[1]) < GRID_SIDE:
         raise InvalidShapeError(
             f"volume: a well-formed shape spans {GRID_SIDE} voxels, so MAX must be at least {GRID_SIDE}"

@@ -7,22 +7,18 @@ takes them, so each option is declared in exactly one place.
 
 from __future__ import annotations
 
-import collections.abc
 import dataclasses
 import hashlib
-import inspect
 import re
-import types
-import typing
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any, Literal, Union
+from typing import Any
 
 from voxfab._shared.limits import parse_toml, read_input_bytes
-from voxfab._shared.options import OptionError
+from voxfab._shared.options import OptionError, SeedOptions
 from voxfab._shared.typing import PathLike
-from voxfab._shared.validate import check_confined
-from voxfab.errors import RecipeError, UnknownFormatError, VoxfabError
+from voxfab._shared.validate import check_confined, type_fits, type_name
+from voxfab.errors import RecipeError, VoxfabError
 
 _TOP_KEYS = {"name", "seed", "pitch", "description", "source", "operations", "outputs"}
 _OPERATIONS: dict[str, dict[str, type | tuple]] = {
@@ -160,78 +156,20 @@ def _error(path: Path, locator: _Locator, keypath: str, message: str) -> RecipeE
     return RecipeError(f"{where}: {keypath}: {message}")
 
 
-def _type_name(tp: Any) -> str:
-    origin = typing.get_origin(tp)
-    if origin is Literal:
-        return " or ".join(repr(a) for a in typing.get_args(tp))
-    if origin in (Union, types.UnionType):
-        return " or ".join(_type_name(a) for a in typing.get_args(tp))
-    if origin in (list, tuple):
-        args = typing.get_args(tp)
-        return f"list of {_type_name(args[0])}" if args else "list"
-    if tp is type(None):
-        return "none"
-    return getattr(tp, "__name__", str(tp))
+def _check_maker_keys(maker: str, given: dict[str, Any], *, where: str,
+                      err: Callable[[str, str], RecipeError]) -> None:
+    """Check a maker's keys against its row of the makers table: known, typed, in range, none missing."""
+    from voxfab.digitize import maker_params
 
-
-def check_type(value: Any, tp: Any) -> bool:
-    """Whether a TOML value fits a type hint (int fits float; bool fits only bool)."""
-    if tp is Any or tp is inspect.Parameter.empty:
-        return True
-    origin = typing.get_origin(tp)
-    if origin is Literal:
-        return value in typing.get_args(tp)
-    if origin in (Union, types.UnionType):
-        return any(check_type(value, a) for a in typing.get_args(tp))
-    if origin in (list, tuple, collections.abc.Sequence):
-        if not isinstance(value, list):
-            return False
-        args = typing.get_args(tp)
-        if not args:
-            return True
-        if origin is tuple and not (len(args) == 2 and args[1] is Ellipsis):
-            return len(value) == len(args) and all(check_type(v, a) for v, a in zip(value, args))
-        return all(check_type(v, args[0]) for v in value)
-    if origin is dict:
-        return isinstance(value, dict)
-    if tp is float:
-        return isinstance(value, (int, float)) and not isinstance(value, bool)
-    if tp is int:
-        return isinstance(value, int) and not isinstance(value, bool)
-    if tp is Path:
-        return isinstance(value, str)
-    if tp is type(None):
-        return value is None
-    if isinstance(tp, type):
-        return isinstance(value, tp)
-    return True
-
-
-def keyword_options(func: Callable[..., Any], *, skip: set[str]) -> dict[str, tuple[Any, bool]]:
-    """Return ``{name: (type hint, required)}`` of a function's keyword-only parameters."""
-    sig = inspect.signature(func)
-    hints = typing.get_type_hints(func)
-    out = {}
-    for p in sig.parameters.values():
-        if p.kind is not inspect.Parameter.KEYWORD_ONLY or p.name in skip:
-            continue
-        out[p.name] = (hints.get(p.name, Any), p.default is inspect.Parameter.empty)
-    return out
-
-
-def _check_options(
-    func: Callable[..., Any], given: dict[str, Any], *, skip: set[str], where: str, err: Callable[[str, str], RecipeError]
-) -> None:
-    options = keyword_options(func, skip=skip)
+    params = maker_params(maker)
     for key, value in given.items():
-        if key not in options:
-            known = ", ".join(sorted(options)) or "(none)"
-            raise err(f"{where}.{key}", f"unknown key; {where} accepts: {known}")
-        tp, _ = options[key]
-        if not check_type(value, tp):
-            raise err(f"{where}.{key}", f"expected {_type_name(tp)}, got {type(value).__name__} {value!r}")
-    for key, (_, required) in options.items():
-        if required and key not in given:
+        if key not in params:
+            raise err(f"{where}.{key}", f"unknown key; {where} accepts: {', '.join(sorted(params))}")
+        problem = params[key].problem(value)
+        if problem:
+            raise err(f"{where}.{key}", problem)
+    for key, param in params.items():
+        if param.required and key not in given:
             raise err(f"{where}.{key}", "missing required key")
 
 
@@ -246,7 +184,7 @@ def _check_inside(name: str, base: Path, keypath: str, err: Callable[[str, str],
 def _parse_source(
     data: Any, keypath: str, base: Path, err: Callable[[str, str], RecipeError], confine: bool = True
 ) -> SourceSpec:
-    from voxfab.digitize import get_maker
+    from voxfab.digitize import MAKERS
 
     if not isinstance(data, dict):
         raise err(keypath, f"expected a table, got {type(data).__name__}")
@@ -259,7 +197,7 @@ def _parse_source(
             raise err(f"{keypath}.{sorted(extra)[0]}", "unknown key; a file source accepts: file, resolution")
         if not isinstance(data["file"], str):
             raise err(f"{keypath}.file", "expected a string path")
-        if "resolution" in data and not check_type(data["resolution"], int):
+        if "resolution" in data and not type_fits(data["resolution"], int):
             raise err(f"{keypath}.resolution", "expected int")
         params = tuple(sorted((k, v) for k, v in data.items() if k == "resolution"))
         if confine:
@@ -268,12 +206,10 @@ def _parse_source(
     maker_name = data["maker"]
     if not isinstance(maker_name, str):
         raise err(f"{keypath}.maker", "expected a string")
-    try:
-        maker = get_maker(maker_name)
-    except UnknownFormatError as exc:
-        raise err(f"{keypath}.maker", str(exc)) from None
+    if maker_name not in MAKERS:
+        raise err(f"{keypath}.maker", f"unknown maker {maker_name!r}; expected one of {', '.join(sorted(MAKERS))}")
     params = {k: v for k, v in data.items() if k != "maker"}
-    _check_options(maker, params, skip={"base_dir"}, where=keypath, err=err)
+    _check_maker_keys(maker_name, params, where=keypath, err=err)
     if confine:
         for key, value in params.items():
             if isinstance(value, str) and Path(value).suffix.lower() in _FILE_SUFFIXES:
@@ -324,9 +260,10 @@ def load_recipe(path: PathLike, *, allow_outside: bool = False) -> Recipe:
     name = data.get("name", p.stem)
     if not isinstance(name, str) or not _NAME.match(name):
         raise err("name", f"expected a folder-safe name (letters, digits, _ . -), got {name!r}")
-    seed = data.get("seed", 0)
-    if not check_type(seed, int) or seed < 0:
-        raise err("seed", f"expected an integer >= 0, got {seed!r}")
+    try:
+        seed = SeedOptions(seed=data.get("seed", 0)).seed
+    except OptionError as exc:
+        raise err("seed", exc.reason) from None
     pitch = data.get("pitch", 1.0)
     try:
         pitch = ShapeOptions(pitch=pitch).pitch
@@ -362,8 +299,8 @@ def load_recipe(path: PathLike, *, allow_outside: bool = False) -> Recipe:
             if key == "source":
                 sub = _parse_source(value, f"{kp}.source", p.parent, err, not allow_outside)
                 continue
-            if not check_type(value, allowed[key]):
-                raise err(f"{kp}.{key}", f"expected {_type_name(allowed[key])}, got {value!r}")
+            if not type_fits(value, allowed[key]):
+                raise err(f"{kp}.{key}", f"expected {type_name(allowed[key])}, got {value!r}")
             if key == "axis" and value not in ("x", "y", "z"):
                 raise err(f"{kp}.axis", f"expected 'x', 'y' or 'z', got {value!r}")
             params.append((key, value if key != "by" else tuple(value)))

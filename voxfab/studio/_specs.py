@@ -153,11 +153,18 @@ def _source(src: Any, role: str, files: dict[str, bytes]) -> str:
     raise SpecError(f"{where}.kind: expected 'expr', 'drawn' or 'bitmap', got {kind!r:.40}")
 
 
-def _common(spec: Mapping[str, Any], keys: dict[str, Any]) -> None:
-    for key, kind in (("k", int), ("mode", str)):
-        value = _get(spec, key, kind, where="shape")
-        if value is not None:
-            keys[key] = value
+def _scalars(spec: Mapping[str, Any], maker: str, keys: dict[str, Any], *, skip: tuple[str, ...] = ()) -> None:
+    """The maker's numbers, words and flags the page sent, checked by the makers table (type and range)."""
+    from voxfab.digitize import maker_params
+
+    for name, param in maker_params(maker).items():
+        if not param.is_scalar or name in skip or spec.get(name) is None:
+            continue
+        value = spec[name]
+        problem = param.problem(value)
+        if problem:
+            raise SpecError(f"shape.{name}: {problem}")
+        keys[name] = param.normal(value)
 
 
 def _arc(spec: Mapping[str, Any], keys: dict[str, Any]) -> None:
@@ -165,6 +172,10 @@ def _arc(spec: Mapping[str, Any], keys: dict[str, Any]) -> None:
     arc = spec.get("arc")
     if arc is not None:
         keys["arc"] = [_number(v, where="shape.arc") for v in _points([arc], 2, where="shape.arc")[0]]
+
+
+#: Keys a maker's branch of :func:`source_keys` reads from elsewhere, or only in one case, not from the shape.
+_PLACED = {"revolution": ("axis",), "tube": ("t_min", "t_max", "closed"), "focal": ("radius",)}
 
 
 def source_keys(spec: Any) -> tuple[dict[str, Any], dict[str, bytes]]:
@@ -209,11 +220,6 @@ def source_keys(spec: Any) -> tuple[dict[str, Any], dict[str, bytes]]:
                 keys["closed"] = closed
         else:
             raise SpecError(f"spine.kind: expected 'expr' or 'drawn', got {spine.get('kind')!r:.40}")
-        for key, kind in (("radius", (int, float)), ("twist", (int, float)), ("phase", (int, float)),
-                          ("frame", str), ("cap", str)):
-            value = _get(spec, key, kind, where="shape")
-            if value is not None:
-                keys[key] = value if isinstance(value, str) else float(value)
     elif maker == "focal":
         keys["foci"] = _points(spec.get("foci"), 3, where="shape.foci")
         if not keys["foci"]:
@@ -226,7 +232,8 @@ def source_keys(spec: Any) -> tuple[dict[str, Any], dict[str, bytes]]:
         keys["radius"] = _number(spec.get("radius"), where="shape.radius")
     else:
         keys["expression"] = _text(spec.get("expression"), where="shape.expression")
-    _common(spec, keys)
+    # The keys each branch above reads from its own place (the spine's, the drawing's axis) are not the shape's.
+    _scalars(spec, maker, keys, skip=_PLACED.get(maker, ()))
     return keys, files
 
 
