@@ -24,7 +24,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["CensusSettings", "CensusTask", "census_shape", "census_task", "net_paths"]
+__all__ = ["CensusSettings", "CensusTask", "census_shape", "census_task", "check_settings", "net_paths"]
 
 #: Folder of DIR holding the nets.
 NETS = "nets"
@@ -41,13 +41,29 @@ class CensusSettings:
     timeout : float
         Seconds for each search of one shape: the random engine, the exact strategy, the unzipping
         search and the unit-square zipper search.
+    square_zipper : bool
+        Also search the unit-square zipper (``voxfab net --zipper``); off, ``square_zipper`` is ``skipped``.
     """
 
     seed: int = 0
     timeout: float = 10.0
+    square_zipper: bool = False
 
     def to_dict(self) -> dict[str, Any]:
-        return {"seed": self.seed, "timeout": self.timeout}
+        return {"seed": self.seed, "timeout": self.timeout, "square_zipper": self.square_zipper}
+
+
+def check_settings(*, seed: object = 0, timeout: object = 10.0, square_zipper: bool = False) -> CensusSettings:
+    """Return the settings, or refuse a bad seed or time limit in one line."""
+    from voxfab.errors import InvalidShapeError
+    from voxfab.unfold._hunt import _check_limit
+
+    if isinstance(seed, bool) or not isinstance(seed, int) or not 0 <= seed < 2**63:
+        raise InvalidShapeError(f"--seed: expected a whole number from 0 to 2^63 - 1, got {str(seed)[:40]!r}")
+    limit = _check_limit(timeout, "--timeout")
+    if limit > 3600:
+        raise InvalidShapeError(f"--timeout: {limit:g} s is over the limit of 3600 s per search")
+    return CensusSettings(seed, limit, bool(square_zipper))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -85,7 +101,7 @@ def census_shape(shape_id: str, cells: Any, outdir: str | Path | None, settings:
     g = grid_of(c)
     topo = topology(g)
     hunt = hunt_shape(g, seed=settings.seed, timeout=settings.timeout, exact_timeout=settings.timeout,
-                      zipper_timeout=settings.timeout, zipper=True)
+                      zipper_timeout=settings.timeout, zipper=settings.square_zipper)
     unfold = {"random": "found", "exact": "found"}.get(hunt.net, hunt.net)
     net_file, unzip_file = net_paths(shape_id)
     record: dict[str, Any] = {
