@@ -27,6 +27,7 @@ def _stable(path: Path) -> dict:
     data.pop("run")
     for row in data["rows"]:
         row.pop("seconds")
+        row.pop("cpu_seconds")
     return data
 
 

@@ -109,7 +109,9 @@ def write_page(outdir: Path, data: dict[str, Any]) -> Path:
     by_id = {r["id"]: r for r in shapes}
     head = ["n", "free", "free_mirror", "unfold_found", "unfold_none", "unfold_undecided", "manifold",
             "unzip_found", "unzip_none", "unzip_undecided", "edge_touching", "vertex_touching", "handle",
-            "square_zipper_found", "square_zipper_none", "seconds"]
+            "square_zipper_found", "square_zipper_none", "seconds", "cpu_seconds"]
+    if not data["settings"].get("square_zipper"):
+        head = [k for k in head if not k.startswith("square_zipper")]
     rows = "".join("<tr>" + "".join(f"<td>{row.get(k, '')}</td>" for k in head) + "</tr>" for row in data["rows"])
     parts = [
         "<!doctype html><html><head><meta charset='utf-8'><title>voxfab polycube census</title><style>"
@@ -122,8 +124,9 @@ def write_page(outdir: Path, data: dict[str, Any]) -> Path:
         f"{'' if data['complete'] else ' &mdash; not complete'}.</p>",
         "<p>Unfold: edge unfolding, unit-square model (every square a face of the net). Unzip: edge-unzipping "
         "in the model of Demaine, Demaine, Eppstein and O'Rourke (2020): one cut path through every corner vertex, "
-        "flat vertices optional, on polycubes whose surface is a 2-manifold of genus 0. Square zipper: the cut "
-        "path visits every vertex.</p>",
+        "flat vertices optional, on polycubes whose surface is a 2-manifold of genus 0. Square zipper (when "
+        "searched): the cut path visits every vertex. Seconds: the searches' time per n, added over the shapes "
+        "(wall clock and CPU).</p>",
         "<table><tr>" + "".join(f"<th>{k.replace('_', ' ')}</th>" for k in head) + f"</tr>{rows}</table>",
     ]
     none = [r for r in shapes if r.get("unzip") == "none"]

@@ -10,8 +10,9 @@ the rest, so an interrupted run resumes, and ``census 8`` after ``census 6``
 censuses only the polycubes of 7 and 8 cubes.
 
 Everything in ``census.json`` but the times and the workers (``rows[].seconds``
-and ``run``) depends only on N and the settings: a serial run and a Dask run
-write the same file apart from those.
+and ``rows[].cpu_seconds``, this run's search time per n, and ``run``) depends
+only on N and the settings: a serial run and a Dask run write the same file
+apart from those.
 """
 
 from __future__ import annotations
@@ -88,7 +89,8 @@ def _read_previous(path: Path, settings: dict[str, Any], outdir: Path) -> dict[s
 
 
 def _rows(n_max: int, counts: dict[int, tuple[int, int]], shapes: dict[str, dict[str, Any]],
-          seconds: dict[int, float]) -> list[dict[str, Any]]:
+          wall: dict[int, float], cpu: dict[int, float]) -> list[dict[str, Any]]:
+    """One row per n: the counts, the outcomes, the surfaces, the shapes to show, and this run's search time."""
     rows = []
     for n in range(1, n_max + 1):
         mine = [r for k, r in sorted(shapes.items()) if r.get("n") == n]
@@ -103,7 +105,8 @@ def _rows(n_max: int, counts: dict[int, tuple[int, int]], shapes: dict[str, dict
         row["errors"] = sum(1 for r in mine if "error" in r)
         row["first_no_unzip"] = [r["id"] for r in mine if r.get("unzip") == "none"][:_LISTED]
         row["first_undecided"] = [r["id"] for r in mine if "undecided" in (r.get("unzip"), r.get("unfold"))][:_LISTED]
-        row["seconds"] = round(seconds.get(n, 0.0), 1)
+        row["seconds"] = round(wall.get(n, 0.0), 1)
+        row["cpu_seconds"] = round(cpu.get(n, 0.0), 1)
         rows.append(row)
     return rows
 
@@ -184,18 +187,20 @@ def run_census(
             if sid in records:
                 continue
             todo.append((sid, n, tuple(tuple(c) for c in cells)))
-    seconds: dict[int, float] = {}
+    wall: dict[int, float] = {}  # search seconds per n, this run's, added over the shapes
+    cpu: dict[int, float] = {}
     start = time.perf_counter()
     last = time.monotonic()
 
     def save(complete: bool) -> None:
         data = {
             "format": CENSUS_FORMAT, "n": n_max, "settings": settings.to_dict(), "complete": complete,
-            "rows": _rows(n_max, counts, records, seconds),
+            "rows": _rows(n_max, counts, records, wall, cpu),
             "run": {"seconds": round(time.perf_counter() - start, 1), "workers": used[0],
                     "where": scheduler or ("serial" if workers == 0 else "local Dask cluster"),
                     "censused": done, "kept": kept},
-            "shapes": [{k: v for k, v in r.items() if k != "seconds"} for _, r in sorted(records.items())],
+            "shapes": [{k: v for k, v in r.items() if k not in ("seconds", "cpu_seconds")}
+                       for _, r in sorted(records.items())],
         }
         _write(path, data)
 
@@ -205,7 +210,8 @@ def run_census(
     with _runner(scheduler, workers, connect_timeout) as (run, used[0]):
         for recs, _worker in run(chunks):
             for r in recs:
-                seconds[r["n"]] = seconds.get(r["n"], 0.0) + float(r.get("seconds", 0.0))
+                wall[r["n"]] = wall.get(r["n"], 0.0) + float(r.get("seconds", 0.0))
+                cpu[r["n"]] = cpu.get(r["n"], 0.0) + float(r.get("cpu_seconds", 0.0))
                 records[r["id"]] = r
             done += len(recs)
             if on_progress is not None:
@@ -217,7 +223,7 @@ def run_census(
     from ._report import write_page
 
     page = write_page(out, json.loads(path.read_text()))
-    rows = tuple(_rows(n_max, counts, records, seconds))
+    rows = tuple(_rows(n_max, counts, records, wall, cpu))
     return CensusReport(rows, done, kept, time.perf_counter() - start, used[0], path, page)
 
 
