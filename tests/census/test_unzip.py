@@ -10,7 +10,7 @@ from voxfab.census._certificate import check_certificate
 from voxfab.errors import NoNetExistsError, UnfoldError
 from voxfab.unfold import Net, unfold, validate
 
-from ._examples import ZIPLESS_43
+from ._examples import ZIPLESS_17, ZIPLESS_43
 
 
 def _cut_edges(net: Net) -> list[tuple[tuple[int, ...], tuple[int, ...]]]:
@@ -106,6 +106,25 @@ def test_the_zipless_polycube_has_no_unzipping_by_its_colour_count_yet_unfolds()
     # Like the paper's polycubes, it has an edge unfolding all the same.
     net = unfold(g, rng=0, timeout=60, tab_aware=False)
     validate(g, net)
+
+
+def test_a_polycube_without_an_unzipping_is_proved_by_the_solver_and_re_checked() -> None:
+    g = grid_of(ZIPLESS_17)
+    assert topology(g).kind == "manifold"
+    found = unzip(g, timeout=120)
+    assert found.outcome == "none", found.why
+    cert = found.certificate
+    assert cert["kind"] == "solver" and cert["overlaps"]
+    assert "no cut path through the 54 corners" in check_certificate(ZIPLESS_17, cert)
+    # Each no-good is re-derived, not trusted: a chain that does not fold onto itself is refused ...
+    bad = {**cert, "overlaps": [*cert["overlaps"][:-1], [[0, 1]]]}
+    with pytest.raises(ValueError):
+        check_certificate(ZIPLESS_17, bad)
+    # ... and too few no-goods leave a path: the re-solved model finds it.
+    with pytest.raises(ValueError, match="proves nothing"):
+        check_certificate(ZIPLESS_17, {**cert, "overlaps": cert["overlaps"][: len(cert["overlaps"]) // 2]})
+    # It has an edge unfolding in the unit-square model all the same.
+    validate(g, unfold(g, rng=0, timeout=60, tab_aware=False))
 
 
 def test_a_surface_outside_the_model_is_refused() -> None:
