@@ -138,25 +138,25 @@ def unzip(grid: npt.ArrayLike, *, timeout: float = 10.0) -> Unzipping:
     cut = []
     for i, (a, k, _, _) in enumerate(edges):
         u, v = int(sg.vertex[a, k]), int(sg.vertex[a, (k + 1) % 4])
-        uv, vu = m.NewBoolVar(f"u{i}"), m.NewBoolVar(f"v{i}")
+        uv, vu = m.new_bool_var(f"u{i}"), m.new_bool_var(f"v{i}")
         arcs += [(u, v, uv), (v, u, vu)]
         cut.append((uv, vu))
     starts, ends = [], []
     for v in range(dummy):
         if corner[v]:  # the path's ends, joined through the dummy node into one circuit
-            s, t = m.NewBoolVar(f"s{v}"), m.NewBoolVar(f"t{v}")
+            s, t = m.new_bool_var(f"s{v}"), m.new_bool_var(f"t{v}")
             arcs += [(dummy, v, s), (v, dummy, t)]
             starts.append(s)
             ends.append(t)
         else:  # a flat vertex may stay off the path
-            arcs.append((v, v, m.NewBoolVar(f"skip{v}")))
-    m.AddCircuit(arcs)
+            arcs.append((v, v, m.new_bool_var(f"skip{v}")))
+    m.add_circuit(arcs)
     # A path and its reverse are one cut: the end at the lower corner is its start.
     for j in range(len(starts)):
-        m.Add(sum(ends[: j + 1]) >= 1).OnlyEnforceIf(starts[j])
+        m.add(sum(ends[: j + 1]) >= 1).only_enforce_if(starts[j])
     nogoods: list[list[int]] = []
     for path in _short_overlaps(sg, faces, edges, _SHORT_PATH, deadline):
-        m.AddBoolOr([lit for i in path for lit in cut[i]])
+        m.add_bool_or([lit for i in path for lit in cut[i]])
         nogoods.append(list(path))
     solver = cp_model.CpSolver()
     prm = solver.parameters
@@ -170,7 +170,7 @@ def unzip(grid: npt.ArrayLike, *, timeout: float = 10.0) -> Unzipping:
         if left <= 0:
             break
         prm.max_time_in_seconds = left
-        status = solver.Solve(m)
+        status = solver.solve(m)
         if status == cp_model.INFEASIBLE:
             return Unzipping("none", None, (), {
                 "kind": "solver", "faces": [_face_key(sg, a) for a in range(f)],
@@ -180,7 +180,10 @@ def unzip(grid: npt.ArrayLike, *, timeout: float = 10.0) -> Unzipping:
                 f"{int(corner.sum())} corner vertices folds into an overlap; {rounds} rounds of overlaps ruled out)")
         if status not in (cp_model.OPTIMAL, cp_model.FEASIBLE):
             break
-        is_cut = [solver.BooleanValue(uv) or solver.BooleanValue(vu) for uv, vu in cut]
+        # Each literal read once: the solver's per-literal reads dominate small models otherwise.
+        forward = [solver.boolean_value(uv) for uv, _ in cut]
+        backward = [solver.boolean_value(vu) for _, vu in cut]
+        is_cut = [a or b for a, b in zip(forward, backward)]
         fold_ids = [i for i, c in enumerate(is_cut) if not c]
         folds = [edges[i] for i in fold_ids]
         cell, rot, parent, via = _fold_flat(faces, folds, f)
@@ -200,23 +203,23 @@ def unzip(grid: npt.ArrayLike, *, timeout: float = 10.0) -> Unzipping:
             validate(g, net, strict=True)
             if net.folds.shape[0] != len(fold_ids):
                 raise UnfoldError("unzip: the developed net does not keep every uncut edge as a fold")
-            return Unzipping("found", net, _path_points(sg, edges, is_cut, cut, solver, dummy), None, "")
+            return Unzipping("found", net, _path_points(sg, edges, forward, backward), None, "")
         for u, v in clashes:
             tree = [fold_ids[i] for i in _tree_path(u, v, parent, via)]
-            m.AddBoolOr([lit for i in tree for lit in cut[i]])
+            m.add_bool_or([lit for i in tree for lit in cut[i]])
             nogoods.append(tree)
         for e in slits:
             a, _, b, _ = edges[e]
             tree = [fold_ids[i] for i in _tree_path(a, b, parent, via)]
             lits = [lit for i in tree for lit in cut[i]]
             for lit in cut[e]:  # the edge stays uncut, or the tree path between its squares is cut
-                m.AddBoolOr([*lits, lit.Not()])
+                m.add_bool_or([*lits, ~lit])
             slit_rules.append((tree, e))
         rounds += 1
-        m.ClearHints()
-        for uv, vu in cut:
-            m.AddHint(uv, solver.BooleanValue(uv))
-            m.AddHint(vu, solver.BooleanValue(vu))
+        m.clear_hints()
+        for (uv, vu), a, b in zip(cut, forward, backward):
+            m.add_hint(uv, a)
+            m.add_hint(vu, b)
     return Unzipping("undecided", None, (), None,
                      f"undecided: the unzipping search ran out of time on the {f}-square surface "
                      f"({rounds} rounds of overlaps ruled out); raise the timeout")
@@ -237,17 +240,17 @@ def _slits(sg: Any, edges: list, is_cut: list[bool], cell: npt.NDArray[np.int64]
     return out
 
 
-def _path_points(sg: Any, edges: list, is_cut: list[bool], cut: list, solver: Any,
-                 dummy: int) -> tuple[tuple[int, int, int], ...]:
-    """The cut path's lattice points from its start."""
+def _path_points(sg: Any, edges: list, forward: list[bool],
+                 backward: list[bool]) -> tuple[tuple[int, int, int], ...]:
+    """The cut path's lattice points from its start, from each edge's arc taken forward or backward."""
     step: dict[int, int] = {}
     into: set[int] = set()
-    for (a, k, _, _), (uv, vu) in zip(edges, cut):
+    for (a, k, _, _), uv, vu in zip(edges, forward, backward):
         u, v = int(sg.vertex[a, k]), int(sg.vertex[a, (k + 1) % 4])
-        if solver.BooleanValue(uv):
+        if uv:
             step[u] = v
             into.add(v)
-        elif solver.BooleanValue(vu):
+        elif vu:
             step[v] = u
             into.add(u)
     start = next(v for v in step if v not in into)
