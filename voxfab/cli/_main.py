@@ -28,7 +28,7 @@ def _commands() -> dict[str, str]:
 
     # The commands of the outputs come from the table of outputs, in its order.
     made = dict.fromkeys(o.command for o in outputs().values() if o.command)
-    names = ["info", "convert", "repo", "build", *made, "studio", "explore", "batch", "warmup"]
+    names = ["info", "convert", "repo", "build", *made, "studio", "explore", "batch", "census", "warmup"]
     return {name: f"voxfab.cli.{name}" for name in names}
 
 

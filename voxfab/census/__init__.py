@@ -1,0 +1,46 @@
+"""The polycube census: every polycube of up to n cubes, unfolded and unzipped.
+
+``polycubes`` streams every polycube up to rotation in a fixed order (canonical
+growth), ``count_free`` counts them up to rotation and up to rotation and
+reflection, ``topology`` classifies a surface as the unzipping paper does,
+``unzip`` searches an edge-unzipping in that paper's model, ``census_shape``
+runs every search on one polycube, ``run_census`` runs them all (serially or on
+Dask) into ``census.json`` and a page, and ``check_certificate`` re-checks a
+"no unzipping" certificate from the cells alone.
+"""
+
+from ._enumerate import MAX_CUBES, canonical_cells, count_free, polycube_levels, polycubes
+from ._report import cubes_svg, net_svg, write_page
+from ._run import CENSUS_FORMAT, CensusReport, check_census_size, run_census, shape_id
+from ._task import CensusSettings, CensusTask, census_shape, census_task, check_settings, net_paths
+from ._topology import SURFACE_KINDS, Topology, grid_of, topology
+from ._unzip import UNZIP_OUTCOMES, Unzipping, unzip
+
+__all__ = [
+    "CENSUS_FORMAT",
+    "CensusReport",
+    "CensusSettings",
+    "CensusTask",
+    "census_shape",
+    "census_task",
+    "check_census_size",
+    "check_settings",
+    "cubes_svg",
+    "net_paths",
+    "net_svg",
+    "run_census",
+    "shape_id",
+    "write_page",
+    "MAX_CUBES",
+    "SURFACE_KINDS",
+    "Topology",
+    "UNZIP_OUTCOMES",
+    "Unzipping",
+    "canonical_cells",
+    "count_free",
+    "grid_of",
+    "polycube_levels",
+    "polycubes",
+    "topology",
+    "unzip",
+]

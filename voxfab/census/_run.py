@@ -1,0 +1,276 @@
+"""``census.json``: every polycube of 1..N cubes unfolded and unzipped, serially or on Dask, resumable.
+
+The client enumerates the polycubes (:mod:`._enumerate`, a fixed order), sends
+chunks of them to the workers (:func:`._task.census_task`), which write the nets
+under ``DIR/nets/`` and send back small records, and writes ``DIR/census.json``
+(under a temporary name, then renamed) every few seconds and at the end, with
+the page ``DIR/census.html``.  A run started again on the same DIR with the
+same settings keeps every record whose net files are there and censuses only
+the rest, so an interrupted run resumes, and ``census 8`` after ``census 6``
+censuses only the polycubes of 7 and 8 cubes.
+
+Everything in ``census.json`` but the times and the workers (``rows[].seconds``
+and ``rows[].cpu_seconds``, this run's search time per n, and ``run``) depends
+only on N and the settings: a serial run and a Dask run write the same file
+apart from those.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import dataclasses
+import json
+import time
+import uuid
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import Any
+
+from voxfab.errors import InvalidShapeError, RepositoryError
+
+from ._task import CensusSettings, CensusTask, census_task
+
+__all__ = ["CENSUS_FORMAT", "CensusReport", "check_census_size", "run_census", "shape_id"]
+
+CENSUS_FORMAT = "voxfab-census/1"
+#: Shapes sent to a worker at once: a polycube takes tens of milliseconds, a Dask task a few.
+_CHUNK = 24
+#: Shapes listed per n as the first without an unzipping (or undecided), with their proofs.
+_LISTED = 10
+#: Seconds between two saves of the partial census.
+_SAVE_EVERY = 15.0
+
+
+def shape_id(n: int, index: int) -> str:
+    """The census name of the ``index``-th polycube (from 0) of ``n`` cubes in the fixed order: ``08-000001``."""
+    return f"{n:02d}-{index + 1:06d}"
+
+
+def check_census_size(n: object) -> int:
+    """Return N as an int of 1 to :data:`MAX_CUBES`, or refuse it in one line."""
+    from ._enumerate import MAX_CUBES
+
+    if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= MAX_CUBES:
+        raise InvalidShapeError(f"census N: expected a whole number of cubes from 1 to {MAX_CUBES}, got {n!r}")
+    return n
+
+
+@dataclasses.dataclass(frozen=True)
+class CensusReport:
+    """What a census run did: its rows, the shapes censused now and kept from an earlier run, time, workers."""
+
+    rows: tuple[dict[str, Any], ...]
+    censused: int
+    kept: int
+    seconds: float
+    workers: int
+    path: Path
+    page: Path
+
+
+def _read_previous(path: Path, settings: dict[str, Any], outdir: Path) -> dict[str, dict[str, Any]]:
+    """Records of an earlier run with the same settings whose net files are all there."""
+    if not path.is_file():
+        return {}
+    try:
+        data = json.loads(path.read_text())
+    except (OSError, ValueError):
+        return {}
+    if not isinstance(data, dict) or data.get("format") != CENSUS_FORMAT or data.get("settings") != settings:
+        return {}
+    kept = {}
+    for rec in data.get("shapes", []):
+        if not isinstance(rec, dict) or "id" not in rec or "error" in rec:
+            continue
+        files = [rec.get("net"), rec.get("unzip_net")]
+        if all(f is None or (outdir / str(f)).is_file() for f in files):
+            kept[str(rec["id"])] = rec
+    return kept
+
+
+def _rows(n_max: int, counts: dict[int, tuple[int, int]], shapes: dict[str, dict[str, Any]],
+          wall: dict[int, float], cpu: dict[int, float]) -> list[dict[str, Any]]:
+    """One row per n: the counts, the outcomes, the surfaces, the shapes to show, and this run's search time."""
+    rows = []
+    for n in range(1, n_max + 1):
+        mine = [r for k, r in sorted(shapes.items()) if r.get("n") == n]
+        row: dict[str, Any] = {"n": n, "free": counts[n][0], "free_mirror": counts[n][1], "censused": len(mine)}
+        for key in ("unfold", "unzip"):
+            for outcome in ("found", "none", "undecided"):
+                row[f"{key}_{outcome}"] = sum(1 for r in mine if r.get(key) == outcome)
+        for kind in ("manifold", "edge touching", "vertex touching", "handle"):
+            row[kind.replace(" ", "_")] = sum(1 for r in mine if r.get("surface") == kind)
+        row["square_zipper_found"] = sum(1 for r in mine if r.get("square_zipper") == "found")
+        row["square_zipper_none"] = sum(1 for r in mine if r.get("square_zipper") == "none")
+        row["errors"] = sum(1 for r in mine if "error" in r)
+        row["first_no_unzip"] = [r["id"] for r in mine if r.get("unzip") == "none"][:_LISTED]
+        row["first_undecided"] = [r["id"] for r in mine if "undecided" in (r.get("unzip"), r.get("unfold"))][:_LISTED]
+        row["seconds"] = round(wall.get(n, 0.0), 1)
+        row["cpu_seconds"] = round(cpu.get(n, 0.0), 1)
+        rows.append(row)
+    return rows
+
+
+def _write(path: Path, data: dict[str, Any]) -> None:
+    from voxfab._shared.atomic import write_text
+
+    # One row and one shape per line: a diff of two runs shows the shapes that differ.
+    head = [f" {json.dumps(k)}: {json.dumps(v, sort_keys=True)}" for k, v in sorted(data.items())
+            if k not in ("rows", "shapes")]
+    for key in ("rows", "shapes"):
+        items = ",\n  ".join(json.dumps(s, sort_keys=True) for s in data[key])
+        head.append(f' "{key}": [\n  {items}\n ]')
+    write_text(path, "{\n" + ",\n".join(head) + "\n}\n")
+
+
+def run_census(
+    n_max: int,
+    outdir: str | Path,
+    *,
+    settings: CensusSettings | None = None,
+    scheduler: str | None = None,
+    workers: int = 2,
+    connect_timeout: float = 30.0,
+    on_progress: Callable[[int, int], None] | None = None,
+) -> CensusReport:
+    """Census every polycube of 1..``n_max`` cubes into ``outdir``.
+
+    Parameters
+    ----------
+    n_max : int
+        The largest number of cubes, 1 to :data:`MAX_CUBES`.
+    outdir : path
+        ``DIR``: made when missing (its parent must exist); an earlier census there is resumed.
+    settings : CensusSettings, optional
+        Seed and time limit of each search (default: seed 0, 10 s).
+    scheduler : str, optional
+        A running Dask scheduler's address; otherwise ``workers`` local Dask
+        processes, or this process alone when ``workers`` is 0.
+    connect_timeout : float
+        Seconds to wait for the scheduler and its first worker.
+    on_progress : callable, optional
+        Called with (shapes done, shapes to do) as records arrive.
+
+    Raises
+    ------
+    InvalidShapeError
+        A bad N.
+    RepositoryError
+        A bad scheduler or worker count (as for ``voxfab batch``).
+    OutputError
+        ``outdir`` cannot be made.
+    """
+    from voxfab._shared.atomic import check_output
+    from voxfab.batch._cluster import check_wait, check_workers
+
+    from ._enumerate import _decode as decode_forms
+    from ._enumerate import count_free, polycube_levels
+
+    n_max = check_census_size(n_max)
+    settings = settings if settings is not None else CensusSettings()
+    connect_timeout = check_wait(connect_timeout)
+    if scheduler is None and workers != 0:
+        workers = check_workers(workers)
+    out = Path(outdir)
+    path = out / "census.json"
+    check_output(path, parents=True)
+    out.mkdir(exist_ok=True)
+    (out / "nets").mkdir(exist_ok=True)
+    records = {k: v for k, v in _read_previous(path, settings.to_dict(), out).items() if int(k[:2]) <= n_max}
+    kept = len(records)
+    counts: dict[int, tuple[int, int]] = {}
+    todo: list[tuple[str, int, tuple[tuple[int, int, int], ...]]] = []
+    for n, forms in polycube_levels(n_max):
+        counts[n] = count_free(n, forms)
+        for i, cells in enumerate(decode_forms(forms, n).tolist()):
+            sid = shape_id(n, i)
+            if sid in records:
+                continue
+            todo.append((sid, n, tuple(tuple(c) for c in cells)))
+    wall: dict[int, float] = {}  # search seconds per n, this run's, added over the shapes
+    cpu: dict[int, float] = {}
+    start = time.perf_counter()
+    last = time.monotonic()
+
+    def save(complete: bool) -> None:
+        data = {
+            "format": CENSUS_FORMAT, "n": n_max, "settings": settings.to_dict(), "complete": complete,
+            "rows": _rows(n_max, counts, records, wall, cpu),
+            "run": {"seconds": round(time.perf_counter() - start, 1), "workers": used[0],
+                    "where": scheduler or ("serial" if workers == 0 else "local Dask cluster"),
+                    "censused": done, "kept": kept},
+            "shapes": [{k: v for k, v in r.items() if k not in ("seconds", "cpu_seconds")}
+                       for _, r in sorted(records.items())],
+        }
+        _write(path, data)
+
+    done = 0
+    used = [0]
+    chunks = (CensusTask(tuple(todo[i:i + _CHUNK]), str(out), settings) for i in range(0, len(todo), _CHUNK))
+    with _runner(scheduler, workers, connect_timeout) as (run, used[0]):
+        for recs, _worker in run(chunks):
+            for r in recs:
+                wall[r["n"]] = wall.get(r["n"], 0.0) + float(r.get("seconds", 0.0))
+                cpu[r["n"]] = cpu.get(r["n"], 0.0) + float(r.get("cpu_seconds", 0.0))
+                records[r["id"]] = r
+            done += len(recs)
+            if on_progress is not None:
+                on_progress(done, len(todo))
+            if time.monotonic() - last > _SAVE_EVERY:
+                save(False)
+                last = time.monotonic()
+    save(True)
+    from ._report import write_page
+
+    page = write_page(out, json.loads(path.read_text()))
+    rows = tuple(_rows(n_max, counts, records, wall, cpu))
+    return CensusReport(rows, done, kept, time.perf_counter() - start, used[0], path, page)
+
+
+@contextlib.contextmanager
+def _runner(scheduler: str | None, workers: int, timeout: float) -> Iterator[tuple[Callable, int]]:
+    """A function running census tasks (yielding each one's result as it comes), and the worker count."""
+    if scheduler is None and workers == 0:
+        yield (lambda tasks: (census_task(t) for t in tasks)), 1
+        return
+    from voxfab.batch._cluster import connect
+
+    cl = connect(scheduler, workers, None, timeout)
+    try:
+        yield (lambda tasks: _on_dask(cl, tasks, 4 * max(1, cl.workers))), cl.workers
+    finally:
+        cl.close()
+
+
+def _on_dask(cl: Any, tasks: Iterator[CensusTask], window: int) -> Iterator[tuple[list[dict[str, Any]], str]]:
+    """Run tasks through a sliding window of futures; yield each result as it arrives, cancel the rest on exit."""
+    from distributed import as_completed
+
+    run_id = uuid.uuid4().hex[:12]
+    in_flight: dict[str, Any] = {}
+    count = 0
+
+    def submit(t: CensusTask) -> Any:
+        nonlocal count
+        key = f"voxfab-census-{run_id}-{count}"
+        count += 1
+        in_flight[key] = cl.client.submit(census_task, t, key=key, pure=False)
+        return in_flight[key]
+
+    pending = as_completed([submit(t) for _, t in zip(range(window), tasks)])
+    try:
+        for future in pending:
+            try:
+                result = future.result()
+            except Exception as exc:  # noqa: BLE001 - a lost worker fails its chunk, named in the error
+                raise RepositoryError(f"a census worker failed: {type(exc).__name__}: {' '.join(str(exc).split())}") \
+                    from None
+            in_flight.pop(future.key, None)
+            future.release()
+            yield result
+            nxt = next(tasks, None)
+            if nxt is not None:
+                pending.add(submit(nxt))
+    finally:
+        for f in in_flight.values():
+            f.cancel()

@@ -1,0 +1,158 @@
+"""The census of one polycube: its surface, an edge unfolding and an edge-unzipping.
+
+* **Edge unfolding, unit-square model** (every unit square a face of the net,
+  the folds a spanning tree of the squares): the project's hunt step
+  (:func:`voxfab.unfold.hunt_shape`), the random engine first and the exact
+  CP-SAT strategy when it fails, which finds a net or proves that none exists.
+* **Edge-unzipping, the paper's model** (:func:`voxfab.census.unzip`), on
+  polycubes whose surface is a 2-manifold of genus 0; the others are listed by
+  their surface kind and not unzipped.
+* **Unit-square zipper** (``voxfab net --zipper``: the cut path visits every
+  vertex, flat ones too), from the same hunt step, for comparison.
+
+Each search has its own time limit; one that runs out is ``undecided``, never an
+answer.  A worker writes the nets it finds under ``DIR/nets/`` (each file under a
+temporary name, then renamed) and returns a small JSON record.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+__all__ = ["CensusSettings", "CensusTask", "census_shape", "census_task", "check_settings", "net_paths"]
+
+#: Folder of DIR holding the nets.
+NETS = "nets"
+
+
+@dataclasses.dataclass(frozen=True)
+class CensusSettings:
+    """The searches' limits: part of a census's identity (a resumed run keeps only records made with the same).
+
+    Attributes
+    ----------
+    seed : int
+        The random engine's seed.
+    timeout : float
+        Seconds for each search of one shape: the random engine, the exact strategy, the unzipping
+        search and the unit-square zipper search.
+    square_zipper : bool
+        Also search the unit-square zipper (``voxfab net --zipper``); off, ``square_zipper`` is ``skipped``.
+    """
+
+    seed: int = 0
+    timeout: float = 10.0
+    square_zipper: bool = False
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"seed": self.seed, "timeout": self.timeout, "square_zipper": self.square_zipper}
+
+
+def check_settings(*, seed: object = 0, timeout: object = 10.0, square_zipper: bool = False) -> CensusSettings:
+    """Return the settings, or refuse a bad seed or time limit in one line."""
+    from voxfab.errors import InvalidShapeError
+    from voxfab.unfold._hunt import _check_limit
+
+    if isinstance(seed, bool) or not isinstance(seed, int) or not 0 <= seed < 2**63:
+        raise InvalidShapeError(f"--seed: expected a whole number from 0 to 2^63 - 1, got {str(seed)[:40]!r}")
+    limit = _check_limit(timeout, "--timeout")
+    if limit > 3600:
+        raise InvalidShapeError(f"--timeout: {limit:g} s is over the limit of 3600 s per search")
+    return CensusSettings(seed, limit, bool(square_zipper))
+
+
+@dataclasses.dataclass(frozen=True)
+class CensusTask:
+    """A chunk of polycubes for one worker: ``(id, n, cells)`` each, the output folder and the settings."""
+
+    shapes: tuple[tuple[str, int, tuple[tuple[int, int, int], ...]], ...]
+    outdir: str
+    settings: CensusSettings
+
+
+def net_paths(shape_id: str) -> tuple[str, str]:
+    """Paths relative to DIR of a shape's unfolding and unzipping nets."""
+    return f"{NETS}/{shape_id}.net.json", f"{NETS}/{shape_id}.unzip.json"
+
+
+def census_shape(shape_id: str, cells: Any, outdir: str | Path | None, settings: CensusSettings) -> dict[str, Any]:
+    """Census one polycube; write its nets under ``outdir`` (none when ``outdir`` is None).
+
+    Returns
+    -------
+    dict
+        ``id``, ``n``, ``cells``, ``surface``, ``unfold``, ``unzip``, ``net``,
+        ``unzip_net``, ``square_zipper``, and ``certificate`` or ``why`` where they
+        apply, plus ``seconds`` and ``cpu_seconds`` (taken out of the report's shapes: times vary).
+    """
+    from voxfab._shared.atomic import write_text
+    from voxfab.unfold import hunt_shape
+
+    from ._topology import grid_of, topology
+    from ._unzip import unzip
+
+    start, cpu = time.perf_counter(), time.process_time()
+    c = np.asarray(cells, dtype=np.int64).reshape(-1, 3)
+    g = grid_of(c)
+    topo = topology(g)
+    hunt = hunt_shape(g, seed=settings.seed, timeout=settings.timeout, exact_timeout=settings.timeout,
+                      zipper_timeout=settings.timeout, zipper=settings.square_zipper)
+    unfold = {"random": "found", "exact": "found"}.get(hunt.net, hunt.net)
+    net_file, unzip_file = net_paths(shape_id)
+    record: dict[str, Any] = {
+        "id": shape_id, "n": int(c.shape[0]), "cells": c.tolist(), "surface": topo.kind,
+        "corners": list(topo.corners), "flats": list(topo.flats),
+        "unfold": unfold, "unfold_by": hunt.net if unfold == "found" else None,
+        "net": net_file if hunt.one_piece is not None else None,
+        "square_zipper": hunt.zipper,
+    }
+    why = list(hunt.why)
+    if outdir is not None and hunt.one_piece is not None:
+        write_text(Path(outdir) / net_file, hunt.one_piece.to_json())
+    if topo.kind == "manifold":
+        found = unzip(g, timeout=settings.timeout)
+        record["unzip"] = found.outcome
+        record["unzip_net"] = unzip_file if found.net is not None else None
+        if found.net is not None:
+            record["unzip_path"] = [list(p) for p in found.path]
+            if outdir is not None:
+                write_text(Path(outdir) / unzip_file, found.net.to_json())
+        if found.certificate is not None:
+            record["certificate"] = found.certificate
+        if found.why:
+            why.append(found.why)
+    else:
+        record["unzip"] = None  # outside the paper's model: counted by its surface kind
+        record["unzip_net"] = None
+    if why:
+        record["why"] = why
+    record["seconds"] = time.perf_counter() - start
+    record["cpu_seconds"] = time.process_time() - cpu
+    return record
+
+
+def census_task(task: CensusTask) -> tuple[list[dict[str, Any]], str]:
+    """Census every shape of a task; return the records and the worker's name."""
+    import socket
+
+    from voxfab.errors import VoxfabError
+
+    try:
+        from distributed import get_worker
+
+        worker = get_worker().name
+    except (ImportError, ValueError):
+        worker = f"{socket.gethostname()}:serial"
+    out = []
+    for shape_id, _, cells in task.shapes:
+        try:
+            out.append(census_shape(shape_id, cells, task.outdir, task.settings))
+        except VoxfabError as exc:  # a shape the searches refuse is recorded, never a lost chunk
+            out.append({"id": shape_id, "n": len(cells), "cells": [list(p) for p in cells], "error":
+                        " ".join(str(exc).split())})
+    return out, str(worker)

@@ -1,0 +1,55 @@
+"""``voxfab census N -o DIR``: every polycube of 1..N cubes, unfolded and unzipped, into census.json and a page."""
+
+from __future__ import annotations
+
+import argparse
+
+from voxfab.cli._common import path_argument
+
+HELP = ("census every polycube of 1..N cubes: an edge unfolding and an edge-unzipping of each "
+        "(DIR/census.json, DIR/census.html, DIR/nets/)")
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("n", type=int, metavar="N", help="the largest number of cubes (1 to 11)")
+    parser.add_argument("-o", "--output", type=path_argument, required=True, metavar="DIR",
+                        help="output folder; an earlier census there with the same settings is resumed")
+    parser.add_argument("--timeout", type=float, default=10.0, metavar="S",
+                        help="seconds for each search of one polycube; a search that runs out is undecided "
+                             "(default 10)")
+    parser.add_argument("--seed", type=int, default=0, metavar="S", help="the random engine's seed (default 0)")
+    parser.add_argument("--square-zipper", action="store_true",
+                        help="also search each polycube's unit-square zipper (the cut path through every vertex, "
+                             "as voxfab net --zipper)")
+    parser.add_argument("--scheduler", metavar="ADDRESS",
+                        help="a running Dask scheduler (tcp://HOST:PORT); default: --workers local processes")
+    parser.add_argument("--workers", type=int, default=2, metavar="K",
+                        help="local Dask worker processes; 0 runs in this process (default 2)")
+    parser.add_argument("--connect-timeout", type=float, default=30.0, metavar="S",
+                        help="seconds to wait for the scheduler and a first worker (default 30)")
+
+
+def run(args: argparse.Namespace) -> int:
+    from voxfab._shared.progress import meter
+    from voxfab.census import check_census_size, check_settings, run_census
+
+    check_census_size(args.n)
+    settings = check_settings(seed=args.seed, timeout=args.timeout, square_zipper=args.square_zipper)
+    with meter(None, desc="census") as bar:
+        def progress(done: int, total: int) -> None:
+            bar.total = total
+            bar.update(done - bar.done)
+
+        report = run_census(args.n, args.output, settings=settings, scheduler=args.scheduler,
+                            workers=args.workers, connect_timeout=args.connect_timeout, on_progress=progress)
+    print(f"{report.censused} polycubes censused, {report.kept} kept from an earlier run, in "
+          f"{report.seconds:.1f} s on {report.workers} worker(s)")
+    print(f"{'n':>3} {'free':>7} {'mirror':>7} {'unfold':>16} {'unzip':>16} {'outside':>8}")
+    for r in report.rows:
+        outside = r["edge_touching"] + r["vertex_touching"] + r["handle"]
+        print(f"{r['n']:>3} {r['free']:>7} {r['free_mirror']:>7} "
+              f"{r['unfold_found']:>6}/{r['unfold_none']}/{r['unfold_undecided']:<6} "
+              f"{r['unzip_found']:>6}/{r['unzip_none']}/{r['unzip_undecided']:<6} {outside:>8}")
+    print("(unfold and unzip: found/none/undecided; outside: touchings and handles, not unzipped)")
+    print(f"wrote {report.path} and {report.page}")
+    return 0
