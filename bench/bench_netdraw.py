@@ -59,6 +59,9 @@ def _layers(path: Path) -> dict[str, list[np.ndarray]]:
     for e in ezdxf.readfile(path).modelspace():
         if e.dxftype() == "LINE":
             pts = np.array([tuple(e.dxf.start)[:2], tuple(e.dxf.end)[:2]])
+        elif e.dxftype() == "LWPOLYLINE":
+            pts = np.array([tuple(p)[:2] for p in e.get_points("xy")])
+            pts = np.vstack([pts, pts[:1]]) if e.closed else pts
         else:
             pts = np.array([tuple(v.dxf.location)[:2] for v in e.vertices])
             pts = np.vstack([pts, pts[:1]]) if e.is_closed else pts
@@ -67,7 +70,7 @@ def _layers(path: Path) -> dict[str, list[np.ndarray]]:
 
 
 def measured(path: Path, face: float) -> tuple[float, float]:
-    """Median digit height and smallest tab depth in mm, read from a net's R12 DXF."""
+    """Median digit height and smallest tab depth in mm, read from a net's DXF."""
     import shapely
 
     layers = _layers(path)

@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 import shapely
 import trimesh
+from _dxf_read import closed_rings
 
 from voxfab.fabricate.mesh import build_mesh
 from voxfab.recipe import load_recipe, make_shape
@@ -60,8 +61,7 @@ def dxf_parts(path) -> tuple[list[float], np.ndarray]:
     """Areas of the parts cut on one DXF sheet (outer rings minus the rings inside them) and all cut points."""
     doc = ezdxf.readfile(path)
     assert not doc.audit().has_errors
-    rings = [shapely.Polygon([tuple(v.dxf.location)[:2] for v in e.vertices])
-             for e in doc.modelspace().query("POLYLINE") if e.dxf.layer == "CUT"]
+    rings = [shapely.Polygon(pts) for pts in closed_rings(doc)]
     points = np.concatenate([np.asarray(r.exterior.coords) for r in rings])
     rings.sort(key=lambda r: -r.area)
     outer: list[shapely.Polygon] = []

@@ -131,3 +131,26 @@ def test_count_stops_at_the_overall_budget(tmp_path):
     found = json.loads(r.stdout)["nets"]
     assert 1 <= len(found) < 50
     assert f"{len(found)} distinct nets found of the 50 asked for" in r.stderr
+
+
+def test_exact_strategy_alone_gives_the_queen_one_net_every_run(tmp_path):
+    """--strategy exact with no box searches a box that holds any net: a one-piece net, the same whatever the seed."""
+    from voxfab.recipe import load_recipe, make_shape
+    from voxfab.shape import surface_graph
+    from voxfab.unfold._exact import any_box
+
+    grid = make_shape(load_recipe("recipes/chess/queen.toml")).grid
+    np.save(tmp_path / "queen.npy", grid)
+    texts = []
+    for seed in (0, 7):
+        r = _run("queen.npy", "-o", f"q{seed}.json", "--strategy", "exact", "--seed", seed, cwd=tmp_path)
+        assert r.returncode == 0, r.stderr
+        texts.append((tmp_path / f"q{seed}.json").read_text())
+    assert texts[0] == texts[1]
+    net = Net.from_json(texts[0])
+    faces = surface_graph(grid).face_count
+    assert net.strategy == "exact" and len(net.voxel) == faces == 1270
+    report = validate(grid, net)  # refolded onto the queen, every face once, no overlap on the sheet
+    assert report.ok, report
+    w, h = np.ptp(net.corners2d.reshape(-1, 2), axis=0)
+    assert min(w, h) <= any_box(faces)[0] and max(w, h) <= any_box(faces)[1]

@@ -6,8 +6,13 @@ import json
 import subprocess
 import sys
 
+import ezdxf
 import numpy as np
+import pytest
+import shapely
+from _dxf_read import closed_rings
 
+from voxfab.recipe import load_recipe, make_shape
 from voxfab.shape import examples
 
 
@@ -44,3 +49,48 @@ def test_cli_reports_bad_input_as_a_voxfab_error(tmp_path, capsys, monkeypatch) 
     assert main(["slices", "b.npy", "-o", "out", "--pitch", "0"]) == 3
     assert "pitch" in capsys.readouterr().err
     assert not (tmp_path / "out").exists()
+
+
+def _plate_areas(doc) -> list[float]:
+    """Material of each plate cut on a sheet: outlines less the holes inside them (dowel circles aside)."""
+    rings = sorted((shapely.Polygon(r) for r in closed_rings(doc)), key=lambda r: -r.area)
+    outer: list[list] = []
+    for r in rings:
+        host = [o for o in outer if o[0].contains(r)]
+        if len(host) % 2 == 0:
+            outer.append([r, r.area])
+        else:
+            host[-1][1] -= r.area
+            outer.append([r, 0.0])
+    return [a for _, a in outer if a > 0]
+
+
+def test_queen_sheets_declare_millimetres_and_r12_on_request(tmp_path) -> None:
+    """The queen's sheets are R2000 in mm by default; plate areas read back in mm² match plates.json; R12 on ask."""
+    queen = make_shape(load_recipe("recipes/chess/queen.toml"))
+    np.save(tmp_path / "queen.npy", queen.grid)
+    found: dict[str, list[float]] = {}
+    for version, code in (("", "AC1015"), ("R12", "AC1009")):
+        out = f"out{version}"
+        extra = ("--dxf-version", version) if version else ()
+        proc = _run("queen.npy", "-o", out, "--pitch", "3.4", "--dowel", "0", *extra, cwd=tmp_path)
+        assert proc.returncode == 0, proc.stderr
+        report = json.loads((tmp_path / out / "plates.json").read_text())
+        areas: list[float] = []
+        for k in range(1, report["sheets"] + 1):
+            doc = ezdxf.readfile(tmp_path / out / f"sheet-{k:02d}.dxf")
+            assert doc.dxfversion == code
+            auditor = doc.audit()
+            assert not auditor.has_errors and not auditor.has_fixes
+            if version == "R12":
+                assert "$INSUNITS" not in doc.header
+            else:
+                assert doc.header["$INSUNITS"] == 4 and doc.header["$MEASUREMENT"] == 1
+            areas += _plate_areas(doc)
+            ext = np.array(doc.header["$EXTMAX"])[:2]
+            assert (ext <= (report["sheet_width"], report["sheet_height"])).all()
+        # every plate is cut at its size in mm: the queen's widest plate is about 51 mm across (~2000 mm²)
+        assert sorted(areas) == pytest.approx(sorted(p["area"] for p in report["plates_list"]), rel=1e-6)
+        assert 1500 < max(areas) < 51 * 51
+        found[code] = sorted(areas)
+    assert found["AC1015"] == pytest.approx(found["AC1009"], rel=1e-9)

@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from _dxf_read import closed_rings
 
 from voxfab.drawing import (
     FORMATS,
@@ -101,6 +102,25 @@ def test_dxf_audits_clean_with_mm_units_extents_and_the_geometry(tmp_path: Path,
     # the square minus its hole, less the dowel circle: 40² - 10² - π·3²
     area = rings[0].area - rings[1].area - sum(np.pi * c.dxf.radius**2 for c in msp.query("CIRCLE"))
     assert area == pytest.approx(1600 - 100 - np.pi * 9)
+
+
+def test_dxf_declares_millimetres_by_default_and_r12_is_an_option(tmp_path: Path) -> None:
+    """Without a version the DXF is R2000 with $INSUNITS = 4 (mm) and $MEASUREMENT = 1, so no program reads inches."""
+    import ezdxf
+
+    page = sample_page()
+    write_drawing(Drawing((page,)), tmp_path / "d.dxf")
+    doc = ezdxf.readfile(tmp_path / "d.dxf")
+    assert doc.dxfversion == "AC1015"
+    assert doc.header["$INSUNITS"] == 4 and doc.header["$MEASUREMENT"] == 1
+    assert not doc.audit().has_errors
+    write_drawing(Drawing((page,)), tmp_path / "old.dxf", WriteOptions(dxf_version="R12"))
+    old = ezdxf.readfile(tmp_path / "old.dxf")
+    assert old.dxfversion == "AC1009" and "$INSUNITS" not in old.header
+    # the same geometry in both: the square's outline and its hole, in mm
+    rings = [sorted(map(tuple, np.round(r, 4).tolist())) for r in closed_rings(doc)]
+    assert rings == [sorted(map(tuple, np.round(r, 4).tolist())) for r in closed_rings(old)]
+    assert sorted(np.ptp(r, axis=0).tolist() for r in closed_rings(doc)) == [[10.0, 10.0], [40.0, 40.0]]
 
 
 def test_pdf_pages_are_true_size_and_print_the_lines(tmp_path: Path) -> None:

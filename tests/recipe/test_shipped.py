@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from _dxf_read import closed_rings, polylines
 
 from voxfab.recipe import build, load_recipe
 from voxfab.shape import fill_cavities, well_formed_reasons
@@ -163,10 +164,8 @@ def _plates_in_dxf(paths: list[Path]) -> int:
     count = 0
     for path in paths:
         rings = []
-        for e in ezdxf.readfile(path).modelspace().query('POLYLINE[layer=="CUT"]'):
-            pts = [(v.dxf.location.x, v.dxf.location.y) for v in e.vertices]
-            if e.is_closed and len(pts) >= 3:
-                rings.append(shapely.Polygon(pts))
+        for pts in closed_rings(ezdxf.readfile(path)):
+            rings.append(shapely.Polygon(pts))
         for i, ring in enumerate(rings):
             depth = sum(1 for j, other in enumerate(rings) if j != i and other.contains(ring))
             count += depth % 2 == 0  # inside an even number of rings: an outline, not a hole
@@ -187,23 +186,15 @@ def _sheet_mm(spec: str) -> tuple[float, float]:
 
 @functools.cache
 def _dxf_layers(path: Path) -> dict[str, list[np.ndarray]]:
-    """The polylines of each layer of a DXF (LINE and POLYLINE entities, closed ones closed), read with ezdxf.
+    """The polylines of each layer of a DXF (lines and polylines, closed ones closed), read with ezdxf.
 
     Read once per file: ezdxf takes seconds over a net of a few thousand faces.
     """
     import ezdxf
 
     out: dict[str, list[np.ndarray]] = {}
-    for e in ezdxf.readfile(path).modelspace():
-        if e.dxftype() == "LINE":
-            pts = np.array([tuple(e.dxf.start)[:2], tuple(e.dxf.end)[:2]])
-        elif e.dxftype() == "POLYLINE":
-            pts = np.array([tuple(v.dxf.location)[:2] for v in e.vertices])
-            if e.is_closed:
-                pts = np.vstack([pts, pts[:1]])
-        else:
-            continue
-        out.setdefault(e.dxf.layer, []).append(pts)
+    for layer, pts, closed in polylines(ezdxf.readfile(path)):
+        out.setdefault(layer, []).append(np.vstack([pts, pts[:1]]) if closed else pts)
     return out
 
 

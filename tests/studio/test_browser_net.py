@@ -19,6 +19,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from _dxf_read import entity_points
 
 from voxfab.repo import Repository
 from voxfab.studio._grid import centred
@@ -78,10 +79,9 @@ def _dxf_cut_bounds(raw: bytes) -> tuple[np.ndarray, np.ndarray]:
     for e in doc.modelspace():
         if e.dxf.layer != "CUT":
             continue
-        if e.dxftype() == "POLYLINE":
-            pts += [tuple(v.dxf.location)[:2] for v in e.vertices]
-        elif e.dxftype() == "LINE":
-            pts += [tuple(e.dxf.start)[:2], tuple(e.dxf.end)[:2]]
+        got = entity_points(e)
+        if got is not None:
+            pts += [tuple(p) for p in got[0]]
     p = np.array(pts)
     return p.min(axis=0), p.max(axis=0)
 

@@ -10,7 +10,7 @@ Text is single-stroke (:func:`text_polylines`), so no file needs a font.
 Backends, one module each, imported on first use:
 
 * :mod:`voxfab.drawing.svg` — SVG in mm, hairlines for lasers or visible lines for people;
-* :mod:`voxfab.drawing.dxf` — DXF R12 or R2000, mm, with extents;
+* :mod:`voxfab.drawing.dxf` — DXF R2000 declaring mm (or R12 for old cutters), with extents;
 * :mod:`voxfab.drawing.pdf` — true-size PDF for printing;
 * :mod:`voxfab.drawing.png` — a raster preview.
 
@@ -41,6 +41,7 @@ from ._legend import Legend
 from ._model import Drawing, Fill, Page, PlacedImage
 from ._polylines import Polylines
 from ._sheets import MAX_SHEET, SHEETS, parse_sheet, sheet_problem
+from .dxf import DEFAULT_DXF_VERSION
 
 __all__ = [
     "DASH_PATTERNS",
@@ -85,7 +86,7 @@ class WriteOptions:
     lines : Lines
         SVG line widths: ``LASER`` hairlines or ``PREVIEW`` visible widths.
     dxf_version : str
-        ``R12`` or ``R2000``.
+        ``R2000`` (declares mm) or ``R12`` (old cutters).
     png_scale : float
         PNG pixels per mm.
     legend : Legend, optional
@@ -96,7 +97,7 @@ class WriteOptions:
 
     styles: Mapping[str, LayerStyle] | None = None
     lines: Lines = Lines.LASER
-    dxf_version: str = "R12"
+    dxf_version: str = DEFAULT_DXF_VERSION.value
     png_scale: float = 4.0
     legend: Legend | None = None
     creator: str = "voxfab"

@@ -1,13 +1,14 @@
-"""DXF backend: one layer per drawing layer, straight LINE/POLYLINE entities and CIRCLEs.
+"""DXF backend: one layer per drawing layer, straight LINE/(LW)POLYLINE entities and CIRCLEs.
 
-R12 (the default, the safest input for laser software) is written directly as
-group codes: ezdxf takes about a second per few thousand R12 POLYLINEs here,
-while a 3000-face net with numbers has tens of thousands of strokes.  The file
-holds a HEADER with extents and limits, LTYPE and LAYER tables and the
-entities, and passes ezdxf's audit.  R12 has no ``$INSUNITS``; the units are mm.
-R2000 gets its tables from ezdxf (LWPOLYLINE, ``$INSUNITS`` = 4 for mm).
-Both versions carry ``$EXTMIN``/``$EXTMAX`` of the geometry, which some laser
-software asks for.
+R2000 is the default: it declares its units (``$INSUNITS`` = 4, millimetres, and
+``$MEASUREMENT`` = 1, metric), so a laser program does not read the geometry as
+inches.  It gets its tables from ezdxf and its entities (LINE, LWPOLYLINE) as
+group codes.  R12 (AC1009) stays an option for old cutters: it has no unit
+variable, so its numbers are millimetres by convention only.  It is written
+directly as group codes: ezdxf takes about a second per few thousand R12
+POLYLINEs here, while a 3000-face net with numbers has tens of thousands of
+strokes.  Both versions carry ``$EXTMIN``/``$EXTMAX`` of the geometry, which
+some laser software asks for, and pass ezdxf's audit.
 """
 
 from __future__ import annotations
@@ -20,12 +21,14 @@ from pathlib import Path
 import numpy as np
 
 from voxfab._shared.atomic import write_bytes
+from voxfab._shared.options import option
 
 from ._format import numbers, polyline_text
 from ._layers import DASH_PATTERNS, LAYERS, LayerStyle, LineStyle, aci
 from ._model import Page
 
-__all__ = ["DxfVersion", "LINETYPE_NAMES", "page_dxf", "page_dxf_r12", "page_dxf_r2000", "write_dxf"]
+__all__ = ["DEFAULT_DXF_VERSION", "DxfVersion", "LINETYPE_NAMES", "dxf_version_option", "page_dxf", "page_dxf_r12",
+           "page_dxf_r2000", "write_dxf"]
 
 
 class DxfVersion(Enum):
@@ -33,6 +36,17 @@ class DxfVersion(Enum):
 
     R12 = "R12"
     R2000 = "R2000"
+
+
+#: The version written unless asked otherwise: the first that declares millimetres.
+DEFAULT_DXF_VERSION = DxfVersion.R2000
+
+
+def dxf_version_option() -> str:
+    """The ``dxf_version`` option, declared once for every artefact that writes DXF (nets, slice sheets)."""
+    return option(DEFAULT_DXF_VERSION.value, help="DXF version: R2000 declares mm ($INSUNITS = 4, $MEASUREMENT = "
+                  "1); R12 for old cutters (no unit variable, mm by convention)",
+                  choices=tuple(v.value for v in DxfVersion))
 
 
 #: DXF linetype name of each dash style.
@@ -175,15 +189,15 @@ def _r2000(page: Page, styles: Mapping[str, LayerStyle]) -> bytes:
 
 
 def page_dxf(page: Page, *, styles: Mapping[str, LayerStyle] | None = None,
-             version: DxfVersion | str = DxfVersion.R12) -> bytes:
-    """The DXF file of one page in ``version`` (R12 or R2000), as bytes."""
+             version: DxfVersion | str = DEFAULT_DXF_VERSION) -> bytes:
+    """The DXF file of one page in ``version`` (R2000 by default, or R12), as bytes."""
     if DxfVersion(version) is DxfVersion.R12:
         return page_dxf_r12(page, styles).encode("ascii")
     return page_dxf_r2000(page, styles)
 
 
 def write_dxf(pages: Sequence[Page], paths: Sequence[Path], *, styles: Mapping[str, LayerStyle] | None = None,
-              version: DxfVersion | str = DxfVersion.R12) -> list[str]:
+              version: DxfVersion | str = DEFAULT_DXF_VERSION) -> list[str]:
     """Write one DXF per page to ``paths`` (atomically); returns the paths written."""
     for page, path in zip(pages, paths):
         write_bytes(path, page_dxf(page, styles=styles, version=version))

@@ -19,6 +19,7 @@ import numpy.typing as npt
 
 from voxfab.errors import InvalidShapeError, NoNetExistsError, UnfoldError
 
+from ._exact import any_box
 from ._net import Net
 
 __all__ = ["HUNT_NET", "HUNT_ZIPPER", "HuntOutcome", "hunt_shape"]
@@ -68,16 +69,6 @@ class HuntOutcome:
         if self.why:
             data["why"] = list(self.why)
         return data
-
-
-def _any_box(faces: int) -> tuple[int, int]:
-    """A box that holds every one-piece net of ``faces`` faces, turned if need be.
-
-    A net is a connected set of cells, so its bounding box ``w x h`` has
-    ``w + h - 1 <= faces``: turned to ``w <= h``, ``w <= (faces + 1) // 2`` and
-    ``h <= faces``.
-    """
-    return ((faces + 1) // 2, faces)
 
 
 def _check_limit(value: object, name: str) -> float:
@@ -142,7 +133,7 @@ def hunt_shape(grid: npt.ArrayLike, *, seed: int = 0, timeout: float = 10.0, exa
         found = ""
     seconds[0] = time.perf_counter() - t
     if not found:
-        found, one_piece, seconds[1] = _exact(lambda: unfold(g, rng=0, strategy="exact", fit=_any_box(faces),
+        found, one_piece, seconds[1] = _exact(lambda: unfold(g, rng=0, strategy="exact", fit=any_box(faces),
                                                             timeout=limits[1]), "exact", why)
     zipped, zipper_net = "skipped", None
     if zipper:

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from _dxf_read import closed_rings
 
 from voxfab.fabricate.netdraw import DrawingOptions, NetOptions, draw_pieces, fabricate_net, find_sheet_nets
 from voxfab.fabricate.netdraw._drawing import placement_for
@@ -74,8 +75,7 @@ def test_a_moved_and_turned_piece_lands_where_the_placement_says(ball_pieces, tm
     dxfs = sorted(tmp_path.glob("net.sheet-*.dxf"))
     assert len(dxfs) == made.report["sheets"] == moved.sheets
     doc = ezdxf.readfile(dxfs[-1])
-    pts = np.array([tuple(v.dxf.location)[:2] for e in doc.modelspace() if e.dxf.layer == "CUT"
-                    and e.dxftype() == "POLYLINE" for v in e.vertices])
+    pts = np.concatenate(closed_rings(doc))
     lo, hi = expect.reshape(-1, 2).min(axis=0), expect.reshape(-1, 2).max(axis=0)
     assert (pts.min(axis=0) >= lo - OPTIONS.tab_width - 1e-6).all()
     assert (pts.max(axis=0) <= hi + OPTIONS.tab_width + 1e-6).all()

@@ -28,8 +28,8 @@ class NetOptions(Options):
     face_size: float | None = option(None, help="edge of one paper face (default: the shape's pitch)",
                                      unit="mm", low=0.0, low_open=True, high=1000.0)
     strategy: str = option("default", help="search strategy: ruin-and-recreate with tab room, paper, or exact "
-                           "(a complete search in --box or --min-box: a net, or a proof that none fits; needs "
-                           "ortools)", choices=("default", "paper", "exact"))
+                           "(a complete search in --box or --min-box: a net, or a proof that none fits; with "
+                           "neither, a net in a box that holds any, the same on every run; needs ortools)", choices=("default", "paper", "exact"))
     timeout: float = option(60.0, help="search budget per net", unit="s", low=0.0, low_open=True,
                             high=MAX_TIMEOUT)
     count: int = option(1, help="write N distinct nets as NAME-1.ext ... NAME-N.ext", low=1, high=MAX_COUNT,

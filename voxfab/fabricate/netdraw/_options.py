@@ -7,7 +7,7 @@ from enum import Enum
 
 from voxfab._shared.options import OptionError, Options, option
 from voxfab.drawing import SHEETS, LayerStyle, Lines, parse_colors, parse_sheet, sheet_problem
-from voxfab.drawing.dxf import DxfVersion
+from voxfab.drawing.dxf import dxf_version_option
 from voxfab.errors import InvalidShapeError
 
 
@@ -64,8 +64,7 @@ class DrawingOptions(Options):
                                 high=100.0)
     svg_lines: str = option("laser", help="SVG line widths: laser hairlines, or visible lines to look at",
                             choices=tuple(v.value for v in Lines))
-    dxf_version: str = option("R12", help="DXF version: R12 (widest laser support) or R2000 ($INSUNITS = mm)",
-                              choices=tuple(v.value for v in DxfVersion))
+    dxf_version: str = dxf_version_option()
     colors: str = option("", help="colour map, e.g. 'cut=#ff0000,mountain=blue:dashed'; layers CUT SCORE "
                          "MOUNTAIN VALLEY GRID LABEL, styles solid dashed dashdot dotted", check=_colors_problem,
                          metavar="LAYER=COLOR[:STYLE],...")

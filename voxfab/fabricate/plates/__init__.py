@@ -6,7 +6,7 @@ outlines (one polygon with holes per 4-connected piece, numbered
 asks, drills dowel holes through the overlap of consecutive layers, engraves
 single-stroke labels where the next plate hides them and scores the next
 layer's outline.  :func:`nest_plates` packs the plates onto sheets, and the
-writers make one DXF (R12) and one SVG per sheet, an assembly PDF and,
+writers make one DXF (R2000 in mm, or R12) and one SVG per sheet, an assembly PDF and,
 optionally, STEP and STL of the plate stack.  :func:`make_slices` runs it all
 and :func:`write_slices` writes the files with ``plates.json`` and
 ``assembly.3mf`` (the plates as assembled, in the print mesh's frame).
@@ -28,6 +28,7 @@ import numpy.typing as npt
 
 from voxfab._shared.atomic import write_text
 from voxfab._shared.typing import PathLike
+from voxfab.drawing.dxf import DEFAULT_DXF_VERSION
 from voxfab.fabricate._outputs import Artefact, OutputFile
 from voxfab.shape import VoxelShape
 
@@ -273,7 +274,8 @@ def plates_json(result: Slices, *, name: str = "") -> dict:
     return {**result.report.to_json(), "name": name, "plates_list": plates, "dowels_list": dowels}
 
 
-def write_slices(result: Slices, folder: PathLike, *, name: str = "", step: bool = False) -> list[OutputFile]:
+def write_slices(result: Slices, folder: PathLike, *, name: str = "", step: bool = False,
+                 dxf_version: str = DEFAULT_DXF_VERSION.value) -> list[OutputFile]:
     """Write sheets (DXF + SVG), ``assembly.pdf``, ``plates.json`` and optionally STEP/STL.
 
     Returns
@@ -286,8 +288,9 @@ def write_slices(result: Slices, folder: PathLike, *, name: str = "", step: bool
     digits = max(2, len(str(len(result.sheets))))
     for sheet in result.sheets:
         stem = f"sheet-{sheet.index:0{digits}d}"
-        write_dxf(sheet, folder / f"{stem}.dxf")
-        files.append(OutputFile(f"{stem}.dxf", f"sheet {sheet.index} for laser cutting (DXF R12: CUT, SCORE, LABEL)"))
+        write_dxf(sheet, folder / f"{stem}.dxf", version=dxf_version)
+        files.append(OutputFile(f"{stem}.dxf", f"sheet {sheet.index} for laser cutting (DXF {dxf_version}, mm: "
+                                               "CUT, SCORE, LABEL)"))
         write_svg(sheet, folder / f"{stem}.svg")
         files.append(OutputFile(f"{stem}.svg", f"sheet {sheet.index} for laser cutting (SVG, mm)"))
     if result.stack is not None:
@@ -351,6 +354,6 @@ def fabricate_plates(shape: VoxelShape, options: PlateOptions, folder: PathLike,
         radial_plates=options.radial_plates, clearance=options.clearance,
     )
     with atomic_dir(folder, marker="plates.json") as tmp:
-        files = write_slices(result, tmp, name=name, step=options.step)
+        files = write_slices(result, tmp, name=name, step=options.step, dxf_version=options.dxf_version)
     warnings = plate_warnings(result.report) if result.stack is not None else construction_warnings(result.report)
     return Artefact(tuple(files), tuple(warnings), result.report.to_json())

@@ -6,6 +6,7 @@ import dataclasses
 
 from voxfab._shared.options import Options, option
 from voxfab.drawing import sheet_problem
+from voxfab.drawing.dxf import dxf_version_option
 
 
 @dataclasses.dataclass(frozen=True)
@@ -43,6 +44,7 @@ class PlateOptions(Options):
     score: bool = option(True, help="score the next layer's outline as a gluing guide")
     min_width: float = option(1.0, help="narrowest cuttable feature; narrower parts are reported", unit="mm",
                               low=0.0, high=1000.0)
+    dxf_version: str = dxf_version_option()
     step: bool = option(False, help="also write the plate stack as STEP and STL (needs voxfab[cad])")
 
     def check(self) -> None:
