@@ -536,3 +536,17 @@ def cli_positionals(folder: _Path, command: str) -> dict[str, st.SearchStrategy[
         positionals["output"] = st.one_of(st.sampled_from(names[:2]), st.sampled_from(names))
         positionals["net"] = st.sampled_from([str(folder / "out" / "n.json"), *(str(folder / n) for n in SIDE_INPUTS)])
     return positionals
+
+
+# --- JSON bodies (the studio's endpoints, constraint files) ------------------------------------------
+
+#: Numbers JSON carries that no option takes: past float range, past 64 bits, and their negatives.
+HUGE_NUMBERS = [10**400, -(10**400), 2**64, 2**63, -(2**63) - 1, 1e308, -1e308, 10**30]
+
+JSON_SCALARS = st.one_of(
+    st.none(), st.booleans(), st.integers(), st.sampled_from(HUGE_NUMBERS),
+    st.floats(allow_nan=False, allow_infinity=False), st.text(max_size=12),
+)
+#: Any JSON value, nested a little (lists and objects of any of them).
+JSON_VALUES = st.recursive(JSON_SCALARS, lambda inner: st.one_of(
+    st.lists(inner, max_size=4), st.dictionaries(st.text(max_size=6), inner, max_size=3)), max_leaves=8)

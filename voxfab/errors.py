@@ -90,26 +90,35 @@ class UnfoldError(VoxfabError, RuntimeError):
 
 
 class NoNetExistsError(UnfoldError):
-    """A complete search proved that no one-piece net fits the box (not a time-out).
+    """A complete search proved that no net of the kind asked for fits the box (not a time-out).
+
+    The message names what was proved: no one-piece net at all, or only no zipper
+    net (a torus has one-piece nets, but its handle rules out every zipper).
 
     Attributes
     ----------
-    box : (int, int)
-        The box in faces, ``(width, height)``.
+    box : (int, int) or None
+        The box in faces, ``(width, height)``; None when the proof holds in any box.
     why : str
         The reason when it is known without a search (edge constraints that
-        leave no room), else empty.
+        leave no room, a handle), else empty.
+    kind : str
+        What has none: ``"one-piece net"`` or ``"zipper net"``.
     """
 
-    def __init__(self, width: int, height: int, why: str = "") -> None:
-        text = f"no one-piece net of this shape fits {width}x{height} faces (proved)"
+    def __init__(self, width: int | None, height: int | None, why: str = "", kind: str = "one-piece net") -> None:
+        if width is None or height is None:
+            text = f"no {kind} of this shape exists, in any box (proved)"
+        else:
+            text = f"no {kind} of this shape fits {width}x{height} faces (proved)"
         super().__init__(f"{text}: {why}" if why else text)
-        self.box = (width, height)
+        self.box = None if width is None or height is None else (width, height)
         self.why = why
+        self.kind = kind
 
     def __reduce__(self) -> tuple:
         # Rebuilt from the box (batch workers pickle errors), not from the message.
-        return (type(self), (*self.box, self.why))
+        return (type(self), (*(self.box or (None, None)), self.why, self.kind))
 
 
 class RecipeError(VoxfabError, ValueError):

@@ -107,3 +107,12 @@ def check_cancelled() -> None:
         from voxfab.errors import CancelledError
 
         raise CancelledError("stopped: cancelled")
+
+
+def cancel_event() -> threading.Event | None:
+    """The event that cancels this thread's work (None outside a :func:`cancel_scope`).
+
+    For work that cannot call :func:`check_cancelled` itself, such as a solver in
+    native code: a watcher waits on the event and stops the solver.
+    """
+    return getattr(_local, "event", None)

@@ -101,6 +101,21 @@ def check_choice(value: str | E, enum: type[E], *, name: str) -> E:
         ) from None
 
 
+def finite_number(value: object) -> float | None:
+    """``value`` as a finite float, or None when it is no number (a bool, a string, NaN, inf, 10**400).
+
+    JSON gives integers of any size: ``math.isfinite(10**400)`` raises OverflowError,
+    so every check of a number from outside goes through here first.
+    """
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        return None
+    try:
+        v = float(value)
+    except OverflowError:
+        return None
+    return v if np.isfinite(v) else None
+
+
 def check_positive(value: float, *, name: str) -> float:
     """Return ``value`` as a float after checking it is finite and > 0."""
     v = float(value)

@@ -157,9 +157,19 @@ def _run_mesh(shape: Any, options: Any, outdir: Path, *, name: str, seed: int, c
     return made
 
 
+def _given(values: Mapping[str, Any], download: str, fixed: Mapping[str, Any]) -> dict[str, Any]:
+    """The studio's values of one download as a recipe table: every one kept (the output's options class
+    refuses the unknown), ``None`` meaning the default, the download's own settings not overridable."""
+    from voxfab._shared.options import OptionError
+
+    for key in fixed:
+        if key in values:
+            raise OptionError(key, f"set by the download {download}, not by an option")
+    return {**fixed, **{k: v for k, v in values.items() if v is not None}}
+
+
 def _mesh_download(download: str, values: Mapping[str, Any]) -> dict[str, Any]:
-    del values
-    return {"format": download.rsplit(".", 1)[1]}
+    return _given(values, download, {"format": download.rsplit(".", 1)[1]})
 
 
 # ---- slices -------------------------------------------------------------------------------------
@@ -174,14 +184,13 @@ def _run_slices(shape: Any, options: Any, outdir: Path, *, name: str, seed: int,
 
 
 def _slices_download(download: str, values: Mapping[str, Any]) -> dict[str, Any]:
-    del download
-    table = {}
-    if values.get("thickness") is not None:
-        table["thickness"] = values["thickness"]
-    if values.get("plate_sheet") is not None:
-        table["sheet"] = values["plate_sheet"]
-    if values.get("style") not in (None, "stacked"):  # stacked is the default construction
-        table["style"] = values["style"]
+    from voxfab._shared.options import OptionError
+
+    table = _given(values, download, {})
+    if "plate_sheet" in table:  # the page's name of the plates' sheet (its net has a sheet of its own)
+        if "sheet" in table:
+            raise OptionError("plate_sheet", "the plates' sheet given twice, as sheet and plate_sheet")
+        table["sheet"] = table.pop("plate_sheet")
     return table
 
 
@@ -195,8 +204,7 @@ def _run_pictures(shape: Any, options: Any, outdir: Path, *, name: str, seed: in
 
 
 def _pictures_download(download: str, values: Mapping[str, Any]) -> dict[str, Any]:
-    del download, values
-    return {"size": 600, "views": [], "triptych": True}
+    return {"size": 600, **_given(values, download, {"views": [], "triptych": True})}
 
 
 # ---- net ----------------------------------------------------------------------------------------
@@ -249,16 +257,14 @@ def _run_net(shape: Any, settings: NetSettings, outdir: Path, *, name: str, seed
 def _net_download(download: str, values: Mapping[str, Any]) -> dict[str, Any]:
     # The page's options by the recipe's names (face_mm: the page's older name of face_size); the
     # options of other outputs on the page are not the net's.
+    from voxfab._shared.options import OptionError
+
     ext = download.rsplit(".", 1)[1]
-    table: dict[str, Any] = {"formats": [] if ext == "json" else [ext]}
-    keys = (set(OptionTable("voxfab.fabricate.netdraw:NetOptions", "net").keys())
-            | set(OptionTable("voxfab.fabricate.netdraw:DrawingOptions", "net-drawing", _DRAWING_HIDDEN).keys()))
-    keys -= {"formats"}
-    for key, value in values.items():
-        if key in keys and value is not None:
-            table[key] = value
-    if values.get("face_mm") is not None and "face_size" not in table:
-        table["face_size"] = values["face_mm"]
+    table = _given(values, download, {"formats": [] if ext == "json" else [ext]})
+    if "face_mm" in table:
+        if "face_size" in table:
+            raise OptionError("face_mm", "the face size given twice, as face_size and face_mm")
+        table["face_size"] = table.pop("face_mm")
     return table
 
 
@@ -283,8 +289,7 @@ def _run_animation(shape: Any, options: Any, outdir: Path, *, name: str, seed: i
 
 
 def _animation_download(download: str, values: Mapping[str, Any]) -> dict[str, Any]:
-    del download
-    return {"size": 400} | ({"steps": values["steps"]} if values.get("steps") is not None else {})
+    return {"size": 400, **_given(values, download, {})}
 
 
 # ---- warm-up runs: small real runs that compile an output's kernels --------------------------------

@@ -47,7 +47,8 @@ class SheetFit:
     message: str
 
 
-def fits_sheet(grid: Any, sheet: str = "A4", face_size: float = 10.0, *, timeout: float = 30.0) -> SheetFit:
+def fits_sheet(grid: Any, sheet: str = "A4", face_size: float = 10.0, *, timeout: float = 30.0,
+               drawing: Any = None) -> SheetFit:
     """Whether a one-piece net of ``grid`` fits ``sheet`` at ``face_size`` mm per face, decided exactly.
 
     Parameters
@@ -60,6 +61,8 @@ def fits_sheet(grid: Any, sheet: str = "A4", face_size: float = 10.0, *, timeout
         Edge of one paper face in mm.
     timeout : float
         Seconds for the exact search.
+    drawing : DrawingOptions, optional
+        The drawing whose margin and tabs take room on the sheet (default: the default drawing's).
 
     Returns
     -------
@@ -93,7 +96,8 @@ def fits_sheet(grid: Any, sheet: str = "A4", face_size: float = 10.0, *, timeout
     if not 0 < seconds <= MAX_FITS_SECONDS:
         raise InvalidShapeError(f"timeout: expected seconds over 0 and at most {MAX_FITS_SECONDS:g}, "
                                 f"got {str(timeout)[:40]}")
-    options = DrawingOptions(sheet=sheet, pitch=size)  # the sheet checked with the drawing's own words
+    # the sheet checked with the drawing's own words; its margin and tabs take their room
+    options = (drawing if drawing is not None else DrawingOptions()).replace(sheet=sheet, pitch=size)
     box = sheet_cells(options, size)
     where = f"{sheet} at {size:g} mm faces ({box[0]}x{box[1]} faces)"
     g = as_grid(grid)

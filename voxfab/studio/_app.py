@@ -38,9 +38,9 @@ from starlette.routing import Route
 
 from voxfab.errors import InvalidShapeError, VoxfabError
 
-from . import _fits, _grid, _specs, _work
+from . import _bodies, _fits, _grid, _specs, _work
 from ._edit import edit_route
-from ._http import read_json
+from ._http import only_fields, read_json, read_object
 from ._jobs import Jobs
 
 #: Thumbnails kept in memory (oldest dropped first).
@@ -269,16 +269,14 @@ def create_app(settings: Settings) -> Starlette:
         return await run_in_threadpool(run)
 
     async def check(request: Request) -> dict[str, Any]:
-        data = await read_json(request)
-        grid = _grid.unpack(data.get("grid") if isinstance(data, dict) else None)
+        data = await read_object(request, _bodies.CHECK, example='{"grid": ...}')
+        grid = _grid.unpack(data.get("grid"))
         return {"facts": await run_in_threadpool(_grid.facts, grid)}
 
     async def recipe(request: Request) -> Response:
-        data = await read_json(request)
-        if not isinstance(data, dict):
-            raise InvalidShapeError("request: expected {\"shape\": ..., \"name\": ...}")
+        data = await read_object(request, _bodies.RECIPE, example='{"shape": ..., "name": ..., "pitch": MM}')
         name = data.get("name") or "studio"
-        pitch = data.get("pitch", 1.0)
+        pitch = _bodies.pitch(data.get("pitch"))
 
         def run() -> tuple[str, bytes]:
             # made once here, so a recipe that fails to build is never handed out
@@ -299,10 +297,8 @@ def create_app(settings: Settings) -> Starlette:
                         headers={"Content-Disposition": f'attachment; filename="{fname}"'})
 
     async def animate(request: Request) -> dict[str, Any]:
-        data = await read_json(request)
-        if not isinstance(data, dict):
-            raise InvalidShapeError("request: expected {\"shape\": ..., \"steps\": N}")
-        steps = _work.check_number(data.get("steps", 24), name="steps", lo=2, hi=72, integer=True)
+        data = await read_object(request, _bodies.ANIMATE, example='{"shape": ..., "steps": N}')
+        steps = _bodies.steps(data.get("steps", 24))
 
         def run() -> dict[str, Any]:
             from voxfab.render import tube_frames
@@ -322,9 +318,9 @@ def create_app(settings: Settings) -> Starlette:
         after = request.query_params.get("after") or None
         if after is not None:
             after = _name(request, "after")
-        limit = _work.check_number(int(request.query_params.get("limit", "120"))
-                                   if request.query_params.get("limit", "120").isdigit() else -1,
-                                   name="limit", lo=1, hi=500, integer=True)
+        text = request.query_params.get("limit", "120")
+        # at most 4 digits read: int() of a 5000-digit string would be an error of its own
+        limit = _bodies.whole(int(text) if text.isdigit() and len(text) <= 4 else text, name="limit", lo=1, hi=500)
 
         def run() -> dict[str, Any]:
             if not settings.repo.exists():
@@ -374,9 +370,9 @@ def create_app(settings: Settings) -> Starlette:
         return Response(await run_in_threadpool(run), media_type="image/png")
 
     async def repo_add(request: Request) -> dict[str, Any]:
-        data = await read_json(request)
-        grid = _grid.unpack(data.get("grid") if isinstance(data, dict) else None)
-        draft = bool(data.get("draft", False))
+        data = await read_object(request, _bodies.REPO_ADD, example='{"grid": ..., "draft": false}')
+        grid = _grid.unpack(data.get("grid"))
+        draft = _bodies.flag(data.get("draft"), name="draft")
 
         def run() -> dict[str, Any]:
             if not grid.any():
@@ -396,12 +392,12 @@ def create_app(settings: Settings) -> Starlette:
         data = await read_json(request)
         if not isinstance(data, dict):
             raise InvalidShapeError("request: expected {\"grid\": ..., \"count\": N, \"options\": {...}}")
-        _work.check_gallery_body(data)
+        only_fields(data, _bodies.NETS, where="request", hint='net and drawing options go in "options"')
         grid = _grid.unpack(data.get("grid"))
-        count = _work.check_number(data.get("count", 8), name="count", lo=1, hi=_work.MAX_NETS, integer=True)
-        seed = _work.check_number(data.get("seed", 0), name="seed", lo=0, hi=2**31 - 1, integer=True)
-        # Checked by the library's option dataclasses: the CLI's bounds and words.
-        net, drawing = _work.gallery_options(data.get("options"))
+        # Checked by the library's option declarations: the CLI's bounds and words.
+        count = _bodies.count(data.get("count", 8), _work.MAX_NETS)
+        seed = _bodies.seed(data.get("seed", 0))
+        net, drawing = _bodies.gallery_options(data.get("options"), defaults=_work.GALLERY_DEFAULTS)
         constraints = _work.edge_constraints(data.get("constraints"))
         from voxfab.shape import well_formed_reasons
 
@@ -420,16 +416,14 @@ def create_app(settings: Settings) -> Starlette:
         return job
 
     async def make(request: Request) -> dict[str, Any]:
-        data = await read_json(request)
-        if not isinstance(data, dict):
-            raise InvalidShapeError("request: expected {\"grid\": ..., \"artefact\": ...}")
+        data = await read_object(request, _bodies.MAKE, example='{"grid": ..., "artefact": ...}')
         artefact = data.get("artefact")
         if artefact not in _work.artefacts():
             raise InvalidShapeError(f"artefact: expected one of {', '.join(_work.artefacts())}, got {artefact!r:.40}")
         grid = _grid.unpack(data.get("grid"))
         if not grid.any():
             raise InvalidShapeError("shape: empty; draw or add voxels first")
-        pitch = _work.check_number(data.get("pitch", 1.0), name="pitch", lo=0.01, hi=1000.0)
+        pitch = _bodies.pitch(data.get("pitch"))
         title = data.get("title") or "studio"
         if not isinstance(title, str) or not re.fullmatch(r"[A-Za-z0-9_.\- ]{1,64}", title):
             raise InvalidShapeError(f"title: letters, digits, space, _ . - (at most 64), got {str(title)[:70]!r}")
@@ -443,12 +437,11 @@ def create_app(settings: Settings) -> Starlette:
         if pick is not None:
             if not isinstance(pick, dict) or not isinstance(pick.get("job"), str):
                 raise InvalidShapeError("net: expected {\"job\": ID, \"index\": N}")
+            only_fields(pick, _bodies.NET_PICK, where="net")
             chosen = _job(pick["job"]).data.get("nets", [])
-            index = _work.check_number(pick.get("index"), name="net.index", lo=0, hi=max(len(chosen) - 1, 0),
-                                       integer=True)
             if not chosen:
                 raise InvalidShapeError("net: that gallery has no nets")
-            net = chosen[int(index)]
+            net = chosen[_bodies.whole(pick.get("index"), name="net.index", lo=0, hi=len(chosen) - 1)]
         placement = data.get("placement")
         if placement is not None:
             if net is None:
@@ -457,6 +450,9 @@ def create_app(settings: Settings) -> Starlette:
 
             placement = Placement.from_dict(placement)
         tube = None
+        if artefact != "animation.gif" and data.get("shape") is not None:
+            raise InvalidShapeError(f"shape: only animation.gif remakes the drawn shape; {artefact} is made from "
+                                    "\"grid\"")
         if artefact == "animation.gif":
             tube = await run_in_threadpool(_specs.tube_params, data.get("shape"), work())
         job = jobs().submit("make", lambda j: _work.make_files(

@@ -72,29 +72,37 @@ def apply_edit(job: Any, data: dict[str, Any]) -> dict[str, Any]:
     from voxfab.unfold import EdgeConstraints, cut_edge, join_edge
 
     from . import _grid
+    from ._bodies import flag, whole
 
     nets = job.data.get("nets") or []
     if not nets:
         raise InvalidShapeError(f"job: job {job.id} has no nets to edit")
-    index = data.get("index", 0)
-    if isinstance(index, bool) or not isinstance(index, int) or not 0 <= index < len(nets):
-        raise InvalidShapeError(f"index: expected a net of job {job.id}, 0 to {len(nets) - 1}, got {index!r:.20}")
+    index = whole(data.get("index", 0), name="index", lo=0, hi=len(nets) - 1)
+    # A grid sent is checked like every shape input (at most the editor's 25³), and must be the net's own.
+    sent = None if data.get("grid") is None else _grid.unpack(data.get("grid"))
     grid = job.data.get("grid")
     if grid is None:
-        if data.get("grid") is None:
+        if sent is None:
             raise InvalidShapeError("grid: this gallery did not keep its shape; send the shape as \"grid\"")
-        grid = _grid.unpack(data.get("grid"))
+        grid = sent
+    elif sent is not None and (sent.shape != grid.shape or not np.array_equal(sent, grid)):
+        raise InvalidShapeError("grid: the shape changed since this net was made; make a new gallery to edit it")
     net = nets[index]
+    # Marks sent are checked whole (unknown keys, every face) even when the net has marks of its own.
+    sent_marks = None
+    if data.get("marks") is not None:
+        from voxfab.unfold import EdgeConstraints as Marks
+
+        sent_marks = Marks.from_dict(data["marks"])
     marks = job.data.get("marks")
     if marks is None and job.data.get("constraints") is not None:
         marks = job.data["constraints"]
-    if marks is None and data.get("marks"):
+    if marks is None and sent_marks:
         # a net fresh from a gallery: the marks the page made so far start its record
-        from voxfab.unfold import EdgeConstraints as Marks
-
-        marks = Marks.from_dict(data["marks"])
+        marks = sent_marks
     history = list(job.data.get("history", []))
-    kinds = [k for k in ("cut", "join", "undo") if data.get(k) not in (None, False)]
+    undo = flag(data.get("undo"), name="undo")
+    kinds = [k for k in ("cut", "join") if data.get(k) is not None] + (["undo"] if undo else [])
     if len(kinds) != 1:
         raise InvalidShapeError("edit: give exactly one of \"cut\": [face, face], \"join\": [face, face], "
                                 "\"undo\": true")
@@ -108,8 +116,8 @@ def apply_edit(job: Any, data: dict[str, Any]) -> dict[str, Any]:
     else:
         a, b = _edge(data[kind], kind)
         split = data.get("split")
-        if split is not None and not isinstance(split, bool):
-            raise InvalidShapeError(f"split: expected true or false, got {split!r:.20}")
+        if split is not None:
+            split = flag(split, name="split")
         known = marks if isinstance(marks, EdgeConstraints) else None
         if kind == "cut":
             result = cut_edge(grid, _pieces(net), a, b, constraints=known, split=split)
@@ -134,13 +142,15 @@ def edit_route(jobs: Callable[[], Any]) -> Callable[[Any], Awaitable[dict[str, A
     """The handler of ``POST /api/nets/edit`` over the session's jobs (wrap it in the app's ``api``)."""
     from starlette.concurrency import run_in_threadpool
 
-    from ._http import read_json
+    from ._bodies import EDIT
+    from ._http import only_fields, read_json
 
     async def edit(request: Any) -> dict[str, Any]:
         data = await read_json(request)
         if not isinstance(data, dict) or not isinstance(data.get("job"), str):
             raise InvalidShapeError("request: expected {\"job\": ID, \"index\": N, \"cut\" | \"join\": [face, face]"
                                     " | \"undo\": true}")
+        only_fields(data, EDIT, where="request")
         source = jobs().get(data["job"]) if len(data["job"]) <= 40 else None
         if source is None:
             raise InvalidShapeError(f"job: no job {data['job'][:20]!r} in this session")

@@ -18,14 +18,16 @@ from starlette.requests import Request
 
 from voxfab.errors import InvalidShapeError
 
-from . import _grid, _work
-from ._http import read_json
+from . import _bodies, _grid
+from ._http import read_object
 from ._jobs import Jobs
 
 __all__ = ["endpoint", "MAX_FITS_SECONDS"]
 
 #: Longest exact search the page may ask for, seconds.
 MAX_FITS_SECONDS = 120.0
+#: What the question takes unless the body says otherwise: the gallery's short search.
+FITS_DEFAULTS = {"timeout": 5.0}
 
 
 def endpoint(jobs: Callable[[], Jobs]) -> Callable[[Request], Awaitable[dict[str, Any]]]:
@@ -34,12 +36,14 @@ def endpoint(jobs: Callable[[], Jobs]) -> Callable[[Request], Awaitable[dict[str
     async def fits(request: Request) -> dict[str, Any]:
         from voxfab.shape import well_formed_reasons
 
-        data = await read_json(request)
-        if not isinstance(data, dict):
-            raise InvalidShapeError('request: expected {"grid": ..., "options": {"sheet": "A4", "face_size": 10}}')
+        data = await read_object(request, _bodies.FITS,
+                                 example='{"grid": ..., "options": {"sheet": "A4", "face_size": 10}}')
         grid = _grid.unpack(data.get("grid"))
-        # The gallery's options, checked by the same dataclasses as the CLI's.
-        net, drawing = _work.gallery_options(data.get("options"))
+        # Only the options the question reads, each checked by its declaration (the CLI's bounds and words).
+        net, drawing = _bodies.fits_options(data.get("options"), defaults=FITS_DEFAULTS)
+        if net.timeout > MAX_FITS_SECONDS:
+            raise InvalidShapeError(f"options.timeout: expected at most {MAX_FITS_SECONDS:g} s for the page's "
+                                    f"question, got {net.timeout:g}")
         reasons = well_formed_reasons(grid)
         if any("piece" in r for r in reasons) or not grid.any():
             raise InvalidShapeError("shape: a net needs one piece of face-connected voxels: "
@@ -58,7 +62,7 @@ def _answer(job: Any, grid: Any, *, net: Any, drawing: Any) -> None:
     drawing, _ = gallery_face_size(grid, net, drawing)
     sheet, face = drawing.sheet, float(drawing.pitch)
     job.step(0, 1, f"exact search on {sheet} at {face:g} mm")
-    fit = fits_sheet(grid, sheet, face, timeout=min(net.timeout, MAX_FITS_SECONDS))
+    fit = fits_sheet(grid, sheet, face, timeout=net.timeout, drawing=drawing)
     job.data["nets"] = [fit.net] if fit.net is not None else []
     job.data["grid"] = grid
     result: dict[str, Any] = {"answer": fit.answer, "box": list(fit.box), "faces": fit.faces, "sheet": sheet,

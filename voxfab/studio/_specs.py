@@ -29,6 +29,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from voxfab._shared.options import quote
+from voxfab._shared.validate import finite_number
 from voxfab.errors import InvalidShapeError, VoxfabError
 
 #: Makers the studio draws for, and the keys of the page's JSON each one takes.
@@ -39,6 +41,17 @@ MAX_POLYLINES = 64
 MAX_POINTS = 20000
 MAX_BITMAP = 4 * 1024 * 1024
 MAX_TEXT = 2000
+
+#: The keys of the page's JSON per maker (``k`` and ``mode`` for all); any other key is refused.
+SHAPE_KEYS = {
+    "revolution": ("curve", "generatrix", "axis", "z_range", "arc"),
+    "tube": ("profile", "arc", "spine", "radius", "twist", "phase", "frame", "cap"),
+    "focal": ("foci", "weights", "radius"),
+    "implicit": ("expression",),
+}
+#: The keys of a curve source, of a drawn polyline, and of a spine, by kind.
+SOURCE_KEYS = {"expr": ("kind", "text"), "drawn": ("kind", "polylines"), "bitmap": ("kind", "data")}
+SPINE_KEYS = {"expr": ("kind", "x", "y", "z", "t_min", "t_max"), "drawn": ("kind", "points", "closed")}
 
 _MAGIC = {b"\x89PNG\r\n\x1a\n": ".png", b"GIF87a": ".gif", b"GIF89a": ".gif", b"BM": ".bmp"}
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]{0,63}$")
@@ -76,15 +89,23 @@ def _get(spec: Mapping[str, Any], key: str, kind: type | tuple[type, ...], defau
     if (isinstance(value, bool) and bool not in kinds) or not isinstance(value, kinds):
         names = " or ".join(t.__name__ for t in kinds)
         raise SpecError(f"{where}.{key}: expected {names}, got {type(value).__name__} {value!r:.60}")
-    if isinstance(value, float) and not math.isfinite(value):
-        raise SpecError(f"{where}.{key}: expected a finite number")
+    if isinstance(value, (int, float)) and not isinstance(value, bool) and finite_number(value) is None:
+        raise SpecError(f"{where}.{key}: expected a finite number, got {quote(value, 60)}")
     return value
 
 
+def _only(obj: Mapping[str, Any], keys: tuple[str, ...], *, where: str) -> None:
+    """Refuse a key the page's JSON does not have here: it would be dropped without a word."""
+    unknown = sorted(str(k) for k in obj if k not in keys)
+    if unknown:
+        raise SpecError(f"{where}: unknown key {quote(unknown[0], 40)}; expected {', '.join(keys)}")
+
+
 def _number(value: Any, *, where: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise SpecError(f"{where}: expected a finite number, got {value!r:.60}")
-    return float(value)
+    number = finite_number(value)  # 10**400 from JSON is no number here, not an OverflowError
+    if number is None:
+        raise SpecError(f"{where}: expected a finite number, got {quote(value, 60)}")
+    return number
 
 
 def _points(raw: Any, dim: int, *, where: str) -> list[list[float]]:
@@ -112,6 +133,8 @@ def _source(src: Any, role: str, files: dict[str, bytes]) -> str:
     if not isinstance(src, dict):
         raise SpecError(f"{where}: expected an object with a 'kind'")
     kind = src.get("kind")
+    if isinstance(kind, str) and kind in SOURCE_KEYS:
+        _only(src, SOURCE_KEYS[kind], where=where)
     if kind == "expr":
         return _text(src.get("text"), where=f"{where}.text")
     if kind == "drawn":
@@ -125,6 +148,7 @@ def _source(src: Any, role: str, files: dict[str, bytes]) -> str:
         for i, p in enumerate(polys):
             if not isinstance(p, dict):
                 raise SpecError(f"{where}.polylines[{i}]: expected an object with points")
+            _only(p, ("points", "closed"), where=f"{where}.polylines[{i}]")
             pts = _points(p.get("points"), 2, where=f"{where}.polylines[{i}].points")
             total += len(pts)
             closed = _get(p, "closed", bool, False, where=f"{where}.polylines[{i}]")
@@ -185,6 +209,7 @@ def source_keys(spec: Any) -> tuple[dict[str, Any], dict[str, bytes]]:
     maker = spec.get("maker")
     if maker not in MAKERS:
         raise SpecError(f"shape.maker: expected one of {', '.join(MAKERS)}, got {maker!r:.40}")
+    _only(spec, ("maker", "k", "mode", *SHAPE_KEYS[maker]), where=f"shape ({maker})")
     files: dict[str, bytes] = {}
     keys: dict[str, Any] = {"maker": maker}
     if maker == "revolution":
@@ -204,6 +229,8 @@ def source_keys(spec: Any) -> tuple[dict[str, Any], dict[str, bytes]]:
         spine = spec.get("spine")
         if not isinstance(spine, dict):
             raise SpecError("shape.spine: expected an object with a 'kind'")
+        if isinstance(spine.get("kind"), str) and spine["kind"] in SPINE_KEYS:
+            _only(spine, SPINE_KEYS[spine["kind"]], where="spine")
         if spine.get("kind") == "expr":
             keys["spine"] = [_text(spine.get(c), where=f"spine.{c}") for c in "xyz"]
             for key in ("t_min", "t_max"):

@@ -71,11 +71,13 @@ def gallery_options(values: Any) -> tuple[Any, Any]:
 
 def edge_constraints(data: Any) -> Any:
     """``voxfab.unfold.EdgeConstraints`` from the page's JSON, or None when nothing is marked."""
-    if data is None or (isinstance(data, dict) and not data.get("cut") and not data.get("keep")):
+    if data is None:
         return None
     from voxfab.unfold import EdgeConstraints
 
-    return EdgeConstraints.from_dict(data)
+    # checked whole (unknown keys, every field) even when it marks nothing, as the CLI checks a file
+    marks = EdgeConstraints.from_dict(data)
+    return marks or None
 
 
 class NoNetFitsError(InvalidShapeError):

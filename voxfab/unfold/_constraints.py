@@ -18,6 +18,7 @@ from typing import Any, NamedTuple
 import numpy as np
 import numpy.typing as npt
 
+from voxfab._shared.options import quote
 from voxfab.errors import FormatError, InvalidShapeError, UnfoldError
 from voxfab.shape import SurfaceGraph
 
@@ -43,22 +44,23 @@ _SIDE_STEP = ((0, -1), (1, 0), (0, 1), (-1, 0))
 
 
 def _face(item: Any, where: str) -> Face:
+    """A face from its JSON form, every field checked whatever its type (a normal may arrive as a list)."""
     if not isinstance(item, (list, tuple)) or len(item) != 4:
-        raise InvalidShapeError(f"{where}: a face is [x, y, z, normal], got {str(item)[:80]}")
+        raise InvalidShapeError(f"{where}: a face is [x, y, z, normal], got {quote(item)}")
     *xyz, n = item
     if not all(isinstance(c, (int, np.integer)) and not isinstance(c, bool) for c in xyz):
-        raise InvalidShapeError(f"{where}: face coordinates must be integers, got {str(item)[:80]}")
+        raise InvalidShapeError(f"{where}: face coordinates must be integers, got {quote(item)}")
     if not all(-_MAX_COORD <= int(c) <= _MAX_COORD for c in xyz):
-        raise InvalidShapeError(f"{where}: face coordinates out of range: {str(item)[:80]}")
-    if n not in _NORMAL_INDEX:
-        raise InvalidShapeError(
-            f"{where}: face normal must be one of {', '.join(NORMALS)}, got {str(n)[:20]!r}")
-    return (int(xyz[0]), int(xyz[1]), int(xyz[2]), str(n))
+        raise InvalidShapeError(f"{where}: face coordinates must be -{_MAX_COORD} to {_MAX_COORD}, got {quote(item)}")
+    # isinstance first: a list or an object is no normal, and cannot even be looked up
+    if not isinstance(n, str) or n not in _NORMAL_INDEX:
+        raise InvalidShapeError(f"{where}: face normal must be one of {', '.join(NORMALS)}, got {quote(n, 24)}")
+    return (int(xyz[0]), int(xyz[1]), int(xyz[2]), n)
 
 
 def _edge(item: Any, where: str) -> Edge:
     if not isinstance(item, (list, tuple)) or len(item) != 2:
-        raise InvalidShapeError(f"{where}: an edge is a pair of faces, got {str(item)[:80]}")
+        raise InvalidShapeError(f"{where}: an edge is a pair of faces, got {quote(item)}")
     a, b = _face(item[0], where), _face(item[1], where)
     if a == b:
         raise InvalidShapeError(f"{where}: an edge needs two different faces, got {a} twice")
@@ -66,7 +68,7 @@ def _edge(item: Any, where: str) -> Edge:
 
 
 def _edges(items: Iterable[Any], name: str) -> frozenset[Edge]:
-    if isinstance(items, (str, bytes)) or not isinstance(items, Iterable):
+    if not isinstance(items, (list, tuple, set, frozenset)):
         raise InvalidShapeError(f"{name}: expected a list of edges, got {type(items).__name__}")
     out = set()
     for t, item in enumerate(items):

@@ -20,6 +20,7 @@ from it; they are what limits the size of surface this strategy decides.
 
 from __future__ import annotations
 
+import threading
 import time
 from typing import NamedTuple
 
@@ -121,8 +122,9 @@ def exact_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], resolved: Resol
     """
     w, h = box
     n = int(faces.size)
+    kind = "zipper net" if zipper else "one-piece net"
     if w * h < n:  # no model needed: the faces outnumber the cells
-        raise NoNetExistsError(w, h)
+        raise NoNetExistsError(w, h, kind=kind)
     cp_model = _cp_model()
     m = cp_model.CpModel()
     local = {f: i for i, f in enumerate(faces.tolist())}
@@ -192,7 +194,7 @@ def exact_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], resolved: Resol
         # nothing about the box, so the full search follows.
         prm.fix_variables_to_their_hinted_value = True
         prm.max_time_in_seconds = max(deadline - time.monotonic(), 0.01)
-        status = solver.Solve(m)
+        status = _solve(solver, m)
         if status == cp_model.UNKNOWN and resolved is None:
             # Out of time before the check ended: without edge constraints a
             # growth net in the box is a net the check would confirm (every
@@ -202,9 +204,9 @@ def exact_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], resolved: Resol
         prm.fix_variables_to_their_hinted_value = False
     if status not in (cp_model.OPTIMAL, cp_model.FEASIBLE):
         prm.max_time_in_seconds = max(deadline - time.monotonic(), 0.01)
-        status = solver.Solve(m)
+        status = _solve(solver, m)
     if status == cp_model.INFEASIBLE:
-        raise NoNetExistsError(w, h)
+        raise NoNetExistsError(w, h, kind=kind)
     if status not in (cp_model.OPTIMAL, cp_model.FEASIBLE):
         raise Undecided(
             f"undecided: the exact search ran out of time before it found a one-piece net of the "
@@ -220,6 +222,37 @@ def exact_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], resolved: Resol
         if solver.BooleanValue(p):
             parent[int(sg.neighbor[a, k])] = a
     return ExactLayout(cells, rots, parent, (w, h))
+
+
+def _solve(solver, m):  # noqa: ANN001, ANN202 - ortools objects
+    """``solver.Solve(m)``, stopped within a fraction of a second when this thread's work is cancelled.
+
+    CP-SAT runs in native code and never calls :func:`check_cancelled`; a watcher thread
+    waits on the cancel event and stops the search, then the cancel is raised here.
+    """
+    from voxfab._shared.progress import cancel_event, check_cancelled
+
+    event = cancel_event()
+    if event is None:
+        return solver.Solve(m)
+    check_cancelled()
+    done = threading.Event()
+
+    def watch() -> None:
+        while not done.is_set():
+            if event.wait(0.05):
+                solver.StopSearch()
+                return
+
+    watcher = threading.Thread(target=watch, name="exact-cancel", daemon=True)
+    watcher.start()
+    try:
+        status = solver.Solve(m)
+    finally:
+        done.set()
+        watcher.join()
+    check_cancelled()
+    return status
 
 
 def _one_cut_path(m, sg: SurfaceGraph, arcs: list, par: dict) -> None:  # noqa: ANN001
@@ -312,4 +345,4 @@ def min_box_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], resolved: Res
                     f"no box of fewer than {area} cells holds a one-piece net of the {n}-face "
                     "surface (proved); raise the timeout") from None
         area += 1
-    raise NoNetExistsError(n, n)
+    raise NoNetExistsError(n, n, kind="zipper net" if zipper else "one-piece net")

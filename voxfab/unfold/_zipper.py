@@ -37,7 +37,7 @@ from voxfab.errors import NoNetExistsError, UnfoldError
 from voxfab.shape import SurfaceGraph
 
 from ._constraints import _SIDE_STEP
-from ._exact import _SOLVER_SEED, ExactLayout, Undecided, _cp_model
+from ._exact import _SOLVER_SEED, ExactLayout, Undecided, _cp_model, _solve
 
 __all__ = ["zipper_layout"]
 
@@ -205,17 +205,17 @@ def zipper_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], deadline: floa
     if genus2 < 0:
         raise UnfoldError(f"the {n}-face surface is not one closed surface (Euler characteristic {2 - genus2})")
     if genus2 > 0:
-        raise NoNetExistsError(n, n, why=(
+        raise NoNetExistsError(None, None, kind="zipper net", why=(
             f"the {n}-face surface has a handle (Euler characteristic {2 - genus2}), so the cut edges of any "
-            "of its nets hold a cycle: no zipper net exists"))
+            "of its nets hold a cycle, never one path"))
     # Vertices of the voxel lattice take two colours (x + y + z even or odd) and every edge joins
     # two colours, so a path through all of them has as many of each, give or take one.
     colour = sg.vertex_position[verts].sum(axis=1) % 2
     even, odd = int((colour == 0).sum()), int((colour == 1).sum())
     if abs(even - odd) > 1:
-        raise NoNetExistsError(n, n, why=(
+        raise NoNetExistsError(None, None, kind="zipper net", why=(
             f"the {n}-face surface has {even} vertices of one colour and {odd} of the other (x + y + z even "
-            "or odd), and a cut path alternates colours: no zipper net exists"))
+            "or odd), and a cut path alternates colours"))
     cp_model = _cp_model()
     m = cp_model.CpModel()
     dummy = int(verts.size)
@@ -250,11 +250,11 @@ def zipper_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], deadline: floa
         if left <= 0:
             break
         prm.max_time_in_seconds = left
-        status = solver.Solve(m)
+        status = _solve(solver, m)
         if status == cp_model.INFEASIBLE:
-            raise NoNetExistsError(n, n, why=(
-                f"no zipper net of the {n}-face surface exists (proved: every path through its "
-                f"{dummy} vertices folds into an overlap; {rounds} overlaps ruled out)"))
+            raise NoNetExistsError(None, None, kind="zipper net", why=(
+                f"every path through the {dummy} vertices of the {n}-face surface folds into an overlap "
+                f"({rounds} overlaps ruled out)"))
         if status not in (cp_model.OPTIMAL, cp_model.FEASIBLE):
             break
         folds = [e for e, (uv, vu) in zip(edges, cut)

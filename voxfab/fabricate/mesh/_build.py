@@ -97,8 +97,11 @@ def hollow_out(grid: npt.NDArray[np.bool_], wall: int) -> npt.NDArray[np.bool_]:
     The wall is every voxel within Chebyshev distance ``wall`` of the outside,
     so it is at least ``wall`` voxels thick along every axis and a cavity never
     touches the outside, not even at a corner.  Each cavity gets one drain: a
-    one-voxel column from its lowest voxel nearest the cavity's centre straight
-    down to the outside.
+    one-voxel column from one of its voxels straight down to the outside, from
+    the lowest voxel nearest the cavity's centre when that keeps the print's
+    footprint.  A drain never takes the last voxels of the bottom layer (a
+    spinning top's one-voxel tip): the print keeps the footprint it stands on,
+    and the drain opens on the underside beside it instead.
     """
     from scipy import ndimage
 
@@ -108,23 +111,45 @@ def hollow_out(grid: npt.NDArray[np.bool_], wall: int) -> npt.NDArray[np.bool_]:
     labels, n = ndimage.label(inner, structure=ndimage.generate_binary_structure(3, 1))
     if n == 0:
         return shell
-    idx = np.argwhere(labels > 0)
+    everywhere = np.argwhere(labels > 0)
+    lab_all = labels[everywhere[:, 0], everywhere[:, 1], everywhere[:, 2]]
+    centre = np.stack([np.bincount(lab_all, weights=everywhere[:, a], minlength=n + 1) for a in range(2)], axis=1)
+    centre /= np.maximum(np.bincount(lab_all, minlength=n + 1), 1)[:, None]
+    # A drain starts at a cavity voxel with wall right under it (the bottom of its column in the cavity).
+    idx = everywhere[~inner[everywhere[:, 0], everywhere[:, 1], everywhere[:, 2] - 1]]
     lab = labels[idx[:, 0], idx[:, 1], idx[:, 2]]
-    zmin = np.full(n + 1, np.iinfo(np.int64).max)
-    np.minimum.at(zmin, lab, idx[:, 2])
-    centre = np.stack([np.bincount(lab, weights=idx[:, a], minlength=n + 1) for a in range(2)], axis=1)
-    centre /= np.maximum(np.bincount(lab, minlength=n + 1), 1)[:, None]
-    low = idx[idx[:, 2] == zmin[lab]]
-    low_lab = labels[low[:, 0], low[:, 1], low[:, 2]]
-    dist = np.hypot(low[:, 0] - centre[low_lab, 0], low[:, 1] - centre[low_lab, 1])
-    order = np.lexsort((low[:, 1], low[:, 0], dist, low_lab))
-    first = order[np.r_[True, low_lab[order][1:] != low_lab[order][:-1]]]
-    for x, y, z in low[first]:  # one per cavity
+    dist = np.hypot(idx[:, 0] - centre[lab, 0], idx[:, 1] - centre[lab, 1])
+    # Each cavity's voxels, lowest first, then nearest its centre (then x, y: a fixed order).
+    order = np.lexsort((idx[:, 1], idx[:, 0], dist, idx[:, 2], lab))
+    starts = np.flatnonzero(np.r_[True, lab[order][1:] != lab[order][:-1]])
+    ends = np.r_[starts[1:], len(order)]
+    for first, stop in zip(starts, ends):
+        candidates = idx[order[first:stop]]
+        _drill_drain(shell, candidates)
+    return shell
+
+
+def _drill_drain(shell: npt.NDArray[np.bool_], candidates: npt.NDArray[np.int64]) -> None:
+    """Drill one drain below the first candidate voxel whose column keeps a voxel in the bottom layer.
+
+    When every column would empty the bottom layer (a cavity standing straight on a
+    one-voxel foot), the first one is drilled: the print then stands one voxel higher,
+    and the mesh check measures the box of the voxels it meshes.
+    """
+    bottom = int(shell[:, :, 0].sum())
+    chosen = None
+    for x, y, z in candidates:
         col = shell[x, y, :z]
         gaps = np.flatnonzero(~col)
         start = int(gaps.max()) + 1 if gaps.size else 0
-        shell[x, y, start:z] = False
-    return shell
+        if start > 0 or bottom > 1 or not col[0]:
+            chosen = (x, y, start, z)
+            break
+        if chosen is None:
+            chosen = (x, y, start, z)
+    assert chosen is not None
+    x, y, start, z = chosen
+    shell[x, y, start:z] = False
 
 
 def thin_wall_warning(grid: npt.NDArray[np.bool_], pitch: float) -> str | None:
@@ -321,7 +346,11 @@ def _check_inputs(
 def _solid_grid(g: npt.NDArray[np.bool_], inputs: _Inputs, *, fill: bool, warnings: list[str]) -> npt.NDArray[np.bool_]:
     """The voxels to print: hollowed, or with enclosed cavities filled; warn about thin walls."""
     if inputs.hollow:
-        g = hollow_out(g, inputs.hollow)
+        hollowed = hollow_out(g, inputs.hollow)
+        g = crop(hollowed)
+        if g.shape != hollowed.shape:
+            # Only a drain through a one-voxel foot empties the bottom layer (see hollow_out).
+            warnings.append("a drain hole goes through the voxel the print stood on; it stands one voxel higher")
     elif fill:
         g = _fill_cavities(g)
     w = thin_wall_warning(g, inputs.pitch)

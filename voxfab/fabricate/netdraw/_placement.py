@@ -16,7 +16,6 @@ on the packing raster: a piece off it is refused, as is a mirrored piece
 from __future__ import annotations
 
 import dataclasses
-import math
 from typing import Any
 
 import numpy as np
@@ -133,17 +132,25 @@ def _mm(v: float) -> float:
 
 
 def _number(v: Any, where: str, *, positive: bool = False) -> float:
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-        raise PlacementError(f"{where}: expected a number, got {v!r:.40}")
-    if positive and not v > 0:
-        raise PlacementError(f"{where}: expected a positive number, got {v!r}")
-    return float(v)
+    from voxfab._shared.options import quote
+    from voxfab._shared.validate import finite_number
+
+    x = finite_number(v)  # 10**400 or Infinity: no number, not an OverflowError
+    if x is None:
+        raise PlacementError(f"{where}: expected a number, got {quote(v, 40)}")
+    if positive and not x > 0:
+        raise PlacementError(f"{where}: expected a positive number, got {quote(v, 40)}")
+    return x
 
 
 def _whole(v: Any, where: str, lo: int, hi: int) -> int:
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or v != int(v) or not lo <= v <= hi:
-        raise PlacementError(f"{where}: expected a whole number from {lo} to {hi}, got {v!r:.40}")
-    return int(v)
+    from voxfab._shared.options import quote
+    from voxfab._shared.validate import finite_number
+
+    x = finite_number(v)
+    if x is None or x != int(x) or not lo <= x <= hi:
+        raise PlacementError(f"{where}: expected a whole number from {lo} to {hi}, got {quote(v, 40)}")
+    return int(x)
 
 
 def turned(cells: npt.NDArray[np.int64], turns: int, mirror: bool = False) -> npt.NDArray[np.int64]:

@@ -580,7 +580,9 @@ $('#net-fits').addEventListener('click', async () => {
   const out = $('#net-fits-answer');
   out.textContent = ''; delete out.dataset.answer;
   try {
-    const {job} = await post('/api/fits', {grid: state.shape.pack(), options: netOptions()});
+    // the options the question reads: one piece, cavities filled, so pieces, fill and compact are the gallery's
+    const {sheet, face_size, numbers, tabs, timeout} = netOptions();
+    const {job} = await post('/api/fits', {grid: state.shape.pack(), options: {sheet, face_size, numbers, tabs, timeout}});
     const s = await waitJob(job, progress);
     progressDone();
     out.textContent = s.result.message; out.dataset.answer = s.result.answer;
@@ -592,13 +594,21 @@ $('#marks-clear').addEventListener('click', () => marker.clear());
 
 // --- Make ---------------------------------------------------------------------------------------
 
+// The options of the artefact's own output only: the server refuses an option that would have no effect.
+function makeOptions(artefact) {
+  if (artefact.startsWith('net.')) return netOptions();
+  if (artefact === 'plates.zip') {
+    return {thickness: Number($('#thickness').value), style: $('#plate-style').value, plate_sheet: $('#plate-sheet').value};
+  }
+  return {};
+}
+
 async function make(artefact) {
   const g = state.gallery;
   const chosen = g && state.chosen !== null && artefact.startsWith('net.');
   const body = chosen ? netMakeBody(artefact) : {grid: state.shape.pack(), artefact, pitch: Number($('#pitch').value),
     title: state.name || $('#recipe-name').value || 'studio',
-    options: {...netOptions(), thickness: Number($('#thickness').value), style: $('#plate-style').value,
-      plate_sheet: $('#plate-sheet').value},
+    options: makeOptions(artefact),
     net: g && state.chosen !== null ? {job: marker.job, index: marker.index} : null,
     shape: artefact === 'animation.gif' ? state.drawn : undefined};
   try {
