@@ -4,9 +4,10 @@ The request is ``{"grid": ..., "options": {"sheet": "A4", "face_size": 10, "time
 gallery's options, checked by the same dataclasses; no face size: the smallest legible one); the
 answer is a job (the search may take up to ``timeout`` seconds) whose result is
 :func:`voxfab.fabricate.fits.fits_sheet`'s: ``answer`` (``yes``, ``no``, proved,
-or ``undecided``), the box of faces, the message, and with ``yes`` the net's
-layout.  That net is the job's net 0, so ``/api/make`` draws it when asked for
-``{"net": {"job": ID, "index": 0}}``.
+or ``undecided``), the box of faces, the message in plain words (``detail``: the
+library's), and with ``yes`` the net as a gallery's net (layout, fit, placement).
+That net is the job's net 0, so ``/api/make`` draws it and ``/api/nets/edit``
+edits it when asked for ``{"job": ID, "index": 0}``.
 """
 
 from __future__ import annotations
@@ -56,19 +57,26 @@ def endpoint(jobs: Callable[[], Jobs]) -> Callable[[Request], Awaitable[dict[str
 
 def _answer(job: Any, grid: Any, *, net: Any, drawing: Any) -> None:
     from voxfab.fabricate.fits import fits_sheet
-    from voxfab.fabricate.netdraw import gallery_face_size, net_layout
+    from voxfab.fabricate.netdraw import gallery_face_size
+
+    from ._edit import net_item
+    from ._words import explained
 
     # No face size asked for: the smallest with legible marks, as the gallery takes it.
     drawing, _ = gallery_face_size(grid, net, drawing)
     sheet, face = drawing.sheet, float(drawing.pitch)
-    job.step(0, 1, f"exact search on {sheet} at {face:g} mm")
+    job.step(0, 1, f"looking for a one-piece net on {sheet} at {face:g} mm faces")
     fit = fits_sheet(grid, sheet, face, timeout=net.timeout, drawing=drawing)
     job.data["nets"] = [fit.net] if fit.net is not None else []
     job.data["grid"] = grid
+    job.data["options"] = (net, drawing)  # an edit of the net found keeps its sheet and marks
+    said = explained(fit.message)
     result: dict[str, Any] = {"answer": fit.answer, "box": list(fit.box), "faces": fit.faces, "sheet": sheet,
-                              "face_size": face, "message": fit.message}
+                              "face_size": face, "message": said["text"], **({"detail": said["detail"]} if "detail" in said else {})}
     if fit.net is not None:
+        # The net found, as a gallery's net: the page opens it in the editor, on its sheets, ready for its files.
         x0, y0, x1, y1 = fit.net.bounds()
-        result["net"] = {"index": 0, "extent": [x1 - x0, y1 - y0], "layout": net_layout(grid, fit.net)}
+        item = net_item(grid, fit.net, None, history=0, extra={}, drawing=drawing)
+        result["net"] = {**item, "extent": [x1 - x0, y1 - y0]}
     job.result = result
     job.step(1, 1, fit.message)

@@ -166,7 +166,8 @@ class Jobs:
                     job.result = {**job.result, "ways_out": list(ways)}
                     job.state = "error"
             except Exception as exc:  # noqa: BLE001 - the page gets one line, never a traceback
-                job.message = f"internal error ({type(exc).__name__}): {' '.join(str(exc).split())}"
+                job.detail = f"internal error ({type(exc).__name__}): {' '.join(str(exc).split())}"
+                job.message = plain(job.detail)  # plain words; the exception stays in the tooltip
                 job.state = "error"
             finally:
                 job.seconds = time.monotonic() - job.started

@@ -14,11 +14,15 @@ from typing import Any
 
 
 def _choose(name: str, value: str) -> str:
-    """``(choose fill: on)`` for the option ``fill=True``: the page's control and its setting."""
-    return f"(choose {name.replace('_', ' ')}: {ON_OFF.get(value, value)})"
+    """``(choose fill: on)`` for the option ``fill=True``: the page's control and its setting, in its words."""
+    words = PAGE_CHOICES.get((name, value), ON_OFF.get(value, value))
+    return f"(choose {name.replace('_', ' ')}: {words})"
 
 
 ON_OFF = {"True": "on", "False": "off"}
+
+#: The page's own words for option values its menus show otherwise ("pieces: auto" is a CLI setting).
+PAGE_CHOICES = {("pieces", "auto"): "split into pieces if needed", ("pieces", "one"): "one piece"}
 
 #: (pattern, replacement) in order; each names what the artist sees on the page.
 _PLAIN: tuple[tuple[re.Pattern[str], str | Callable[[re.Match[str]], str]], ...] = (
@@ -35,11 +39,16 @@ _PLAIN: tuple[tuple[re.Pattern[str], str | Callable[[re.Match[str]], str]], ...]
     (re.compile(r"\(([a-z_]+)=(?:'([^']*)'|(\w+)), CLI --[a-z-]+(?: [^()\s]+)?\)"),
      lambda m: _choose(m.group(1), m.group(2) or m.group(3))),
     (re.compile(r"\s*\(CLI --[a-z-]+(?: [^()\s]+)?\)"), ""),
-    (re.compile(r"\bpieces='auto'"), "pieces: auto"),
+    (re.compile(r"\bpieces='auto'"), "pieces: split into pieces if needed"),
     # CLI options in parentheses, e.g. "(--pieces auto)", "(--sheet)": the page's choice of that name
     (re.compile(r"\(--([a-z][a-z-]*)(?: ([^()\s]+))?\)"),
-     lambda m: f"(choose {m.group(1).replace('-', ' ')}{': ' + m.group(2) if m.group(2) else ''})"),
+     lambda m: _choose(m.group(1).replace("-", "_"), m.group(2)) if m.group(2) else f"(choose {m.group(1).replace('-', ' ')})"),
     (re.compile(r"\bk-flake\b"), "wall"),
+    # "exact search": the search that tries every net in a box until one fits or none can
+    (re.compile(r"\b(?:the )?exact search\b"), "the complete search"),
+    # a failure of the server itself: its exception's name and text stay in the tooltip
+    (re.compile(r"^internal error \([A-Za-z_.]+\)(?::.*)?$"),
+     "the server could not finish this (the technical line is in the tooltip)"),
 )
 
 

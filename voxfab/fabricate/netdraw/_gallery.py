@@ -128,7 +128,8 @@ def net_gallery(grid: Any, net: NetOptions, drawing: DrawingOptions, *, count: i
         Search options (``pieces``, ``fill``, ``compact``, ``strategy``, ``timeout`` per net,
         ``budget`` for all).
     drawing : DrawingOptions
-        Sheet and marks; ``pitch`` the face size (None: the smallest with legible marks).
+        Sheet and marks; ``pitch`` the face size (None: for one piece the largest at which a net
+        fits the sheet, for a net in pieces the smallest with legible marks).
     count : int
         Nets wanted.
     seed : int
@@ -158,7 +159,9 @@ def net_gallery(grid: Any, net: NetOptions, drawing: DrawingOptions, *, count: i
     from ._pipeline import validate_net
 
     start = time.monotonic()
-    options, notes = gallery_face_size(grid, net, drawing)
+    # One piece and no face size: the largest at which a net fits, settled by the search as
+    # ``voxfab net`` settles it; in pieces, the smallest with legible marks.
+    options, notes = (drawing, []) if net.pieces == "one" else gallery_face_size(grid, net, drawing)
     search: dict[str, Any] = dict(strategy=net.strategy, timeout=net.timeout, fill=net.fill, compact=net.compact)
     if constraints is not None:
         search["constraints"] = constraints

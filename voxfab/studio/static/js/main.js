@@ -25,8 +25,10 @@ const state = {
   base: null, // the drawing's own shape (the last preview): hand edits are what differs from it
   opened: false, // the shape came from the repository or the command line, not from the drawing
   parked: null, // {shape, base}: hand edits set aside while the drawing has an error
+  stroking: false, // a stroke is being drawn: its previews after the first add no undo step
   edited: false,
   name: null, // repository name once saved
+  label: null, // what the shape was opened as (a file's name without its extension), for file names
   gallery: null, // {job, nets}
   chosen: null, // index of the chosen net in the gallery
 };
@@ -82,15 +84,14 @@ function showFacts(f) {
 
 // What belonged to the shape before it changed: its saved name's note, its nets and the marks on them.
 function forgetShapeState() {
-  state.gallery = null; state.chosen = null;
   $('#save-result').textContent = ''; delete $('#save-result').dataset.name;
-  $('#net-summary').textContent = '';
-  marker.setLayout(null);
+  forgetNet();
+  $('#net-fits-answer').textContent = ''; delete $('#net-fits-answer').dataset.answer;
   if (marker.marks && (marker.marks.cut.length || marker.marks.keep.length)) marker.clear();
 }
 
-function setShape(grid, facts, {drawn = null, name = null, keepHistory = false} = {}) {
-  state.shape = grid; state.drawn = drawn; state.edited = false; state.name = name;
+function setShape(grid, facts, {drawn = null, name = null, label = null, keepHistory = false} = {}) {
+  state.shape = grid; state.drawn = drawn; state.edited = false; state.name = name; state.label = label;
   forgetShapeState();
   $('#shape-name').textContent = name || 'unsaved';
   viewer.stop();
@@ -113,7 +114,8 @@ function carryEdits(base, shape, fresh) {
 }
 
 // A new preview of the drawing: hand edits are kept on it, and a shape it replaces stays one Undo away.
-function drawingChanged(fresh, facts, spec) {
+// `remember`: false for the previews of a stroke after its first, so that one stroke is one undo step.
+function drawingChanged(fresh, facts, spec, remember = true) {
   const before = state.shape, beforeBase = state.base;
   // the edits on the shape now, or those set aside while the drawing had an error
   const carry = state.edited && beforeBase ? {shape: before, base: beforeBase} : state.parked;
@@ -123,7 +125,7 @@ function drawingChanged(fresh, facts, spec) {
     if (carry.shape === before && carry.base.equals(fresh)) return;
     const [kept, n] = carryEdits(carry.base, carry.shape, fresh);
     state.base = fresh;
-    editor.remember(before, beforeBase);
+    if (remember) editor.remember(before, beforeBase);
     setShape(kept, facts, {keepHistory: true});
     state.edited = true; $('#shape-name').textContent = 'unsaved';
     check();
@@ -132,18 +134,18 @@ function drawingChanged(fresh, facts, spec) {
   }
   const replacing = (state.opened || state.edited) && before.count() > 0;
   state.base = fresh.clone(); state.opened = false;
-  if (replacing) editor.remember(before, beforeBase);
+  if (replacing && remember) editor.remember(before, beforeBase);
   setShape(fresh, facts, {drawn: spec, keepHistory: replacing});
   if (replacing) say('The drawing replaced the opened shape (Undo in Edit brings it back).', true);
 }
 
 // The drawing cannot make a shape: show none rather than the last one under its old badge.
-function drawingFailed() {
+function drawingFailed(remember = true) {
   if (state.shape.count() === 0 && !state.edited) { showFacts(NO_FACTS); viewer.setGrid(state.shape); return; }
   const before = state.shape, beforeBase = state.base;
   if (state.edited && beforeBase) state.parked = {shape: before.clone(), base: beforeBase}; // back when it is fixed
   state.base = null;
-  editor.remember(before, beforeBase);
+  if (remember) editor.remember(before, beforeBase);
   setShape(new Grid(), NO_FACTS, {keepHistory: true});
 }
 
@@ -202,20 +204,24 @@ async function runPreview() {
   const req = pending; pending = null;
   const spec = currentSpec();
   const missing = emptyDrawing(spec);
+  // The first preview of a stroke keeps the shape before it one Undo away; the stroke's later
+  // previews (and its last, on release) replace that preview without a step of their own.
+  const remember = !state.stroking;
+  state.stroking = !req.final;
   // an unfinished drawing has no shape yet: none is shown rather than the last one
-  if (missing) { say(`Draw or choose the ${missing} to see the shape.`, true); drawingFailed(); return; }
+  if (missing) { say(`Draw or choose the ${missing} to see the shape.`, true); drawingFailed(remember); return; }
   inFlight = true;
   try {
     const r = await post('/api/preview', spec);
     say('');
-    drawingChanged(Grid.unpack(r.grid), r.facts, spec);
+    drawingChanged(Grid.unpack(r.grid), r.facts, spec, remember);
     const ms = performance.now() - req.t;
     const lat = $('#latency');
     lat.textContent = `preview ${Math.round(ms)} ms (digitizing ${Math.round(r.ms)} ms)`;
     if (req.final) { lat.dataset.ms = String(Math.round(ms)); lat.dataset.count = String(Number(lat.dataset.count || 0) + 1); }
   } catch (e) {
     say(e);
-    drawingFailed();
+    drawingFailed(remember);
   } finally {
     inFlight = false;
     if (pending) runPreview();
@@ -316,6 +322,9 @@ function recipeNote() {
   $('#recipe-note').textContent = state.drawn ? ''
     : 'The recipe describes a drawn shape: this one was edited by hand or opened from the repository, so keep it in the repository instead.';
   $('#save-recipe').disabled = !state.drawn;
+  // the animation turns a drawn tube's profile: no other shape has one
+  const tube = Boolean(state.drawn && state.drawn.maker === 'tube');
+  for (const b of $$('[data-make="animation.gif"]')) b.classList.toggle('hidden', !tube);
 }
 
 $('#save-repo').addEventListener('click', async () => {
@@ -411,7 +420,11 @@ function plainWords(text) {
     .replace(/--no-numbers/g, 'no seam labels').replace(/--no-tabs/g, 'no glue tabs').replace(/--([a-z-]+)/g, '$1');
 }
 
-function sayError(e) { say(plainWords(e.message || String(e))); }
+function sayError(e) {
+  const err = new Error(plainWords(e.message || String(e)));
+  err.detail = e.detail || '';
+  say(err);
+}
 
 function sheetValue() {
   return $('#net-sheet').value === 'custom' ? $('#net-sheet-custom').value.trim() : $('#net-sheet').value;
@@ -444,6 +457,15 @@ function clearNetFiles() {
   for (const a of $$('#net-files a')) { a.removeAttribute('href'); a.removeAttribute('download'); a.dataset.state = 'none'; }
 }
 
+// A new search: the last gallery's summary, chosen net, sheets and files go (none is left to edit or cut).
+function forgetNet() {
+  state.gallery = null; state.chosen = null;
+  $('#net-summary').textContent = ''; delete $('#net-summary').dataset.found; delete $('#net-summary').dataset.seconds;
+  $('#net-chosen-label').textContent = ''; delete $('#net-chosen-label').dataset.index;
+  marker.setLayout(null);
+  netNote();
+}
+
 function netNote() {
   const g = state.gallery;
   $('#make-net').textContent = g && state.chosen !== null
@@ -455,32 +477,51 @@ function netNote() {
   }
 }
 
-// One button per way out of a net that does not fit: it sets those options and searches again.
+// The Net tab's control of each net option a way out may set (the sheet has its own two).
+const NET_CONTROLS = {pieces: '#net-pieces', face_size: '#net-face', numbers: '#net-numbers', tabs: '#net-tabs',
+  fill: '#net-fill', compact: '#net-compact', timeout: '#net-timeout'};
+
+// Set every option of `options` ({name: value}, as netOptions() names them) on the Net tab's controls.
+function setNetOptions(options) {
+  for (const [name, value] of Object.entries(options)) {
+    if (name === 'sheet') {
+      const known = [...$('#net-sheet').options].some((x) => x.value === value);
+      $('#net-sheet').value = known ? value : 'custom';
+      if (!known) $('#net-sheet-custom').value = value;
+      $('#net-sheet').dispatchEvent(new Event('change'));
+      continue;
+    }
+    const control = NET_CONTROLS[name] && $(NET_CONTROLS[name]);
+    if (!control) throw new Error(`this way out sets ${name}, which the page has no control for`);
+    if (control.type === 'checkbox') control.checked = Boolean(value);
+    else control.value = value === null ? '' : String(value);
+  }
+}
+
+// One button per way out of a net that does not fit: it sets all its options and searches again.
 function showWaysOut(ways) {
   $('#net-ways').replaceChildren(...(ways || []).map((w) => {
     const b = Object.assign(document.createElement('button'), {type: 'button', textContent: w.label});
     b.dataset.options = JSON.stringify(w.options);
     b.addEventListener('click', () => {
-      const o = w.options;
-      if (o.pieces) $('#net-pieces').value = o.pieces;
-      if (o.sheet) {
-        const known = [...$('#net-sheet').options].some((x) => x.value === o.sheet);
-        $('#net-sheet').value = known ? o.sheet : 'custom';
-        if (!known) $('#net-sheet-custom').value = o.sheet;
-        $('#net-sheet').dispatchEvent(new Event('change'));
-      }
-      if (o.face_size !== undefined) $('#net-face').value = o.face_size === null ? '' : String(o.face_size);
+      try { setNetOptions(w.options); } catch (e) { say(e.message); return; }
       gallery(false);
     });
     return b;
   }));
 }
 
+// "1 net in pieces", "8 nets in pieces", "8 nets, each different once cut out".
+function galleryWords(found, inPieces) {
+  const nets = found === 1 ? 'net' : 'nets';
+  return inPieces ? `${nets} in pieces` : found === 1 ? 'net' : `${nets}, each different once cut out`;
+}
+
 async function gallery(withMarks) {
   const options = netOptions();
   const body = {grid: state.shape.pack(), count: Number($('#net-count').value), seed: Number($('#net-seed').value),
     options, constraints: withMarks ? marker.constraints() : null};
-  state.gallery = null; state.chosen = null; netNote(); showWaysOut([]);
+  forgetNet(); showWaysOut([]);
   try {
     $('#net-go').disabled = true; $('#net-regen').disabled = true;
     const t0 = performance.now();
@@ -499,7 +540,7 @@ async function gallery(withMarks) {
     $('#net-chosen-label').textContent = ''; delete $('#net-chosen-label').dataset.index;
     marker.setLayout(null);
     const secs = ((performance.now() - t0) / 1000).toFixed(1);
-    const what = r.nets.some((n) => n.pieces > 1) ? 'net in pieces' : 'nets, each different once cut out';
+    const what = galleryWords(r.found, r.nets.some((n) => n.pieces > 1));
     $('#net-summary').textContent = `${r.found} ${what} in ${secs} s, faces ${r.options.face_size} mm.`;
     $('#net-summary').dataset.found = String(r.found); $('#net-summary').dataset.seconds = secs;
     $('#net-gallery').replaceChildren(...r.nets.map((n, i) => {
@@ -538,11 +579,18 @@ function choose(i) {
   makeNetFiles();
 }
 
+// What the files are named after: the shape's repository name, the file it was opened from, or the
+// recipe name of a drawn shape (characters a file name may not hold become '-').
+function shapeTitle() {
+  const title = state.name || state.label || $('#recipe-name').value || 'studio';
+  return title.replace(/[^A-Za-z0-9_. -]/g, '-').slice(0, 64) || 'studio';
+}
+
 // The body of /api/make for a net file of the chosen net, as laid out on the sheets.
 function netMakeBody(artefact) {
   const g = state.gallery;
   return {grid: state.shape.pack(), artefact, pitch: Number($('#pitch').value),
-    title: state.name || $('#recipe-name').value || 'studio', options: g.options,
+    title: shapeTitle(), options: g.options,
     net: {job: marker.job, index: marker.index}, placement: g.placement};
 }
 
@@ -585,10 +633,22 @@ $('#net-fits').addEventListener('click', async () => {
     const {job} = await post('/api/fits', {grid: state.shape.pack(), options: {sheet, face_size, numbers, tabs, timeout}});
     const s = await waitJob(job, progress);
     progressDone();
-    out.textContent = s.result.message; out.dataset.answer = s.result.answer;
-    say(s.result.message, true);
+    const r = s.result;
+    out.textContent = r.message; out.dataset.answer = r.answer;
+    if (r.detail) out.title = r.detail; else out.removeAttribute('title');
+    if (r.answer === 'yes' && r.net) openFound(job, r);
+    say(r.message, true);
   } catch (e) { progressDone(); sayError(e); }
 });
+
+// A "yes": the net the search found becomes the chosen net, in the editor and on the sheets, with its files.
+function openFound(job, r) {
+  forgetNet(); showWaysOut([]);
+  state.gallery = {job, nets: [r.net], options: {...netOptions(), face_size: r.face_size}, placement: null};
+  $('#net-gallery').replaceChildren();
+  $('#net-summary').textContent = `The one-piece net found for ${r.sheet} at ${r.face_size} mm faces is open below.`;
+  choose(0);
+}
 $('#net-regen').addEventListener('click', () => gallery(true));
 $('#marks-clear').addEventListener('click', () => marker.clear());
 
@@ -607,7 +667,7 @@ async function make(artefact) {
   const g = state.gallery;
   const chosen = g && state.chosen !== null && artefact.startsWith('net.');
   const body = chosen ? netMakeBody(artefact) : {grid: state.shape.pack(), artefact, pitch: Number($('#pitch').value),
-    title: state.name || $('#recipe-name').value || 'studio',
+    title: shapeTitle(),
     options: makeOptions(artefact),
     net: g && state.chosen !== null ? {job: marker.job, index: marker.index} : null,
     shape: artefact === 'animation.gif' ? state.drawn : undefined};
@@ -643,6 +703,7 @@ async function makeButtons() {
     b.addEventListener('click', () => make(name));
     box.append(b);
   }
+  recipeNote();
   box.dataset.ready = 'true';
 }
 $('#show-shape').addEventListener('click', () => viewer.setGrid(state.shape));
@@ -664,7 +725,7 @@ async function start() {
   const {shape} = await get('/api/initial');
   if (!shape) { schedule(true); return; }
   state.opened = true;
-  setShape(Grid.unpack(shape.grid), shape.facts, {name: shape.name});
+  setShape(Grid.unpack(shape.grid), shape.facts, {name: shape.name, label: shape.label.replace(/\.[A-Za-z0-9]+$/, '')});
   $('#shape-name').textContent = shape.label;
   if (shape.pitch) $('#pitch').value = String(shape.pitch);
   say(`Opened ${shape.label}`, true);

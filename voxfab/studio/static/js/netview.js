@@ -37,8 +37,55 @@ function turn(ax, angle) {
   return I3.map((v, i) => v + s * k[i] + c * k2[i]);
 }
 
+// Quaternion [w, x, y, z] (w >= 0) of a rotation matrix (Shepperd's method, stable near half turns).
+function quaternion(m) {
+  const tr = m[0] + m[4] + m[8];
+  let q;
+  if (tr > 0) {
+    const s = 2 * Math.sqrt(tr + 1);
+    q = [s / 4, (m[7] - m[5]) / s, (m[2] - m[6]) / s, (m[3] - m[1]) / s];
+  } else if (m[0] > m[4] && m[0] > m[8]) {
+    const s = 2 * Math.sqrt(1 + m[0] - m[4] - m[8]);
+    q = [(m[7] - m[5]) / s, s / 4, (m[1] + m[3]) / s, (m[2] + m[6]) / s];
+  } else if (m[4] > m[8]) {
+    const s = 2 * Math.sqrt(1 + m[4] - m[0] - m[8]);
+    q = [(m[2] - m[6]) / s, (m[1] + m[3]) / s, s / 4, (m[5] + m[7]) / s];
+  } else {
+    const s = 2 * Math.sqrt(1 + m[8] - m[0] - m[4]);
+    q = [(m[3] - m[1]) / s, (m[2] + m[6]) / s, (m[5] + m[7]) / s, s / 4];
+  }
+  return q[0] < 0 ? q.map((v) => -v) : q;
+}
+
+// The rotation of quaternion q taken by the share t of its angle (t = 0: none, 1: all of it).
+function partTurn(q, t) {
+  const half = Math.acos(Math.min(1, q[0])), s = Math.sin(half);
+  if (s < 1e-12) return I3.slice();
+  return turn([q[1] / s, q[2] / s, q[3] / s], 2 * half * t);
+}
+
+// Where each piece sits in the 2D view and in the flat fold: side by side in number order, GAP faces
+// apart, each from its own frame. {shift: [[dx, dy] per piece], width, height} in faces.
+export function pieceOffsets(layout) {
+  const F = layout.faces.length, c = layout.corners, piece = layout.piece || new Array(F).fill(0);
+  const pieces = Math.max(...piece) + 1, box = Array.from({length: pieces}, () => [Infinity, Infinity, -Infinity, -Infinity]);
+  for (let i = 0; i < F; i++) {
+    const b = box[piece[i]];
+    for (let k = 0; k < 4; k++) {
+      b[0] = Math.min(b[0], c[8 * i + 2 * k]); b[1] = Math.min(b[1], c[8 * i + 2 * k + 1]);
+      b[2] = Math.max(b[2], c[8 * i + 2 * k]); b[3] = Math.max(b[3], c[8 * i + 2 * k + 1]);
+    }
+  }
+  let x = 0;
+  const shift = box.map((b) => { const s = [x - b[0], -b[1]]; x += b[2] - b[0] + GAP; return s; });
+  return {shift, width: x - GAP, height: Math.max(...box.map((b) => b[3] - b[1]))};
+}
+
 // Everything the fold-up needs, computed once per net: each face's pose from the sheet (z = 0) to the
 // surface, the order parents come before children, each hinge (point, axis) and its angle.
+// The first piece's root stays where it is on the surface, as in voxfab/render/_fold.py; every other
+// piece's root moves from beside it in its plane (flat, as the 2D view lays the pieces out) to the
+// surface, turning about its centre (`flat`), so that at 0 all the pieces lie flat together.
 export function foldPlan(layout) {
   const F = layout.faces.length, c2 = layout.corners, c3 = layout.corners3d;
   const rot = [], shift = [];
@@ -73,17 +120,35 @@ export function foldPlan(layout) {
     hinge[c] = {point: a, axis: ax};
     angle[c] = Math.atan2(skew[0] * ax[0] + skew[1] * ax[1] + skew[2] * ax[2], (rel[0] + rel[4] + rel[8] - 1) / 2);
   }
-  return {F, rot, shift, order, hinge, angle, parent, c2};
+  const piece = layout.piece || new Array(F).fill(0), offsets = pieceOffsets(layout).shift;
+  const roots = order.filter((c) => parent[c] < 0), base = roots.find((c) => piece[c] === 0) ?? roots[0];
+  const flat = new Array(F).fill(null);
+  for (const c of roots) {
+    if (c === base) continue;
+    const centre = (j) => (c2[8 * c + j] + c2[8 * c + 2 + j] + c2[8 * c + 4 + j] + c2[8 * c + 6 + j]) / 4;
+    const cc = [centre(0), centre(1), 0];
+    const [ox, oy] = offsets[piece[c]], [bx, by] = offsets[piece[base]];
+    const onSheet = apply(rot[base], [cc[0] + ox - bx, cc[1] + oy - by, 0]).map((v, j) => v + shift[base][j]);
+    const onSurface = apply(rot[c], cc).map((v, j) => v + shift[c][j]);
+    flat[c] = {centre: cc, onSheet, onSurface, turn: quaternion(mul(rot[c], transpose(rot[base]))), start: rot[base]};
+  }
+  return {F, rot, shift, order, hinge, angle, parent, c2, flat};
 }
 
-// Face corners (F*12 numbers) at fold fraction t: 0 flat in the plane of each piece's root, 1 the surface.
+// Face corners (F*12 numbers) at fold fraction t: 0 flat (every piece in the plane of the first piece's
+// root, laid out as in the 2D view), 1 the surface.
 // Flat typed arrays and inlined 3×3 products: this runs once per animation frame over every face.
 export function foldCorners(plan, t) {
-  const {F, rot, shift, order, hinge, angle, parent, c2} = plan;
+  const {F, rot, shift, order, hinge, angle, parent, c2, flat} = plan;
   const R = new Float64Array(9 * F), S = new Float64Array(3 * F), out = new Float64Array(12 * F);
   for (const c of order) {
     const p = parent[c], rc = 9 * c, sc = 3 * c;
-    if (p < 0) {
+    if (p < 0 && flat[c]) {
+      // a piece's root on its way from flat beside the first piece to the surface
+      const f = flat[c], r = mul(partTurn(f.turn, t), f.start), mid = apply(r, f.centre);
+      for (let m = 0; m < 9; m++) R[rc + m] = r[m];
+      for (let m = 0; m < 3; m++) S[sc + m] = (1 - t) * f.onSheet[m] + t * f.onSurface[m] - mid[m];
+    } else if (p < 0) {
       for (let m = 0; m < 9; m++) R[rc + m] = rot[c][m];
       for (let m = 0; m < 3; m++) S[sc + m] = shift[c][m];
     } else {
@@ -171,22 +236,20 @@ export class NetView {
 
   setNet(job, index, layout, {keepView = false} = {}) {
     this.job = job; this.index = index; this.layout = layout; this.hover = null; this._plan = null;
+    // what was lit belongs to the net before: the 3D view lets it go too (a pointer still over an
+    // edge lights it again on its next move)
+    if (this.viewer) {
+      this.viewer.setHighlight(null);
+      if (!layout && this.viewer.quads) this.viewer.setQuads(null);
+    }
     this.version += 1;
     const ds = this.canvas.dataset;
     ds.version = String(this.version); ds.job = job || ''; ds.faces = layout ? String(layout.faces.length) : '0';
     if (!layout) { this.view = null; this.draw(); return; }
     const F = layout.faces.length, c = layout.corners, piece = layout.piece || new Array(F).fill(0);
     // pieces side by side, each in its own frame
-    const pieces = Math.max(...piece) + 1, box = Array.from({length: pieces}, () => [Infinity, Infinity, -Infinity, -Infinity]);
-    for (let i = 0; i < F; i++) {
-      const b = box[piece[i]];
-      for (let k = 0; k < 4; k++) {
-        b[0] = Math.min(b[0], c[8 * i + 2 * k]); b[1] = Math.min(b[1], c[8 * i + 2 * k + 1]);
-        b[2] = Math.max(b[2], c[8 * i + 2 * k]); b[3] = Math.max(b[3], c[8 * i + 2 * k + 1]);
-      }
-    }
-    let x = 0;
-    this.shift = box.map((b) => { const s = [x - b[0], -b[1]]; x += b[2] - b[0] + GAP; return s; });
+    const {shift, width: w, height: h} = pieceOffsets(layout);
+    this.shift = shift;
     this.pts = new Float64Array(8 * F);
     this.cells = new Map(); this.names = new Map(); this.foldsSet = new Set();
     for (let i = 0; i < F; i++) {
@@ -201,7 +264,6 @@ export class NetView {
     }
     for (let t = 0; t < layout.folds.length; t += 2) this.foldsSet.add(pairKey(layout.folds[t], layout.folds[t + 1]));
     const W = this.canvas.width, H = this.canvas.height;
-    const w = x - GAP, h = Math.max(...box.map((b) => b[3] - b[1]));
     const fit = Math.min((W - 16) / w, (H - 16) / h);
     if (!keepView || !this.view) this.view = {s: fit, fit, ox: (W - fit * w) / 2, oy: H - (H - fit * h) / 2};
     this.draw();

@@ -64,6 +64,8 @@ export class Viewer {
   // Show a grid; `layer` (a z index or null) is highlighted for the editor.
   setGrid(grid, layer = this.layer) {
     this.grid = grid; this.layer = layer; this.mesh = null; this.quads = null;
+    // a lit face or seam belongs to a net of the shape shown before
+    this.highlight = null; this.canvas.dataset.highlight = ''; this.canvas.dataset.highlightLabel = '';
     this.faces = exposedFaces(grid);
     this.version += 1;
     this.canvas.dataset.version = String(this.version);
