@@ -108,32 +108,46 @@ def studio(args: argparse.Namespace) -> None:
             _read(url, _post(f"{url}/api/nets", dict(body, count=1))["job"], time.perf_counter(), _get)
             rows = []
             for run in range(args.runs):
-                t0 = time.perf_counter()
+                t0, c0 = time.perf_counter(), _cpu(proc.pid)
                 job = _post(f"{url}/api/nets", dict(body, seed=run))["job"]
-                rows.append(_read(url, job, t0, _get))
-                print(f"run {run + 1} (seed {run}): first net read at {rows[-1][0]:.2f} s, "
-                      f"all {args.nets} at {rows[-1][1]:.2f} s")
+                rows.append(_read(url, job, t0, _get, lambda c0=c0: _cpu(proc.pid) - c0))
+                print(f"run {run + 1} (seed {run}): first net read at {rows[-1][0]:.2f} s "
+                      f"({rows[-1][2]:.2f} s of the server's CPU), all {args.nets} at {rows[-1][1]:.2f} s "
+                      f"({rows[-1][3]:.2f} s CPU)")
         finally:
             proc.terminate()
             proc.wait(10)
-    first, last = (statistics.median(col) for col in zip(*rows))
+    first, last, first_cpu, last_cpu = (statistics.median(col) for col in zip(*rows))
     print(f"queen, {args.nets} nets on {args.sheet} (pieces {args.pieces}) through the studio, median of "
-          f"{args.runs}: first net read by the page at {first:.2f} s, all at {last:.2f} s (goals 3 s and 10 s)")
+          f"{args.runs}: first net read by the page at {first:.2f} s ({first_cpu:.2f} s CPU), all at {last:.2f} s "
+          f"({last_cpu:.2f} s CPU); goals 3 s and 10 s")
     print("2-core machine shared with other jobs: figures are noisy")
 
 
-def _read(url: str, job: str, t0: float, get) -> tuple[float, float]:  # noqa: ANN001 - bench_studio's client
-    """Poll as the page does (every 150 ms, ``?since=N``): seconds to the first net and to the end."""
-    read, first = 0, None
+def _cpu(pid: int) -> float:
+    """CPU seconds (user and system) the process ``pid`` has used, from ``/proc`` (0 where there is none)."""
+    import os
+
+    try:
+        fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    except OSError:
+        return 0.0
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def _read(url: str, job: str, t0: float, get, cpu=lambda: 0.0  # noqa: ANN001 - bench_studio's client
+          ) -> tuple[float, float, float, float]:
+    """Poll as the page does (every 150 ms, ``?since=N``): seconds to the first net and to the end, wall and CPU."""
+    read, first, first_cpu = 0, None, 0.0
     while True:
         s = get(f"{url}/api/jobs/{job}?since={read}")
         read += len(s["items"])
         if read and first is None:
-            first = time.perf_counter() - t0
+            first, first_cpu = time.perf_counter() - t0, cpu()
         if s["state"] not in ("queued", "running"):
             if s["state"] != "done":
                 raise SystemExit(f"gallery {s['state']}: {s['message']}")
-            return first or 0.0, time.perf_counter() - t0
+            return first or 0.0, time.perf_counter() - t0, first_cpu, cpu()
         time.sleep(0.15)
 
 

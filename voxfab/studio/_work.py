@@ -140,8 +140,23 @@ def warm_kernels_here() -> None:
 
     try:
         warm_up(processes=1)  # here, not in child processes: this process serves the requests
+        warm_gallery_here()
     except VoxfabError:  # pragma: no cover - the warm-up jobs are fixed and valid
         pass
+
+
+def warm_gallery_here() -> None:
+    """A small gallery in pieces, laid out as the page gets it: the imports and kernels of cutting,
+    packing and the page's JSON (scipy's signal package alone takes seconds) are loaded before the
+    artist's first gallery, whose first net should be on screen within seconds."""
+    from voxfab.fabricate import netdraw
+    from voxfab.fabricate.netdraw._gallery import gallery_item_json
+    from voxfab.shape import examples
+
+    ball = examples.ball(3)
+    net, drawing = netdraw.gallery_options({"sheet": "80x80", "face_size": 10, "pieces": "auto", "timeout": 5.0})
+    netdraw.net_gallery(ball, net, drawing, count=2, seed=0,
+                        on_item=lambda index, item: gallery_item_json(index, item, ball))
 
 
 # --- fabrication files ------------------------------------------------------------------------
