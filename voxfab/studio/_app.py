@@ -461,7 +461,14 @@ def create_app(settings: Settings) -> Starlette:
         return {"job": job.id}
 
     async def job_status(request: Request) -> dict[str, Any]:
-        return _job(request.path_params["job"]).status()
+        job = _job(request.path_params["job"])
+        since = request.query_params.get("since")
+        if since is None:
+            return job.status()
+        # The items the page has not drawn yet: a gallery's nets, each as soon as it is made.
+        if not since.isdigit() or len(since) > 6:
+            raise InvalidShapeError(f"since: expected the number of items already read, got {since[:20]!r}")
+        return job.status(since=int(since))
 
     async def job_cancel(request: Request) -> dict[str, Any]:
         job = _job(request.path_params["job"])

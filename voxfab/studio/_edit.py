@@ -154,8 +154,8 @@ def edit_route(jobs: Callable[[], Any]) -> Callable[[Any], Awaitable[dict[str, A
         source = jobs().get(data["job"]) if len(data["job"]) <= 40 else None
         if source is None:
             raise InvalidShapeError(f"job: no job {data['job'][:20]!r} in this session")
-        # an edit's job holds its net from the start (the pool only marks it done)
-        if source.state != "done" and source.kind != "edit":
+        # an edit's job holds its net from the start (the pool only marks it done), a gallery each net once made
+        if source.state != "done" and source.kind != "edit" and not (source.kind == "nets" and source.items):
             raise InvalidShapeError(f"job: job {source.id} has not finished")
         made = await run_in_threadpool(apply_edit, source, data)
         record, item = made["record"], made["item"]

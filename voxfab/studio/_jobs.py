@@ -45,6 +45,9 @@ class Job:
         JSON-ready result for the page.
     files : list of (str, Path)
         Download name and path of each file the job made.
+    items : list of dict
+        JSON-ready results made so far, in order (a gallery's nets, each as soon as it is made):
+        the page reads them while the job runs (``status(since=n)``).
     data : dict
         Objects kept for later requests (nets to draw), never sent.
     cancel : threading.Event
@@ -60,6 +63,7 @@ class Job:
     message: str = "waiting for a free worker"
     result: dict[str, Any] = field(default_factory=dict)
     files: list[tuple[str, Path]] = field(default_factory=list)
+    items: list[dict[str, Any]] = field(default_factory=list)
     data: dict[str, Any] = field(default_factory=dict)
     started: float = field(default_factory=time.monotonic)
     seconds: float = 0.0
@@ -87,13 +91,20 @@ class Job:
         """Whether the job is over (done, failed or cancelled)."""
         return self.state in ("done", "error", "cancelled")
 
-    def status(self) -> dict[str, Any]:
-        """What ``GET /api/jobs/ID`` answers; ``place`` is 0 once running, n for the n-th in the queue."""
+    def status(self, since: int | None = None) -> dict[str, Any]:
+        """What ``GET /api/jobs/ID`` answers; ``place`` is 0 once running, n for the n-th in the queue.
+
+        ``made`` counts the items made so far; with ``since``, ``items`` are those from index
+        ``since`` on (the page asks for the ones it has not drawn yet).
+        """
+        made = len(self.items)  # read once: the worker may append meanwhile
         out: dict[str, Any] = {
             "id": self.id, "kind": self.kind, "state": self.state, "place": self.place if self.state == "queued" else 0,
             "done": self.done, "total": self.total, "message": self.message,
-            "seconds": round(self.seconds or time.monotonic() - self.started, 3),
+            "seconds": round(self.seconds or time.monotonic() - self.started, 3), "made": made,
         }
+        if since is not None:
+            out["items"] = self.items[since:made]
         if self.state == "error" and self.detail != self.message:
             out["detail"] = self.detail  # the technical line behind the plain message
         if self.state == "error":

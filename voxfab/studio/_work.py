@@ -92,22 +92,43 @@ def net_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, net: Any, 
                 constraints: Any) -> None:
     """The library's gallery (:func:`voxfab.fabricate.netdraw.net_gallery`) as a job: nets kept for /api/make.
 
-    A failure that has ways out (faces too small, no fit) carries them to the job's status
-    as ``ways_out`` beside the one-line message (:class:`._jobs.Jobs`).
+    Each net goes to ``job.items`` (the page's JSON) and ``job.data["nets"]`` (for /api/make and
+    /api/nets/edit) as soon as the library hands it over, so the page shows it while the
+    next is made.  A failure that has ways out (faces too small, no fit) carries them to
+    the job's status as ``ways_out`` beside the one-line message (:class:`._jobs.Jobs`).
     """
     from voxfab.fabricate import netdraw
+    from voxfab.fabricate.netdraw._gallery import gallery_item_json
+    from voxfab.shape import fill_cavities, surface_graph
+
+    graphs: dict[bool, Any] = {}
+    job.data["grid"] = grid  # for /api/nets/edit
+    job.data["nets"] = []
+
+    def searching(done: int, total: int) -> None:
+        if done > len(job.items):  # nets found, not yet laid out (one-piece nets are laid out once all are found)
+            job.step(done, total, f"{done} of {total} nets found")
+
+    def made(index: int, item: Any) -> None:
+        filled = item.pieces[0].filled
+        if filled not in graphs:  # one surface graph for every net of the gallery
+            graphs[filled] = surface_graph(fill_cavities(grid) if filled else grid)
+        shown = gallery_item_json(index, item, grid, graph=graphs[filled])
+        job.data["options"] = (net, drawing.replace(pitch=item.fit["face_size"]))
+        job.data["nets"].append(item.pieces)
+        job.items.append(shown)  # last: the page may ask for this net once it sees it
+        job.step(index + 1, count, f"{index + 1} of {count} nets made")
 
     job.step(0, count, "searching nets")
     gallery = netdraw.net_gallery(grid, net, drawing, count=count, seed=seed, constraints=constraints,
-                                  progress=lambda done, total: job.step(done, total, f"{done} of {total} nets"))
+                                  progress=searching, on_item=made)
     if gallery.nets and not any(item.fit["fits"] for item in gallery.nets):
         # Nothing to print on this sheet: the page says so in the CLI's words and offers each way out.
         best = gallery.nets[0].fit
         raise NoNetFitsError(best["message"], list(best.get("ways_out", [])))
-    job.data["nets"] = [item.pieces for item in gallery.nets]
     job.data["options"] = (net, gallery.options)
-    job.data["grid"] = grid  # for /api/nets/edit
-    job.result = netdraw.gallery_json(gallery, grid)
+    job.step(len(gallery.nets), len(gallery.nets), f"{len(gallery.nets)} nets made")
+    job.result = netdraw.gallery_json(gallery, grid, nets=list(job.items))
 
 
 def warm_kernels_here() -> None:
@@ -121,8 +142,23 @@ def warm_kernels_here() -> None:
 
     try:
         warm_up(processes=1)  # here, not in child processes: this process serves the requests
+        warm_gallery_here()
     except VoxfabError:  # pragma: no cover - the warm-up jobs are fixed and valid
         pass
+
+
+def warm_gallery_here() -> None:
+    """A small gallery in pieces, laid out as the page gets it: the imports and kernels of cutting,
+    packing and the page's JSON (scipy's signal package alone takes seconds) are loaded before the
+    artist's first gallery, whose first net should be on screen within seconds."""
+    from voxfab.fabricate import netdraw
+    from voxfab.fabricate.netdraw._gallery import gallery_item_json
+    from voxfab.shape import examples
+
+    ball = examples.ball(3)
+    net, drawing = netdraw.gallery_options({"sheet": "80x80", "face_size": 10, "pieces": "auto", "timeout": 5.0})
+    netdraw.net_gallery(ball, net, drawing, count=2, seed=0,
+                        on_item=lambda index, item: gallery_item_json(index, item, ball))
 
 
 # --- fabrication files ------------------------------------------------------------------------

@@ -8,6 +8,12 @@ cannot fit the sheet as one piece are shown all the same, with what would
 work (``ways_out``); they are ordered by how well they fit: fewest sheets,
 then the highest mean fill, then the smallest extent.
 
+A gallery of nets in pieces varies only what is worth varying: the cut.  The
+first seed is cut both ways (flat patches, and few large pieces), later seeds
+the way that packed on fewer sheets; each cut is laid out once, and handed to
+``on_item`` as soon as it is, so the studio shows it while the next is cut.
+Nets in pieces stay in the order they were made (the page has shown them so).
+
 Everything the page draws comes from here, as plain JSON-ready dictionaries
 (:func:`net_layout`, :func:`._placement.placement_of`), so the studio stays a thin shell.
 """
@@ -21,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from voxfab.errors import InvalidShapeError
+from voxfab.errors import InvalidShapeError, UnfoldError
 from voxfab.unfold import EdgeConstraints, Net
 
 from ._net_options import NetOptions
@@ -116,9 +122,14 @@ def gallery_face_size(grid: Any, net: NetOptions, drawing: DrawingOptions) -> tu
     return drawing.replace(pitch=p), [f"face size {p:g} mm: the smallest with legible marks"]
 
 
+#: ``on_item(index, item)``: a net of the gallery, ready to show, at its final place in the gallery.
+ItemHook = Callable[[int, GalleryNet], None]
+
+
 def net_gallery(grid: Any, net: NetOptions, drawing: DrawingOptions, *, count: int, seed: int,
                 constraints: EdgeConstraints | None = None,
-                progress: Callable[[int, int], None] | None = None) -> Gallery:
+                progress: Callable[[int, int], None] | None = None,
+                on_item: ItemHook | None = None) -> Gallery:
     """Search ``count`` nets of ``grid`` that look different once cut out, ordered by fit to the sheet.
 
     Parameters
@@ -141,6 +152,9 @@ def net_gallery(grid: Any, net: NetOptions, drawing: DrawingOptions, *, count: i
     progress : callable, optional
         ``progress(found, count)`` after each net.  A cancelled studio job stops the
         search (:func:`voxfab._shared.progress.check_cancelled`).
+    on_item : callable, optional
+        ``on_item(index, item)`` for each net once it is validated and laid out: a net in
+        pieces as soon as it is cut, one-piece nets once all are found and ordered.
 
     Returns
     -------
@@ -165,6 +179,10 @@ def net_gallery(grid: Any, net: NetOptions, drawing: DrawingOptions, *, count: i
     search: dict[str, Any] = dict(strategy=net.strategy, timeout=net.timeout, fill=net.fill, compact=net.compact)
     if constraints is not None:
         search["constraints"] = constraints
+    if count > 1 and net.pieces == "auto" and options.pitch is not None and not _one_piece_room(grid, net, options):
+        items = _piece_gallery(grid, net, options, count=count, seed=seed, search=search, notes=notes,
+                               progress=progress, on_item=on_item)
+        return Gallery(items, options, net, count, round(time.monotonic() - start, 3), notes)
     found = find_sheet_nets(grid, options, rng=seed, pieces=net.pieces, count=count, budget=net.budget,
                             show_unfit=True, progress=progress, **search)
     options = found.options
@@ -178,7 +196,92 @@ def net_gallery(grid: Any, net: NetOptions, drawing: DrawingOptions, *, count: i
     items = [GalleryNet(pieces, *fit_and_placement(pieces, options, graphs[pieces[0].filled]))
              for pieces in found.nets]
     items.sort(key=lambda g: fit_order(g.fit))
+    if on_item is not None:
+        for i, item in enumerate(items):
+            on_item(i, item)
     return Gallery(items, options, net, count, round(time.monotonic() - start, 3), notes)
+
+
+def _one_piece_room(grid: Any, net: NetOptions, options: DrawingOptions) -> bool:
+    """Whether the sheet has a cell for every face (else no one-piece net fits: the gallery is of pieces).
+
+    Checks the marks and the sheet as :func:`._fit.find_sheet_nets` does, before any search.
+    """
+    from ._fit import _check_legible, _surface_faces, label_chars
+    from ._sheets import sheet_cells
+
+    faces = _surface_faces(grid, net.fill)
+    _check_legible(options, label_chars(faces, net.pieces))
+    fit = sheet_cells(options, float(options.pitch))
+    if min(fit) < 1:
+        raise InvalidShapeError(f"sheet: {options.sheet} has no room for one {options.pitch:g} mm face with its tabs")
+    return faces <= fit[0] * fit[1]
+
+
+#: The two ways to cut a net in pieces (:func:`voxfab.unfold.unfold`'s ``pieces``): flat patches, few large pieces.
+CUTS = ("flat", "auto")
+
+
+def _piece_gallery(grid: Any, net: NetOptions, options: DrawingOptions, *, count: int, seed: int,
+                   search: dict[str, Any], notes: list[str], progress: Callable[[int, int], None] | None,
+                   on_item: ItemHook | None) -> list[GalleryNet]:
+    """``count`` nets in pieces, each cut once and laid out once, handed to ``on_item`` as each is made.
+
+    Seed ``seed`` is cut both ways (the flat patches first: they are the quicker to cut),
+    so the artist sees both kinds of net; the later seeds, drawn from ``seed`` as
+    ``voxfab net --count`` draws them, are cut the way that packed better (fewer
+    sheets, then fewer seams without room for a tab, then fewer pieces, as
+    ``voxfab net --pieces auto`` chooses).  A cut whose outlines repeat one shown is
+    dropped; the whole gallery keeps within ``net.budget`` seconds.
+    """
+    from voxfab._shared.progress import check_cancelled
+    from voxfab.shape import fill_cavities, surface_graph
+    from voxfab.unfold import outline_key, unfold
+
+    from ._pipeline import validate_net
+    from ._sheets import sheet_cells
+
+    g = np.asarray(grid, dtype=bool)
+    graph = surface_graph(fill_cavities(g) if net.fill else g)
+    fit = sheet_cells(options, float(options.pitch))
+    end = time.monotonic() + float(net.budget)
+    timeout = float(search.pop("timeout"))
+    gen = np.random.default_rng(seed)
+    plan = [(seed, cut) for cut in CUTS]  # (seed, cut) still to try
+    ranked: dict[str, tuple[int, int, int]] = {}  # each cut's packing of the first seed
+    items: list[GalleryNet] = []
+    seen: set[bytes] = set()
+    tries = 0
+    while len(items) < count and tries < 4 * count + 8 and time.monotonic() < end:
+        check_cancelled()
+        tries += 1
+        if not plan:
+            best = min(ranked, key=ranked.__getitem__) if ranked else CUTS[0]
+            plan.append((int(gen.integers(0, 2**31 - 1)), best))
+        rng, cut = plan.pop(0)
+        try:
+            pieces = list(unfold(g, rng=rng, fit=fit, pieces=cut,
+                                 timeout=min(timeout, max(end - time.monotonic(), 0.1)), **search))
+        except UnfoldError:
+            continue
+        key = b"|".join(sorted(outline_key(n) for n in pieces))
+        if key in seen:
+            continue
+        seen.add(key)
+        validate_net(g, pieces, constraints=search.get("constraints"))
+        fit_of, placement, untabbed = _laid_out(pieces, options, graph)
+        if rng == seed and fit_of["fits"]:
+            ranked[cut] = (int(fit_of["sheets"]), untabbed, len(pieces))
+        items.append(GalleryNet(pieces, fit_of, placement))
+        if on_item is not None:
+            on_item(len(items) - 1, items[-1])
+        if progress is not None:
+            progress(len(items), count)
+    if not items:
+        raise UnfoldError(f"no net in pieces found within the budget of {net.budget:g} s")
+    if len(items) < count:
+        notes.append(f"{len(items)} distinct nets found of the {count} asked for")
+    return items
 
 
 def fit_order(fit: dict[str, Any]) -> tuple[Any, ...]:
@@ -204,13 +307,21 @@ def fit_and_placement(pieces: list[Net], options: DrawingOptions, graph: Any
         when it does not fit, ``message`` (the CLI's words) and ``ways_out``.
     placement : dict or None
     """
-    from ._drawing import sheet_plan
+    fit, placement, _ = _laid_out(pieces, options, graph)
+    return fit, placement
+
+
+def _laid_out(pieces: list[Net], options: DrawingOptions, graph: Any
+              ) -> tuple[dict[str, Any], dict[str, Any] | None, int]:
+    """:func:`fit_and_placement` from one packing, and the seams it leaves without room for a tab."""
+    from ._drawing import _packed
     from ._placement import placement_of
     from ._sheets import (
         SheetFitError,
         extent_of,
         fit_error,
         largest_face_size,
+        plan_sheets,
     )
 
     pitch = float(options.pitch)
@@ -219,16 +330,22 @@ def fit_and_placement(pieces: list[Net], options: DrawingOptions, graph: Any
     extent = extent_of(big.corners2d)
     fit: dict[str, Any] = {"sheet": options.sheet, "face_size": pitch, "extent": list(extent),
                            "largest_face_size": largest_face_size(extent, options)}
+    untabbed = sum(int(n.seams_without_tab_room) for n in pieces)
     try:
-        plan = sheet_plan(graph, pieces, options)
+        # The drawing's own sheets (:func:`._drawing.sheet_plan`), packed once.
+        if len(pieces) == 1:
+            plan = plan_sheets(pieces[0].corners2d, options)
+        else:
+            _, plan, _, _, tabs, seams = _packed(graph, pieces, options)
+            untabbed = seams - tabs
     except SheetFitError:
         err = fit_error(extent, options, pitch, what="the net" if len(pieces) == 1 else "a piece")
         fit.update(fits=False, sheets=None, fill=[], message=str(err),
                    ways_out=legible_ways_out(err.ways_out, options, pieces))
-        return fit, None
+        return fit, None, untabbed
     faces = np.bincount(plan.face_sheet, minlength=plan.count)
     fit.update(fits=True, sheets=plan.count, fill=[round(float(n) * pitch * pitch / (w * h), 4) for n in faces])
-    return fit, placement_of(plan, [p.corners2d for p in pieces], float(options.margin)).to_dict()
+    return fit, placement_of(plan, [p.corners2d for p in pieces], float(options.margin)).to_dict(), untabbed
 
 
 def legible_ways_out(ways: list[dict[str, Any]], options: DrawingOptions, pieces: list[Net]) -> list[dict[str, Any]]:
@@ -346,28 +463,37 @@ def _fields(options: Any) -> dict[str, Any]:
             for f in dataclasses.fields(options)}
 
 
-def gallery_json(gallery: Gallery, grid: Any) -> dict[str, Any]:
-    """The gallery as the studio's job result: ``asked``, ``found``, ``seconds``, ``options`` and ``nets``."""
+def gallery_item_json(index: int, item: GalleryNet, grid: Any, *, graph: Any = None) -> dict[str, Any]:
+    """One net of the gallery as the page draws it: its figures, ``fit``, ``layout`` and ``placement``.
+
+    ``graph`` is the surface graph of the shape its pieces unfold, when the caller has it.
+    """
+    first = item.pieces[0]
+    return {
+        "index": index, "seed": int(first.seed), "faces": sum(n.face_count for n in item.pieces),
+        "pieces": len(item.pieces), "mountain": sum(int(n.mountain) for n in item.pieces),
+        "valley": sum(int(n.valley) for n in item.pieces),
+        "seams_without_tab_room": sum(int(n.seams_without_tab_room) for n in item.pieces),
+        "fit": item.fit, "layout": net_layout(grid, item.pieces, graph=graph),
+        "placement": item.placement,
+    }
+
+
+def gallery_json(gallery: Gallery, grid: Any, *, nets: list[dict[str, Any]] | None = None) -> dict[str, Any]:
+    """The gallery as the studio's job result: ``asked``, ``found``, ``seconds``, ``options`` and ``nets``.
+
+    ``nets``: the :func:`gallery_item_json` of each net, when they were made as the nets came.
+    """
     from voxfab.shape import fill_cavities, surface_graph
 
-    graphs: dict[bool, Any] = {}
-
-    def graph(filled: bool) -> Any:
-        if filled not in graphs:  # one surface graph for every net of the gallery
-            graphs[filled] = surface_graph(fill_cavities(grid) if filled else grid)
-        return graphs[filled]
-
-    nets = []
-    for i, item in enumerate(gallery.nets):
-        first = item.pieces[0]
-        nets.append({
-            "index": i, "seed": int(first.seed), "faces": sum(n.face_count for n in item.pieces),
-            "pieces": len(item.pieces), "mountain": sum(int(n.mountain) for n in item.pieces),
-            "valley": sum(int(n.valley) for n in item.pieces),
-            "seams_without_tab_room": sum(int(n.seams_without_tab_room) for n in item.pieces),
-            "fit": item.fit, "layout": net_layout(grid, item.pieces, graph=graph(first.filled)),
-            "placement": item.placement,
-        })
+    if nets is None:
+        graphs: dict[bool, Any] = {}
+        nets = []
+        for i, item in enumerate(gallery.nets):
+            filled = item.pieces[0].filled
+            if filled not in graphs:  # one surface graph for every net of the gallery
+                graphs[filled] = surface_graph(fill_cavities(grid) if filled else grid)
+            nets.append(gallery_item_json(i, item, grid, graph=graphs[filled]))
     # The options as settled, by their field names (face_size: the face size chosen).
     settled = {**_fields(gallery.search), **_fields(gallery.options), "face_size": float(gallery.options.pitch)}
     settled.pop("pitch")

@@ -327,9 +327,12 @@ def _pack_once(shapes: list[list[_Shape]], order: list[int], raster: tuple[int, 
     The offset (in steps) is that of the piece's cell (0, 0); shape None for a
     piece that meets no spot even on an empty sheet (it gets a sheet alone).
     """
+    from voxfab._shared.progress import check_cancelled
+
     blocked: list[npt.NDArray[np.bool_]] = []
     where: dict[int, tuple[int, _Shape | None, tuple[int, int]]] = {}
     for i in order:
+        check_cancelled()  # between pieces: a cancelled studio job stops within one piece's spot search
         spot = None
         for s in range(len(blocked) + 1):
             if s == len(blocked):

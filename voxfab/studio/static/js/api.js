@@ -45,13 +45,16 @@ export function jobText(s) {
 // Ask the server to stop a job (it stops within about a second).
 export function cancelJob(id) { return post(`/api/jobs/${id}/cancel`, {}); }
 
-// Poll a job until it ends; onProgress(done, total, text, status) on each answer.
+// Poll a job until it ends; onProgress(done, total, text, status) on each answer, and
+// onItems(items, from) with the items it made since the last answer (a gallery's nets, as each is made).
 // Throws ApiError when it failed, Cancelled when it was cancelled.
-export async function waitJob(id, onProgress, intervalMs = 150) {
+export async function waitJob(id, onProgress, intervalMs = 150, onItems = null) {
   waiting.add(id);
+  let read = 0;
   try {
     for (;;) {
-      const s = await get(`/api/jobs/${id}`);
+      const s = await get(onItems ? `/api/jobs/${id}?since=${read}` : `/api/jobs/${id}`);
+      if (onItems && s.items && s.items.length) { onItems(s.items, read); read += s.items.length; }
       if (onProgress) onProgress(s.done, s.total, jobText(s), s);
       if (s.state === 'done') return s;
       if (s.state === 'error') throw new ApiError(s.message, s.detail);

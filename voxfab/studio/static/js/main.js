@@ -1,6 +1,6 @@
 // voxfab studio: wiring of the tabs, the shape being worked on, and the server calls.
 
-import {cancelJob, fileUrl, get, post, saveBlob, waitJob, waitingJobs} from './api.js';
+import {Cancelled, cancelJob, fileUrl, get, post, saveBlob, waitJob, waitingJobs} from './api.js';
 import {CurveSource, FociInput, SpineDrawing} from './draw.js';
 import {LayerEditor} from './editor.js';
 import {Grid} from './grid.js';
@@ -517,6 +517,25 @@ function galleryWords(found, inPieces) {
   return inPieces ? `${nets} in pieces` : found === 1 ? 'net' : `${nets}, each different once cut out`;
 }
 
+// One figure of the gallery: net i on its sheets, with how it fits; a click chooses it.
+function galleryFigure(n, i) {
+  const fig = document.createElement('figure');
+  fig.dataset.testid = 'net-gallery-item';
+  fig.setAttribute('data-testid', 'net-gallery-item');
+  fig.dataset.index = String(i);
+  const cv = Object.assign(document.createElement('canvas'), {width: 356, height: 356});
+  drawNet(cv, placedLayout(n.layout, n.placement));
+  const f = n.fit;
+  const cap = document.createElement('figcaption');
+  cap.innerHTML = '<b></b> <span class="fits"></span>';
+  cap.querySelector('b').textContent = `#${i + 1}`;
+  cap.querySelector('span').textContent = `${n.pieces} piece${n.pieces > 1 ? 's' : ''} on ${f.sheets} `
+    + `sheet${f.sheets > 1 ? 's' : ''} ${f.sheet}, faces ${f.face_size} mm`;
+  fig.append(cv, cap);
+  fig.addEventListener('click', () => choose(i));
+  return fig;
+}
+
 async function gallery(withMarks) {
   const options = netOptions();
   const body = {grid: state.shape.pack(), count: Number($('#net-count').value), seed: Number($('#net-seed').value),
@@ -526,40 +545,41 @@ async function gallery(withMarks) {
     $('#net-go').disabled = true; $('#net-regen').disabled = true;
     const t0 = performance.now();
     const {job} = await post('/api/nets', body);
-    progress(0, body.count, 'searching nets');
-    let s;
-    try { s = await waitJob(job, progress); } catch (e) {
-      const st = await get(`/api/jobs/${job}`);
-      showWaysOut(st.ways_out);
-      throw e;
-    }
-    const r = s.result;
-    state.gallery = {job, nets: r.nets, options: {...options, face_size: r.options.face_size}, placement: null};
-    state.chosen = null;
+    $('#net-gallery').dataset.job = job;
     // a new gallery: nothing chosen yet; the marks stay (they name faces, not a net)
     $('#net-chosen-label').textContent = ''; delete $('#net-chosen-label').dataset.index;
     marker.setLayout(null);
+    progress(0, body.count, 'searching nets');
+    const g = {job, nets: [], options: {...options}, placement: null};
+    // Each net is drawn as soon as the server has made it: the artist looks at (and may pick) the
+    // first while the next is cut.
+    const show = (items, from) => {
+      state.gallery = g;
+      items.forEach((n, k) => {
+        g.nets.push(n);
+        g.options.face_size = n.fit.face_size;
+        const fig = galleryFigure(n, from + k);
+        fig.dataset.ms = String(Math.round(performance.now() - t0));
+        $('#net-gallery').append(fig);
+      });
+      netNote();
+    };
+    let s;
+    try { s = await waitJob(job, progress, 150, show); } catch (e) {
+      if (!(e instanceof Cancelled) || !g.nets.length) { // a cancelled gallery keeps the nets it showed
+        state.gallery = null; state.chosen = null; netNote();
+        const st = await get(`/api/jobs/${job}`);
+        showWaysOut(st.ways_out);
+      }
+      throw e;
+    }
+    const r = s.result;
+    if (g.nets.length < r.nets.length) show(r.nets.slice(g.nets.length), g.nets.length);
+    g.options.face_size = r.options.face_size;
     const secs = ((performance.now() - t0) / 1000).toFixed(1);
     const what = galleryWords(r.found, r.nets.some((n) => n.pieces > 1));
     $('#net-summary').textContent = `${r.found} ${what} in ${secs} s, faces ${r.options.face_size} mm.`;
     $('#net-summary').dataset.found = String(r.found); $('#net-summary').dataset.seconds = secs;
-    $('#net-gallery').replaceChildren(...r.nets.map((n, i) => {
-      const fig = document.createElement('figure');
-      fig.dataset.testid = 'net-gallery-item';
-      fig.setAttribute('data-testid', 'net-gallery-item');
-      fig.dataset.index = String(i);
-      const cv = Object.assign(document.createElement('canvas'), {width: 356, height: 356});
-      drawNet(cv, placedLayout(n.layout, n.placement));
-      const f = n.fit;
-      const cap = document.createElement('figcaption');
-      cap.innerHTML = '<b></b> <span class="fits"></span>';
-      cap.querySelector('b').textContent = `#${i + 1}`;
-      cap.querySelector('span').textContent = `${n.pieces} piece${n.pieces > 1 ? 's' : ''} on ${f.sheets} `
-        + `sheet${f.sheets > 1 ? 's' : ''} ${f.sheet}, faces ${f.face_size} mm`;
-      fig.append(cv, cap);
-      fig.addEventListener('click', () => choose(i));
-      return fig;
-    }));
     netNote();
     say(`${r.found} ${what}: pick one to lay it out and make its files.`, true);
   } catch (e) { sayError(e); } finally {
