@@ -28,7 +28,7 @@ from voxfab.unfold import Net
 from ._labels import label_length
 from ._legible import legibility_problem, smallest_face_size
 from ._options import DrawingOptions
-from ._sheets import extent_of, fit_error, largest_face_size, sheet_cells, smallest_sheet
+from ._sheets import check_pieces_sheet, extent_of, fit_error, largest_face_size, sheet_cells, smallest_sheet
 
 #: Budget of the search that measures a net when the sheet search gave no extent, seconds.
 MEASURE_TIMEOUT = 20.0
@@ -176,6 +176,7 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     # A surface larger than the sheet has no one-piece net on it: no search can find one.
     room = faces <= fit[0] * fit[1]
     if pieces == "auto" and not room:
+        check_pieces_sheet(faces, options, float(options.pitch), smallest_face_size(options, chars))
         return SheetNets(_piece_nets(grid, options, rng, fit, count, budget, progress, search, notes), options,
                          notes)
     found: list[Net] | None = None
@@ -187,6 +188,7 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
             failed = err
     if found is None:
         if pieces == "auto":
+            check_pieces_sheet(faces, options, float(options.pitch), smallest_face_size(options, chars))
             return SheetNets(_piece_nets(grid, options, rng, fit, count, budget, progress, search, notes),
                              options, notes)
         if failed is not None and not isinstance(failed, NoFitError):

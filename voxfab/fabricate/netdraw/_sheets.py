@@ -109,6 +109,87 @@ class SheetPlan:
         return o if self.shift is None else o + self.shift
 
 
+#: Pieces: a sheet is refused when the faces alone need more sheets than this (their paper over a
+#: sheet less its margins, a bound no packing beats), or when it is under :data:`PIECES_LEAST_ACROSS`
+#: faces across with their tabs.  Such sheets otherwise cost minutes of search for a pile of slivers.
+PIECES_MOST_SHEETS = 50
+PIECES_LEAST_ACROSS = 2
+
+
+class HopelessSheetError(UnfoldError):
+    """A sheet too small for a net in pieces: too narrow, or more than :data:`PIECES_MOST_SHEETS` sheets.
+
+    Attributes
+    ----------
+    largest_face_size : float
+        Largest face size (mm, 0.1 mm steps, 0 when none) at which the sheet takes the pieces and the marks
+        stay legible.
+    smallest_sheet : str or None
+        Smallest sheet of :data:`SHEETS` that takes them at the face size asked for.
+    """
+
+    def __init__(self, message: str, *, largest_face_size: float, smallest_sheet: str | None) -> None:
+        super().__init__(message)
+        self.largest_face_size = largest_face_size
+        self.smallest_sheet = smallest_sheet
+
+    @property
+    def ways_out(self) -> list[dict[str, object]]:
+        """A larger sheet, smaller faces: the same ways out as a net too large for one sheet, less the split."""
+        return ways_out(self.largest_face_size, self.smallest_sheet)[1:]
+
+
+def pieces_sheets_at_least(faces: int, options: DrawingOptions, pitch: float,
+                           size: tuple[float, float] | None = None) -> int:
+    """The fewest sheets that could take ``faces`` faces of ``pitch`` mm: their paper over a sheet's drawable area."""
+    x0, y0, x1, y1 = drawable_area(options, size)
+    usable = max(x1 - x0, 0.0) * max(y1 - y0, 0.0)
+    return math.ceil(faces * pitch * pitch / usable - 1e-9) if usable > 0 else math.inf
+
+
+def _pieces_problem(faces: int, options: DrawingOptions, pitch: float,
+                    size: tuple[float, float] | None = None) -> str | None:
+    cells = sheet_cells(options, pitch, size)
+    if min(cells) < PIECES_LEAST_ACROSS:
+        return (f"it takes {cells[0]} x {cells[1]} faces of {pitch:g} mm with their tabs, fewer than "
+                f"{PIECES_LEAST_ACROSS} across")
+    least = pieces_sheets_at_least(faces, options, pitch, size)
+    if least > PIECES_MOST_SHEETS:
+        return f"the {faces} faces of {pitch:g} mm alone need at least {least} sheets (more than {PIECES_MOST_SHEETS})"
+    return None
+
+
+def check_pieces_sheet(faces: int, options: DrawingOptions, pitch: float, smallest: float) -> None:
+    """Refuse, before any search, a sheet on which a net in pieces is hopeless (:data:`PIECES_MOST_SHEETS`).
+
+    ``smallest`` is the smallest face size whose marks are legible; the error names the largest face size
+    down to it that works, and the smallest standard sheet that works at ``pitch``.
+
+    Raises
+    ------
+    HopelessSheetError
+    """
+    problem = _pieces_problem(faces, options, pitch)
+    if problem is None:
+        return
+    sheet = next((name for name, size in sorted(SHEETS.items(), key=lambda kv: (kv[1][0] * kv[1][1], kv[0]))
+                  if _pieces_problem(faces, options, pitch, size) is None), None)
+    best = 0.0
+    p = math.floor(pitch * 10.0 - 1e-6) / 10.0
+    while p >= smallest - 1e-9 and p > 0:
+        if _pieces_problem(faces, options, p) is None:
+            best = p
+            break
+        p = round(p - 0.1, 1)
+    outs = [f"use a larger sheet ({sheet}, --sheet)"] if sheet else []
+    if best > 0:
+        outs.append(f"make the faces {best:g} mm (--face-size)")
+    raise HopelessSheetError(
+        f"sheet {options.sheet} is too small for a net in pieces: {problem}; "
+        + ("; or ".join(outs) if outs else "no standard sheet takes it at this face size"),
+        largest_face_size=best, smallest_sheet=sheet)
+
+
 def drawable_area(options: DrawingOptions, size: tuple[float, float] | None = None) -> tuple[float, float, float, float]:
     """``(x0, y0, x1, y1)`` of the sheet inside the margin, above the title band, mm."""
     w, h = options.sheet_size if size is None else size
