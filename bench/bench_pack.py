@@ -1,66 +1,111 @@
-"""Benchmark: the bundled recipes' nets in pieces on the sheets makers own.
+"""Benchmark: the bundled recipes' nets in pieces on the sheets makers own, side by side with the peer.
 
-Run: python bench/bench_pack.py [SHEET ...]   (default: A4 Letter A3 mat12 laser)
+Run: python bench/bench_pack.py [--sheets A4,Letter,mat12] [--shapes queen,pawn,egg,...] [--no-peer]
+
 Each recipe's shape (cavities filled) at 8.6 mm faces, the smallest with 2 mm labels and 3 mm tabs,
-with ``pieces="auto"``, as a new user runs it.  Goal per net: at most ceil(1.25 A / U) sheets, where A
-is the paper (faces and tabs, measured from the drawing) and U a sheet less its margins (and title
-band); no seam without a tab; at most 10 s for a 3000-face shape on A4.
+made as a new user makes it: ``voxfab net SHAPE.npy --pieces auto --sheet S --face-size 8.6 -o net.pdf``,
+timed as a whole process (start-up and imports included).  Beside it, when ``blender`` is on the PATH,
+the peer: Blender's Export Paper Model add-on on the same surface (one quad per voxel face), the same
+sheet, margin and face size, also timed as a whole process (:mod:`_peer`).  The two run one after the
+other for each row, so both see the same load on the shared machine; CPU time (user + system of the
+process and its children) is printed beside the wall time, as it is the steadier of the two.
+
+Goals per net: no more pages than the peer and no longer than the peer's whole process; then at most
+ceil(1.25 A / U) pages, A the paper (faces and tabs, measured from the drawing) and U a sheet less its
+margins and title band.  A goal to measure, not a test.
 """
 
 from __future__ import annotations
 
+import argparse
+import json
 import math
+import os
+import resource
+import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
-from voxfab.fabricate.netdraw import DrawingOptions, find_sheet_nets
-from voxfab.fabricate.netdraw._drawing import draw_net, draw_pieces
-from voxfab.fabricate.netdraw._sheets import drawable_area
-from voxfab.recipe import load_recipe
-from voxfab.recipe._build import make_shape
-from voxfab.shape import fill_cavities
+import numpy as np
 
-RECIPES = ["chess/queen", "chess/king", "chess/bishop", "spinning_top", "chess/pawn", "torus4d_slice", "egg",
-           "chess/rook", "vase"]
+sys.path.insert(0, str(Path(__file__).parent))
+
+from _peer import PEER_SHEETS, peer_available, run_peer  # noqa: E402
+
+RECIPES = {"queen": "chess/queen", "king": "chess/king", "bishop": "chess/bishop", "spinning_top": "spinning_top",
+           "pawn": "chess/pawn", "torus4d_slice": "torus4d_slice", "egg": "egg", "rook": "chess/rook",
+           "vase": "vase"}
 FACE = 8.6
+ROOT = Path(__file__).parents[1]
 
 
-def row(name: str, grid, sheet: str) -> str:
+def _children_cpu() -> float:
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
+def voxfab_run(shape: Path, sheet: str, out: Path) -> tuple[dict, float, float]:
+    """``voxfab net`` as a user runs it: its JSON summary, wall and CPU seconds."""
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    cmd = [sys.executable, "-m", "voxfab", "net", str(shape), "--pieces", "auto", "--sheet", sheet,
+           "--face-size", f"{FACE:g}", "--label-height", "2", "-o", str(out / "net.pdf")]
+    cpu, t = _children_cpu(), time.perf_counter()
+    done = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=900)
+    wall, cpu = time.perf_counter() - t, _children_cpu() - cpu
+    if done.returncode != 0:
+        raise SystemExit(f"voxfab net failed on {shape}: {done.stderr.strip().splitlines()[-1:]}")
+    return json.loads(done.stdout)["nets"][0], wall, cpu
+
+
+def row(name: str, grid: np.ndarray, sheet: str, peer: bool) -> str:
+    from voxfab.fabricate.netdraw import DrawingOptions
+    from voxfab.fabricate.netdraw._sheets import drawable_area
+
     opts = DrawingOptions(pitch=FACE, sheet=sheet, label_height=2.0)
-    t = time.perf_counter()
-    found = find_sheet_nets(grid, opts, rng=1, pieces="auto", fill=True, timeout=60.0)
-    nets = found.nets[0]
-    d = draw_pieces(grid, nets, options=found.options) if len(nets) > 1 else draw_net(grid, nets[0],
-                                                                                        options=found.options)
-    elapsed = time.perf_counter() - t
+    with tempfile.TemporaryDirectory(prefix="voxfab-bench-") as tmp:
+        d = Path(tmp)
+        np.save(d / "shape.npy", grid)
+        got, wall, cpu = voxfab_run(d / "shape.npy", sheet, d)
     w, h = opts.sheet_size
     x0, y0, x1, y1 = drawable_area(opts)
-    paper = sum(s.fill for s in d.sheets) * w * h
     usable = (x1 - x0) * (y1 - y0)
-    bound = math.ceil(1.25 * paper / usable)
-    fill = 100 * paper / (len(d.sheets) * usable)
-    untabbed = int((~d.tab_seams & ~d.tab_elsewhere).sum())
-    sizes = [n.face_count for n in nets]
-    return (f"{name:<14}{sum(sizes):>7}{len(nets):>7}{len(d.sheets):>7}{bound:>7}{math.ceil(paper / usable):>7}"
-            f"{fill:>7.0f}{untabbed:>8}{min(sizes) / max(sizes):>7.2f}{elapsed:>8.1f}")
+    pages = len(got["fill"])
+    paper = sum(got["fill"]) * w * h
+    text = (f"{name:<14}{got['faces']:>6}{got['pieces']:>7}{pages:>6}{math.ceil(1.25 * paper / usable):>6}"
+            f"{100 * paper / (pages * usable):>6.0f}{got['seams_without_tab_room']:>7}{wall:>7.1f}{cpu:>6.1f}")
+    if peer and sheet in PEER_SHEETS:
+        cpu0 = _children_cpu()
+        p = run_peer(grid, FACE, sheet)
+        pcpu = _children_cpu() - cpu0
+        text += f"  {p.pages if p.pages else 'fail':>6}{p.seconds:>7.1f}{pcpu:>6.1f}" + (f"  {p.error}" if p.error else "")
+    return text
 
 
 def main() -> None:
-    sheets = sys.argv[1:] or ["A4", "Letter", "A3", "mat12", "laser"]
-    root = Path(__file__).parents[1] / "recipes"
+    from voxfab.recipe import load_recipe
+    from voxfab.recipe._build import make_shape
+    from voxfab.shape import fill_cavities
+
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--sheets", default="A4,Letter,mat12")
+    ap.add_argument("--shapes", default=",".join(RECIPES), help=f"of {', '.join(RECIPES)}")
+    ap.add_argument("--no-peer", action="store_true", help="leave the peer out even when blender is installed")
+    args = ap.parse_args()
+    peer = peer_available() and not args.no_peer
     grids = []
-    for r in RECIPES:
-        recipe = load_recipe(root / f"{r}.toml")
-        grids.append((recipe.name, fill_cavities(make_shape(recipe).grid)))
-    for sheet in sheets:
-        print(f"\nsheet {sheet}, faces {FACE} mm")
-        print(f"{'shape':<14}{'faces':>7}{'pieces':>7}{'sheets':>7}{'bound':>7}{'area':>7}{'fill%':>7}"
-              f"{'no tab':>8}{'small':>7}{'time s':>8}")
+    for name in args.shapes.split(","):
+        recipe = load_recipe(ROOT / "recipes" / f"{RECIPES[name]}.toml")
+        grids.append((name, fill_cavities(make_shape(recipe).grid)))
+    for sheet in args.sheets.split(","):
+        print(f"\nsheet {sheet}, faces {FACE} mm" + ("" if peer else " (no peer: blender is not on the PATH)"))
+        print(f"{'shape':<14}{'faces':>6}{'pieces':>7}{'pages':>6}{'bound':>6}{'fill%':>6}{'no tab':>7}{'wall s':>7}"
+              f"{'cpu s':>6}" + (f"  {'peer pages':>6}{'wall s':>7}{'cpu s':>6}" if peer else ""))
         for name, grid in grids:
-            print(row(name, grid, sheet), flush=True)
-    print("bound: ceil(1.25 A / U); area: ceil(A / U); fill: A over the sheets' usable area; small: the smallest "
-          "piece over the largest; time: search and drawing (2-core machine shared with others, noisy)")
+            print(row(name, grid, sheet, peer), flush=True)
+    print("bound: ceil(1.25 A / U); fill: A over the pages' usable area; no tab: seams without room for a tab; "
+          "wall and cpu: the whole process (start-up included), on a 2-core machine shared with others")
 
 
 if __name__ == "__main__":

@@ -154,3 +154,59 @@ def test_exact_strategy_alone_gives_the_queen_one_net_every_run(tmp_path):
     assert report.ok, report
     w, h = np.ptp(net.corners2d.reshape(-1, 2), axis=0)
     assert min(w, h) <= any_box(faces)[0] and max(w, h) <= any_box(faces)[1]
+
+
+def _recipe_grid(name: str) -> np.ndarray:
+    from pathlib import Path
+
+    from voxfab.recipe import load_recipe
+    from voxfab.recipe._build import make_shape
+
+    return make_shape(load_recipe(Path(__file__).parents[2] / "recipes" / f"{name}.toml")).grid
+
+
+def test_hopeless_sheets_for_pieces_are_refused_in_one_line_with_the_library_words(tmp_path):
+    from voxfab.fabricate.netdraw import DrawingOptions, find_sheet_nets
+    from voxfab.fabricate.netdraw._sheets import HopelessSheetError
+
+    grid = _recipe_grid("chess/queen")
+    np.save(tmp_path / "queen.npy", grid)
+    for sheet in ("60x60", "40x297"):
+        r = _run("queen.npy", "--pieces", "auto", "--sheet", sheet, "--face-size", "8.6", "-o", "q.pdf",
+                 cwd=tmp_path)
+        assert r.returncode != 0 and "Traceback" not in r.stderr
+        lines = r.stderr.strip().splitlines()
+        assert len(lines) == 1 and lines[0].startswith("voxfab: error: sheet ")
+        try:
+            find_sheet_nets(grid, DrawingOptions(pitch=8.6, sheet=sheet), rng=0, pieces="auto")
+        except HopelessSheetError as err:
+            assert lines[0] == f"voxfab: error: {err}"
+        else:
+            raise AssertionError(f"{sheet} was not refused")
+        assert not list(tmp_path.glob("q*.pdf"))
+    r = _run("queen.npy", "--pieces", "auto", "--sheet", "20x20", "--face-size", "8.6", "-o", "q.pdf", cwd=tmp_path)
+    assert r.returncode != 0 and "Traceback" not in r.stderr
+    assert r.stderr.strip().splitlines() == ["voxfab: error: --sheet: 20x20 leaves no room inside a 10 mm margin"]
+
+
+def test_printed_figures_agree_with_the_json_on_the_pawn(tmp_path):
+    import re
+
+    np.save(tmp_path / "pawn.npy", _recipe_grid("chess/pawn"))
+    r = _run("pawn.npy", "--pieces", "auto", "--sheet", "A4", "--face-size", "8.6", "-o", "p.pdf", "-o", "p.svg",
+             cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    net = json.loads(r.stdout)["nets"][0]
+    for name in ("p.pdf", "p.svg"):
+        lines = [x.removeprefix(f"voxfab: {name}: ") for x in r.stderr.splitlines() if x.startswith(f"voxfab: {name}: ")]
+        head = next(x for x in lines if x.startswith("faces "))
+        m = re.match(r"faces ([\d.]+) mm, (\d+) sheets? of .* mm, filled (.*)$", head)
+        assert float(m.group(1)) == net["face_size"]
+        assert int(m.group(2)) == len(net["fill"])
+        assert [int(f.rstrip(" %")) for f in m.group(3).split(", ")] == [round(100 * f) for f in net["fill"]]
+        split = next(x for x in lines if x.startswith("net split into "))
+        assert split.startswith(f"net split into {net['pieces']} pieces on {len(net['fill'])} sheets")
+        untabbed = [int(x.split()[0]) for x in lines if " without room for a tab" in x]
+        assert (untabbed or [0]) == [net["seams_without_tab_room"]]
+    # The pawn on A4 leaves a seam without room for a tab: the figure printed and the JSON's are that one.
+    assert net["seams_without_tab_room"] >= 1

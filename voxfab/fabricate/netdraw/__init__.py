@@ -157,6 +157,8 @@ class DrawingResult:
         Face edge, mm.
     fill : list of float
         Share of each sheet covered by paper, 0 to 1.
+    seams_without_tab : int
+        Seams drawn without room for a glue tab (marked for tape), as the report and warnings count them.
     """
 
     files: list[str]
@@ -164,6 +166,7 @@ class DrawingResult:
     warnings: list[str]
     face_size: float
     fill: list[float]
+    seams_without_tab: int = 0
 
 
 def write_net_drawing(grid: Any, nets: Net | list[Net], path: str | Path, options: DrawingOptions, *,
@@ -224,7 +227,7 @@ def _draw_any(grid: Any, nets: Net | list[Net], options: DrawingOptions, title: 
 
 def _result(drawing: NetDrawing, files: list[str]) -> DrawingResult:
     return DrawingResult(files, drawing.report(), drawing.warnings(), drawing.pitch,
-                         [sheet.fill for sheet in drawing.sheets])
+                         [sheet.fill for sheet in drawing.sheets], len(drawing.marked_seams))
 
 
 _PURPOSES = {
@@ -304,5 +307,6 @@ def fabricate_net(shape: VoxelShape, net: NetOptions, drawing: DrawingOptions, o
     result = _result(drawing, [])
     report = {"face_size_mm": result.face_size, "faces": sum(n.face_count for n in nets), "pieces": len(nets),
               "sheets": len(result.fill),
-              "sheet_fill": [round(f, 4) for f in result.fill], "notes": notes}
+              "sheet_fill": [round(f, 4) for f in result.fill], "seams_without_tab_room": result.seams_without_tab,
+              "notes": notes}
     return Artefact(tuple(files), tuple(result.warnings), report)

@@ -187,7 +187,8 @@ class NetDrawing:
         marked = self.marked_seams
         if marked:
             shown = ", ".join(marked[:20]) + (" ..." if len(marked) > 20 else "")
-            out.append(f"{len(marked)} seams without room for a tab, marked for tape: {shown}")
+            out.append(f"{len(marked)} seam{'s' if len(marked) > 1 else ''} without room for a tab, marked for "
+                       f"tape: {shown}")
         return out
 
     def report(self) -> list[str]:

@@ -7,8 +7,9 @@ The default order of a paper net (issue: buildable objects):
 2. when none is found, an error naming the largest face size at which a net
    fits this sheet and the smallest sheet that takes it at this face size,
    both measured from the most compact net found; never a silent split;
-3. with ``pieces="auto"``, pieces from flat patches or the fewest large
-   pieces, whichever packs on fewer sheets by :func:`draw_pieces`.
+3. with ``pieces="auto"``, pieces from flat patches, or for a surface of a
+   sheet or so the few large pieces of the net search when they pack on fewer
+   sheets (:func:`_cut_pieces`).
 
 Faces too small for legible marks are refused before any search.
 """
@@ -27,7 +28,7 @@ from voxfab.unfold import Net
 from ._labels import label_length
 from ._legible import legibility_problem, smallest_face_size
 from ._options import DrawingOptions
-from ._sheets import extent_of, fit_error, largest_face_size, sheet_cells, smallest_sheet
+from ._sheets import check_pieces_sheet, extent_of, fit_error, largest_face_size, sheet_cells, smallest_sheet
 
 #: Budget of the search that measures a net when the sheet search gave no extent, seconds.
 MEASURE_TIMEOUT = 20.0
@@ -131,8 +132,8 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     rng : int
         Seed of the search.
     pieces : {"one", "auto"}
-        ``"auto"``: when one piece does not fit, split into pieces that do, cut
-        the way that packs on the fewest sheets (:func:`_fewest_sheets`).
+        ``"auto"``: when one piece does not fit, split into pieces that do
+        (:func:`_cut_pieces`).
     count : int
         Distinct nets wanted (:func:`voxfab.unfold.unfold_many`; with
         ``pieces="auto"`` each is the unfolding of one of its seeds).
@@ -175,6 +176,7 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     # A surface larger than the sheet has no one-piece net on it: no search can find one.
     room = faces <= fit[0] * fit[1]
     if pieces == "auto" and not room:
+        check_pieces_sheet(faces, options, float(options.pitch), smallest_face_size(options, chars))
         return SheetNets(_piece_nets(grid, options, rng, fit, count, budget, progress, search, notes), options,
                          notes)
     found: list[Net] | None = None
@@ -186,6 +188,7 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
             failed = err
     if found is None:
         if pieces == "auto":
+            check_pieces_sheet(faces, options, float(options.pitch), smallest_face_size(options, chars))
             return SheetNets(_piece_nets(grid, options, rng, fit, count, budget, progress, search, notes),
                              options, notes)
         if failed is not None and not isinstance(failed, NoFitError):
@@ -217,14 +220,14 @@ def _nets(grid: Any, count: int, rng: int, budget: float, progress: Callable[[in
 def _piece_nets(grid: Any, options: DrawingOptions, rng: int, fit: tuple[int, int], count: int, budget: float,
                 progress: Callable[[int, int], None] | None, search: dict[str, Any],
                 notes: list[str]) -> list[list[Net]]:
-    """Nets in pieces that pack on the fewest sheets, one per seed (seed ``rng`` first, then seeds drawn from it)."""
+    """Nets in pieces, one per seed (seed ``rng`` first, then seeds drawn from it)."""
     import time
 
     from voxfab._shared.progress import check_cancelled
     from voxfab.unfold import outline_key
 
     if count == 1:
-        return [_fewest_sheets(grid, options, fit, rng, search)]
+        return [_cut_pieces(grid, options, fit, rng, search)]
     gen = np.random.default_rng(rng)
     end = time.monotonic() + budget
     timeout = float(search.pop("timeout", 60.0))
@@ -236,7 +239,7 @@ def _piece_nets(grid: Any, options: DrawingOptions, rng: int, fit: tuple[int, in
         tries += 1
         seed = int(gen.integers(0, 2**31 - 1))
         try:
-            nets = _fewest_sheets(grid, options, fit, seed, {**search, "timeout": min(timeout, end - time.monotonic())})
+            nets = _cut_pieces(grid, options, fit, seed, {**search, "timeout": min(timeout, end - time.monotonic())})
         except UnfoldError:
             continue
         key = b"|".join(sorted(outline_key(n) for n in nets))
@@ -253,15 +256,20 @@ def _piece_nets(grid: Any, options: DrawingOptions, rng: int, fit: tuple[int, in
     return out
 
 
-def _fewest_sheets(grid: Any, options: DrawingOptions, fit: tuple[int, int], rng: int,
-                   search: dict[str, Any]) -> list[Net]:
-    """Pieces from flat patches when they pack within the goal of sheets, else the better of both ways.
+#: pieces="auto": surfaces up to this many times a sheet's cells are also cut into the few large
+#: pieces of the net search, and the cut that packs on fewer sheets wins.  Measured at 8.6 mm faces
+#: (cavities filled): the queen on mat12 (1.3 sheets of faces) packs on 3 sheets that way against 4
+#: from flat patches; from 2 sheets of faces on (pawn, egg, vase on mat12; queen, pawn, egg on A4)
+#: flat patches pack on as few sheets or fewer, with fewer seams without a tab, in a fifth of the time.
+_FEW_SHEETS = 1.5
 
-    Pieces from flat patches are compact and pack densely, but there are more
-    of them; the few large pieces of ``"auto"`` are tried when the flat ones
-    miss ``ceil(1.25 A / U)`` sheets (:func:`sheets_needed`), and the fewer
-    sheets win, then the fewer seams without room for a tab, then the fewer
-    pieces.
+
+def _cut_pieces(grid: Any, options: DrawingOptions, fit: tuple[int, int], rng: int,
+                search: dict[str, Any]) -> list[Net]:
+    """The pieces, cut once: from flat patches, also as the few large pieces of ``"auto"`` for a surface
+    of a sheet or so (:data:`_FEW_SHEETS`); of two cuts the one that packs on fewer sheets wins, then the
+    one with fewer seams without room for a tab, then fewer pieces (:func:`sheets_needed`, whose packing
+    the drawing reuses).  The few large pieces also stand in when flat patches give none.
     """
     from voxfab.fabricate.netdraw._drawing import sheets_needed
     from voxfab.shape import fill_cavities
@@ -269,20 +277,26 @@ def _fewest_sheets(grid: Any, options: DrawingOptions, fit: tuple[int, int], rng
 
     g = np.asarray(grid, dtype=bool)
     shape = fill_cavities(g) if search.get("fill", False) else g
+    modes = ["flat"]
+    if _surface_faces(grid, bool(search.get("fill", False))) <= _FEW_SHEETS * fit[0] * fit[1]:
+        modes.append("auto")
+    compare = len(modes) > 1
     best: tuple[tuple[int, int, int], list[Net]] | None = None
-    for mode in ("flat", "auto"):
+    for mode in modes:
         try:
             nets = list(unfold(grid, rng=rng, fit=fit, pieces=mode, **search))
         except UnfoldError:
+            if mode == "flat":
+                modes.append("auto")
             if mode == "auto" and best is None:
                 raise
             continue
-        sheets, goal, untabbed = sheets_needed(shape, nets, options)
+        if not compare:
+            return nets
+        sheets, _, untabbed = sheets_needed(shape, nets, options)
         key = (sheets, untabbed, len(nets))
         if best is None or key < best[0]:
             best = (key, nets)
-        if sheets <= goal and untabbed == 0:
-            break
     assert best is not None
     return best[1]
 

@@ -217,7 +217,10 @@ def net_files(grid: Any, net: NetOptions, drawing: DrawingOptions, outputs: Sequ
                 if path in drawings:
                     result = write_net_drawing(g, pieces, target, drawing, title=title)
                     report += [(target.name, line) for line in result.report]
-                    record.update(face_size=result.face_size, fill=[round(f, 4) for f in result.fill])
+                    # The drawing's own count: what its report and warnings print (the search's
+                    # count knows only the cells of the layout, not the tabs the packing kept room for).
+                    record.update(face_size=result.face_size, fill=[round(f, 4) for f in result.fill],
+                                  seams_without_tab_room=result.seams_without_tab)
                     # Every drawing of one net says the same: once per net.
                     warnings += [w for w in (f"net {tag}: {x}" if tag else x for x in result.warnings)
                                  if w not in warnings]
