@@ -16,6 +16,7 @@ import time
 import numpy as np
 import numpy.typing as npt
 
+from voxfab._shared.progress import check_cancelled
 from voxfab.errors import UnfoldError
 from voxfab.shape import SurfaceGraph
 
@@ -624,6 +625,7 @@ def _patch_pieces(job: _Job, faces: npt.NDArray[np.int64]) -> list[tuple[_Board,
         lo = cell[members].min(axis=0)
         hi = cell[members].max(axis=0)
         while len(members) < limit:
+            check_cancelled()  # between patches: a cancelled studio job stops within one patch's placements
             best = None
             tried: set[tuple[int, int, int, int]] = set()
             for a in members:
