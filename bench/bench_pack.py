@@ -1,6 +1,6 @@
 """Benchmark: the bundled recipes' nets in pieces on the sheets makers own.
 
-Run: python bench/bench_pack.py [SHEET ...]   (default: A4 Letter A3 mat12 laser)
+Run: python bench/bench_pack.py [SHEET ...] [--smoke]   (default: A4 Letter A3 mat12 laser; --smoke: the queen on A4)
 Each recipe's shape (cavities filled) at 8.6 mm faces, the smallest with 2 mm labels and 3 mm tabs,
 with ``pieces="auto"``, as a new user runs it.  Goal per net: at most ceil(1.25 A / U) sheets, where A
 is the paper (faces and tabs, measured from the drawing) and U a sheet less its margins (and title
@@ -14,11 +14,8 @@ import sys
 import time
 from pathlib import Path
 
-from voxfab.fabricate.netdraw import DrawingOptions, find_sheet_nets
-from voxfab.fabricate.netdraw._drawing import draw_net, draw_pieces
-from voxfab.fabricate.netdraw._sheets import drawable_area
-from voxfab.recipe import load_recipe
-from voxfab.recipe._build import make_shape
+from voxfab.fabricate.netdraw import DrawingOptions, draw_net, draw_pieces, drawable_area, find_sheet_nets
+from voxfab.recipe import load_recipe, make_shape
 from voxfab.shape import fill_cavities
 
 RECIPES = ["chess/queen", "chess/king", "chess/bishop", "spinning_top", "chess/pawn", "torus4d_slice", "egg",
@@ -47,10 +44,11 @@ def row(name: str, grid, sheet: str) -> str:
 
 
 def main() -> None:
-    sheets = sys.argv[1:] or ["A4", "Letter", "A3", "mat12", "laser"]
+    smoke = "--smoke" in sys.argv[1:]
+    sheets = [a for a in sys.argv[1:] if a != "--smoke"] or (["A4"] if smoke else ["A4", "Letter", "A3", "mat12", "laser"])
     root = Path(__file__).parents[1] / "recipes"
     grids = []
-    for r in RECIPES:
+    for r in ["chess/queen"] if smoke else RECIPES:
         recipe = load_recipe(root / f"{r}.toml")
         grids.append((recipe.name, fill_cavities(make_shape(recipe).grid)))
     for sheet in sheets:
