@@ -101,6 +101,7 @@ class ProcessSampler:
         self._own = self._cpu(self._me)
         self.peak_mb = 0.0
         self._cpu_by_pid: dict[int, tuple[str, float]] = {}
+        self._roles: dict[int, str] = {}
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._loop, daemon=True)
 
@@ -114,7 +115,9 @@ class ProcessSampler:
 
         for child in self._me.children(recursive=True):
             try:
-                role = "helper" if "resource_tracker" in " ".join(child.cmdline()) else "worker"
+                if child.pid not in self._roles:  # the command line once per process: psutil reads /proc
+                    self._roles[child.pid] = "helper" if "resource_tracker" in " ".join(child.cmdline()) else "worker"
+                role = self._roles[child.pid]
                 self._cpu_by_pid[child.pid] = (role, self._cpu(child))
                 if role == "worker":
                     self.peak_mb = max(self.peak_mb, child.memory_info().rss / 1e6)
