@@ -1,6 +1,6 @@
 """Benchmark of ``voxfab census``: seconds per polycube and the scaling from 1 to 2 Dask workers.
 
-Run ``python bench/bench_census.py [--n 6]``.  It censuses every polycube of 1..n
+Run ``python bench/bench_census.py [--n 6] [--smoke]`` (``--smoke``: up to 3 cubes).  It censuses every polycube of 1..n
 cubes three times into fresh folders: serially in this process, then on a local
 Dask cluster of 1 and of 2 worker processes.  It prints the wall-clock time of
 each run, the CPU seconds of the searches (added over the shapes), the cost per
@@ -34,7 +34,10 @@ def _run(n: int, out: Path, workers: int) -> tuple[float, float, int]:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--n", type=int, default=6, help="largest number of cubes (default 6)")
+    parser.add_argument("--smoke", action="store_true", help="polycubes of up to 3 cubes")
     args = parser.parse_args()
+    if args.smoke:
+        args.n = 3
     print(f"load average before: {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
     with tempfile.TemporaryDirectory() as tmp:
         walls = {}

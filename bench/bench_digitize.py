@@ -8,6 +8,9 @@ on a shared machine.
 
 Targets: every maker at 25³ under 50 ms after import; a surface of revolution
 at 256³ under 3 s and 2 GB; a tube with a 1000-point spine at 128³ under 5 s.
+
+``--smoke`` times each recipe's maker once and runs one revolution and one tube
+case at 32³, each in its two subprocesses, in a few seconds.
 """
 
 from __future__ import annotations
@@ -31,8 +34,16 @@ def _trefoil(n: int = 1000):
     return np.stack([np.sin(s) + 2 * np.sin(2 * s), np.cos(s) - 2 * np.cos(2 * s), -np.sin(3 * s)], axis=1)
 
 
+#: The heavy cases, named KIND_PARAM_SIDE_MODE (see :func:`_case`); ``--smoke`` runs two at 32³.
+CASES = (
+    "revolution_runs_256_scale", "revolution_runs_256_fit", "revolution_region_256_scale", "revolution_region_256_fit",
+    "tube_1000_128_scale", "tube_1000_128_fit",
+)
+SMOKE_CASES = ("revolution_runs_32_scale", "tube_200_32_fit")
+
+
 def _case(name: str):
-    """Return a zero-argument callable running one heavy case."""
+    """Return a zero-argument callable running one heavy case (``KIND_PARAM_SIDE_MODE``)."""
     from voxfab.digitize import revolution, revolution_field, tube
 
     queen = dict(curve="x^2 + y^2 - 1", generatrix="queen_generatrix.svg", base_dir=RECIPES / "chess")
@@ -42,15 +53,14 @@ def _case(name: str):
         fld = revolution_field(kw["curve"], kw["generatrix"], base_dir=kw.get("base_dir"))
         return (side - 4) / float(max(fld.hi - fld.lo))
 
-    cases = {
-        "revolution_runs_256_scale": lambda: revolution(**queen, size=256, mode="surface", scale=scale_for(queen, 256)),
-        "revolution_runs_256_fit": lambda: revolution(**queen, size=256, mode="surface"),
-        "revolution_region_256_scale": lambda: revolution(**region, size=256, mode="surface", scale=scale_for(region, 256)),
-        "revolution_region_256_fit": lambda: revolution(**region, size=256, mode="surface"),
-        "tube_1000_128_fit": lambda: tube(_trefoil(), radius=0.4, size=128),
-        "tube_1000_128_scale": lambda: tube(_trefoil(), radius=0.4, size=128, scale=124 / 7.3),
-    }
-    return cases[name]
+    kind, param, side_text, fit = name.split("_")
+    side = int(side_text)
+    if kind == "tube":
+        scale = None if fit == "fit" else (side - 4) / 7.3
+        return lambda: tube(_trefoil(int(param)), radius=0.4, size=side, scale=scale)
+    kw = queen if param == "runs" else region
+    scale = None if fit == "fit" else scale_for(kw, side)
+    return lambda: revolution(**kw, size=side, mode="surface", scale=scale)
 
 
 def run_case(name: str, trace: bool) -> dict:
@@ -77,7 +87,7 @@ def run_case(name: str, trace: bool) -> dict:
     return out
 
 
-def makers_25() -> list[tuple[str, str, float, float]]:
+def makers_25(runs: int = 5) -> list[tuple[str, str, float, float]]:
     from voxfab.digitize import get_maker
 
     rows = []
@@ -89,7 +99,7 @@ def makers_25() -> list[tuple[str, str, float, float]]:
         maker(base_dir=path.parent, **params)
         first = time.perf_counter() - t
         times = []
-        for _ in range(5):
+        for _ in range(runs):
             t = time.perf_counter()
             maker(base_dir=path.parent, **params)
             times.append(time.perf_counter() - t)
@@ -104,21 +114,19 @@ def main() -> None:
     if len(sys.argv) == 3 and sys.argv[1] == "--trace":
         print(json.dumps(run_case(sys.argv[2], trace=True)))
         return
+    smoke = "--smoke" in sys.argv[1:]
+    runs = 1 if smoke else 5
     t = time.perf_counter()
     import voxfab.digitize  # noqa: F401
 
     print(f"import voxfab.digitize: {1000 * (time.perf_counter() - t):.0f} ms\n")
-    print(f"{'recipe (25³)':22s} {'maker':11s} {'first call':>11s} {'median of 5':>12s}")
-    for stem, maker, first, med in makers_25():
+    print(f"{'recipe (25³)':22s} {'maker':11s} {'first call':>11s} {f'median of {runs}':>12s}")
+    for stem, maker, first, med in makers_25(runs):
         flag = "" if med < 0.05 else "  (over 50 ms)"
         print(f"{stem:22s} {maker:11s} {1000 * first:9.1f} ms {1000 * med:9.1f} ms{flag}")
     print()
     print(f"{'case':30s} {'seconds':>8s} {'peak RSS':>10s} {'traced peak':>12s} {'voxels':>9s}")
-    for name in (
-        "revolution_runs_256_scale", "revolution_runs_256_fit",
-        "revolution_region_256_scale", "revolution_region_256_fit",
-        "tube_1000_128_scale", "tube_1000_128_fit",
-    ):
+    for name in SMOKE_CASES if smoke else CASES:
         res = json.loads(subprocess.run(
             [sys.executable, __file__, "--case", name], check=True, capture_output=True, text=True
         ).stdout)

@@ -9,7 +9,8 @@ question, ``unfold(grid, strategy="exact", ...)`` with ``--timeout`` seconds:
 Proofs that no net exists are what limit the strategy (a net in a roomy box
 comes from the growth hint in about a second, even at a thousand faces), so
 the small boxes dominate the run time: about 10 minutes with the default
-questions and a 60 s limit.  Wall-clock on a shared machine: noisy.
+questions and a 60 s limit.  ``--smoke`` asks the unit cube's questions only, with a 10 s limit.
+Wall-clock on a shared machine: noisy.
 """
 
 from __future__ import annotations
@@ -63,13 +64,16 @@ def main() -> None:
     """Print one markdown row per question."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--timeout", type=float, default=60.0, help="seconds per question (default 60)")
+    parser.add_argument("--smoke", action="store_true", help="the unit cube's questions only, 10 s each")
     args = parser.parse_args()
+    questions = QUESTIONS[:1] if args.smoke else QUESTIONS
+    timeout = min(args.timeout, 10.0) if args.smoke else args.timeout
     print("| surface | faces | question | answer | time |\n|---|---|---|---|---|")
-    for name, grid, questions in QUESTIONS:
+    for name, grid, asked in questions:
         faces = surface_graph(grid).face_count
-        for q in questions:
+        for q in asked:
             start = time.monotonic()
-            answer = ask(grid, q, args.timeout)
+            answer = ask(grid, q, timeout)
             print(f"| {name} | {faces} | {q} | {answer} | {time.monotonic() - start:.1f} s |", flush=True)
 
 

@@ -2,7 +2,7 @@
 
 Run ``python bench/bench_explore.py [--count N]``.  Target (issue 16): 10,000 growth
 shapes in under a minute on 2 cores.  The machine's load moves the figures: the
-median of ``--repeat`` runs is printed.
+median of ``--repeat`` runs is printed.  ``--smoke``: 200 growth and 2 mix shapes, one run.
 """
 
 from __future__ import annotations
@@ -29,7 +29,10 @@ def main() -> None:
     parser.add_argument("--count", type=int, default=10_000, help="growth shapes per run")
     parser.add_argument("--mix", type=int, default=500, help="shapes of the mix generator per run")
     parser.add_argument("--repeat", type=int, default=3, help="runs per row")
+    parser.add_argument("--smoke", action="store_true", help="200 growth and 2 mix shapes, one run")
     args = parser.parse_args()
+    if args.smoke:
+        args.count, args.mix, args.repeat = 200, 2, 1
     growth(0, 100)  # compile (or load from the numba cache) outside the timings
     print(f"{'generator':<10} {'shapes':>7} {'wall s (median)':>16} {'cpu s':>7} {'shapes/s':>9} {'candidates':>11}")
     for generator, count in (("growth", args.count), ("mix", args.mix)):

@@ -18,9 +18,10 @@ and the studio's ``--host`` and ``--repo``.
 
 Usage::
 
-    python bench/bench_fuzz.py [--examples N] [--seconds S] [--seed N] [--surfaces]
+    python bench/bench_fuzz.py [--examples N] [--seconds S] [--seed N] [--surfaces] [--smoke]
 
-``--examples`` is per case (default 300); the exit status is 1 when a fault was found.
+``--examples`` is per case (default 300); ``--smoke`` tries one input per case.  The exit status
+is 1 when a fault was found.
 """
 
 from __future__ import annotations
@@ -54,7 +55,7 @@ from _fuzz import (  # noqa: E402
 from hypothesis import HealthCheck, Phase, given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
-from voxfab.cli._common import STRICT_EXIT  # noqa: E402
+from voxfab.cli import STRICT_EXIT  # noqa: E402
 
 #: Classes that are faults.
 FAULTS = ("traceback", "message", "slow", "wrong", "leftover")
@@ -147,7 +148,10 @@ def main() -> int:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--surfaces", action="store_true",
                         help="only the batch runner, repository rows, explore and the studio's command line")
+    parser.add_argument("--smoke", action="store_true", help="one input per case")
     args = parser.parse_args()
+    if args.smoke:
+        args.examples = 1
     s = Soak(args.seconds)
     start = time.perf_counter()
     with tempfile.TemporaryDirectory() as tmp:
@@ -173,7 +177,7 @@ def main() -> int:
             return run_cli(["build", folder / "fuzz.toml", "-o", root / "out"], seconds=args.seconds)
 
         soak("recipe --check", recipe_trees(), check, s, args.examples, args.seed)
-        soak("recipe build", recipe_trees(with_outputs=False, strict=True), build, s, args.examples // 3, args.seed)
+        soak("recipe build", recipe_trees(with_outputs=False, strict=True), build, s, max(1, args.examples // 3), args.seed)
         cli = root / "cli"
         cli.mkdir()
         cli_corpus(cli)
@@ -245,7 +249,7 @@ def soak_surfaces(root: Path, s: Soak, examples: int, seed: int, seconds: float)
     # NULL only where the schema allows it (meta): SQLite refuses the others whatever the writer.
     rows = st.tuples(st.sampled_from(ROW_COLUMNS), st.sampled_from(ROW_VALUES)).filter(
         lambda v: v[1] is not None or v[0] == "meta")
-    soak("repo rows", rows, damaged, s, examples // 3, seed, row_verdict)
+    soak("repo rows", rows, damaged, s, max(1, examples // 3), seed, row_verdict)
 
     # explore's numbers: a refused run leaves no repository.
     def explore(value: tuple[str, str | None, str | None]) -> object:
@@ -265,7 +269,7 @@ def soak_surfaces(root: Path, s: Soak, examples: int, seed: int, seconds: float)
     small = ["0", "-1", "1", "2", "3", "x", "1e3", str(10**7), str(10**12), str(2**63)]
     soak("explore", st.tuples(st.sampled_from(small), st.one_of(st.none(), st.sampled_from(small)),
                               st.one_of(st.none(), st.sampled_from(["", ":", "25:30", "1:3", "x", "30:25", "25:"]))),
-         explore, s, examples // 3, seed, explore_verdict)
+         explore, s, max(1, examples // 3), seed, explore_verdict)
 
     # The batch runner's options on a real LocalCluster: a refusal leaves no folder.
     outputs = write_outputs(root / "outputs.toml")
@@ -291,7 +295,7 @@ def soak_surfaces(root: Path, s: Soak, examples: int, seed: int, seconds: float)
             return "leftover"
         return None
 
-    soak("batch options", batch_argv, batch, s, max(3, examples // 10), seed, batch_verdict)
+    soak("batch options", batch_argv, batch, s, max(min(3, examples), examples // 10), seed, batch_verdict)
 
     # Servers that are not Dask schedulers: random bytes, then silence.
     def scheduler(data: bytes) -> object:
@@ -322,7 +326,7 @@ def soak_surfaces(root: Path, s: Soak, examples: int, seed: int, seconds: float)
 
     frames = st.one_of(st.binary(max_size=64), st.tuples(st.integers(0, 2**64 - 1), st.binary(max_size=32)).map(
         lambda t: t[0].to_bytes(8, "little") + t[1]))
-    soak("batch --scheduler", frames, scheduler, s, max(3, examples // 10), seed, scheduler_verdict)
+    soak("batch --scheduler", frames, scheduler, s, max(min(3, examples), examples // 10), seed, scheduler_verdict)
 
     # The studio's command line, on a port already taken on both loopbacks: it never serves.
     busy = socket.create_server(("127.0.0.1", 0))
@@ -344,7 +348,7 @@ def soak_surfaces(root: Path, s: Soak, examples: int, seed: int, seconds: float)
         return "leftover" if (root / "new.sqlite").exists() or (root / "missing").exists() else None
 
     soak("studio command line", st.tuples(st.sampled_from(hosts), st.sampled_from(repos)), studio, s,
-         examples // 3, seed, studio_verdict)
+         max(1, examples // 3), seed, studio_verdict)
     busy.close()
     busy6.close()
 

@@ -1,6 +1,6 @@
 """Benchmark of the net gallery: the studio's "Net → Generate" for the bundled queen.
 
-Run ``python bench/bench_gallery.py [--nets N] [--sheet A4] [--runs R] [--pieces one|auto]``.  It builds
+Run ``python bench/bench_gallery.py [--nets N] [--sheet A4] [--runs R] [--pieces one|auto] [--smoke]``.  It builds
 the queen from ``recipes/chess/queen.toml``, compiles the net kernels once (numba's cache; not timed),
 then times :func:`voxfab.fabricate.netdraw.net_gallery` at the default face size (the smallest with
 legible marks) and the studio's defaults (5 s per net), split into
@@ -9,9 +9,8 @@ legible marks) and the studio's defaults (5 s per net), split into
   sheet and refolded by :func:`voxfab.unfold.validate`),
 * the page's JSON (LAYOUT and PLACEMENT of every net, :func:`voxfab.fabricate.netdraw.gallery_json`),
 
-and, for comparison, the face-by-face validation of the same nets (what validating cost before the
-whole-array check of sound nets).
-Goal: 8 queen nets in at most 3 s on the 2-core machine.
+and, for comparison, a second :func:`voxfab.unfold.validate` of the same nets (the refold check alone).
+Goal: 8 queen nets in at most 3 s on the 2-core machine.  ``--smoke``: 2 nets, one run.
 
 With ``--pieces auto`` (A4: the queen's nets come in pieces) it also times when each net is handed
 over (``on_item``, the moment the studio can send it to the page): the first and the last, in wall
@@ -39,15 +38,17 @@ def main() -> None:
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--pieces", default="one", choices=("one", "auto"))
     ap.add_argument("--studio", action="store_true", help="time the nets as the page reads them from a real studio")
+    ap.add_argument("--smoke", action="store_true", help="2 nets, one run")
     args = ap.parse_args()
+    if args.smoke:
+        args.nets, args.runs = 2, 1
     if args.studio:
         studio(args)
         return
 
     from voxfab.fabricate import netdraw
-    from voxfab.recipe import load_recipe
-    from voxfab.recipe._build import make_shape
-    from voxfab.unfold import _validate, unfold
+    from voxfab.recipe import load_recipe, make_shape
+    from voxfab.unfold import unfold, validate
 
     grid = make_shape(load_recipe(ROOT / "recipes" / "chess" / "queen.toml")).grid
     unfold(grid, rng=0, timeout=300)  # compile or load the kernels: not part of a gallery
@@ -70,17 +71,17 @@ def main() -> None:
         body = json.dumps(netdraw.gallery_json(gallery, grid))
         t2 = time.perf_counter()
         for item in gallery.nets:
-            _validate._check_piece_by_face(grid, _validate._exposed(grid), item.pieces[0], 0, {}, [], "")
+            validate(grid, item.pieces)
         t3 = time.perf_counter()
         fits = sum(item.fit["fits"] for item in gallery.nets)
         rows.append((t1 - t0, t2 - t1, t2 - t0, t3 - t2))
         print(f"run {run + 1} (seed {run}): {len(gallery.nets)} nets, {fits} fit {args.sheet} at "
               f"{gallery.options.pitch:g} mm; search {t1 - t0:.2f} s, page JSON {t2 - t1:.2f} s "
-              f"({len(body) / 1e6:.1f} MB), gallery {t2 - t0:.2f} s; face-by-face validation {t3 - t2:.2f} s")
+              f"({len(body) / 1e6:.1f} MB), gallery {t2 - t0:.2f} s; validation alone {t3 - t2:.2f} s")
     med = [statistics.median(col) for col in zip(*rows)]
     print(f"queen, {args.nets} nets on {args.sheet}, median of {args.runs}: gallery {med[2]:.2f} s "
-          f"(search and validation {med[0]:.2f} s, JSON {med[1]:.2f} s); the face-by-face validation of the "
-          f"same nets takes {med[3]:.2f} s")
+          f"(search and validation {med[0]:.2f} s, JSON {med[1]:.2f} s); validating the same nets again "
+          f"takes {med[3]:.2f} s")
     first, last = (statistics.median(col) for col in zip(*handed))
     print(f"nets handed over, median of {args.runs}: first at {first:.2f} s, last at {last:.2f} s")
     print("2-core machine shared with other jobs: figures are noisy")
@@ -94,9 +95,8 @@ def studio(args: argparse.Namespace) -> None:
     from bench_studio import _get, _post
     from bench_studio_jobs import _start
 
-    from voxfab.recipe import load_recipe
-    from voxfab.recipe._build import make_shape
-    from voxfab.studio._grid import pack
+    from voxfab.recipe import load_recipe, make_shape
+    from voxfab.studio import pack
 
     grid = make_shape(load_recipe(ROOT / "recipes" / "chess" / "queen.toml")).grid
     body = {"grid": pack(np.asarray(grid)), "count": args.nets,

@@ -1,6 +1,6 @@
 """Benchmark: `voxfab info` wall time (interpreter start included) and import times.
 
-Run: python bench/bench_info.py
+Run: python bench/bench_info.py [--smoke]   (--smoke: one run of each command instead of 7)
 Goal: `voxfab info` on a 25³ shape under 0.5 s wall.
 """
 
@@ -28,6 +28,7 @@ def wall(cmd: list[str], runs: int = 7) -> tuple[float, float]:
 
 
 def main() -> None:
+    runs = 1 if "--smoke" in sys.argv[1:] else 7
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "shape.npy"
         np.save(path, examples.random_shape(1))
@@ -40,7 +41,7 @@ def main() -> None:
         ]
         print(f"{'command':<40} {'median s':>9} {'max s':>7}  goal")
         for label, cmd in rows:
-            med, worst = wall(cmd)
+            med, worst = wall(cmd, runs)
             goal = "< 0.5 s" if label.startswith("voxfab info") else ""
             print(f"{label:<40} {med:9.3f} {worst:7.3f}  {goal}")
 

@@ -12,6 +12,9 @@ peak resident memory (``ru_maxrss``) is its own.  Goals (issue 4):
   beside them as the extreme;
 * a 256³ one-voxel sphere shell under 5 s and 2 GB;
 * random noise at 256³ refused with a clear error before memory runs out.
+
+``--smoke`` runs every case, each in its subprocess, on small inputs (a 10³ blob, a 40³ shell) and
+once each: seconds in all.
 """
 
 from __future__ import annotations
@@ -38,14 +41,15 @@ def _shell(n: int = 256, r: float = 120.0):
     return ball & ~ndimage.binary_erosion(ball, np.ones((3, 3, 3), bool))
 
 
-def run_case(name: str) -> dict[str, object]:
+def run_case(name: str, smoke: bool = False) -> dict[str, object]:
     import numpy as np
 
     from voxfab.errors import VoxfabError
     from voxfab.fabricate.mesh import build_mesh, check_mesh, voxel_mesh
     from voxfab.shape import examples
 
-    blob = examples.random_shape(0)
+    blob = examples.random_shape(0, side=10) if smoke else examples.random_shape(0)
+    runs = {"blob": 1 if smoke else 10, "checker": 1 if smoke else 5, "shell": 1 if smoke else 2}
     out: dict[str, object] = {"case": name}
     if name == "cubes_union":
         import manifold3d as m3d
@@ -60,7 +64,7 @@ def run_case(name: str) -> dict[str, object]:
         mode = "bridge" if name == "blob" else "split"
         build_mesh(blob, contacts=mode)  # warm-up: imports and compiled kernels load on the first call
         times = []
-        for _ in range(10):
+        for _ in range(runs["blob"]):
             t = time.perf_counter()
             r = build_mesh(blob, contacts=mode)
             times.append(time.perf_counter() - t)
@@ -80,16 +84,16 @@ def run_case(name: str) -> dict[str, object]:
         }[name]
         build_mesh(g, **options)  # warm-up
         times = []
-        for _ in range(5):
+        for _ in range(runs["checker"]):
             t = time.perf_counter()
             r = build_mesh(g, **options)
             times.append(time.perf_counter() - t)
         out.update(seconds=min(times), triangles=r.report.triangles, bodies=r.report.bodies, bridges=r.bridges)
         return out
     if name == "shell256":
-        g = _shell()
+        g = _shell(40, 18.0) if smoke else _shell()
         times = []
-        for _ in range(2):
+        for _ in range(runs["shell"]):
             t = time.perf_counter()
             r = build_mesh(g, fill=False)
             times.append(time.perf_counter() - t)
@@ -112,18 +116,21 @@ def run_case(name: str) -> dict[str, object]:
 
 
 def main() -> None:
-    if len(sys.argv) == 3 and sys.argv[1] == "--case":
+    smoke = "--smoke" in sys.argv[1:]
+    if len(sys.argv) >= 3 and sys.argv[1] == "--case":
         import resource
 
-        res = run_case(sys.argv[2])
+        res = run_case(sys.argv[2], smoke)
         res["peak_rss_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
         print(json.dumps(res))
         return
-    results = {}
+    results, failed = {}, []
     for case in CASES:
-        run = subprocess.run([sys.executable, __file__, "--case", case], capture_output=True, text=True)
+        run = subprocess.run([sys.executable, __file__, "--case", case, *(["--smoke"] if smoke else [])],
+                             capture_output=True, text=True)
         if run.returncode != 0:
             print(f"{case}: failed\n{run.stderr[-2000:]}")
+            failed.append(case)
             continue
         results[case] = json.loads(run.stdout.strip().splitlines()[-1])
     print(f"{'case':<16}{'seconds':>10}{'peak MB':>10}{'triangles':>11}  notes")
@@ -146,6 +153,8 @@ def main() -> None:
     if "noise256" in results:
         r = results["noise256"]
         print(f"256³ noise: refused in {r['seconds']:.2f} s at {r['peak_rss_mb']:.0f} MB peak")
+    if failed:
+        sys.exit(f"{len(failed)} cases failed: {', '.join(failed)}")
 
 
 if __name__ == "__main__":

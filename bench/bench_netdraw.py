@@ -1,10 +1,11 @@
 """Benchmark: drawing large nets, writing SVG, DXF and PDF, and the bundled recipes' paper nets.
 
-Run: python bench/bench_netdraw.py [--recipes]
+Run: python bench/bench_netdraw.py [--recipes] [--smoke]
 Goal: drawing a 3000-face net with tabs and numbers under 2 s (draw + SVG + DXF R12 + PDF).
 Nets come from the net engine (voxfab.unfold.unfold); finding them is not timed in the first table.
 With ``--recipes``, each bundled recipe's net output runs as a build would (search included), and
 the text height and tab depth are measured back from the DXF file it wrote.
+``--smoke``: a ball of radius 3, one run of each step, and the recipes' table for the pawn only.
 """
 
 from __future__ import annotations
@@ -18,8 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from voxfab.fabricate.netdraw import DrawingOptions, draw_net
-from voxfab.fabricate.netdraw._writers import write
+from voxfab.fabricate.netdraw import DrawingOptions, draw_net, save_drawing
 from voxfab.shape import examples
 
 
@@ -32,19 +32,20 @@ def timed(fn, *args, runs: int = 5, **kwargs) -> tuple[float, float]:
     return statistics.median(times), max(times)
 
 
-def shapes() -> list[tuple[str, np.ndarray]]:
+def shapes(smoke: bool = False) -> list[tuple[str, np.ndarray]]:
     # Digital balls are the net engine's hard family; r = 13 gives 3174 faces.
-    return [("ball r=12", examples.ball(12)), ("ball r=13", examples.ball(13))]
+    radii = (3,) if smoke else (12, 13)
+    return [(f"ball r={r}", examples.ball(r)) for r in radii]
 
 
-def bench_one(name: str, grid: np.ndarray, net, tmp: Path) -> None:
+def bench_one(name: str, grid: np.ndarray, net, tmp: Path, runs: int = 5) -> None:
     # 11 mm faces carry 2 mm seam labels of up to four characters; the sheet is a large laser bed.
     opts = DrawingOptions(pitch=11.0, sheet="2500x2500")
     opts2k = DrawingOptions(pitch=11.0, sheet="2500x2500", dxf_version="R2000")
     d = draw_net(grid, net, options=opts, name=name)
-    t_draw = timed(draw_net, grid, net, options=opts, name=name)
-    t = {ext: timed(write, d, tmp / f"n.{ext}", opts) for ext in ("svg", "dxf", "pdf")}
-    t["dxf2k"] = timed(write, d, tmp / "n2k.dxf", opts2k, runs=1)
+    t_draw = timed(draw_net, grid, net, options=opts, name=name, runs=runs)
+    t = {ext: timed(save_drawing, d, tmp / f"n.{ext}", opts, runs=runs) for ext in ("svg", "dxf", "pdf")}
+    t["dxf2k"] = timed(save_drawing, d, tmp / "n2k.dxf", opts2k, runs=1)
     total = t_draw[0] + t["svg"][0] + t["dxf"][0] + t["pdf"][0]
     print(f"{name:<14}{net.face_count:>7}{d.seams:>7}{int(d.tab_seams.sum()):>6}"
           f"{net.seams_without_tab_room:>7}{len(d.sheets):>7}"
@@ -92,15 +93,16 @@ def measured(path: Path, face: float) -> tuple[float, float]:
     return float(np.median(heights)), float(min(depths)) if depths else 0.0
 
 
-def bench_recipes(tmp: Path) -> None:
+def bench_recipes(tmp: Path, only: str | None = None) -> None:
     from voxfab.fabricate import BuildContext, outputs
-    from voxfab.recipe import load_recipe
-    from voxfab.recipe._build import make_shape
+    from voxfab.recipe import load_recipe, make_shape
 
     kind = outputs()["net"]
     print(f"\n{'recipe':<18}{'faces':>7}{'face mm':>9}{'sheet':>10}{'pieces':>7}{'sheets':>7}{'fill %':>10}"
           f"{'text mm':>9}{'tab mm':>8}{'time s':>8}")
     for path in sorted((Path(__file__).parents[1] / "recipes").rglob("*.toml")):
+        if only is not None and path.stem != only:
+            continue
         recipe = load_recipe(path)
         spec = next((o for o in recipe.outputs if o.name == "net"), None)
         if spec is None:
@@ -128,13 +130,15 @@ def main() -> None:
         sys.exit("bench_netdraw: the net engine (voxfab.unfold.unfold) is not available")
     print(f"{'shape':<14}{'faces':>7}{'seams':>7}{'tabs':>6}{'noroom':>7}{'sheets':>7}{'draw s':>9}{'svg s':>8}"
           f"{'dxf12 s':>9}{'dxf2k s':>9}{'pdf s':>8}{'total s':>9}")
+    smoke = "--smoke" in sys.argv[1:]
+    runs = 1 if smoke else 5
     with tempfile.TemporaryDirectory() as tmp:
-        for name, grid in shapes():
-            bench_one(name, grid, unfold(grid, rng=1), Path(tmp))
+        for name, grid in shapes(smoke):
+            bench_one(name, grid, unfold(grid, rng=1), Path(tmp), runs)
         print("noroom: seams the engine left without tab room (they get a printed mark instead of a tab)")
-        print("medians of 5 runs (R2000: 1 run); 2-core machine shared with other jobs, figures are noisy")
-        if "--recipes" in sys.argv[1:]:
-            bench_recipes(Path(tmp))
+        print(f"medians of {runs} runs (R2000: 1 run); 2-core machine shared with other jobs, figures are noisy")
+        if "--recipes" in sys.argv[1:] or smoke:
+            bench_recipes(Path(tmp), "pawn" if smoke else None)
             print("text: median digit height, tab: smallest tab depth, both measured in the DXF; time: one "
                   "run of the net output (search, draw, write)")
 

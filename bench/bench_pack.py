@@ -1,6 +1,7 @@
 """Benchmark: the bundled recipes' nets in pieces on the sheets makers own, side by side with the peer.
 
-Run: python bench/bench_pack.py [--sheets A4,Letter,mat12] [--shapes queen,pawn,egg,...] [--no-peer]
+Run: python bench/bench_pack.py [--sheets A4,Letter,mat12] [--shapes queen,pawn,egg,...] [--no-peer] [--smoke]
+(--smoke: the queen on A4, without the peer.)
 
 Each recipe's shape (cavities filled) at 8.6 mm faces, the smallest with 2 mm labels and 3 mm tabs,
 made as a new user makes it: ``voxfab net SHAPE.npy --pieces auto --sheet S --face-size 8.6 -o net.pdf``,
@@ -60,8 +61,7 @@ def voxfab_run(shape: Path, sheet: str, out: Path) -> tuple[dict, float, float]:
 
 
 def row(name: str, grid: np.ndarray, sheet: str, peer: bool) -> str:
-    from voxfab.fabricate.netdraw import DrawingOptions
-    from voxfab.fabricate.netdraw._sheets import drawable_area
+    from voxfab.fabricate.netdraw import DrawingOptions, drawable_area
 
     opts = DrawingOptions(pitch=FACE, sheet=sheet, label_height=2.0)
     with tempfile.TemporaryDirectory(prefix="voxfab-bench-") as tmp:
@@ -84,15 +84,17 @@ def row(name: str, grid: np.ndarray, sheet: str, peer: bool) -> str:
 
 
 def main() -> None:
-    from voxfab.recipe import load_recipe
-    from voxfab.recipe._build import make_shape
+    from voxfab.recipe import load_recipe, make_shape
     from voxfab.shape import fill_cavities
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--sheets", default="A4,Letter,mat12")
     ap.add_argument("--shapes", default=",".join(RECIPES), help=f"of {', '.join(RECIPES)}")
     ap.add_argument("--no-peer", action="store_true", help="leave the peer out even when blender is installed")
+    ap.add_argument("--smoke", action="store_true", help="the queen on A4 without the peer: the whole path in seconds")
     args = ap.parse_args()
+    if args.smoke:
+        args.sheets, args.shapes, args.no_peer = "A4", "queen", True
     peer = peer_available() and not args.no_peer
     grids = []
     for name in args.shapes.split(","):

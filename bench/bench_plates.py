@@ -3,12 +3,13 @@
 Run ``python bench/bench_plates.py``.  The goal is under 2 s for the whole
 path from voxels to written sheets.  "cold" is the first call in a fresh
 process (lazy imports of shapely, scipy, rectpack and ezdxf included);
-"warm" is the median of the following runs.
+"warm" is the median of the following runs (three; one with ``--smoke``).
 """
 
 from __future__ import annotations
 
 import statistics
+import sys
 import tempfile
 import time
 from pathlib import Path
@@ -48,13 +49,14 @@ def to_sheets(shape: VoxelShape, folder: Path, *, thickness: float) -> dict[str,
 
 
 def main() -> None:
+    warm_runs = 1 if "--smoke" in sys.argv[1:] else RUNS
     shape = VoxelShape(examples.random_shape(1), 3.0)
     print(f"shape: random_shape(1), {'x'.join(map(str, shape.grid.shape))}, {shape.volume} voxels, pitch 3 mm")
     print(f"{'case':<28}{'plates':>8}{'sheets':>8}{'dowels':>8}{'slice s':>9}{'nest s':>8}{'write s':>9}{'total s':>9}  goal")
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp)
         for thickness, name in ((3.0, "3 mm plates (1/layer)"), (1.0, "1 mm plates (3/layer)")):
-            runs = [to_sheets(shape, folder, thickness=thickness) for _ in range(RUNS + 1)]
+            runs = [to_sheets(shape, folder, thickness=thickness) for _ in range(warm_runs + 1)]
             for label, rows in (("cold", runs[:1]), ("warm", runs[1:])):
                 med = {k: statistics.median(r[k] for r in rows) for k in rows[0]}
                 ok = "ok" if med["total"] < GOAL_S else "SLOW"

@@ -1,6 +1,6 @@
 """Benchmark: pictures of 25³ shapes (3D views, slice sheet, net, triptych, turntable).
 
-Run: python bench/bench_render.py
+Run: python bench/bench_render.py [--smoke]   (--smoke: 200 px pictures, two shapes, one run each)
 Goals: a 25³ render under 1 s; a triptych under 3 s.
 The triptych is timed drawing the net found once by the net engine
 (``voxfab.unfold.unfold``, timed on its own row: its search time is the net
@@ -10,6 +10,7 @@ engine's budget, not rendering).
 from __future__ import annotations
 
 import statistics
+import sys
 import time
 from collections.abc import Callable
 
@@ -36,6 +37,8 @@ def engine():  # noqa: ANN201 - the unfold function or None
 
 
 def main() -> None:
+    smoke = "--smoke" in sys.argv[1:]
+    px, runs, frames = (200, 1, 4) if smoke else (800, 5, 36)
     shapes = {
         "random 25^3 (seed 1)": examples.random_shape(1),
         "random 25^3 dense (seed 2)": examples.random_shape(2, fill=0.45),
@@ -43,23 +46,25 @@ def main() -> None:
         "torus": examples.torus(9, 3.5),
         "vase": examples.vase(),
     }
+    if smoke:
+        shapes = {"random 25^3 (seed 1)": shapes["random 25^3 (seed 1)"], "ball r=4": examples.ball(4)}
     rows: list[tuple[str, str, float, float, str]] = []
     for label, g in shapes.items():
         info = f"{int(g.sum())} vox, {exposed_faces(g)} faces"
-        med, worst = timed(lambda g=g: render.png_bytes(render.render(g, view="iso", size=800)), 5)
-        rows.append((f"render iso 800px + PNG: {label}", info, med, worst, "< 1 s"))
+        med, worst = timed(lambda g=g: render.png_bytes(render.render(g, view="iso", size=px)), runs)
+        rows.append((f"render iso {px}px + PNG: {label}", info, med, worst, "< 1 s"))
     g = shapes["random 25^3 (seed 1)"]
-    med, worst = timed(lambda: render.render(g, view="z", size=800), 5)
-    rows.append(("render z 800px: random 25^3", "", med, worst, "< 1 s"))
-    med, worst = timed(lambda: render.slice_sheet(g, size=800), 5)
-    rows.append(("slice sheet 800px: random 25^3", "", med, worst, ""))
-    med, worst = timed(lambda: render.turntable_frames(g, frames=36, size=400), 1)
-    rows.append(("turntable 36 x 400px: random 25^3", "", med, worst, ""))
+    med, worst = timed(lambda: render.render(g, view="z", size=px), runs)
+    rows.append((f"render z {px}px: random 25^3", "", med, worst, "< 1 s"))
+    med, worst = timed(lambda: render.slice_sheet(g, size=px), runs)
+    rows.append((f"slice sheet {px}px: random 25^3", "", med, worst, ""))
+    med, worst = timed(lambda: render.turntable_frames(g, frames=frames, size=px // 2), 1)
+    rows.append((f"turntable {frames} x {px // 2}px: random 25^3", "", med, worst, ""))
 
     unfold = engine()
     if unfold is None:
         print("note: voxfab.unfold.unfold is not installed: the triptych is timed with the net panel's message")
-    for label in ("random 25^3 (seed 1)", "ball r=12"):
+    for label in ("random 25^3 (seed 1)", "ball r=4" if smoke else "ball r=12"):
         g = shapes[label]
         net = None
         if unfold is not None:
@@ -68,17 +73,17 @@ def main() -> None:
             spent = time.perf_counter() - t
             rows.append((f"net engine unfold (once, not render): {label}", f"{net.face_count} faces", spent, spent,
                          ""))
-            med, worst = timed(lambda g=g, net=net: render.net_picture(net, g, size=800), 3)
-            rows.append((f"net picture 800px: {label}", f"{net.face_count} faces", med, worst, ""))
+            med, worst = timed(lambda g=g, net=net: render.net_picture(net, g, size=px), min(runs, 3))
+            rows.append((f"net picture {px}px: {label}", f"{net.face_count} faces", med, worst, ""))
 
         def draw(g=g, net=net, label=label) -> None:
-            img = render.triptych(g, name=label, net=net, rng=0, panel=800)
+            img = render.triptych(g, name=label, net=net, rng=0, panel=px)
             render.png_bytes(img)
             render.pdf_bytes(img, title=label)
 
-        med, worst = timed(draw, 3)
+        med, worst = timed(draw, min(runs, 3))
         what = "given net" if net is not None else "no engine"
-        rows.append((f"triptych 3x800px PNG+PDF ({what}): {label}", "", med, worst, "< 3 s"))
+        rows.append((f"triptych 3x{px}px PNG+PDF ({what}): {label}", "", med, worst, "< 3 s"))
 
     width = max(len(r[0]) for r in rows)
     print(f"{'case':<{width}} {'shape':>24} {'median s':>9} {'max s':>7}  goal")

@@ -6,6 +6,7 @@ per shape are printed.  The repository is filled by ``explore`` (growth shapes o
 volume 25..1500, distinct up to the 48 cube symmetries, one transaction per 512
 shapes), growing from one size to the next, so the largest size takes minutes.
 The machine's load moves the figures: medians, and CPU time beside wall time.
+``--smoke``: 300 shapes and 20 timed calls per row.
 """
 
 from __future__ import annotations
@@ -47,7 +48,10 @@ def main() -> None:
     parser.add_argument("--sizes", default="10000,100000,1000000", help="stored shapes at each measure")
     parser.add_argument("--samples", type=int, default=300, help="timed calls per row")
     parser.add_argument("--keep", type=Path, help="build the repository at this path (kept) instead of a temp dir")
+    parser.add_argument("--smoke", action="store_true", help="300 shapes, 20 timed calls per row")
     args = parser.parse_args()
+    if args.smoke:
+        args.sizes, args.samples = "300", 20
     sizes = sorted(int(s) for s in args.sizes.split(","))
 
     with tempfile.TemporaryDirectory() as tmp:

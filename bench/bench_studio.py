@@ -1,6 +1,6 @@
 """Benchmark of ``voxfab studio``: preview latency at 25³ and the time of a gallery of 8 nets.
 
-Run ``python bench/bench_studio.py [--strokes N] [--nets N] [--no-browser]``.  It starts a real
+Run ``python bench/bench_studio.py [--strokes N] [--nets N] [--no-browser] [--smoke]``.  It starts a real
 ``voxfab studio`` server on 127.0.0.1 and measures:
 
 * the preview round trip (POST ``/api/preview``, digitizing through the recipe path, 25³ bits
@@ -9,6 +9,7 @@ Run ``python bench/bench_studio.py [--strokes N] [--nets N] [--no-browser]``.  I
   generatrix canvas to the redrawn 3D view, as the page itself measures it;
 * a gallery of distinct nets (POST ``/api/nets``) of the default vase and of a slim column.
 
+``--smoke``: one preview per case, one stroke in the browser, galleries of 2 nets.
 Medians over runs; on a shared, busy machine the figures move: say so when quoting them.
 """
 
@@ -155,7 +156,10 @@ def main() -> None:
     ap.add_argument("--no-browser", action="store_true", help="skip the headless Chromium measurement")
     ap.add_argument("--timeout", type=float, default=5.0, help="seconds per net, as the page's default (5)")
     ap.add_argument("--only", choices=["preview", "gallery"], help="run one part only")
+    ap.add_argument("--smoke", action="store_true", help="1 preview per case, 1 stroke, 2 nets per gallery")
     args = ap.parse_args()
+    if args.smoke:
+        args.strokes, args.nets = 1, 2
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
         port = s.getsockname()[1]

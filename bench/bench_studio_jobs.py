@@ -1,6 +1,6 @@
 """Benchmark of the studio's jobs: how soon Cancel stops a net search, and how soon Ctrl-C stops the server.
 
-Run ``python bench/bench_studio_jobs.py [--runs N]``.  Each run starts a real ``voxfab studio`` on
+Run ``python bench/bench_studio_jobs.py [--runs N] [--smoke]`` (``--smoke``: one run).  Each run starts a real ``voxfab studio`` on
 127.0.0.1, fills both workers with galleries of the queen (12 nets each, a third waiting) and:
 
 * cancel: POST ``/api/jobs/ID/cancel`` on a running gallery at a random moment of its search, then
@@ -63,10 +63,13 @@ def _busy(url: str, body: dict) -> list[str]:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--runs", type=int, default=5)
+    parser.add_argument("--smoke", action="store_true", help="one run")
     args = parser.parse_args()
+    if args.smoke:
+        args.runs = 1
     sys.path.insert(0, str(ROOT))
     from voxfab.recipe import load_recipe, make_shape
-    from voxfab.studio._grid import pack
+    from voxfab.studio import pack
 
     queen = make_shape(load_recipe(ROOT / "recipes" / "chess" / "queen.toml")).grid
     body = {"grid": pack(queen), "count": 12, "options": {"timeout": 30.0}}
@@ -82,7 +85,9 @@ def main() -> None:
                         time.sleep(rng.uniform(0.2, 2.0))
                         t0 = time.monotonic()
                         _post(f"{url}/api/jobs/{ids[1]}/cancel", {})
-                        while _get(f"{url}/api/jobs/{ids[1]}")["state"] != "cancelled":
+                        while (state := _get(f"{url}/api/jobs/{ids[1]}")["state"]) != "cancelled":
+                            if state not in ("queued", "running") or time.monotonic() - t0 > 60:
+                                raise SystemExit(f"the cancelled gallery ended {state!r}, not cancelled")
                             time.sleep(0.005)
                         cancel.append(time.monotonic() - t0)
                     t0 = time.monotonic()

@@ -15,6 +15,8 @@ Run ``python bench/bench_unfold.py`` (``--help`` for options).
 The compiled kernels are loaded (or compiled, after a change) once before the
 first timed net, so no shape's maximum holds numba's compile time.
 
+``--smoke``: two small shapes, one seed, 4 distinct nets in 2 s, one floor run.
+
 Timings are wall-clock on a shared machine: noisy, so quote medians.
 """
 
@@ -76,7 +78,11 @@ def main() -> None:
     parser.add_argument("--budget", type=float, default=10.0, help="seconds for the distinct nets")
     parser.add_argument("--floor-runs", type=int, default=5)
     parser.add_argument("--only", help="substring of the shape names to run")
+    parser.add_argument("--smoke", action="store_true", help="ball r=4 and tunnel cube 5, one seed, 4 nets in 2 s")
     args = parser.parse_args()
+    smoke_shapes = ("ball r=4", "tunnel cube 5")
+    if args.smoke:
+        args.seeds, args.count, args.budget, args.floor_runs = 1, 4, 2.0, 1
 
     floor = _floor(args.floor_runs)
     unfold(examples.ball(4), rng=0)  # compile (or load) the kernels before any net is timed
@@ -88,7 +94,7 @@ def main() -> None:
     print("-" * len(header))
     everything = []
     for name, grid in corpus():
-        if args.only and args.only not in name:
+        if (args.only and args.only not in name) or (args.smoke and name not in smoke_shapes):
             continue
         faces = surface_graph(grid).face_count
         times, left = _default_nets(grid, args.seeds)

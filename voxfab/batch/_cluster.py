@@ -153,7 +153,7 @@ def connect(scheduler: str | None, workers: int, dashboard: str | None, timeout:
     try:
         from distributed import Client, LocalCluster
     except ImportError as exc:
-        raise MissingDependencyError("batch needs Dask distributed: pip install 'dask[distributed]'") from exc
+        raise MissingDependencyError("dask[distributed]", "voxfab batch") from exc
     if scheduler is not None:
         probe_scheduler(scheduler, timeout)
         try:
@@ -171,6 +171,9 @@ def connect(scheduler: str | None, workers: int, dashboard: str | None, timeout:
     # worker gets its own memory, which the dashboard shows per worker.
     # Only critical logs: a worker stopped by Ctrl-C or SIGTERM logs its lost heartbeat as an
     # error with a traceback, which is no news to the user who stopped it.
+    # Without a dashboard the scheduler still serves its health routes over HTTP, by default on
+    # port 8787 (with a warning when that port is taken): a free loopback port instead.
+    quiet_http = {"dashboard_address": "127.0.0.1:0"} if dashboard is None else {}
     cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
-                           dashboard_address=dashboard, silence_logs=50)
+                           dashboard_address=dashboard, silence_logs=50, scheduler_kwargs=quiet_http)
     return Cluster(Client(cluster, timeout=timeout), cluster, workers)

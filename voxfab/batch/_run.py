@@ -5,6 +5,7 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 import json
+import threading
 import time
 import uuid
 from collections.abc import Callable, Iterator
@@ -31,6 +32,7 @@ _SAVE_EVERY_S = 2.0
 class BatchReport:
     """What :func:`run_batch` did: counts, run time, where the index is, and the hunt's outcomes.
 
+    ``seconds`` runs from the cluster's start to the last file written (``batch.json``, the index).
     ``hunt`` sorts the built shapes by what their ``hunt.json`` says (``[outputs.hunt]``);
     None when no shape has one.
     """
@@ -299,11 +301,15 @@ def run_batch(
                 shapes[name] = {"status": "built", "seconds": 0.0, "worker": "earlier run"}
         else:
             todo.append(name)
+    # Largest shapes first (names run by rising volume): the last round then holds small shapes, so
+    # no worker idles for long while another finishes a large one.
+    todo.sort(key=lambda n: -_voxel_count(packed[n][0]))
     start = time.perf_counter()
     failures: list[tuple[str, str]] = [(o.name, o.error or "") for o in corrupt]
     for o in corrupt:
         shapes[o.name] = o.to_json()
     built = n_workers = 0
+    closing: threading.Thread | None = None
     if todo:
         cl = connect(scheduler, workers, dashboard, timeout)  # before DIR exists: a refusal leaves nothing
         n_workers = cl.workers
@@ -327,8 +333,12 @@ def run_batch(
                         failures.append((outcome.name, outcome.error or ""))
                     if on_outcome is not None:
                         on_outcome(outcome)
+            # Every task is done: the cluster stops (a second or more) while the index is written.
+            closing = threading.Thread(target=cl.close, name="voxfab-batch-close", daemon=True)
+            closing.start()
         finally:
-            cl.close()
+            if closing is None:
+                cl.close()
             if out.is_dir():
                 _sweep(out)
                 _save(record_path, Path(outputs_path).name, sha, shapes)
@@ -339,16 +349,27 @@ def run_batch(
         for o in corrupt:
             if on_outcome is not None:
                 on_outcome(o)
-    seconds = time.perf_counter() - start
-    _save(record_path, Path(outputs_path).name, sha, shapes)
-    index = out / "index.html"
-    if thumbnails:
-        from ._index import write_index
+    try:
+        _save(record_path, Path(outputs_path).name, sha, shapes)
+        index = out / "index.html"
+        if thumbnails:
+            from ._index import write_index
 
-        index = write_index(out, shapes)[0]
-    hunted = hunt_summary(out, sorted(n for n, v in shapes.items() if v.get("status") == "built"))
+            index = write_index(out, shapes)[0]
+        hunted = hunt_summary(out, sorted(n for n, v in shapes.items() if v.get("status") == "built"))
+    finally:
+        if closing is not None:
+            closing.join()
+    seconds = time.perf_counter() - start
     return BatchReport(built, len(failures), skipped, seconds, n_workers, index, tuple(failures),
                        hunted if hunted.shapes else None)
+
+
+def _voxel_count(bits: bytes) -> int:
+    """Voxels of a shape from its packed bits (the padding bits are zeros)."""
+    import numpy as np
+
+    return int(np.unpackbits(np.frombuffer(bits, dtype=np.uint8)).sum())
 
 
 def _run_tasks(cl: Cluster, tasks: Iterator[BatchTask], window: int, timeout: float,

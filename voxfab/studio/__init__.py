@@ -8,12 +8,14 @@ the triptych.  The page is plain HTML, CSS and JS modules shipped in this
 package; the server is a thin Starlette layer over the library (the library
 never imports this package).
 
-Public API: :func:`create_app`, :class:`Settings`, :func:`allowed_hosts`, :func:`serve`.
+Public API: :func:`create_app`, :class:`Settings`, :func:`allowed_hosts`, :func:`serve`, and the
+grids on the wire: :func:`pack` (a bool grid to ``{"dims", "bits"}``, the JSON body's ``grid``) and
+:func:`unpack` (back, checked).
 """
 
 from ._server import serve
 
-__all__ = ["Settings", "allowed_hosts", "create_app", "serve"]
+__all__ = ["Settings", "allowed_hosts", "create_app", "pack", "serve", "unpack"]
 
 
 def __getattr__(name: str):  # noqa: ANN202 - lazy re-exports keep `import voxfab.studio` free of Starlette
@@ -21,4 +23,8 @@ def __getattr__(name: str):  # noqa: ANN202 - lazy re-exports keep `import voxfa
         from . import _app
 
         return getattr(_app, name)
+    if name in ("pack", "unpack"):
+        from . import _grid
+
+        return getattr(_grid, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

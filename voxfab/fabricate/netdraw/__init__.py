@@ -15,7 +15,8 @@ Public API: :func:`net_files` (the whole job of ``voxfab net``: search,
 validation, files), :func:`net_gallery` (distinct nets ordered by fit, for the
 studio), :func:`find_sheet_nets` (shape → nets that fit the sheet),
 :func:`draw_net` and :func:`draw_pieces` (nets → :class:`NetDrawing`),
-:func:`write_net_drawing`, and :func:`fabricate_net`, the pipeline of the
+:func:`write_net_drawing` (draw and write), :func:`save_drawing` (write a drawn net),
+:func:`drawable_area` (the part of a sheet pieces may take), and :func:`fabricate_net`, the pipeline of the
 recipe output ``net``.  Heavy libraries (shapely,
 ezdxf, scipy, rectpack) load only when a drawing is made.
 """
@@ -33,7 +34,7 @@ from voxfab.unfold import Net
 
 from ._net_options import NetOptions
 from ._options import SHEETS, DrawingOptions, parse_sheet
-from ._sheets import SheetFitError
+from ._sheets import SheetFitError, drawable_area
 
 if TYPE_CHECKING:
     from ._drawing import NetDrawing
@@ -62,6 +63,7 @@ __all__ = [
     "SheetNets",
     "draw_net",
     "draw_pieces",
+    "drawable_area",
     "find_sheet_nets",
     "FaceSizeError",
     "NetFiles",
@@ -81,6 +83,7 @@ __all__ = [
     "fabricate_net",
     "parse_colors",
     "parse_sheet",
+    "save_drawing",
     "write_net_drawing",
 ]
 
@@ -204,6 +207,17 @@ def write_net_drawing(grid: Any, nets: Net | list[Net], path: str | Path, option
                                  f"expected one of {', '.join(FORMATS)}")
     drawing = _draw_any(grid, nets, options, title)
     return _result(drawing, write(drawing, Path(path), options))
+
+
+def save_drawing(drawing: NetDrawing, path: str | Path, options: DrawingOptions) -> list[str]:
+    """Write a drawn net (:func:`draw_net`, :func:`draw_pieces`) to ``path``; return the paths written.
+
+    The extension picks the format, as in :func:`write_net_drawing`, which draws and
+    writes in one call; this one writes a drawing made once in several formats.
+    """
+    from ._writers import write
+
+    return write(drawing, Path(path), options)
 
 
 def _draw_any(grid: Any, nets: Net | list[Net], options: DrawingOptions, title: str,
