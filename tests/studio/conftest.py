@@ -73,9 +73,13 @@ def stop_studio(proc: subprocess.Popen) -> None:
         proc.wait(5)
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def server(tmp_path_factory):
-    """``voxfab studio`` as a real uvicorn process on 127.0.0.1 and a free port; always stopped."""
+    """``voxfab studio`` as a real uvicorn process on 127.0.0.1 and a free port; always stopped.
+
+    One for the session: each start compiles or loads every kernel group, and the page
+    keeps no state of its own between two loads (the tests each open it afresh).
+    """
     folder = tmp_path_factory.mktemp("studio")
     proc, url = start_studio(folder)
     try:
@@ -84,27 +88,40 @@ def server(tmp_path_factory):
         stop_studio(proc)
 
 
-@pytest.fixture(scope="module")
-def browser(tmp_path_factory):
-    """Headless Debian Chromium through chromedriver, downloading into a temporary folder."""
+@pytest.fixture(scope="session")
+def chromium(tmp_path_factory):
+    """Headless Debian Chromium through chromedriver, one for the session (a start takes seconds)."""
     webdriver = pytest.importorskip("selenium.webdriver")
     chromium = shutil.which("chromium") or shutil.which("chromium-browser")
     driver_path = shutil.which("chromedriver")
     if not chromium or not driver_path:
         pytest.skip("needs Debian's chromium and chromium-driver (.ci/run installs them)")
-    downloads = tmp_path_factory.mktemp("downloads")
     opts = webdriver.ChromeOptions()
     opts.binary_location = chromium
     for arg in ("--headless=new", "--no-sandbox", "--disable-dev-shm-usage", "--window-size=1400,1000",
                 "--disable-gpu", "--no-first-run"):
         opts.add_argument(arg)
-    opts.add_experimental_option("prefs", {"download.default_directory": str(downloads),
-                                           "download.prompt_for_download": False})
+    opts.add_experimental_option("prefs", {"download.prompt_for_download": False})
     driver = webdriver.Chrome(options=opts, service=webdriver.ChromeService(executable_path=driver_path))
     driver.set_page_load_timeout(30)
-    driver.downloads = downloads
     SHOTS.mkdir(parents=True, exist_ok=True)
     try:
         yield driver
     finally:
         driver.quit()
+
+
+@pytest.fixture(scope="module")
+def browser(chromium, tmp_path_factory):
+    """The session's Chromium, downloading into a temporary folder of this module's own.
+
+    Tests find their downloads by name in ``browser.downloads``: a folder per module
+    keeps another module's files out of it.
+    """
+    downloads = tmp_path_factory.mktemp("downloads")
+    chromium.execute_cdp_cmd("Browser.setDownloadBehavior", {"behavior": "allow", "downloadPath": str(downloads)})
+    chromium.downloads = downloads
+    try:
+        yield chromium
+    finally:
+        chromium.get("about:blank")  # no page of this module goes on polling its server

@@ -148,8 +148,11 @@ def test_plain_words_on_the_page_with_the_terms_in_tooltips(server, browser):
     tab(browser, "edit")
     _click_cell(browser, 0, 0)
     wait(browser, lambda d: attr(d, "wf", "data-well-formed") == "false", what="two pieces")
-    item = browser.find_element("css selector", "#reasons li")
-    assert "separate pieces" in item.text and "6-connected" in item.get_attribute("title")
+    # read in one go: each answer of the check draws the list again, which leaves a found item stale
+    text, title = wait(browser, lambda d: d.execute_script(
+        "const li = document.querySelector('#reasons li'); return li && [li.innerText, li.title];"),
+        what="the reason")
+    assert "separate pieces" in text and "6-connected" in title
     # a refused keep: the page's words, the technical line as the message's tooltip
     tab(browser, "keep")
     browser.find_element("id", "save-repo").click()
