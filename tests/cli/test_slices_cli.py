@@ -89,8 +89,40 @@ def test_queen_sheets_declare_millimetres_and_r12_on_request(tmp_path) -> None:
             areas += _plate_areas(doc)
             ext = np.array(doc.header["$EXTMAX"])[:2]
             assert (ext <= (report["sheet_width"], report["sheet_height"])).all()
-        # every plate is cut at its size in mm: the queen's widest plate is about 51 mm across (~2000 mm²)
+        # every plate is cut at its size in mm: the queen's foot is 37.4 mm across (a disc of ~1100-1400 mm²)
         assert sorted(areas) == pytest.approx(sorted(p["area"] for p in report["plates_list"]), rel=1e-6)
-        assert 1500 < max(areas) < 51 * 51
+        assert 1000 < max(areas) < 37.4 * 37.4
         found[code] = sorted(areas)
     assert found["AC1015"] == pytest.approx(found["AC1009"], rel=1e-9)
+
+
+def test_radial_hub_wider_than_the_queens_neck_offers_ways_out_that_work(tmp_path) -> None:
+    """Six radial plates of 6 mm need a 22.5 mm hub slot, wider than the queen's neck: the command says so and
+    names fewer or thinner plates; each way out keeps every plate whole; --strict fails."""
+    import re
+
+    import trimesh
+
+    queen = make_shape(load_recipe("recipes/chess/queen.toml"))
+    np.save(tmp_path / "queen.npy", queen.grid)
+    asked = ("queen.npy", "--pitch", "3.4", "--style", "radial", "--radial-plates", "6", "--thickness", "6")
+    proc = _run(*asked, "-o", "six", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    (line,) = [x for x in proc.stderr.splitlines() if "hub slot" in x]
+    assert "22.5 mm for 6 plates of 6 mm" in line and "wider than the solid's neck" in line
+    fewer = int(re.search(r"--radial-plates (\d+)", line).group(1))
+    thinner = float(re.search(r"--thickness ([0-9.]+), with 6 plates", line).group(1))
+    assert 2 <= fewer < 6 and 0 < thinner < 6
+    report = json.loads((tmp_path / "six" / "plates.json").read_text())
+    assert report["advice"] == [line.removeprefix("voxfab: warning: ")]
+    assert report["trimmed"] or report["left_out"]
+    for plates, thickness, out in ((fewer, "6", "fewer"), (6, f"{thinner:g}", "thinner")):
+        way = _run("queen.npy", "--pitch", "3.4", "--style", "radial", "--radial-plates", str(plates),
+                   "--thickness", thickness, "--strict", "-o", out, cwd=tmp_path)
+        assert way.returncode == 0, way.stderr
+        got = json.loads((tmp_path / out / "plates.json").read_text())
+        assert got["plates"] == plates and not got["trimmed"] and not got["left_out"] and not got["advice"]
+        scene = trimesh.load(tmp_path / out / "assembly.3mf", force="scene")
+        assert len(scene.geometry) == plates
+    strict = _run(*asked, "--strict", "-o", "strict", cwd=tmp_path)
+    assert strict.returncode == 11 and "hub slot" in strict.stderr

@@ -365,8 +365,9 @@ def test_recipe_net_is_legible_on_its_sheet(built, path):
     assert len(signatures) - 10 <= len(tabs) <= len(signatures)
 
 
-#: Tournament heights of the pieces, mm (a king of about 95 mm, a pawn of about 50 mm).
-CHESS_HEIGHTS = {"king": 95.0, "queen": 85.0, "bishop": 70.0, "knight": 70.0, "rook": 60.0, "pawn": 50.0}
+#: Heights of the pieces, mm, from FIDE's Standards of Chess Equipment (2022), tallest first; each may differ
+#: by up to 10 %, the order kept, and the base is 40-50 % of the height across.
+CHESS_HEIGHTS = {"king": 95.0, "queen": 85.0, "bishop": 70.0, "knight": 60.0, "rook": 55.0, "pawn": 50.0}
 CHESS = [p for p in RECIPES if p.parent.name == "chess"]
 
 
@@ -420,6 +421,42 @@ def test_chess_piece_is_one_part_at_playing_size_on_a_base_it_stands_on(built, p
     centre = _centroid(corners)
     assert (np.abs(centre[:2] - foot.mean(axis=0)) <= across / 4).all(), (centre, foot)
     assert json.loads((folder / "mesh.json").read_text())["center_of_mass_mm"] == pytest.approx(centre, abs=1e-4)
+
+
+def _sections(corners: np.ndarray, step: float) -> list[tuple[float, np.ndarray]]:
+    """(height, x and y extent in mm) of horizontal sections of a closed mesh, every ``step`` mm from the bottom."""
+    import trimesh
+
+    mesh = trimesh.Trimesh(corners.reshape(-1, 3), np.arange(corners.shape[0] * 3).reshape(-1, 3), process=True)
+    z0, z1 = mesh.bounds[:, 2]
+    out = []
+    for z in np.arange(z0 + step / 2, z1, step):
+        section = mesh.section(plane_origin=(0, 0, z), plane_normal=(0, 0, 1))
+        if section is not None:
+            out.append((float(z - z0), np.ptp(section.vertices[:, :2], axis=0)))
+    return out
+
+
+def test_the_chess_set_keeps_fide_proportions(built):
+    """Heights and bases read from the built 3MFs: FIDE heights within 10 % in their order, bases 40-50 % of the
+    height and never wider on a smaller piece, and a king whose top (a cross) is clearly not the queen's."""
+    heights, bases = [], []
+    tops = {}
+    for name in CHESS_HEIGHTS:
+        (corners,) = _objects_in_3mf(built(next(p for p in CHESS if p.stem == name)) / "mesh.3mf")
+        height = float(np.ptp(corners[..., 2]))
+        across = np.diff(_footprint(corners), axis=0)[0]
+        assert abs(height - CHESS_HEIGHTS[name]) <= 0.1 * CHESS_HEIGHTS[name], (name, height)
+        assert 0.40 * height <= across.min() <= across.max() <= 0.50 * height, (name, across, height)
+        heights.append(height)
+        bases.append(float(across.max()))
+        if name in ("king", "queen"):
+            tops[name] = [ext for z, ext in _sections(corners, height / 50) if z > 0.8 * height]
+    assert heights == sorted(heights, reverse=True) and len(set(heights)) == len(heights), heights
+    assert bases == sorted(bases, reverse=True), bases
+    # The king's cross: a section near its top three times wider one way than the other; the queen's are round.
+    assert max(ext.max() / ext.min() for ext in tops["king"]) >= 3.0
+    assert max(ext.max() / ext.min() for ext in tops["queen"]) < 1.2
 
 
 PICTURES = Path(__file__).parents[2] / "output" / "test-pictures"

@@ -60,10 +60,10 @@ def test_the_queen_fits_a2_at_10_mm(client):
     r = client.post("/api/fits", json={"grid": pack(queen), "options": {"sheet": "A2", "face_size": 10, "timeout": 120}})
     done = wait_job(client, r.json()["job"], limit=300)
     res = done["result"]
-    assert res["answer"] == "yes" and res["box"] == [39, 56] and res["faces"] == 1270
+    assert res["answer"] == "yes" and res["box"] == [39, 56] and res["faces"] == 862
     w, h = res["net"]["extent"]
     assert (w <= 39 and h <= 56) or (h <= 39 and w <= 56)
-    assert len(res["net"]["layout"]["faces"]) == 1270
+    assert len(res["net"]["layout"]["faces"]) == 862
 
 
 @pytest.mark.parametrize(("body", "word"), [

@@ -88,7 +88,9 @@ def test_slots_are_thickness_plus_clearance_and_kerf_true_on_the_sheet(shapes, t
     part, slot = next((pt, sl) for sh in sheets for pt in sh.parts for sl in pt.plate.slots if sl.depth > 2)
     drawn = shapely.Polygon(part.cut[0], part.cut[1:])
     v = slot.end + 0.5 if slot.side == "top" else slot.end - 0.5  # just inside the slot
-    probe = shapely.LineString(part.place([[slot.position - 3, v], [slot.position + 3, v]]))
+    # a crossing holds only where the plate has at least min_width (1 mm) beside the slot: probe within that
+    reach = slot.width / 2 + 0.9
+    probe = shapely.LineString(part.place([[slot.position - reach, v], [slot.position + reach, v]]))
     centre = shapely.Point(part.place([[slot.position, v]])[0])
     gap = probe.difference(drawn)
     pieces = [g for g in getattr(gap, "geoms", [gap]) if shapely.distance(g, centre) < 1e-9]
@@ -128,3 +130,86 @@ def test_other_axes_cross_along_the_third(shapes, tmp_path, axes) -> None:
     assert {p["plane"]["axis"] for p in report["plates_list"]} == set(axes)
     third = ({"x", "y", "z"} - set(axes)).pop()
     assert f"+{third}" in report["steps"][0]
+
+
+def _box(lo: np.ndarray, hi: np.ndarray):
+    import manifold3d
+
+    return manifold3d.Manifold.cube(tuple(hi - lo)).translate(tuple(lo))
+
+
+def _slab(axis: str, lo: float, hi: float, size: np.ndarray):
+    """The part ``lo <= axis <= hi`` of a box around the whole assembly."""
+    k = "xyz".index(axis)
+    a, b = np.full(3, -1.0), size + 1.0
+    a[k], b[k] = lo, hi
+    return _box(a, b)
+
+
+def test_knight_crossings_engage_half_the_shorter_plate_and_hold_every_plate(tmp_path) -> None:
+    """The knight at 2.8 mm, measured in assembly.3mf: at each kept crossing both plates run through the
+    partner's whole thickness (material on both sides of each slot) and engage over at least half the
+    shorter plate's height; crossings that would not are dropped with a warning; every plate has a joint."""
+    import json
+
+    import trimesh
+    from _plate_checks import manifold_of
+
+    from voxfab.recipe import load_recipe, make_shape
+    from voxfab.shape import VoxelShape
+
+    knight = VoxelShape(make_shape(load_recipe("recipes/chess/knight.toml")).grid, 2.8)
+    made = fabricate_plates(knight, PlateOptions(style="interlocked"), tmp_path / "s", name="knight")
+    report = json.loads((tmp_path / "s" / "plates.json").read_text())
+    assert report["weak"], "the knight's corner crossings barely touch: they are dropped"
+    assert any("crossing(s) dropped" in w and report["weak"][0] in w for w in made.warnings)
+    scene = trimesh.load(tmp_path / "s" / "assembly.3mf", process=False, force="scene")
+    solids = {name: manifold_of(m) for name, m in scene.geometry.items()}
+    plates = {p["label"]: p for p in report["plates_list"]}
+    size, t, side = np.array(report["size"]), report["thickness"], 0.5
+    pairs = 0
+    for label, p in plates.items():
+        assert p["slots"], f"{label} is held by no joint"
+        for s in p["slots"]:
+            q = plates[s["partner"]]
+            qa, qo = q["plane"]["axis"], q["plane"]["offset"]
+            pa, po = p["plane"]["axis"], p["plane"]["offset"]
+            w = "xyz".replace(pa, "").replace(qa, "")
+            heights = {}
+            k = "xyz".index(w)
+            for name, mine, mine_off, other, o_off in ((label, pa, po, s["partner"], (qa, qo)),
+                                                       (s["partner"], qa, qo, label, (pa, po))):
+                axis_o, off_o = o_off
+                inside = solids[name] ^ _slab(axis_o, off_o - t / 2, off_o + t / 2, size)
+                heights[name] = inside.volume() / t**2
+                # where the partner sits in this plate's slot: its part inside this plate's slab, along w
+                held = (solids[other] ^ _slab(mine, mine_off - t / 2, mine_off + t / 2, size)).bounding_box()
+                own = solids[name].bounding_box()
+                w0, w1 = max(held[k], own[k]), min(held[3 + k], own[3 + k])
+                assert w1 - w0 > 0.5, (name, "holds nothing of", other)
+                # material on both sides of the partner over at least half that stretch: a slot, not a notch
+                for a, b in ((off_o - t / 2 - side, off_o - t / 2), (off_o + t / 2, off_o + t / 2 + side)):
+                    beside = solids[name] ^ _slab(axis_o, a, b, size) ^ _slab(w, w0, w1, size)
+                    assert beside.volume() >= 0.5 * side * t * (w1 - w0), (name, "beside", other)
+            h_p, h_q = heights[label], heights[s["partner"]]
+            partner_slot = next(x for x in q["slots"] if x["partner"] == label)
+            shorter = min(h_p + s["depth"], h_q + partner_slot["depth"])
+            assert h_p + h_q >= 0.5 * shorter - 1e-3, (label, s["partner"], h_p, h_q, shorter)
+            pairs += 1
+    assert pairs == 2 * len(report["crossings"]) > 0
+
+
+def test_clipped_partner_labels_are_counted_in_plates_json(tmp_path) -> None:
+    """The queen at 2 mm: a slot's partner label that does not fit is counted and warned about."""
+    import json
+
+    from voxfab.recipe import load_recipe, make_shape
+    from voxfab.shape import VoxelShape
+
+    queen = VoxelShape(make_shape(load_recipe("recipes/chess/queen.toml")).grid, 2.0)
+    made = fabricate_plates(queen, PlateOptions(style="interlocked"), tmp_path / "s", name="queen")
+    report = json.loads((tmp_path / "s" / "plates.json").read_text())
+    construction = make_interlocked(queen.grid, pitch=2.0)
+    clipped = sum(p.marks_clipped + (not p.label.complete) for p in construction.plates)
+    assert report["labels_clipped"] == clipped >= 1
+    assert any(f"{clipped} plate label(s) clipped" in w for w in made.warnings)

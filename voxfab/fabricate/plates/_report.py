@@ -227,11 +227,13 @@ class ConstructionReport:
     min_width: float
     labels_clipped: int
     steps: tuple[str, ...]
+    weak: tuple[str, ...] = ()
+    advice: tuple[str, ...] = ()
 
     def to_json(self) -> dict[str, Any]:
         """The report as a JSON-ready dict (with a ``format`` key)."""
         data = dataclasses.asdict(self)
-        for key in ("size", "moved", "left_out", "trimmed", "thin", "steps"):
+        for key in ("size", "moved", "left_out", "trimmed", "thin", "steps", "weak", "advice"):
             data[key] = list(data[key])
         return {"format": FORMAT, **data}
 
@@ -271,19 +273,25 @@ def make_construction_report(construction: Any, sheets: tuple[PlateSheet, ...], 
         trimmed=construction.trimmed,
         thin=tuple(p.text for p in construction.plates if narrow > 0 and _is_thin(p.outline, narrow)),
         min_width=_r(narrow),
-        labels_clipped=sum(not p.label.complete for p in construction.plates),
+        # the plates' own labels and the partners' labels beside their slots
+        labels_clipped=sum((not p.label.complete) + p.marks_clipped for p in construction.plates),
         steps=construction.steps,
+        weak=construction.weak,
+        advice=construction.advice,
     )
 
 
 def construction_warnings(report: ConstructionReport) -> list[str]:
     """What a maker must know before cutting a slotted construction, one line each."""
-    out = []
+    out = list(report.advice)
     if report.moved:
         out.append(f"{len(report.moved)} slot pair(s) moved off the crossing's middle to keep a plate whole: "
                    f"{_ids(report.moved)}")
     if report.trimmed:
         out.append(f"{len(report.trimmed)} plate(s) lost a part that a slot cut off: {_ids(report.trimmed)}")
+    if report.weak:
+        out.append(f"{len(report.weak)} crossing(s) dropped, the plates would engage over less than half their "
+                   f"height there: {_ids(report.weak)}")
     if report.left_out:
         out.append(f"{len(report.left_out)} section(s) left out, they cross no other plate: {_ids(report.left_out)}")
     if report.thin:

@@ -97,6 +97,8 @@ class SlottedPlate(Plate):
     v_dir: tuple[float, float, float] = (0.0, 0.0, 1.0)
     slots: tuple[Slot, ...] = ()
     text: str = ""
+    #: Partner labels beside slots that had to be clipped (or found no room at all).
+    marks_clipped: int = 0
 
     @property
     def id(self) -> str:
@@ -138,6 +140,12 @@ class Construction:
         The shape's extents in mm.
     steps : tuple of str
         The assembly order, one instruction each.
+    weak : tuple of str
+        ``"label/partner"`` crossings dropped because the plates would engage there over
+        less than half the height of the shorter one (a joint that does not hold).
+    advice : tuple of str
+        What went wrong with the options asked for, and the ways out (a radial hub
+        slot wider than the solid's neck: fewer or thinner plates).
     """
 
     style: str
@@ -151,6 +159,8 @@ class Construction:
     trimmed: tuple[str, ...]
     size: tuple[float, float, float]
     steps: tuple[str, ...]
+    weak: tuple[str, ...] = ()
+    advice: tuple[str, ...] = ()
 
 
 def _unit(axis: int) -> tuple[float, float, float]:
@@ -261,6 +271,47 @@ def _band(geometry: object, along: int, lo: float, hi: float) -> tuple[float, fl
     return (b[1], b[3]) if along == 0 else (b[0], b[2])
 
 
+def _full_width(geometry: object, along: int, lo: float, hi: float) -> list[tuple[float, float]]:
+    """Intervals of the other frame axis over which ``geometry`` fills the whole band ``lo..hi`` of axis ``along``.
+
+    A slot holds its partner only where the plate has material on both sides of it
+    across the partner's whole thickness; a plate that merely reaches into the band
+    (a corner, a strip beside a voxel step) holds nothing there.
+    """
+    import shapely
+
+    x0, y0, x1, y1 = geometry.bounds
+    column = shapely.box(lo, y0, hi, y1) if along == 0 else shapely.box(x0, lo, x1, hi)
+    inside = shapely.intersection(geometry, column)
+    if inside.is_empty or inside.area <= 0:
+        return []
+    b = inside.bounds
+    span = (b[1], b[3]) if along == 0 else (b[0], b[2])
+    gaps = shapely.difference(shapely.box(lo, span[0], hi, span[1]) if along == 0 else
+                              shapely.box(span[0], lo, span[1], hi), geometry)
+    cuts = sorted(((g.bounds[1], g.bounds[3]) if along == 0 else (g.bounds[0], g.bounds[2]))
+                  for g in getattr(gaps, "geoms", [gaps]) if not g.is_empty and g.area > 1e-9)
+    out, at = [], span[0]
+    for a, b_ in cuts:
+        if a > at + 1e-9:
+            out.append((at, a))
+        at = max(at, b_)
+    if span[1] > at + 1e-9:
+        out.append((at, span[1]))
+    return out
+
+
+def _engaged(lower: list[tuple[float, float]], upper: list[tuple[float, float]]) -> tuple[float, float] | None:
+    """The longest interval where both plates fill the crossing's column, or None."""
+    best = None
+    for a0, a1 in lower:
+        for b0, b1 in upper:
+            lo, hi = max(a0, b0), min(a1, b1)
+            if hi - lo > 1e-9 and (best is None or hi - lo > best[1] - best[0]):
+                best = (lo, hi)
+    return best
+
+
 def _slot_box(along: int, centre: float, width: float, a: float, b: float) -> object:
     import shapely
 
@@ -289,9 +340,15 @@ def _radial_box(centre: tuple[float, float], angle: float, width: float, a: floa
 
 
 def _join_interlocked(fam_a: list[_Draft], fam_b: list[_Draft], width: float, pitch: float,
-                      moved: list[str]) -> tuple[list[tuple[_Draft, _Draft, float, float]],
-                                                 dict[str, tuple[float, int, int]]]:
-    """Cut the half-lap slots of every crossing.
+                      moved: list[str], weak: list[str] | None = None,
+                      margin: float = 0.0) -> tuple[list[tuple[_Draft, _Draft, float, float]],
+                                                    dict[str, tuple[float, int, int]]]:
+    """Cut the half-lap slots of every crossing that engages.
+
+    A crossing engages where both plates fill the partner's whole thickness (and
+    ``margin`` beside it); that stretch must be at least half the height of the
+    shorter plate at the crossing, or the pair would touch without holding: such a
+    crossing gets no slots and is listed in ``weak``.
 
     Plates go in one after another, each lowered along the crossing axis onto
     those already in place, lower sections first (family A first among equals):
@@ -325,6 +382,25 @@ def _join_interlocked(fam_a: list[_Draft], fam_b: list[_Draft], width: float, pi
             z0, z1 = max(zl[0], zu[0]), min(zl[1], zu[1])
             if z1 - z0 <= 1e-9:
                 continue
+            held = _engaged(_full_width(lower.body, lo_along, upper.offset - width / 2 - margin,
+                                        upper.offset + width / 2 + margin),
+                            _full_width(upper.body, up_along, lower.offset - width / 2 - margin,
+                                        lower.offset + width / 2 + margin))
+            if held is None or held[1] - held[0] < 0.5 * min(zl[1] - zl[0], zu[1] - zu[0]) - 1e-6:
+                # No joint here; the plate with less material in the crossing gives way (its part
+                # in the partner's slot is cut away), so the two never share volume.
+                if weak is not None:
+                    weak.append(f"{lower.text}/{upper.text}")
+                sides = [(lower, lo_along, upper.offset), (upper, up_along, lower.offset)]
+                sides.sort(key=lambda c: shapely.intersection(c[0].body, _slot_box(c[1], c[2], width, -1e9, 1e9)).area)
+                for plate, along, at in sides:  # a plate that lies wholly in the band keeps it: the other gives way
+                    rest = shapely.difference(plate.body, _slot_box(along, at, width, -1e9, 1e9))
+                    if not rest.is_empty and rest.area > 0:
+                        plate.body, lost = _single(rest)
+                        plate.trimmed |= lost
+                        break
+                continue
+            z0, z1 = held
             middle = (z0 + z1) / 2
             # slot ends tried: the middle, then half-voxel steps outwards inside the crossing
             steps = np.arange(1, int((z1 - z0) / pitch * 2) + 1) * pitch / 2
@@ -448,14 +524,17 @@ def _finish(d: _Draft, number: int, style: str, thickness: float, pitch: float, 
     strokes = list(label.strokes)
     taken = shapely.union_all([shapely.box(*shapely.LineString(s).bounds).buffer(clearance) for s in strokes
                                if len(s) > 1]) if strokes else shapely.Polygon()
+    clipped = 0
     for s in slots:
         # the partner's label beside the slot, nearest its end where the partner's edge meets this plate
         near = s.box().buffer(2.0 * pitch, join_style="mitre")
         region = shapely.difference(shapely.intersection(d.body, near), taken)
         if region.is_empty or region.area <= 0:
+            clipped += 1  # no room at all: the slot goes unlabelled, and the report says so
             continue
         # in parentheses, so a partner's label never reads as this plate's own
         mark = place_label(f"({s.partner})", _single(region)[0], shapely.Polygon(), pitch=pitch, clearance=clearance)
+        clipped += not mark.complete
         strokes.extend(mark.strokes)
         if mark.strokes:
             taken = shapely.union(taken, shapely.box(*shapely.MultiLineString(
@@ -466,7 +545,7 @@ def _finish(d: _Draft, number: int, style: str, thickness: float, pitch: float, 
         outline=shapely.orient_polygons(d.body), holes=np.zeros((0, 2)), hole_diameter=0.0, z=0.0,
         thickness=thickness, label=label, score=(), cells=d.cells, style=style, family=d.family,
         axis=_AXES[d.axis], offset=d.offset, angle=d.angle, origin=d.origin, u_dir=d.u_dir, v_dir=d.v_dir,
-        slots=slots, text=d.text,
+        slots=slots, text=d.text, marks_clipped=clipped,
     )
 
 
@@ -509,8 +588,9 @@ def make_interlocked(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.
         raise InvalidShapeError(f"count: {len(fam_a) + len(fam_b)} plates, over the limit of {MAX_SLOTTED_PLATES}; "
                                 "use fewer plates per family or a larger interval")
     moved: list[str] = []
+    weak: list[str] = []
     width = thickness + clearance
-    joints, keys = _join_interlocked(fam_a, fam_b, width, pitch, moved)
+    joints, keys = _join_interlocked(fam_a, fam_b, width, pitch, moved, weak, min_width)
     crossings = _still_joined(fam_a + fam_b, joints, width, min_width)
     keep, left_out = _connected(fam_a + fam_b, crossings)
     if not keep or not crossings:
@@ -527,7 +607,8 @@ def make_interlocked(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.
                "whose label it carries" for group in waves[1:]))
     return Construction("interlocked", pitch, thickness, clearance, plates, kept_crossings,
                         tuple(m for m in moved if set(m.split("/")) <= kept), tuple(left_out),
-                        tuple(d.text for d in keep if d.trimmed), tuple(float(s * pitch) for s in g.shape), steps)
+                        tuple(d.text for d in keep if d.trimmed), tuple(float(s * pitch) for s in g.shape), steps,
+                        tuple(weak))
 
 
 def radial_section(layers: list[object | None], centre: tuple[float, float], angle: float, reach: float,
@@ -631,6 +712,7 @@ def make_radial(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.0, co
         raise FabricationError("radial: the plates share no stretch of the axis to join at")
     tiers = np.linspace(z0, z1, count + 1)
     width = 2 * half
+    advice = _hub_advice(drafts, z0, z1, pitch, thickness, clearance, min_width, count, width)
     for k, (d, (lo, hi)) in enumerate(zip(drafts, spans)):
         if k < count - 1:
             d.body = shapely.difference(d.body, _slot_box(0, 0.0, width, float(tiers[k + 1]), hi))
@@ -655,7 +737,47 @@ def make_radial(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.0, co
                for a, b in zip(labels, labels[1:])))
     crossings = tuple((a, b) for a, b in held if a in kept and b in kept)
     return Construction("radial", pitch, thickness, clearance, plates, crossings, (), tuple(left_out),
-                        tuple(d.text for d in keep if d.trimmed), tuple(float(s * pitch) for s in g.shape), steps)
+                        tuple(d.text for d in keep if d.trimmed), tuple(float(s * pitch) for s in g.shape), steps,
+                        advice=advice)
+
+
+def hub_slot_width(count: int, thickness: float, clearance: float) -> float:
+    """Width of the radial hub slot: two plates at the smallest angle, ``thickness / 2 · cot(90° / count)`` each
+    side of the axis, plus the clearance."""
+    return thickness / math.tan(math.pi / (2 * count)) + clearance
+
+
+def _hub_advice(drafts: list[_Draft], z0: float, z1: float, pitch: float, thickness: float, clearance: float,
+                min_width: float, count: int, width: float) -> tuple[str, ...]:
+    """When the hub slot is wider than the solid's narrowest section along the hub (its neck), the ways out.
+
+    Every height of the hub but a plate's own tier is slotted, so a slot as wide as
+    the neck cuts the plate there in two (it loses its top, or is left out).  A
+    hub fits when the slot leaves ``min_width`` of material on each side of it.
+    """
+    import shapely
+
+    neck = math.inf
+    for d in drafts:
+        for k in range(int(math.floor(z0 / pitch + 1e-9)), int(math.ceil(z1 / pitch - 1e-9))):
+            row = shapely.intersection(d.body, shapely.box(-1e9, (k + 0.25) * pitch, 1e9, (k + 0.75) * pitch))
+            parts = [q for q in getattr(row, "geoms", [row]) if not q.is_empty and q.bounds[0] <= 0 <= q.bounds[2]]
+            if parts:
+                neck = min(neck, parts[0].bounds[2] - parts[0].bounds[0])
+    room = neck - 2 * min_width
+    if not math.isfinite(neck) or width <= room + 1e-9:
+        return ()
+    ways = []
+    fewer = next((n for n in range(count - 1, 1, -1) if hub_slot_width(n, thickness, clearance) <= room), None)
+    if fewer is not None:
+        ways.append(f"fewer plates (--radial-plates {fewer})")
+    thinner = math.floor((room - clearance) * math.tan(math.pi / (2 * count)) * 10) / 10
+    if thinner >= 0.1:
+        ways.append(f"thinner plates (--thickness {thinner:g}, with {count} plates)")
+    ways.append("a larger pitch (a wider neck)")
+    return (f"the radial hub slot ({width:.1f} mm for {count} plates of {thickness:g} mm) is wider than the "
+            f"solid's neck along the hub ({neck:.1f} mm, less {min_width:g} mm each side): plates lose parts or "
+            f"are left out; use {', or '.join(ways)}",)
 
 
 def _ring_radial(g: npt.NDArray[np.bool_], sections: list[object], centre: tuple[float, float], reach: float, *,
