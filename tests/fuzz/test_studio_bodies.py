@@ -343,3 +343,9 @@ def test_an_edit_refuses_an_oversized_grid(studio, gallery, dims) -> None:
 def test_an_edit_refuses_a_grid_that_is_not_its_nets(studio, gallery, queen) -> None:
     _refused(studio.post("/api/nets/edit", json={"job": gallery, "undo": True, "grid": pack(queen)}),
              "the shape changed")
+
+
+@pytest.mark.parametrize("artefact", ["mesh.3mf", "plates.zip"])
+def test_a_net_picked_for_an_output_made_from_the_shape_is_refused(studio, pawn, gallery, artefact) -> None:
+    _refused(studio.post("/api/make", json={"grid": pack(pawn), "artefact": artefact,
+                                            "net": {"job": gallery, "index": 0}}), "not from a chosen net")
