@@ -108,3 +108,23 @@ def test_a_cavity_straight_above_its_only_foot_drains_through_it_and_says_so() -
     assert any("stood on" in w for w in r.warnings)
     assert np.allclose(r.report.bounds, [[0, 0, 0], [6, 6, 10]])
     assert r.report.volume == pytest.approx((45 - 3 - 1) * 8.0)
+
+
+@pytest.mark.parametrize(("base", "magnet", "cut_off"), [(3, "6x3", True), (3, "6x4", True), (2, "8x2.5", True),
+                                                         (3, "6x2", False), (4, "6x3", False)])
+def test_a_magnet_that_cuts_the_ball_off_its_base_is_named(tmp_path: Path, base: float, magnet: str,
+                                                            cut_off: bool) -> None:
+    from _fuzz import refused
+
+    from voxfab.shape import examples
+
+    np.save(tmp_path / "ball.npy", examples.ball(6))  # stands on one voxel
+    argv = ["mesh", tmp_path / "ball.npy", "--base", base, "--magnet", magnet, "-o", tmp_path / "b.3mf"]
+    if cut_off:
+        line = refused(argv)
+        assert f"a magnet pocket {magnet.split('x')[0]} mm wide" in line and "cuts the print off its" in line
+        assert not (tmp_path / "b.3mf").exists()
+    else:
+        assert check_outcome(run_cli(argv)).code == 0
+        bounds, _, watertight = _measured(tmp_path / "b.3mf")
+        assert watertight and bounds[1][2] == pytest.approx(13 + base, abs=1e-3)

@@ -220,8 +220,10 @@ def test_an_unknown_field_is_refused_on_every_endpoint(studio, path: str, key: s
 @FUZZ
 @given(st.text(string.ascii_lowercase + "_", min_size=1, max_size=14), JSON_VALUES)
 def test_an_unknown_shape_key_is_refused(studio, key: str, value: object) -> None:
+    from voxfab.studio._specs import SHAPE_KEYS, _scalar_names
+
     focal = {"maker": "focal", "foci": [[0, 0, 0]], "radius": 2}
-    if key in focal or key in ("weights", "k", "mode"):
+    if key in focal or key in SHAPE_KEYS["focal"] or key in _scalar_names("focal"):
         return
     _refused(studio.post("/api/preview", json={**focal, key: value}), repr(key)[:30])
 
@@ -341,3 +343,9 @@ def test_an_edit_refuses_an_oversized_grid(studio, gallery, dims) -> None:
 def test_an_edit_refuses_a_grid_that_is_not_its_nets(studio, gallery, queen) -> None:
     _refused(studio.post("/api/nets/edit", json={"job": gallery, "undo": True, "grid": pack(queen)}),
              "the shape changed")
+
+
+@pytest.mark.parametrize("artefact", ["mesh.3mf", "plates.zip"])
+def test_a_net_picked_for_an_output_made_from_the_shape_is_refused(studio, pawn, gallery, artefact) -> None:
+    _refused(studio.post("/api/make", json={"grid": pack(pawn), "artefact": artefact,
+                                            "net": {"job": gallery, "index": 0}}), "not from a chosen net")

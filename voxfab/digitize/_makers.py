@@ -27,7 +27,8 @@ from typing import Any
 import numpy as np
 
 from voxfab._shared.limits import MAX_SAMPLES
-from voxfab._shared.validate import type_fits, type_name
+from voxfab._shared.options import quote
+from voxfab._shared.validate import finite_number, type_fits, type_name
 from voxfab.errors import UnknownFormatError
 
 __all__ = ["MAKERS", "Maker", "Param", "available_makers", "get_maker", "get_random_params", "maker_markdown",
@@ -56,6 +57,9 @@ class Param:
             return f"expected {type_name(self.hint)}, got {type(value).__name__} {value!r:.80}"
         if isinstance(value, float) and not math.isfinite(value):
             return f"expected a finite number, got {value!r}"
+        if isinstance(value, int) and not isinstance(value, bool) and finite_number(value) is None:
+            # JSON's 10**400: past every float, so past every range (and float() of it would raise)
+            return f"expected a finite number, got {quote(value)}"
         if isinstance(value, (int, float)) and not isinstance(value, bool):
             low, high = self.low, self.high
             if (low is not None and value < low) or (high is not None and value > high):

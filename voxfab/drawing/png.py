@@ -98,6 +98,17 @@ def _paste(pixels: npt.NDArray[np.uint8], placed: PlacedImage, page_height: floa
         pixels[r0:r1, c0:c1] = box[r0 - top:r1 - top, c0 - left:c1 - left]
 
 
+#: Most pixels of one rasterized page: a 5 x 5 m sheet at 4 px/mm would be 400 million pixels (1.2 GB of
+#: RGB before drawing); a larger page is drawn at the scale that gives this many.
+MAX_PAGE_PIXELS = 25_000_000
+
+
+def page_scale(width: float, height: float, scale: float) -> float:
+    """``scale`` in px/mm, lowered so that a ``width`` x ``height`` mm page has at most :data:`MAX_PAGE_PIXELS`."""
+    area = max(width * height, 1e-9) * scale * scale
+    return scale if area <= MAX_PAGE_PIXELS else scale * (MAX_PAGE_PIXELS / area) ** 0.5
+
+
 def page_image(page: Page, *, scale: float, styles: Mapping[str, LayerStyle] | None = None,
                background: tuple[int, int, int] = (255, 255, 255), legend: Legend | None = None,
                hidden: frozenset[str] = frozenset()) -> Image.Image:
@@ -120,10 +131,12 @@ def page_image(page: Page, *, scale: float, styles: Mapping[str, LayerStyle] | N
     Returns
     -------
     PIL.Image.Image
-        RGB, ``round(width · scale) × round(height · scale)`` pixels.
+        RGB, ``round(width · scale) × round(height · scale)`` pixels, at most
+        :data:`MAX_PAGE_PIXELS` (a larger page is drawn at a lower scale).
     """
     from PIL import Image, ImageDraw
 
+    scale = page_scale(page.width, page.height, scale)
     st_map = LAYERS if styles is None else styles
     w = max(1, int(round(page.width * scale)))
     h = max(1, int(round(page.height * scale)))

@@ -435,6 +435,10 @@ def create_app(settings: Settings) -> Starlette:
         net = None
         pick = data.get("net")
         if pick is not None:
+            from voxfab.fabricate import output_for_download
+
+            if output_for_download(artefact).name not in _bodies.NET_OUTPUTS:
+                raise InvalidShapeError(f"net: {artefact} is made from the shape, not from a chosen net")
             if not isinstance(pick, dict) or not isinstance(pick.get("job"), str):
                 raise InvalidShapeError("net: expected {\"job\": ID, \"index\": N}")
             only_fields(pick, _bodies.NET_PICK, where="net")

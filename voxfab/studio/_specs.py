@@ -42,10 +42,11 @@ MAX_POINTS = 20000
 MAX_BITMAP = 4 * 1024 * 1024
 MAX_TEXT = 2000
 
-#: The keys of the page's JSON per maker (``k`` and ``mode`` for all); any other key is refused.
+#: The keys of the page's JSON per maker that :func:`source_keys` reads itself; with them, the maker's
+#: numbers, words and flags (the makers table's scalars, :func:`_scalars`).  Any other key is refused.
 SHAPE_KEYS = {
     "revolution": ("curve", "generatrix", "axis", "z_range", "arc"),
-    "tube": ("profile", "arc", "spine", "radius", "twist", "phase", "frame", "cap"),
+    "tube": ("profile", "arc", "spine"),
     "focal": ("foci", "weights", "radius"),
     "implicit": ("expression",),
 }
@@ -198,6 +199,14 @@ def _arc(spec: Mapping[str, Any], keys: dict[str, Any]) -> None:
         keys["arc"] = [_number(v, where="shape.arc") for v in _points([arc], 2, where="shape.arc")[0]]
 
 
+def _scalar_names(maker: str) -> tuple[str, ...]:
+    """The keys :func:`_scalars` takes from the shape for ``maker``."""
+    from voxfab.digitize import maker_params
+
+    skip = _PLACED.get(maker, ())
+    return tuple(n for n, p in maker_params(maker).items() if p.is_scalar and n not in skip)
+
+
 #: Keys a maker's branch of :func:`source_keys` reads from elsewhere, or only in one case, not from the shape.
 _PLACED = {"revolution": ("axis",), "tube": ("t_min", "t_max", "closed"), "focal": ("radius",)}
 
@@ -209,7 +218,7 @@ def source_keys(spec: Any) -> tuple[dict[str, Any], dict[str, bytes]]:
     maker = spec.get("maker")
     if maker not in MAKERS:
         raise SpecError(f"shape.maker: expected one of {', '.join(MAKERS)}, got {maker!r:.40}")
-    _only(spec, ("maker", "k", "mode", *SHAPE_KEYS[maker]), where=f"shape ({maker})")
+    _only(spec, ("maker", *SHAPE_KEYS[maker], *_scalar_names(maker)), where=f"shape ({maker})")
     files: dict[str, bytes] = {}
     keys: dict[str, Any] = {"maker": maker}
     if maker == "revolution":

@@ -225,29 +225,29 @@ def exact_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], resolved: Resol
 
 
 def _solve(solver, m):  # noqa: ANN001, ANN202 - ortools objects
-    """``solver.Solve(m)``, stopped within a fraction of a second when this thread's work is cancelled.
+    """``solver.solve(m)``, stopped within a fraction of a second when this thread's work is cancelled.
 
     CP-SAT runs in native code and never calls :func:`check_cancelled`; a watcher thread
-    waits on the cancel event and stops the search, then the cancel is raised here.
+    polls the cancel event and stops the search (again each 0.05 s, in case the search
+    had not begun), then the cancel is raised here.
     """
     from voxfab._shared.progress import cancel_event, check_cancelled
 
     event = cancel_event()
     if event is None:
-        return solver.Solve(m)
+        return solver.solve(m)
     check_cancelled()
     done = threading.Event()
 
     def watch() -> None:
-        while not done.is_set():
-            if event.wait(0.05):
-                solver.StopSearch()
-                return
+        while not done.wait(0.05):
+            if event.is_set():
+                solver.stop_search()
 
     watcher = threading.Thread(target=watch, name="exact-cancel", daemon=True)
     watcher.start()
     try:
-        status = solver.Solve(m)
+        status = solver.solve(m)
     finally:
         done.set()
         watcher.join()

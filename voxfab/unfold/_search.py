@@ -336,6 +336,10 @@ def _surface_parts(sg: SurfaceGraph, faces: npt.NDArray[np.int64] | None = None)
     return [chosen[label[chosen] == lab] for lab in dict.fromkeys(label[chosen].tolist())]
 
 
+#: Longest side of a box a net is searched in, faces (far beyond any voxfab surface's net).
+MAX_FIT_SIDE = 4096
+
+
 def _check_fit(fit: tuple[int, int] | None) -> tuple[int, int] | None:
     if fit is None:
         return None
@@ -343,8 +347,8 @@ def _check_fit(fit: tuple[int, int] | None) -> tuple[int, int] | None:
         w, h = (int(v) for v in fit)
     except (TypeError, ValueError):
         raise InvalidShapeError(f"fit: expected (width, height) in voxels, got {fit!r}") from None
-    if w < 1 or h < 1 or w > 4096 or h > 4096:
-        raise InvalidShapeError(f"fit: expected sides in 1..4096 voxels, got {w}x{h}")
+    if w < 1 or h < 1 or w > MAX_FIT_SIDE or h > MAX_FIT_SIDE:
+        raise InvalidShapeError(f"fit: expected sides in 1..{MAX_FIT_SIDE} voxels, got {w}x{h}")
     return w, h
 
 

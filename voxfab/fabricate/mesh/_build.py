@@ -447,7 +447,17 @@ def _cad_features(
     removed_volume = 0.0
     if inputs.label or inputs.magnet:
         cutters, removed_volume = _bottom_cutters(g, inputs, warnings=warnings)
+        pieces = len(solid.decompose())
         solid = _cad.subtract(solid, cutters)
+        if inputs.magnet and len(solid.decompose()) > pieces:
+            # The pocket took all the material joining the print to its base (a one-voxel foot over it).
+            d, h = inputs.magnet
+            raise FabricationError(
+                f"{inputs.name}: a magnet pocket {d:g} mm wide and {h:g} mm deep cuts the print off its "
+                f"{base:g} mm base; make the pocket shallower than the base, narrower, or the base thicker"
+                if base else
+                f"{inputs.name}: a magnet pocket {d:g} mm wide and {h:g} mm deep cuts the print in pieces; "
+                "make it shallower or narrower, or add --base")
     out = _cad.from_manifold(solid)
     shift = -out.vertices.min(axis=0)
     out = MeshData(vertices=out.vertices + shift, triangles=out.triangles, part=out.part)

@@ -173,6 +173,10 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     fit = sheet_cells(options, float(options.pitch))
     if min(fit) < 1:
         raise InvalidShapeError(f"sheet: {options.sheet} has no room for one {options.pitch:g} mm face with its tabs")
+    # Tiny faces make the sheet millions of faces wide: a box wider than the search takes bounds no net.
+    from voxfab.unfold._search import MAX_FIT_SIDE
+
+    fit = (min(fit[0], MAX_FIT_SIDE), min(fit[1], MAX_FIT_SIDE))
     # A surface larger than the sheet has no one-piece net on it: no search can find one.
     room = faces <= fit[0] * fit[1]
     if pieces == "auto" and not room:

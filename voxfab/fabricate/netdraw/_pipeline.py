@@ -36,7 +36,11 @@ def parse_box(text: str | None, face_size: float | None) -> tuple[int, int] | No
         raise InvalidShapeError(f"--fit: expected WxH such as 40x30, got {text!r}")
     w, h = float(m.group(1)), float(m.group(2))
     if face_size is not None:
-        return math.floor(w / face_size + 1e-9), math.floor(h / face_size + 1e-9)
+        box = math.floor(w / face_size + 1e-9), math.floor(h / face_size + 1e-9)
+        if min(box) < 1:  # in mm: say so, not "0x0" faces the user never wrote
+            raise InvalidShapeError(f"--fit: {text} mm holds no {face_size:g} mm face; give a box at least "
+                                    f"{face_size:g}x{face_size:g} mm, or smaller faces")
+        return box
     if w != int(w) or h != int(h):
         raise InvalidShapeError(f"--fit: whole voxels expected without a face size, got {text!r}")
     return int(w), int(h)

@@ -689,7 +689,8 @@ async function make(artefact) {
   const body = chosen ? netMakeBody(artefact) : {grid: state.shape.pack(), artefact, pitch: Number($('#pitch').value),
     title: shapeTitle(),
     options: makeOptions(artefact),
-    net: g && state.chosen !== null ? {job: marker.job, index: marker.index} : null,
+    // only the net's files and the triptych are drawn from the chosen net
+    net: g && state.chosen !== null && /^(net|triptych)\./.test(artefact) ? {job: marker.job, index: marker.index} : null,
     shape: artefact === 'animation.gif' ? state.drawn : undefined};
   try {
     const {job} = await post('/api/make', body);
