@@ -271,8 +271,12 @@ def test_a_freehand_stroke_is_one_undo_step(queen_studio, browser):
 def test_fold_zero_lays_every_piece_flat_as_in_the_2d_view(queen_studio, browser):
     _open_queen(browser, queen_studio)
     tab(browser, "net")
-    _net_options(browser, "A4", pieces="auto")
-    _generate(browser)[0].click()
+    _net_options(browser, "A4", pieces="auto", count=2)
+    items = _generate(browser)
+    found = len(items)
+    summary = browser.find_element("id", "net-summary").text
+    assert summary.startswith(f"{found} net{'s' if found > 1 else ''} in pieces in "), summary  # not "2 net in pieces"
+    items[0].click()
     layout = wait(browser, lambda d: _layout(d), what="the net chosen")
     assert max(layout["piece"]) >= 1, "the queen on A4 comes in pieces"
     flat = np.array(browser.execute_script("return window.voxfabFold(0);")["corners"]).reshape(-1, 3)
@@ -362,4 +366,29 @@ def test_a_yes_opens_the_net_found_in_the_editor_with_its_files(queen_studio, br
     pieces = _check_files(_downloads(browser, queen_studio), centred(_queen()), _placement(browser))
     assert len(pieces) == 1 and pieces[0].face_count == len(layout["faces"])
     assert browser.find_element("id", "net-summary").text
+    # named after the shape the studio opened (queen.npy), not "studio"
+    names = {k: by_id(browser, f"download-net-{k}").get_attribute("download") for k in ("svg", "dxf", "pdf", "json")}
+    assert names == {k: f"queen-net.{k}" for k in names}, names
     browser.save_screenshot(str(SHOTS / "page-fits-opens.png"))
+
+
+# --- 9. small points: the GIF for tubes only, plain words on the controls -------------------------
+
+def test_the_tube_animation_is_offered_for_a_drawn_tube_only_and_the_controls_speak_plainly(queen_studio, browser):
+    from selenium.webdriver.support.ui import Select
+
+    _open_queen(browser, queen_studio)
+    tab(browser, "make")
+    gif = browser.find_element("css selector", '[data-make="animation.gif"]')
+    assert not gif.is_displayed()  # the queen is no tube
+    assert browser.find_element("css selector", '[data-make="mesh.stl"]').is_displayed()
+    tab(browser, "draw")
+    Select(browser.find_element("id", "maker")).select_by_value("tube")
+    wait(browser, lambda d: "replaced" in d.find_element("id", "message").text, what="the drawn tube")
+    tab(browser, "make")
+    wait(browser, lambda d: d.find_element("css selector", '[data-make="animation.gif"]').is_displayed(),
+         what="the GIF offered for the drawn tube")
+    tab(browser, "net")
+    timeout = browser.find_element("css selector", "label:has(#net-timeout)")
+    assert "seconds per net" in timeout.text and "s per net" not in timeout.text.replace("seconds per net", "")
+    assert "timeout" in timeout.get_attribute("title")
