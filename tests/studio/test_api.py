@@ -106,7 +106,9 @@ def test_unexpected_failure_is_one_line_not_a_traceback(client, monkeypatch):
     monkeypatch.setattr(_grid, "facts", boom)
     r = client.post("/api/check", json={"grid": pack(small_shape())})
     assert r.status_code == 500
-    assert r.json() == {"error": "internal error (RuntimeError): disk on fire Traceback (most recent call last):"}
+    # plain words for the page, the exception's one line as the tooltip
+    assert r.json() == {"error": "the server could not finish this (the technical line is in the tooltip)",
+                        "detail": "internal error (RuntimeError): disk on fire Traceback (most recent call last):"}
 
 
 def test_info(client):

@@ -116,12 +116,39 @@ def test_cli_options_in_messages_become_the_pages_choices():
     cli = ("net: 58x61 faces: it fits A4 at faces up to 1.5 mm, and A2 (--sheet); "
            "or split it into pieces (--pieces auto)")
     said = explained(cli)
-    assert "--" not in said["text"] and "(choose pieces: auto)" in said["text"] and "(choose sheet)" in said["text"]
+    assert "--" not in said["text"] and "(choose sheet)" in said["text"]
+    # the pieces menu's own words, not the CLI's value
+    assert "(choose pieces: split into pieces if needed)" in said["text"] and "auto" not in said["text"]
     assert said["detail"] == cli
     engine = ("no one-piece net of the 1270-face surface in 30 s; raise the timeout, or allow several pieces "
               "(pieces='auto', CLI --pieces auto); fill the cavities (fill=True, CLI --fill)")
     words = plain(engine)
     assert "CLI" not in words and "'auto'" not in words and "=True" not in words
-    assert "(choose pieces: auto)" in words and "(choose fill: on)" in words
+    assert "(choose pieces: split into pieces if needed)" in words and "(choose fill: on)" in words
     assert plain("a message without terms") == "a message without terms"
     assert "detail" not in explained("a message without terms")
+
+
+def test_server_failures_and_the_complete_search_in_plain_words():
+    said = explained("internal error (OSError): [Errno 28] No space left on device")
+    assert "OSError" not in said["text"] and "Errno" not in said["text"] and "server" in said["text"]
+    assert said["detail"] == "internal error (OSError): [Errno 28] No space left on device"  # the tooltip
+    said = explained("undecided: the exact search ran out of time at the 40x52 box")
+    assert "exact search" not in said["text"] and "complete search" in said["text"]
+    assert "exact search" in said["detail"]
+
+
+def test_a_job_that_fails_unexpectedly_says_so_plainly_with_the_exception_as_detail(client, monkeypatch):
+    from voxfab.studio import _work
+
+    from ._helpers import small_shape, wait_job
+
+    def broken(*args, **kwargs):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(_work, "make_files", broken)
+    job = client.post("/api/make", json={"grid": pack(small_shape()), "artefact": "mesh.stl"}).json()["job"]
+    status = wait_job(client, job)
+    assert status["state"] == "error"
+    assert "OSError" not in status["message"] and "server could not finish" in status["message"]
+    assert "OSError" in status["detail"] and "No space left" in status["detail"]

@@ -83,7 +83,8 @@ def test_queue_place_then_cancel_a_queued_job(tmp_path):
 
 def test_cancel_stops_a_running_net_search_within_a_second(client, queen):
     """The queen's gallery (many seconds of search) stops about as soon as Cancel is pressed."""
-    body = {"grid": pack(queen), "count": 12, "seed": 0, "options": {"timeout": 30.0}}
+    # 8.6 mm faces (legible marks): no one-piece net fits A4, so the search runs on for nets to show
+    body = {"grid": pack(queen), "count": 12, "seed": 0, "options": {"timeout": 30.0, "face_size": 8.6}}
     r = client.post("/api/nets", json=body)
     assert r.status_code == 200, r.text
     job = r.json()["job"]
@@ -108,7 +109,8 @@ def test_cancel_stops_a_running_net_search_within_a_second(client, queen):
 
 def test_a_gallery_waiting_in_the_queue_shows_its_place(client, queen):
     """Three galleries on two workers: the third says it is first in the queue, and runs once one is cancelled."""
-    body = {"grid": pack(queen), "count": 12, "seed": 0, "options": {"timeout": 30.0}}
+    # 8.6 mm faces (legible marks): no one-piece net fits A4, so the search runs on for nets to show
+    body = {"grid": pack(queen), "count": 12, "seed": 0, "options": {"timeout": 30.0, "face_size": 8.6}}
     ids = [client.post("/api/nets", json=dict(body, seed=s)).json()["job"] for s in range(3)]
     try:
         s = client.get(f"/api/jobs/{ids[2]}").json()

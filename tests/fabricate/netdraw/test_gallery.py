@@ -137,9 +137,9 @@ def test_pieces_share_one_layout_and_sit_apart_on_their_sheets() -> None:
 
 def test_the_queen_on_a4_says_what_would_work() -> None:
     grid = _queen()
-    net, drawing = gallery_options({"sheet": "A4", "timeout": 30})
+    net, drawing = gallery_options({"sheet": "A4", "timeout": 30, "face_size": 8.6})
     gallery = net_gallery(grid, net, drawing, count=3, seed=0)
-    assert gallery.options.pitch == 8.6  # the smallest face size with legible marks
+    assert gallery.options.pitch == 8.6  # the smallest face size with legible marks, as asked
     assert len({outline_key(i.pieces[0]) for i in gallery.nets}) == len(gallery.nets) >= 2
     for item in gallery.nets:
         fit = item.fit
@@ -215,3 +215,22 @@ def test_without_marks_the_face_size_is_the_largest_that_fits() -> None:
         return min(ex, ey) * q <= 190 and max(ex, ey) * q <= 272
 
     assert room(p) and not room(p + 0.2)
+
+
+def test_an_empty_face_size_is_the_largest_at_which_one_piece_fits() -> None:
+    """One piece, no face size: the largest at which a net fits the sheet, as ``voxfab net`` takes it."""
+    from voxfab.fabricate.netdraw import FaceSizeError
+
+    grid = _queen()
+    net, drawing = gallery_options({"sheet": "900x600", "timeout": 30})
+    gallery = net_gallery(grid, net, drawing, count=3, seed=0)
+    face = float(gallery.options.pitch)
+    assert face > 8.6  # not the smallest with legible marks
+    assert all(item.fit["fits"] and item.fit["face_size"] == face for item in gallery.nets)
+    assert face in {item.fit["largest_face_size"] for item in gallery.nets}  # and no larger for one of them
+    # On A4 no legible face size fits one piece: refused at once, with every way out
+    net, drawing = gallery_options({"sheet": "A4", "timeout": 30})
+    with pytest.raises(FaceSizeError) as err:
+        net_gallery(grid, net, drawing, count=3, seed=0)
+    ways = [w["options"] for w in err.value.ways_out]
+    assert {"numbers": False, "tabs": False} in ways and any(w.get("pieces") == "auto" for w in ways)

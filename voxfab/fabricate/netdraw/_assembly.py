@@ -59,13 +59,24 @@ def number_faces(face_piece: npt.NDArray[np.int64], joined: npt.NDArray[np.bool_
     return out
 
 
-def number_text(names: list[str], centres: npt.NDArray[np.float64], pitch: float, label_h: float) -> Polylines:
-    """Piece names centred on their faces, clear of the seam labels along the edges."""
+def number_text(names: list[str], centres: npt.NDArray[np.float64], pitch: float, label_h: float,
+                free: npt.NDArray[np.bool_] | None = None) -> Polylines:
+    """Piece names centred on their faces, clear of the seam labels along the edges, never smaller than those.
+
+    ``free`` marks the faces with no seam label (all four edges folded): the whole face is
+    room for the name.  Elsewhere the seam labels keep to a strip inset + label height
+    deep along each edge.  A name is at least ``label_h`` tall, as tall as the seam labels
+    a maker reads beside it, even where that takes it over a label strip.
+    """
     if not names:
         return Polylines.empty()
-    # The seam labels keep to a strip inset + label height deep along each edge.
-    room = pitch * (1 - 2 * 0.06) - 2 * label_h - 0.1 * pitch
-    heights = np.array([min(2 * label_h, 0.9 * room / max(text_width(t, 1.0), 1e-9), 0.8 * room) for t in names])
+    clear = np.zeros(len(names), dtype=bool) if free is None else np.asarray(free, dtype=bool)
+    heights = []
+    for t, whole in zip(names, clear.tolist()):
+        room = pitch * (1 - 2 * 0.06) - (0.0 if whole else 2 * label_h) - 0.1 * pitch
+        fit = min(2 * label_h, 0.9 * room / max(text_width(t, 1.0), 1e-9), 0.8 * room)
+        heights.append(max(label_h, fit))
+    heights = np.array(heights)
     origins = centres - np.stack([np.zeros(len(names)), heights / 2], axis=1)
     return text_polylines(names, origins, np.tile([1.0, 0.0], (len(names), 1)), heights, center=True)
 

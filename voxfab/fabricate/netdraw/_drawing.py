@@ -496,10 +496,12 @@ def _draw(graph: SurfaceGraph, net: Net, plan: SheetPlan, opts: DrawingOptions, 
     order = gluing_order(np.bincount(face_piece, minlength=pieces).tolist(), joins)
     at = number_faces(face_piece, joined)
     number_at = tuple((int(fs[f]), pos[f].mean(axis=0)) for f in at.tolist())
+    free = joined[at].all(axis=1).tolist()  # a number's face without seam labels: all of it is room
     sheets = tuple(
         _draw_sheet(s, plan, edges, joined, sides, seam_type, tabs, opts, label_h, title, pos, shared,
                     seam_labels(numbers.tolist(), chars), elsewhere,
-                    [(piece_name(i + 1), c) for i, (ps, c) in enumerate(number_at) if ps == s] if pieces > 1 else [])
+                    [(piece_name(i + 1), c, free[i]) for i, (ps, c) in enumerate(number_at) if ps == s]
+                    if pieces > 1 else [])
         for s in range(plan.count)
     )
     return NetDrawing(
@@ -518,7 +520,7 @@ def _draw_sheet(
     s: int, plan: SheetPlan, edges: NetEdges, joined: npt.NDArray[np.bool_], sides: npt.NDArray[np.int64],
     seam_type: npt.NDArray[np.int64], tabs: TabPlan, opts: DrawingOptions, label_h: float, title: str,
     pos: npt.NDArray[np.float64], shared: npt.NDArray[np.bool_], labels: list[str],
-    elsewhere: npt.NDArray[np.bool_], piece_numbers: list[tuple[str, npt.NDArray[np.float64]]],
+    elsewhere: npt.NDArray[np.bool_], piece_numbers: list[tuple[str, npt.NDArray[np.float64], bool]],
 ) -> Sheet:
     p = plan.pitch
     fs = plan.face_sheet
@@ -613,8 +615,8 @@ def _draw_sheet(
     layers["LABEL"].append(Polylines.from_segments(np.concatenate([m[0] for m in marks]),
                                                    np.concatenate([m[1] for m in marks])))
     if piece_numbers:
-        layers["LABEL"].append(number_text([t for t, _ in piece_numbers], np.array([c for _, c in piece_numbers]),
-                                           p, label_h))
+        layers["LABEL"].append(number_text([t for t, _, _ in piece_numbers], np.array([c for _, c, _ in piece_numbers]),
+                                           p, label_h, np.array([f for _, _, f in piece_numbers])))
     heading = title + (f"  SHEET {s + 1}/{plan.count}" if plan.count > 1 else "")
     if heading and opts.heading:
         x0, _, x1, _ = plan.area

@@ -1,0 +1,72 @@
+"""Piece numbers a maker can read: on the queen's net in pieces, at least as tall as the seam labels.
+
+Measured from the written DXF sheets, read back with ezdxf: the LABEL layer's strokes
+at each piece number's place against the tallest seam-label glyph of the sheet.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+ROOT = Path(__file__).resolve().parents[3]
+
+
+def _label_strokes(path: str) -> list[np.ndarray]:
+    import ezdxf
+
+    out = []
+    for e in ezdxf.readfile(path).modelspace():
+        if e.dxf.layer != "LABEL":
+            continue
+        if e.dxftype() == "POLYLINE":
+            out.append(np.array([tuple(v.dxf.location)[:2] for v in e.vertices]))
+        elif e.dxftype() == "LINE":
+            out.append(np.array([tuple(e.dxf.start)[:2], tuple(e.dxf.end)[:2]]))
+    return out
+
+
+def _distance(lo: np.ndarray, hi: np.ndarray, c: np.ndarray) -> np.ndarray:
+    """From point ``c`` to each box ``lo``-``hi`` (0 inside it)."""
+    dx = np.maximum(0, np.maximum(lo[:, 0] - c[0], c[0] - hi[:, 0]))
+    dy = np.maximum(0, np.maximum(lo[:, 1] - c[1], c[1] - hi[:, 1]))
+    return np.hypot(dx, dy)
+
+
+@pytest.mark.slow
+def test_piece_numbers_are_at_least_as_tall_as_the_seam_labels(tmp_path: Path) -> None:
+    from voxfab.fabricate.netdraw import DrawingOptions, draw_pieces, write_net_drawing
+    from voxfab.recipe import load_recipe
+    from voxfab.recipe._build import make_shape
+    from voxfab.unfold import unfold
+
+    queen = make_shape(load_recipe(ROOT / "recipes" / "chess" / "queen.toml")).grid
+    options = DrawingOptions(sheet="A4", pitch=8.6)  # the smallest faces with legible marks
+    pieces = unfold(queen, rng=0, pieces="flat", fit=(21, 29), timeout=60.0)
+    assert len(pieces) > 5
+    drawing = draw_pieces(queen, pieces, options=options)  # where each number stands, per sheet
+    files = write_net_drawing(queen, pieces, tmp_path / "queen.dxf", options, title="queen").files
+    heading = float(options.margin) + float(options.title_height) + 1.5  # the title band at the foot
+    measured = 0
+    for s, path in enumerate(files):
+        strokes = _label_strokes(path)
+        lo = np.array([p.min(axis=0) for p in strokes])
+        hi = np.array([p.max(axis=0) for p in strokes])
+        centres = [c for sheet, c in drawing.number_at if sheet == s]
+
+        near_a_number = np.zeros(len(strokes), dtype=bool)
+        for c in centres:
+            near_a_number |= _distance(lo, hi, c) < options.pitch
+        # Seam-label glyphs: strokes of several points (not the straight bars of tape seams), away from
+        # the piece numbers and the title; the tallest is the labels' cap height, along or across the sheet.
+        glyph = (~near_a_number) & (np.array([len(p) for p in strokes]) >= 3) & (lo[:, 1] > heading)
+        seam_height = float((hi - lo)[glyph].max())
+        for c in centres:
+            middle = _distance(lo, hi, c) < 0.6 * seam_height  # the strokes of the number's middle characters
+            assert middle.any(), f"no piece number at {c} on sheet {s + 1}"
+            height = float(hi[middle, 1].max() - lo[middle, 1].min())
+            assert height >= seam_height - 1e-3, (s + 1, c, height, seam_height)
+            measured += 1
+    assert measured == len(pieces)
