@@ -126,8 +126,9 @@ def test_the_cli_prints_the_table_and_refuses_bad_input_in_one_line(tmp_path: Pa
                         capture_output=True, text=True, timeout=300)
     assert ok.returncode == 0, ok.stderr
     assert "4 polycubes censused" in ok.stdout and (tmp_path / "c" / "census.json").is_file()
-    for args, words in ((["0"], "from 1 to 11"), (["3", "--timeout", "-1"], "positive number of seconds"),
-                        (["3", "--timeout", "nan"], "positive number of seconds")):
+    for args, words in ((["0"], "from 1 to 11"), (["3", "--timeout", "-1"], "--timeout: expected a positive number"),
+                        (["3", "--timeout", "nan"], "--timeout: expected a positive number"),
+                        (["3", "--seed", "-3"], "--seed: expected an integer")):
         bad = subprocess.run([sys.executable, "-m", "voxfab", "census", *args, "-o", str(tmp_path / "d"),
                               "--workers", "0"], capture_output=True, text=True, timeout=120)
         assert bad.returncode != 0 and words in bad.stderr, bad.stderr

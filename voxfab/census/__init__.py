@@ -12,7 +12,7 @@ Dask) into ``census.json`` and a page, and ``check_certificate`` re-checks a
 from ._enumerate import MAX_CUBES, canonical_cells, count_free, polycube_levels, polycubes
 from ._report import cubes_svg, net_svg, write_page
 from ._run import CENSUS_FORMAT, CensusReport, check_census_size, run_census, shape_id
-from ._task import CensusSettings, CensusTask, census_shape, census_task, check_settings, net_paths
+from ._task import CensusSettings, CensusTask, census_shape, census_task, net_paths
 from ._topology import SURFACE_KINDS, Topology, grid_of, topology
 from ._unzip import UNZIP_OUTCOMES, Unzipping, unzip
 
@@ -24,7 +24,6 @@ __all__ = [
     "census_shape",
     "census_task",
     "check_census_size",
-    "check_settings",
     "cubes_svg",
     "net_paths",
     "net_svg",

@@ -35,13 +35,15 @@ from __future__ import annotations
 
 import dataclasses
 import time
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
 
 from voxfab.errors import UnfoldError
-from voxfab.unfold import Net
+
+if TYPE_CHECKING:  # the net engine loads numba: imported where a search runs, not by the CLI's parser
+    from voxfab.unfold import Net
 
 __all__ = ["UNZIP_OUTCOMES", "Unzipping", "unzip"]
 
