@@ -207,7 +207,8 @@ def run_census(
     done = 0
     used = [0]
     per_worker: dict[str, int] = {}
-    chunks = (CensusTask(tuple(todo[i:i + _CHUNK]), str(out), settings) for i in range(0, len(todo), _CHUNK))
+    where = str(out.resolve())  # workers elsewhere see the shared folder by its full path, not the client's cwd
+    chunks = (CensusTask(tuple(todo[i:i + _CHUNK]), where, settings) for i in range(0, len(todo), _CHUNK))
     with _runner(scheduler, workers, connect_timeout) as (run, used[0]):
         for recs, worker in run(chunks):
             per_worker[worker] = per_worker.get(worker, 0) + len(recs)
