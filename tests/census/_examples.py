@@ -1,7 +1,7 @@
 """Polycubes for the census tests."""
 
 #: A polycube of 43 cubes in the style of Demaine, Demaine, Eppstein and O'Rourke's zipless polycubes: its
-#: surface is a 2-manifold of genus 0 whose 67 even corners outnumber its 57 odd corners and 8 odd flat
+#: surface is a 2-manifold of genus 0 whose 67 odd corners outnumber its 57 even corners and 8 even flat
 #: vertices together by two, so no cut path (alternating colours) holds every corner: no edge-unzipping.
 #: Found by a hill climb on the colour count from a 3 x 3 x 3 block.
 ZIPLESS_43 = [

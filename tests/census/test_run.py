@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from voxfab.census import CensusSettings, grid_of, run_census
+from voxfab.census import CensusSettings, grid_of, run_census, verify_census
 from voxfab.census._certificate import check_certificate
 from voxfab.unfold import Net, validate
 
@@ -74,6 +74,16 @@ def test_every_recorded_net_refolds_to_its_polycube(serial: Path) -> None:
             check_certificate(rec["cells"], rec["certificate"])
         if rec["surface"] != "manifold":
             assert rec["unzip"] is None and rec["unzip_net"] is None
+    check = verify_census(serial)
+    assert check.problems == () and check.nets == sum(FREE) and check.unzippings == sum(FREE) - 1
+    # A net file swapped for another shape's is caught.
+    one = serial / "nets" / "04-000001.unzip.json"
+    kept = one.read_bytes()
+    one.write_bytes((serial / "nets" / "04-000002.unzip.json").read_bytes())
+    try:
+        assert any(p.startswith("04-000001:") for p in verify_census(serial).problems)
+    finally:
+        one.write_bytes(kept)
 
 
 def test_a_dask_run_writes_the_same_census_as_a_serial_run(serial: Path, tmp_path: Path) -> None:
@@ -126,8 +136,9 @@ def test_the_cli_prints_the_table_and_refuses_bad_input_in_one_line(tmp_path: Pa
                         capture_output=True, text=True, timeout=300)
     assert ok.returncode == 0, ok.stderr
     assert "4 polycubes censused" in ok.stdout and (tmp_path / "c" / "census.json").is_file()
-    for args, words in ((["0"], "from 1 to 11"), (["3", "--timeout", "-1"], "positive number of seconds"),
-                        (["3", "--timeout", "nan"], "positive number of seconds")):
+    for args, words in ((["0"], "from 1 to 11"), (["3", "--timeout", "-1"], "--timeout: expected a positive number"),
+                        (["3", "--timeout", "nan"], "--timeout: expected a positive number"),
+                        (["3", "--seed", "-3"], "--seed: expected an integer")):
         bad = subprocess.run([sys.executable, "-m", "voxfab", "census", *args, "-o", str(tmp_path / "d"),
                               "--workers", "0"], capture_output=True, text=True, timeout=120)
         assert bad.returncode != 0 and words in bad.stderr, bad.stderr

@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
-from voxfab.census import grid_of, topology, unzip
+from voxfab.census import cut_path_problem, grid_of, topology, unzip
 from voxfab.census._certificate import check_certificate
 from voxfab.errors import NoNetExistsError, UnfoldError
 from voxfab.unfold import Net, unfold, validate
@@ -13,49 +15,10 @@ from voxfab.unfold import Net, unfold, validate
 from ._examples import ZIPLESS_17, ZIPLESS_43
 
 
-def _cut_edges(net: Net) -> list[tuple[tuple[int, ...], tuple[int, ...]]]:
-    """Surface edges that are not folds, from the net's 3D corners alone."""
-    owners: dict[frozenset, list[int]] = {}
-    for i, c3 in enumerate(net.corners3d.tolist()):
-        for k in range(4):
-            owners.setdefault(frozenset((tuple(c3[k]), tuple(c3[(k + 1) % 4]))), []).append(i)
-    folds = {tuple(sorted(p)) for p in net.folds.tolist()}
-    return [tuple(sorted(e)) for e, o in owners.items() if tuple(sorted(o)) not in folds]
-
-
-def _assert_one_path_through_corners(grid: np.ndarray, net: Net) -> list[tuple[int, ...]]:
+def _assert_one_path_through_corners(grid: np.ndarray, net: Net) -> None:
     """The cut edges form one simple path that holds every corner vertex (counted from the cubes)."""
-    cuts = _cut_edges(net)
-    degree: dict[tuple[int, ...], int] = {}
-    for p, q in cuts:
-        degree[p] = degree.get(p, 0) + 1
-        degree[q] = degree.get(q, 0) + 1
-    assert sorted(degree.values()).count(1) == 2 and max(degree.values()) <= 2
-    assert len(degree) == len(cuts) + 1  # a path: one more vertex than edges, connected below
-    seen, todo = {cuts[0][0]}, [cuts[0][0]]
-    while todo:
-        v = todo.pop()
-        for p, q in cuts:
-            for a, b in ((p, q), (q, p)):
-                if a == v and b not in seen:
-                    seen.add(b)
-                    todo.append(b)
-    assert seen == set(degree)
-    filled = {tuple(c) for c in np.argwhere(grid).tolist()}
-    corners = set()
-    for x, y, z in filled:
-        for dx in (0, 1):
-            for dy in (0, 1):
-                for dz in (0, 1):
-                    p = (x + dx, y + dy, z + dz)
-                    octs = [(p[0] - a, p[1] - b, p[2] - c) for a in (0, 1) for b in (0, 1) for c in (0, 1)]
-                    inside = [o in filled for o in octs]
-                    squares = sum(inside[i] != inside[j] for i in range(8) for j in range(i + 1, 8)
-                                  if sum(abs(u - v) for u, v in zip(octs[i], octs[j])) == 1)
-                    if squares not in (0, 4):
-                        corners.add(p)
-    assert corners <= set(degree)
-    return cuts
+    problem = cut_path_problem(np.argwhere(grid).tolist(), net)
+    assert problem is None, problem
 
 
 def test_the_unit_cube_unzips_with_a_path_through_its_8_corners() -> None:
@@ -63,8 +26,8 @@ def test_the_unit_cube_unzips_with_a_path_through_its_8_corners() -> None:
     found = unzip(g)
     assert found.outcome == "found"
     validate(g, found.net)
-    cuts = _assert_one_path_through_corners(g, found.net)
-    assert len(cuts) == 7 and len(found.path) == 8
+    _assert_one_path_through_corners(g, found.net)
+    assert found.net.folds.shape[0] == 5 and len(found.path) == 8  # 12 edges: 5 folds, 7 cuts
 
 
 def test_the_2x2x2_cube_unzips_in_the_paper_model_but_has_no_unit_square_zipper() -> None:
@@ -125,6 +88,20 @@ def test_a_polycube_without_an_unzipping_is_proved_by_the_solver_and_re_checked(
         check_certificate(ZIPLESS_17, {**cert, "overlaps": cert["overlaps"][: len(cert["overlaps"]) // 2]})
     # It has an edge unfolding in the unit-square model all the same.
     validate(g, unfold(g, rng=0, timeout=60, tab_aware=False))
+
+
+def test_cuts_that_are_not_one_path_are_caught() -> None:
+    g = np.ones((1, 1, 2), dtype=bool)
+    cells = np.argwhere(g).tolist()
+    zipped = unzip(g).net
+    assert cut_path_problem(cells, zipped) is None
+    # One fold fewer is one more cut edge: the cuts branch (or close a cycle), never one path.
+    for drop in range(zipped.folds.shape[0]):
+        fewer = dataclasses.replace(zipped, folds=np.delete(zipped.folds, drop, axis=0))
+        assert cut_path_problem(cells, fewer) is not None
+    # A unit-square zipper (cuts through every vertex) is an unzipping too; a plain net's cut tree need not be.
+    plain = unfold(g, rng=0, tab_aware=False)
+    assert cut_path_problem(cells, plain) == "the cut edges do not form one simple path"
 
 
 def test_a_surface_outside_the_model_is_refused() -> None:

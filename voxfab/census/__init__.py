@@ -5,26 +5,31 @@ growth), ``count_free`` counts them up to rotation and up to rotation and
 reflection, ``topology`` classifies a surface as the unzipping paper does,
 ``unzip`` searches an edge-unzipping in that paper's model, ``census_shape``
 runs every search on one polycube, ``run_census`` runs them all (serially or on
-Dask) into ``census.json`` and a page, and ``check_certificate`` re-checks a
-"no unzipping" certificate from the cells alone.
+Dask) into ``census.json`` and a page, ``check_certificate`` re-checks a
+"no unzipping" certificate from the cells alone, and ``verify_census`` checks
+every net and proof a census wrote.
 """
 
+from ._certificate import check_certificate
 from ._enumerate import MAX_CUBES, canonical_cells, count_free, polycube_levels, polycubes
 from ._report import cubes_svg, net_svg, write_page
 from ._run import CENSUS_FORMAT, CensusReport, check_census_size, run_census, shape_id
-from ._task import CensusSettings, CensusTask, census_shape, census_task, check_settings, net_paths
+from ._task import CensusSettings, CensusTask, census_shape, census_task, net_paths
 from ._topology import SURFACE_KINDS, Topology, grid_of, topology
 from ._unzip import UNZIP_OUTCOMES, Unzipping, unzip
+from ._verify import CensusCheck, cut_path_problem, verify_census
 
 __all__ = [
     "CENSUS_FORMAT",
+    "CensusCheck",
     "CensusReport",
     "CensusSettings",
     "CensusTask",
     "census_shape",
     "census_task",
+    "check_certificate",
+    "cut_path_problem",
     "check_census_size",
-    "check_settings",
     "cubes_svg",
     "net_paths",
     "net_svg",
@@ -43,4 +48,5 @@ __all__ = [
     "polycubes",
     "topology",
     "unzip",
+    "verify_census",
 ]

@@ -198,7 +198,7 @@ def run_census(
             "rows": _rows(n_max, counts, records, wall, cpu),
             "run": {"seconds": round(time.perf_counter() - start, 1), "workers": used[0],
                     "where": scheduler or ("serial" if workers == 0 else "local Dask cluster"),
-                    "censused": done, "kept": kept},
+                    "censused": done, "kept": kept, "shapes_per_worker": dict(sorted(per_worker.items()))},
             "shapes": [{k: v for k, v in r.items() if k not in ("seconds", "cpu_seconds")}
                        for _, r in sorted(records.items())],
         }
@@ -206,9 +206,12 @@ def run_census(
 
     done = 0
     used = [0]
-    chunks = (CensusTask(tuple(todo[i:i + _CHUNK]), str(out), settings) for i in range(0, len(todo), _CHUNK))
+    per_worker: dict[str, int] = {}
+    where = str(out.resolve())  # workers elsewhere see the shared folder by its full path, not the client's cwd
+    chunks = (CensusTask(tuple(todo[i:i + _CHUNK]), where, settings) for i in range(0, len(todo), _CHUNK))
     with _runner(scheduler, workers, connect_timeout) as (run, used[0]):
-        for recs, _worker in run(chunks):
+        for recs, worker in run(chunks):
+            per_worker[worker] = per_worker.get(worker, 0) + len(recs)
             for r in recs:
                 wall[r["n"]] = wall.get(r["n"], 0.0) + float(r.get("seconds", 0.0))
                 cpu[r["n"]] = cpu.get(r["n"], 0.0) + float(r.get("cpu_seconds", 0.0))

@@ -24,46 +24,30 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["CensusSettings", "CensusTask", "census_shape", "census_task", "check_settings", "net_paths"]
+from voxfab._shared.options import SeedOptions, option
+
+__all__ = ["CensusSettings", "CensusTask", "census_shape", "census_task", "net_paths"]
 
 #: Folder of DIR holding the nets.
 NETS = "nets"
 
 
 @dataclasses.dataclass(frozen=True)
-class CensusSettings:
-    """The searches' limits: part of a census's identity (a resumed run keeps only records made with the same).
+class CensusSettings(SeedOptions):
+    """The searches' seed and limits, declared once for the library and the CLI.
 
-    Attributes
-    ----------
-    seed : int
-        The random engine's seed.
-    timeout : float
-        Seconds for each search of one shape: the random engine, the exact strategy, the unzipping
-        search and the unit-square zipper search.
-    square_zipper : bool
-        Also search the unit-square zipper (``voxfab net --zipper``); off, ``square_zipper`` is ``skipped``.
+    They are part of a census's identity: a resumed run keeps only the records
+    made with the same settings.
     """
 
-    seed: int = 0
-    timeout: float = 10.0
-    square_zipper: bool = False
+    timeout: float = option(10.0, help="seconds for each search of one polycube (random engine, exact strategy, "
+                            "unzipping, unit-square zipper); one that runs out is undecided",
+                            unit="s", low=0, low_open=True, high=3600)
+    square_zipper: bool = option(False, help="also search each polycube's unit-square zipper (the cut path "
+                                 "through every vertex, as voxfab net --zipper)")
 
     def to_dict(self) -> dict[str, Any]:
         return {"seed": self.seed, "timeout": self.timeout, "square_zipper": self.square_zipper}
-
-
-def check_settings(*, seed: object = 0, timeout: object = 10.0, square_zipper: bool = False) -> CensusSettings:
-    """Return the settings, or refuse a bad seed or time limit in one line."""
-    from voxfab.errors import InvalidShapeError
-    from voxfab.unfold._hunt import _check_limit
-
-    if isinstance(seed, bool) or not isinstance(seed, int) or not 0 <= seed < 2**63:
-        raise InvalidShapeError(f"--seed: expected a whole number from 0 to 2^63 - 1, got {str(seed)[:40]!r}")
-    limit = _check_limit(timeout, "--timeout")
-    if limit > 3600:
-        raise InvalidShapeError(f"--timeout: {limit:g} s is over the limit of 3600 s per search")
-    return CensusSettings(seed, limit, bool(square_zipper))
 
 
 @dataclasses.dataclass(frozen=True)

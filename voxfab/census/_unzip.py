@@ -21,7 +21,10 @@ The search is the zipper search's, with flat vertices optional:
 3. two faces on one cell: one edge of the tree path between them is cut (a
    no-good valid for every cut); a cut edge whose two sides develop side by
    side closes up (a slit, not a cut): it is left uncut or the tree path between
-   its faces is cut.  Back to 1.
+   its faces is cut.  Back to 1.  (The paper allows such a slit, as boundary
+   edges that touch; a net file keeps it as a fold, which breaks the cut path.
+   So a proof that leaned on a slit rule is no proof in the paper's model: the
+   outcome is then ``undecided``.)
 
 Without a path the search is a proof that none exists.  The cheap proof comes
 first, as in the paper: the vertex graph is bipartite (lattice colour ``x + y +
@@ -35,13 +38,15 @@ from __future__ import annotations
 
 import dataclasses
 import time
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
 
 from voxfab.errors import UnfoldError
-from voxfab.unfold import Net
+
+if TYPE_CHECKING:  # the net engine loads numba: imported where a search runs, not by the CLI's parser
+    from voxfab.unfold import Net
 
 __all__ = ["UNZIP_OUTCOMES", "Unzipping", "unzip"]
 
@@ -171,6 +176,13 @@ def unzip(grid: npt.ArrayLike, *, timeout: float = 10.0) -> Unzipping:
             break
         prm.max_time_in_seconds = left
         status = solver.solve(m)
+        if status == cp_model.INFEASIBLE and slit_rules:
+            # The paper allows a net whose boundary edges touch, so a cut edge that closes up again (a
+            # slit) is allowed there; a net file keeps it as a fold, which breaks the path.  Without a
+            # slit-free path the question stays open here.
+            return Unzipping("undecided", None, (), None,
+                             f"undecided: no unzipping of the {f}-square surface without a slit exists (proved), "
+                             "and one whose cut path closes up along an edge was not ruled out")
         if status == cp_model.INFEASIBLE:
             return Unzipping("none", None, (), {
                 "kind": "solver", "faces": [_face_key(sg, a) for a in range(f)],

@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import argparse
 
+from voxfab.census._task import CensusSettings
 from voxfab.cli._common import path_argument
+from voxfab.cli._options import add_option_arguments, options_from_args
 
 HELP = ("census every polycube of 1..N cubes: an edge unfolding and an edge-unzipping of each "
         "(DIR/census.json, DIR/census.html, DIR/nets/)")
@@ -14,13 +16,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("n", type=int, metavar="N", help="the largest number of cubes (1 to 11)")
     parser.add_argument("-o", "--output", type=path_argument, required=True, metavar="DIR",
                         help="output folder; an earlier census there with the same settings is resumed")
-    parser.add_argument("--timeout", type=float, default=10.0, metavar="S",
-                        help="seconds for each search of one polycube; a search that runs out is undecided "
-                             "(default 10)")
-    parser.add_argument("--seed", type=int, default=0, metavar="S", help="the random engine's seed (default 0)")
-    parser.add_argument("--square-zipper", action="store_true",
-                        help="also search each polycube's unit-square zipper (the cut path through every vertex, "
-                             "as voxfab net --zipper)")
+    add_option_arguments(parser, CensusSettings)
     parser.add_argument("--scheduler", metavar="ADDRESS",
                         help="a running Dask scheduler (tcp://HOST:PORT); default: --workers local processes")
     parser.add_argument("--workers", type=int, default=2, metavar="K",
@@ -31,10 +27,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from voxfab._shared.progress import meter
-    from voxfab.census import check_census_size, check_settings, run_census
+    from voxfab.census import check_census_size, run_census
 
     check_census_size(args.n)
-    settings = check_settings(seed=args.seed, timeout=args.timeout, square_zipper=args.square_zipper)
+    settings = options_from_args(CensusSettings, args)
     with meter(None, desc="census") as bar:
         def progress(done: int, total: int) -> None:
             bar.total = total
