@@ -141,7 +141,10 @@ def test_signals_remove_temporaries_or_the_next_run_sweeps_them(tmp_path, signal
         "    print('ready', flush=True)\n"
         "    time.sleep(60)\n"
     )
-    proc = subprocess.Popen([sys.executable, "-c", code, str(tmp_path / "out")], stdout=subprocess.PIPE, text=True)
+    # Ctrl-C reaches a foreground command, whose SIGINT is at its default; a run started in the
+    # background (as CI may be) inherits SIGINT ignored, so the child is given the terminal's default.
+    proc = subprocess.Popen([sys.executable, "-c", code, str(tmp_path / "out")], stdout=subprocess.PIPE, text=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     try:
         assert proc.stdout.readline().strip() == "ready"
         assert len(list(tmp_path.glob(".out.*.tmp"))) == 1
