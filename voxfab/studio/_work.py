@@ -9,7 +9,6 @@ NET.svg``), and the recipe outputs ``mesh``, ``slices`` and ``pictures``
 
 from __future__ import annotations
 
-import math
 import shutil
 import zipfile
 from pathlib import Path
@@ -32,41 +31,11 @@ def artefacts() -> list[str]:
 
     return [d for row in outputs().values() for d in row.downloads]
 
-def check_number(value: Any, *, name: str, lo: float, hi: float, integer: bool = False) -> float:
-    """``value`` as a number in ``[lo, hi]`` (an int when ``integer``), or an error naming it."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise InvalidShapeError(f"{name}: expected a number, got {value!r:.40}")
-    if integer and value != int(value):
-        raise InvalidShapeError(f"{name}: expected a whole number, got {value!r}")
-    if not lo <= value <= hi:
-        raise InvalidShapeError(f"{name}: expected {lo:g} to {hi:g}, got {value:g}")
-    return int(value) if integer else float(value)
-
 
 # --- the net gallery --------------------------------------------------------------------------
 
 #: What the page gets unless it says otherwise: short searches, as a gallery is browsed, not waited for.
 GALLERY_DEFAULTS = {"timeout": 5.0, "budget": MAX_GALLERY_SECONDS}
-
-#: The fields of a POST /api/nets body.
-GALLERY_BODY = ("grid", "seed", "count", "options", "constraints")
-
-
-def check_gallery_body(data: dict[str, Any]) -> None:
-    """Refuse a gallery request with fields the contract does not have (options go in ``options``)."""
-    extra = sorted(str(k) for k in data if k not in GALLERY_BODY)
-    if extra:
-        raise InvalidShapeError(f"request: unknown field {extra[0][:40]!r}; expected {', '.join(GALLERY_BODY)} "
-                                "(net and drawing options go in \"options\")")
-
-
-def gallery_options(values: Any) -> tuple[Any, Any]:
-    """The page's net options, checked by the library's option dataclasses (the CLI's bounds and words)."""
-    from voxfab.fabricate import netdraw
-
-    if values is None:
-        values = {}
-    return netdraw.gallery_options(values, defaults=GALLERY_DEFAULTS)
 
 
 def edge_constraints(data: Any) -> Any:
