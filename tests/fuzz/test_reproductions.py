@@ -77,7 +77,7 @@ def test_toml_recipe_nested_5000_deep(tmp_path):
 
 def test_tube_with_a_billion_samples(tmp_path):
     r = recipe(tmp_path, "r.toml", TUBE_PROFILE.format("x^2 + y^2 - 1") + "samples = 1000000000\n")
-    assert "samples: 1,000,000,000 is over the limit of 100,000" in refused(build(tmp_path, r), seconds=20)
+    assert "source.samples: expected an integer in 2..100000, got 1000000000" in refused(build(tmp_path, r), seconds=20)
 
 
 # --- unbounded work ----------------------------------------------------------------------------------

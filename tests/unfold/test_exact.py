@@ -203,8 +203,9 @@ def test_cli_proved_none_has_its_own_exit_status_and_writes_nothing(tmp_path):
     assert r.returncode != EXIT_CODES[UnfoldError]
     assert r.stderr.strip() == "voxfab: error: no one-piece net of this shape fits 3x3 faces (proved)"
     assert not (tmp_path / "net.json").exists()
-    r = _cli("cube.npy", "-o", "net.json", "--strategy", "exact", cwd=tmp_path)  # no box: bad input
-    assert r.returncode == EXIT_CODES[InvalidShapeError]
+    r = _cli("cube.npy", "-o", "net.json", "--strategy", "exact", "--box", "2x2", "--face-size", "10",
+             cwd=tmp_path)  # a box in mm that holds no face: bad input, not a proof
+    assert r.returncode == EXIT_CODES[InvalidShapeError], r.stderr
     assert r.stderr.startswith("voxfab: error: ") and "Traceback" not in r.stderr
 
 
