@@ -110,9 +110,10 @@ class SheetPlan:
         return o if self.shift is None else o + self.shift
 
 
-#: Pieces: a sheet is refused when the faces alone need more sheets than this (their paper over a
-#: sheet less its margins, a bound no packing beats), or when it is under :data:`PIECES_LEAST_ACROSS`
-#: faces across with their tabs.  Such sheets otherwise cost minutes of search for a pile of slivers.
+#: Pieces: a sheet is refused when the paper of the faces and of the fewest tabs a net can have
+#: needs more sheets than this (:func:`pieces_sheets_at_least`, a bound no packing beats), or when it
+#: is under :data:`PIECES_LEAST_ACROSS` faces across with their tabs.  Such sheets otherwise cost
+#: minutes of search for a pile of slivers (the queen on a 60 x 60 mm sheet: 236 pieces on 162 sheets).
 PIECES_MOST_SHEETS = 50
 PIECES_LEAST_ACROSS = 2
 
@@ -142,10 +143,20 @@ class HopelessSheetError(UnfoldError):
 
 def pieces_sheets_at_least(faces: int, options: DrawingOptions, pitch: float,
                            size: tuple[float, float] | None = None) -> int:
-    """The fewest sheets that could take ``faces`` faces of ``pitch`` mm: their paper over a sheet's drawable area."""
+    """The fewest sheets that could take a net of ``faces`` faces of ``pitch`` mm: the paper of the faces and
+    of a tab on each of the ``faces + 1`` seams a net has at least (its folds are a forest: at most
+    ``faces - 1`` of the ``2 faces`` edges), over a sheet's drawable area."""
+    from ._tabs import tab_heights
+
     x0, y0, x1, y1 = drawable_area(options, size)
     usable = max(x1 - x0, 0.0) * max(y1 - y0, 0.0)
-    return math.ceil(faces * pitch * pitch / usable - 1e-9) if usable > 0 else math.inf
+    paper = faces * pitch * pitch
+    if options.tabs:
+        inset, h = tab_heights(pitch, options.tab_width, options.tab_angle)
+        base = pitch - 2 * inset
+        top = max(base - 2 * h / math.tan(math.radians(options.tab_angle)), 0.0)
+        paper += (faces + 1) * (base + top) / 2 * h
+    return math.ceil(paper / usable - 1e-9) if usable > 0 else math.inf
 
 
 def _pieces_problem(faces: int, options: DrawingOptions, pitch: float,
@@ -156,7 +167,8 @@ def _pieces_problem(faces: int, options: DrawingOptions, pitch: float,
                 f"{PIECES_LEAST_ACROSS} across")
     least = pieces_sheets_at_least(faces, options, pitch, size)
     if least > PIECES_MOST_SHEETS:
-        return f"the {faces} faces of {pitch:g} mm alone need at least {least} sheets (more than {PIECES_MOST_SHEETS})"
+        return (f"the {faces} faces of {pitch:g} mm" + (" and their tabs" if options.tabs else "")
+                + f" need at least {least} sheets (more than {PIECES_MOST_SHEETS})")
     return None
 
 
@@ -559,8 +571,8 @@ def dilated(mask: npt.NDArray[np.bool_], r: int) -> npt.NDArray[np.bool_]:
     return _dilated(mask, r)
 
 
-#: The last packings made, by their pieces, tabs and options: a cut chosen by how it packs
-#: (:func:`voxfab.fabricate.netdraw._fit._cut_pieces`) is drawn on the same packing, not packed again.
+#: The last packings made, by their pieces, tabs and options: pieces laid out for the studio's
+#: gallery, or measured by :func:`._drawing.sheets_needed`, are drawn on the same packing, not packed again.
 _PACKED: dict[bytes, tuple[SheetPlan, list[npt.NDArray[np.int64]]]] = {}
 _PACKED_KEPT = 4
 _PACKED_LOCK = threading.Lock()  # studio jobs pack on worker threads
