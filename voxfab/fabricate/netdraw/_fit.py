@@ -7,9 +7,9 @@ The default order of a paper net (issue: buildable objects):
 2. when none is found, an error naming the largest face size at which a net
    fits this sheet and the smallest sheet that takes it at this face size,
    both measured from the most compact net found; never a silent split;
-3. with ``pieces="auto"``, pieces from flat patches, or for a surface of a
-   sheet or so the few large pieces of the net search when they pack on fewer
-   sheets (:func:`_cut_pieces`).
+3. with ``pieces="auto"``, pieces from flat patches (the few large pieces of
+   the net search when flat patches give none), packed once by the drawing
+   (:func:`_cut_pieces`).
 
 Faces too small for legible marks are refused before any search.
 """
@@ -181,7 +181,7 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     room = faces <= fit[0] * fit[1]
     if pieces == "auto" and not room:
         check_pieces_sheet(faces, options, float(options.pitch), smallest_face_size(options, chars))
-        return SheetNets(_piece_nets(grid, options, rng, fit, count, budget, progress, search, notes), options,
+        return SheetNets(_piece_nets(grid, rng, fit, count, budget, progress, search, notes), options,
                          notes)
     found: list[Net] | None = None
     failed: UnfoldError | None = None
@@ -193,7 +193,7 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     if found is None:
         if pieces == "auto":
             check_pieces_sheet(faces, options, float(options.pitch), smallest_face_size(options, chars))
-            return SheetNets(_piece_nets(grid, options, rng, fit, count, budget, progress, search, notes),
+            return SheetNets(_piece_nets(grid, rng, fit, count, budget, progress, search, notes),
                              options, notes)
         if failed is not None and not isinstance(failed, NoFitError):
             raise failed  # out of time, or marks that leave no net: not a question of the sheet
@@ -221,7 +221,7 @@ def _nets(grid: Any, count: int, rng: int, budget: float, progress: Callable[[in
     return found
 
 
-def _piece_nets(grid: Any, options: DrawingOptions, rng: int, fit: tuple[int, int], count: int, budget: float,
+def _piece_nets(grid: Any, rng: int, fit: tuple[int, int], count: int, budget: float,
                 progress: Callable[[int, int], None] | None, search: dict[str, Any],
                 notes: list[str]) -> list[list[Net]]:
     """Nets in pieces, one per seed (seed ``rng`` first, then seeds drawn from it)."""
@@ -231,7 +231,7 @@ def _piece_nets(grid: Any, options: DrawingOptions, rng: int, fit: tuple[int, in
     from voxfab.unfold import outline_key
 
     if count == 1:
-        return [_cut_pieces(grid, options, fit, rng, search)]
+        return [_cut_pieces(grid, fit, rng, search)]
     gen = np.random.default_rng(rng)
     end = time.monotonic() + budget
     timeout = float(search.pop("timeout", 60.0))
@@ -243,7 +243,7 @@ def _piece_nets(grid: Any, options: DrawingOptions, rng: int, fit: tuple[int, in
         tries += 1
         seed = int(gen.integers(0, 2**31 - 1))
         try:
-            nets = _cut_pieces(grid, options, fit, seed, {**search, "timeout": min(timeout, end - time.monotonic())})
+            nets = _cut_pieces(grid, fit, seed, {**search, "timeout": min(timeout, end - time.monotonic())})
         except UnfoldError:
             continue
         key = b"|".join(sorted(outline_key(n) for n in nets))
@@ -260,49 +260,21 @@ def _piece_nets(grid: Any, options: DrawingOptions, rng: int, fit: tuple[int, in
     return out
 
 
-#: pieces="auto": surfaces up to this many times a sheet's cells are also cut into the few large
-#: pieces of the net search, and the cut that packs on fewer sheets wins.  Measured at 8.6 mm faces
-#: (cavities filled): the queen on mat12 (1.3 sheets of faces) packs on 3 sheets that way against 4
-#: from flat patches; from 2 sheets of faces on (pawn, egg, vase on mat12; queen, pawn, egg on A4)
-#: flat patches pack on as few sheets or fewer, with fewer seams without a tab, in a fifth of the time.
-_FEW_SHEETS = 1.5
+def _cut_pieces(grid: Any, fit: tuple[int, int], rng: int, search: dict[str, Any]) -> list[Net]:
+    """The pieces, cut once, before any packing: from flat patches, or the few large pieces of ``"auto"``
+    when flat patches give none.
 
-
-def _cut_pieces(grid: Any, options: DrawingOptions, fit: tuple[int, int], rng: int,
-                search: dict[str, Any]) -> list[Net]:
-    """The pieces, cut once: from flat patches, also as the few large pieces of ``"auto"`` for a surface
-    of a sheet or so (:data:`_FEW_SHEETS`); of two cuts the one that packs on fewer sheets wins, then the
-    one with fewer seams without room for a tab, then fewer pieces (:func:`sheets_needed`, whose packing
-    the drawing reuses).  The few large pieces also stand in when flat patches give none.
+    Measured at 8.6 mm faces: pieces from flat patches pack on fewer pages than Blender's Paper Model
+    on every bundled shape (A4: queen 4 against 5, pawn 4 against 6, egg 10 against 18), in about a
+    third of the time the few large pieces take to cut; those win a sheet only on a surface of about
+    one sheet and a third (the queen on A4: 3 sheets against 4, at twice the time).
     """
-    from voxfab.fabricate.netdraw._drawing import sheets_needed
-    from voxfab.shape import fill_cavities
     from voxfab.unfold import unfold
 
-    g = np.asarray(grid, dtype=bool)
-    shape = fill_cavities(g) if search.get("fill", False) else g
-    modes = ["flat"]
-    if _surface_faces(grid, bool(search.get("fill", False))) <= _FEW_SHEETS * fit[0] * fit[1]:
-        modes.append("auto")
-    compare = len(modes) > 1
-    best: tuple[tuple[int, int, int], list[Net]] | None = None
-    for mode in modes:
-        try:
-            nets = list(unfold(grid, rng=rng, fit=fit, pieces=mode, **search))
-        except UnfoldError:
-            if mode == "flat":
-                modes.append("auto")
-            if mode == "auto" and best is None:
-                raise
-            continue
-        if not compare:
-            return nets
-        sheets, _, untabbed = sheets_needed(shape, nets, options)
-        key = (sheets, untabbed, len(nets))
-        if best is None or key < best[0]:
-            best = (key, nets)
-    assert best is not None
-    return best[1]
+    try:
+        return list(unfold(grid, rng=rng, fit=fit, pieces="flat", **search))
+    except UnfoldError:
+        return list(unfold(grid, rng=rng, fit=fit, pieces="auto", **search))
 
 
 def _auto_face_size(grid: Any, options: DrawingOptions, *, rng: int, pieces: str, chars: int,

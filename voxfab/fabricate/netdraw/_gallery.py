@@ -208,14 +208,19 @@ def _one_piece_room(grid: Any, net: NetOptions, options: DrawingOptions) -> bool
     Checks the marks and the sheet as :func:`._fit.find_sheet_nets` does, before any search.
     """
     from ._fit import _check_legible, _surface_faces, label_chars
-    from ._sheets import sheet_cells
+    from ._legible import smallest_face_size
+    from ._sheets import check_pieces_sheet, sheet_cells
 
     faces = _surface_faces(grid, net.fill)
-    _check_legible(options, label_chars(faces, net.pieces))
+    chars = label_chars(faces, net.pieces)
+    _check_legible(options, chars)
     fit = sheet_cells(options, float(options.pitch))
     if min(fit) < 1:
         raise InvalidShapeError(f"sheet: {options.sheet} has no room for one {options.pitch:g} mm face with its tabs")
-    return faces <= fit[0] * fit[1]
+    room = faces <= fit[0] * fit[1]
+    if not room and net.pieces == "auto":  # a hopeless sheet, refused as voxfab net refuses it
+        check_pieces_sheet(faces, options, float(options.pitch), smallest_face_size(options, chars))
+    return room
 
 
 #: The two ways to cut a net in pieces (:func:`voxfab.unfold.unfold`'s ``pieces``): flat patches, few large pieces.

@@ -24,7 +24,7 @@ import numpy.typing as npt
 from voxfab.errors import InvalidShapeError
 
 from ._options import DrawingOptions
-from ._sheets import SheetPlan, drawable_area
+from ._sheets import SheetPlan
 
 #: Slack of the grid and margin checks, mm (JSON round trips of decimal mm).
 TOLERANCE = 1e-6
@@ -225,7 +225,7 @@ def plan_placement(placement: Placement, pieces: list[npt.NDArray[np.int64]], op
         piece; a piece off the packing raster; a piece across the margin; or two pieces
         on or too close to each other.
     """
-    from ._sheets import dilated, piece_mask, raster_of
+    from ._sheets import dilated, paper, piece_mask
 
     size = options.sheet_size
     if abs(placement.sheet[0] - size[0]) > 1e-3 or abs(placement.sheet[1] - size[1]) > 1e-3:
@@ -244,8 +244,9 @@ def plan_placement(placement: Placement, pieces: list[npt.NDArray[np.int64]], op
     used = sorted({p.sheet for p in placement.pieces})
     renumber = {s: k for k, s in enumerate(used)}  # an emptied sheet is dropped, not printed blank
     alone = {s: sum(p.sheet == s for p in placement.pieces) == 1 for s in used}
-    x0, y0, x1, y1 = drawable_area(options)
-    step, clear, raster = raster_of(options, pitch)
+    sheet_paper = paper(options, pitch)
+    x0, y0, x1, y1 = sheet_paper.area
+    step, clear, raster = sheet_paper.step, sheet_paper.clear, sheet_paper.raster
     boards = {s: np.full(raster, -1, dtype=np.int64) for s in used}
     placed, shifts = [], []
     offset = 0

@@ -10,6 +10,7 @@ quarter turns, on as few sheets as possible.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import threading
 
@@ -109,9 +110,10 @@ class SheetPlan:
         return o if self.shift is None else o + self.shift
 
 
-#: Pieces: a sheet is refused when the faces alone need more sheets than this (their paper over a
-#: sheet less its margins, a bound no packing beats), or when it is under :data:`PIECES_LEAST_ACROSS`
-#: faces across with their tabs.  Such sheets otherwise cost minutes of search for a pile of slivers.
+#: Pieces: a sheet is refused when the paper of the faces and of the fewest tabs a net can have
+#: needs more sheets than this (:func:`pieces_sheets_at_least`, a bound no packing beats), or when it
+#: is under :data:`PIECES_LEAST_ACROSS` faces across with their tabs.  Such sheets otherwise cost
+#: minutes of search for a pile of slivers (the queen on a 60 x 60 mm sheet: 236 pieces on 162 sheets).
 PIECES_MOST_SHEETS = 50
 PIECES_LEAST_ACROSS = 2
 
@@ -141,10 +143,20 @@ class HopelessSheetError(UnfoldError):
 
 def pieces_sheets_at_least(faces: int, options: DrawingOptions, pitch: float,
                            size: tuple[float, float] | None = None) -> int:
-    """The fewest sheets that could take ``faces`` faces of ``pitch`` mm: their paper over a sheet's drawable area."""
+    """The fewest sheets that could take a net of ``faces`` faces of ``pitch`` mm: the paper of the faces and
+    of a tab on each of the ``faces + 1`` seams a net has at least (its folds are a forest: at most
+    ``faces - 1`` of the ``2 faces`` edges), over a sheet's drawable area."""
+    from ._tabs import tab_heights
+
     x0, y0, x1, y1 = drawable_area(options, size)
     usable = max(x1 - x0, 0.0) * max(y1 - y0, 0.0)
-    return math.ceil(faces * pitch * pitch / usable - 1e-9) if usable > 0 else math.inf
+    paper = faces * pitch * pitch
+    if options.tabs:
+        inset, h = tab_heights(pitch, options.tab_width, options.tab_angle)
+        base = pitch - 2 * inset
+        top = max(base - 2 * h / math.tan(math.radians(options.tab_angle)), 0.0)
+        paper += (faces + 1) * (base + top) / 2 * h
+    return math.ceil(paper / usable - 1e-9) if usable > 0 else math.inf
 
 
 def _pieces_problem(faces: int, options: DrawingOptions, pitch: float,
@@ -155,7 +167,8 @@ def _pieces_problem(faces: int, options: DrawingOptions, pitch: float,
                 f"{PIECES_LEAST_ACROSS} across")
     least = pieces_sheets_at_least(faces, options, pitch, size)
     if least > PIECES_MOST_SHEETS:
-        return f"the {faces} faces of {pitch:g} mm alone need at least {least} sheets (more than {PIECES_MOST_SHEETS})"
+        return (f"the {faces} faces of {pitch:g} mm" + (" and their tabs" if options.tabs else "")
+                + f" need at least {least} sheets (more than {PIECES_MOST_SHEETS})")
     return None
 
 
@@ -198,17 +211,69 @@ def drawable_area(options: DrawingOptions, size: tuple[float, float] | None = No
     return (m, m + band, w - m, h - m)
 
 
-def _room(options: DrawingOptions, pitch: float, size: tuple[float, float] | None = None) -> tuple[float, float]:
-    """Width and height in mm that faces may take: the drawable area less a tab all round."""
-    x0, y0, x1, y1 = drawable_area(options, size)
+@dataclasses.dataclass(frozen=True)
+class Paper:
+    """A sheet at one face size, worked out once: what the net search, the packer, the placement check
+    and the drawing all read (:func:`paper`).
+
+    Attributes
+    ----------
+    pitch : float
+        Face edge, mm.
+    size : (float, float)
+        Sheet width and height, mm.
+    area : (float, float, float, float)
+        ``(x0, y0, x1, y1)`` drawable rectangle: inside the margin, above the title band, mm.
+    tab_depth : float
+        Height of a full glue tab, mm (0 without tabs).
+    cells : (int, int)
+        Faces across and down the drawable area with a tab all round (the ``fit`` of the net search).
+    per_cell : int
+        Packing raster steps per face edge (about :data:`_STEP_MM` each).
+    step : float
+        Packing raster step, mm.
+    clear : int
+        Steps of paper kept free round every packed piece (:data:`_CLEARANCE_MM` at least).
+    raster : (int, int)
+        The drawable area in steps.
+    tab_steps : int
+        Steps a tab band takes beyond its edge on the raster.
+    """
+
+    pitch: float
+    size: tuple[float, float]
+    area: tuple[float, float, float, float]
+    tab_depth: float
+    cells: tuple[int, int]
+    per_cell: int
+    step: float
+    clear: int
+    raster: tuple[int, int]
+    tab_steps: int
+
+
+def paper(options: DrawingOptions, pitch: float, size: tuple[float, float] | None = None) -> Paper:
+    """The sheet of ``options`` (or of ``size``, mm) at face size ``pitch``, made once per options and size."""
+    return _paper(options, float(pitch), None if size is None else (float(size[0]), float(size[1])))
+
+
+@functools.lru_cache(maxsize=256)
+def _paper(options: DrawingOptions, pitch: float, size: tuple[float, float] | None) -> Paper:
+    x0, y0, x1, y1 = area = drawable_area(options, size)
     pad = tab_depth(options, pitch)
-    return x1 - x0 - 2 * pad, y1 - y0 - 2 * pad
+    w, h = x1 - x0 - 2 * pad, y1 - y0 - 2 * pad
+    cells = (max(int(math.floor(w / pitch + 1e-9)), 0), max(int(math.floor(h / pitch + 1e-9)), 0))
+    k = max(2, int(round(pitch / _STEP_MM)))
+    step = pitch / k
+    clear = max(1, int(math.ceil(_CLEARANCE_MM / step - 1e-9)))
+    raster = (int(math.floor((x1 - x0) / step + 1e-9)), int(math.floor((y1 - y0) / step + 1e-9)))
+    return Paper(float(pitch), options.sheet_size if size is None else size, area, pad, cells, k, step, clear,
+                 raster, int(math.ceil(pad / step - 1e-9)))
 
 
 def sheet_cells(options: DrawingOptions, pitch: float, size: tuple[float, float] | None = None) -> tuple[int, int]:
     """Faces across and down a sheet at face size ``pitch`` (the ``fit`` of the net search)."""
-    w, h = _room(options, pitch, size)
-    return max(int(math.floor(w / pitch + 1e-9)), 0), max(int(math.floor(h / pitch + 1e-9)), 0)
+    return paper(options, pitch, size).cells
 
 
 def fits(extent: tuple[int, int], options: DrawingOptions, pitch: float,
@@ -292,7 +357,7 @@ def plan_sheets(corners2d: npt.NDArray[np.int64], options: DrawingOptions, *, wh
     rotated = fits(extent, options, pitch)
     if rotated is None:
         raise fit_error(extent, options, pitch, what=what)
-    x0, y0, x1, y1 = drawable_area(options)
+    x0, y0, x1, y1 = paper(options, pitch).area
     c = _turned(corners2d, rotated)
     ex, ey = c.reshape(-1, 2).max(axis=0)
     origin = np.array([[x0 + (x1 - x0 - ex * pitch) / 2, y0 + (y1 - y0 - ey * pitch) / 2]])
@@ -487,21 +552,17 @@ def _pack_once(pieces: list[list[_Spectra]], order: list[int], raster: tuple[int
 
 def raster_of(options: DrawingOptions, pitch: float) -> tuple[float, int, tuple[int, int]]:
     """The packer's raster at face size ``pitch``: its step (mm), the clearance (steps) kept between
-    pieces and the drawable area's size in steps."""
-    k = max(2, int(round(pitch / _STEP_MM)))
-    step = pitch / k
-    clear = max(1, int(math.ceil(_CLEARANCE_MM / step - 1e-9)))
-    x0, y0, x1, y1 = drawable_area(options)
-    return step, clear, (int(math.floor((x1 - x0) / step + 1e-9)), int(math.floor((y1 - y0) / step + 1e-9)))
+    pieces and the drawable area's size in steps (:class:`Paper`)."""
+    p = paper(options, pitch)
+    return p.step, p.clear, p.raster
 
 
 def piece_mask(corners: npt.NDArray[np.int64], tab_edges: npt.NDArray[np.int64], options: DrawingOptions,
                pitch: float) -> tuple[npt.NDArray[np.bool_], tuple[int, int]]:
     """A piece (its corners in cells, as it lies) as the packer sees it: its raster mask of faces and tab
     bands, and the step of the mask's (0, 0) from the piece's lowest cell corner."""
-    k = max(2, int(round(pitch / _STEP_MM)))
-    depth = int(math.ceil(tab_depth(options, pitch) / (pitch / k) - 1e-9))
-    shape = _shape(corners, tab_edges, k, depth)
+    p = paper(options, pitch)
+    shape = _shape(corners, tab_edges, p.per_cell, p.tab_steps)
     return shape.mask, shape.start
 
 
@@ -510,8 +571,8 @@ def dilated(mask: npt.NDArray[np.bool_], r: int) -> npt.NDArray[np.bool_]:
     return _dilated(mask, r)
 
 
-#: The last packings made, by their pieces, tabs and options: a cut chosen by how it packs
-#: (:func:`voxfab.fabricate.netdraw._fit._cut_pieces`) is drawn on the same packing, not packed again.
+#: The last packings made, by their pieces, tabs and options: pieces laid out for the studio's
+#: gallery, or measured by :func:`._drawing.sheets_needed`, are drawn on the same packing, not packed again.
 _PACKED: dict[bytes, tuple[SheetPlan, list[npt.NDArray[np.int64]]]] = {}
 _PACKED_KEPT = 4
 _PACKED_LOCK = threading.Lock()  # studio jobs pack on worker threads
@@ -540,8 +601,9 @@ def pack_pieces(pieces: list[npt.NDArray[np.int64]], options: DrawingOptions,
     first, each on the first sheet that takes it, turned by the quarter turn
     and moved to the spot whose top is lowest (then whose right is leftmost),
     with :data:`_CLEARANCE_MM` of paper kept free round every other piece.
-    Two orders (by faces, by paper) and two rules (most touch, lowest top) are
-    tried, and the packing on the fewest sheets kept.  So
+    Three orders (by faces, by paper, by bounding box) and two rules (most
+    touch, lowest top) are tried, and the packing on the fewest sheets kept
+    (the bounding box order saves the pawn a sheet on A4).  So
     tabs of two pieces interleave in the gap between them, and a piece fills a
     notch of another.  A piece that meets no spot even on an empty sheet (its
     tabs need a step more than the room) goes on a sheet of its own, centred.
@@ -582,21 +644,22 @@ def _pack_pieces(pieces: list[npt.NDArray[np.int64]], options: DrawingOptions,
             raise fit_error(e, options, pitch, what="a piece")
     if tab_edges is None:
         tab_edges = [np.zeros((0, 2), dtype=np.int64) for _ in pieces]
-    step, clear, raster = raster_of(options, pitch)
-    k = int(round(pitch / step))
-    depth = int(math.ceil(tab_depth(options, pitch) / step - 1e-9))
-    x0, y0, x1, y1 = drawable_area(options)
+    sheet = paper(options, pitch)
+    step, clear, raster = sheet.step, sheet.clear, sheet.raster
+    x0, y0, x1, y1 = sheet.area
     # A quarter turn keeps each face's corner order, so the tab edges stay the same pairs.
-    shapes = [[_Spectra(_shape(_quarter_turns(c, t), tab_edges[i], k, depth), raster) for t in range(4)]
+    shapes = [[_Spectra(_shape(_quarter_turns(c, t), tab_edges[i], sheet.per_cell, sheet.tab_steps), raster)
+               for t in range(4)]
               for i, c in enumerate(pieces)]
     area = [sh[0].size for sh in shapes]
+    box = [sh[0].shape.mask.shape[0] * sh[0].shape.mask.shape[1] for sh in shapes]
     least = math.ceil(sum(area) / (raster[0] * raster[1]))
     where: dict[int, tuple[int, npt.NDArray[np.int64], npt.NDArray[np.float64]]] = {}
     count = 0
     # Orders and rules tried in turn, the fewest sheets kept (the first on a tie); a packing on as
     # few sheets as the paper needs ends the tries.
     for touch in (True, False):
-        for by in (lambda i: (-pieces[i].shape[0], i), lambda i: (-area[i], i)):
+        for by in (lambda i: (-pieces[i].shape[0], i), lambda i: (-area[i], i), lambda i: (-box[i], i)):
             n, spots = _pack_once(shapes, sorted(range(len(pieces)), key=by), raster, clear, touch)
             if not where or n < count:
                 count, where = n, spots
