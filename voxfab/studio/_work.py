@@ -119,7 +119,7 @@ def warm_kernels_here() -> None:
 
 def warm_gallery_here() -> None:
     """A small gallery in pieces, laid out as the page gets it: the imports and kernels of cutting,
-    packing and the page's JSON (scipy's signal package alone takes seconds) are loaded before the
+    packing and the page's JSON (seconds of imports on a first call) are loaded before the
     artist's first gallery, whose first net should be on screen within seconds."""
     from voxfab.fabricate import netdraw
     from voxfab.fabricate.netdraw._gallery import gallery_item_json
