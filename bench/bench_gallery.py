@@ -52,6 +52,10 @@ def main() -> None:
 
     grid = make_shape(load_recipe(ROOT / "recipes" / "chess" / "queen.toml")).grid
     unfold(grid, rng=0, timeout=300)  # compile or load the kernels: not part of a gallery
+    if args.pieces == "auto":  # and the packer's, as the studio does at start
+        from voxfab.studio._work import warm_gallery_here
+
+        warm_gallery_here()
     net, drawing = netdraw.gallery_options({"sheet": args.sheet, "pieces": args.pieces},
                                            defaults={"timeout": 5.0, "budget": 180.0})
     rows = []

@@ -172,7 +172,7 @@ def test_a_waiting_job_shows_its_place_and_cancel_stops_it(server, browser):
     open_page(browser, server)
     _settled(browser, "first preview")
     queen = make_shape(load_recipe(ROOT / "recipes" / "chess" / "queen.toml")).grid
-    body = {"grid": pack(queen), "count": 12, "options": {"timeout": 30.0}}
+    body = {"grid": pack(queen), "count": 12, "options": {"timeout": 30.0, "sheet": "A4", "pieces": "auto"}}
     busy = [_post(f"{server['url']}/api/nets", dict(body, seed=s))["job"] for s in range(2)]
     try:
         tab(browser, "net")

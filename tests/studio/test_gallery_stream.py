@@ -141,10 +141,12 @@ def test_the_packer_sees_the_cancel_scope(queen):
     _, options = gallery_options({"sheet": "A4", "face_size": 8.6})
     pieces = unfold(queen, rng=0, fit=sheet_cells(options, 8.6), pieces="flat", timeout=60)
     graph = surface_graph(queen)
-    assert sheet_plan(graph, pieces, options).count >= 2
+    assert len(pieces) > 1
     stop = threading.Event()
     stop.set()
     t0 = time.monotonic()
     with cancel_scope(stop), pytest.raises(CancelledError):
         sheet_plan(graph, pieces, options)
     assert time.monotonic() - t0 < 1.0
+    # Packed first here, outside the scope (the packer keeps a packing it has made, never a cancelled one).
+    assert sheet_plan(graph, pieces, options).count >= 2

@@ -38,7 +38,7 @@ def test_ctrl_c_stops_the_server_within_two_seconds_while_nets_are_searched(tmp_
     queen = make_shape(load_recipe(QUEEN)).grid
     proc, url = start_studio(tmp_path)
     try:
-        body = {"grid": pack(queen), "count": 12, "options": {"timeout": 30.0}}
+        body = {"grid": pack(queen), "count": 12, "options": {"timeout": 30.0, "sheet": "A4", "pieces": "auto"}}
         ids = [_post(f"{url}/api/nets", dict(body, seed=s))["job"] for s in range(3)]
         end = time.monotonic() + 120
         while _get(f"{url}/api/jobs/{ids[0]}")["done"] < 1 and time.monotonic() < end:

@@ -74,9 +74,10 @@ def net_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, net: Any, 
     job.data["grid"] = grid  # for /api/nets/edit
     job.data["nets"] = []
 
+    # The page shows "WHAT (done of total)": the words say what the count counts.
     def searching(done: int, total: int) -> None:
         if done > len(job.items):  # nets found, not yet laid out (one-piece nets are laid out once all are found)
-            job.step(done, total, f"{done} of {total} nets found")
+            job.step(done, total, "nets found")
 
     def made(index: int, item: Any) -> None:
         filled = item.pieces[0].filled
@@ -86,7 +87,7 @@ def net_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, net: Any, 
         job.data["options"] = (net, drawing.replace(pitch=item.fit["face_size"]))
         job.data["nets"].append(item.pieces)
         job.items.append(shown)  # last: the page may ask for this net once it sees it
-        job.step(index + 1, count, f"{index + 1} of {count} nets made")
+        job.step(index + 1, count, "nets made and shown")
 
     job.step(0, count, "searching nets")
     gallery = netdraw.net_gallery(grid, net, drawing, count=count, seed=seed, constraints=constraints,
@@ -96,7 +97,7 @@ def net_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, net: Any, 
         best = gallery.nets[0].fit
         raise NoNetFitsError(best["message"], list(best.get("ways_out", [])))
     job.data["options"] = (net, gallery.options)
-    job.step(len(gallery.nets), len(gallery.nets), f"{len(gallery.nets)} nets made")
+    job.step(len(gallery.nets), len(gallery.nets), "nets made and shown")
     job.result = netdraw.gallery_json(gallery, grid, nets=list(job.items))
 
 
@@ -118,7 +119,7 @@ def warm_kernels_here() -> None:
 
 def warm_gallery_here() -> None:
     """A small gallery in pieces, laid out as the page gets it: the imports and kernels of cutting,
-    packing and the page's JSON (scipy's signal package alone takes seconds) are loaded before the
+    packing and the page's JSON (seconds of imports on a first call) are loaded before the
     artist's first gallery, whose first net should be on screen within seconds."""
     from voxfab.fabricate import netdraw
     from voxfab.fabricate.netdraw._gallery import gallery_item_json

@@ -234,3 +234,25 @@ def test_an_empty_face_size_is_the_largest_at_which_one_piece_fits() -> None:
         net_gallery(grid, net, drawing, count=3, seed=0)
     ways = [w["options"] for w in err.value.ways_out]
     assert {"numbers": False, "tabs": False} in ways and any(w.get("pieces") == "auto" for w in ways)
+
+
+@pytest.mark.parametrize(("sheet", "words"), [("30x30", "no room for one 8.6 mm face with its tabs"),
+                                              ("50x50", "too small for a net in pieces")])
+def test_a_gallery_in_pieces_refuses_a_sheet_in_the_clis_words(tmp_path, sheet, words):
+    """No room for one face with its tabs, or a sheet hopeless for pieces: the gallery in pieces (which cuts
+    its own nets, seed by seed) refuses it before any search, in the words of `voxfab net --pieces auto`."""
+    import subprocess
+    import sys
+
+    from voxfab.errors import VoxfabError
+
+    queen = _queen()
+    net, drawing = gallery_options({"sheet": sheet, "face_size": 8.6, "pieces": "auto"})
+    with pytest.raises(VoxfabError) as refused:
+        net_gallery(queen, net, drawing, count=3, seed=0)
+    assert words in str(refused.value) and str(refused.value).startswith("sheet")
+    np.save(tmp_path / "queen.npy", queen)
+    cli = subprocess.run([sys.executable, "-m", "voxfab", "net", "queen.npy", "--sheet", sheet, "--face-size", "8.6",
+                          "--pieces", "auto", "-o", "q.svg"], capture_output=True, text=True, cwd=tmp_path, timeout=300)
+    assert cli.returncode != 0 and str(refused.value) in cli.stderr and "Traceback" not in cli.stderr
+    assert not (tmp_path / "q.svg").exists()

@@ -169,14 +169,7 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     if options.pitch is None:
         options, auto_notes = _auto_face_size(grid, options, rng=rng, pieces=pieces, chars=chars, search=search)
         notes += auto_notes
-    _check_legible(options, chars)
-    fit = sheet_cells(options, float(options.pitch))
-    if min(fit) < 1:
-        raise InvalidShapeError(f"sheet: {options.sheet} has no room for one {options.pitch:g} mm face with its tabs")
-    # Tiny faces make the sheet millions of faces wide: a box wider than the search takes bounds no net.
-    from voxfab.unfold._search import MAX_FIT_SIDE
-
-    fit = (min(fit[0], MAX_FIT_SIDE), min(fit[1], MAX_FIT_SIDE))
+    fit = sheet_room(options, faces, pieces)
     # A surface larger than the sheet has no one-piece net on it: no search can find one.
     room = faces <= fit[0] * fit[1]
     if pieces == "auto" and not room:
@@ -206,6 +199,20 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     if count > 1 and len(found) < count:
         notes.append(f"{len(found)} distinct nets found of the {count} asked for")
     return SheetNets([[n] for n in found], options, notes)
+
+
+def sheet_room(options: DrawingOptions, faces: int, pieces: str) -> tuple[int, int]:
+    """The sheet's cells at the face size of ``options`` for a surface of ``faces`` faces, once its marks are
+    legible and a face fits: the checks before any search, shared by :func:`find_sheet_nets` and the
+    studio's gallery in pieces (:func:`._gallery.net_gallery`), so both refuse a sheet in the same words."""
+    _check_legible(options, label_chars(faces, pieces))
+    fit = sheet_cells(options, float(options.pitch))
+    if min(fit) < 1:
+        raise InvalidShapeError(f"sheet: {options.sheet} has no room for one {options.pitch:g} mm face with its tabs")
+    # Tiny faces make the sheet millions of faces wide: a box wider than the search takes bounds no net.
+    from voxfab.unfold._search import MAX_FIT_SIDE
+
+    return min(fit[0], MAX_FIT_SIDE), min(fit[1], MAX_FIT_SIDE)
 
 
 def _nets(grid: Any, count: int, rng: int, budget: float, progress: Callable[[int, int], None] | None,

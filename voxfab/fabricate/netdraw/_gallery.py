@@ -205,22 +205,23 @@ def net_gallery(grid: Any, net: NetOptions, drawing: DrawingOptions, *, count: i
 def _one_piece_room(grid: Any, net: NetOptions, options: DrawingOptions) -> bool:
     """Whether the sheet has a cell for every face (else no one-piece net fits: the gallery is of pieces).
 
-    Checks the marks and the sheet as :func:`._fit.find_sheet_nets` does, before any search.
+    The sheet is checked as :func:`._fit.find_sheet_nets` checks it before any search
+    (:func:`._fit.sheet_room`), and a sheet hopeless for pieces is refused in the same words
+    (:func:`._sheets.check_pieces_sheet`).
     """
-    from ._fit import _check_legible, _surface_faces, label_chars
+    from ._fit import _surface_faces, label_chars, sheet_room
     from ._legible import smallest_face_size
-    from ._sheets import check_pieces_sheet, sheet_cells
+    from ._sheets import check_pieces_sheet
 
     faces = _surface_faces(grid, net.fill)
-    chars = label_chars(faces, net.pieces)
-    _check_legible(options, chars)
-    fit = sheet_cells(options, float(options.pitch))
-    if min(fit) < 1:
-        raise InvalidShapeError(f"sheet: {options.sheet} has no room for one {options.pitch:g} mm face with its tabs")
-    room = faces <= fit[0] * fit[1]
-    if not room and net.pieces == "auto":  # a hopeless sheet, refused as voxfab net refuses it
-        check_pieces_sheet(faces, options, float(options.pitch), smallest_face_size(options, chars))
-    return room
+    fit = sheet_room(options, faces, net.pieces)
+    if faces <= fit[0] * fit[1]:
+        return True
+    if net.pieces != "auto":  # one piece asked for: the search refuses the sheet in its own words
+        return False
+    smallest = smallest_face_size(options, label_chars(faces, net.pieces))
+    check_pieces_sheet(faces, options, float(options.pitch), smallest)
+    return False
 
 
 #: The two ways to cut a net in pieces (:func:`voxfab.unfold.unfold`'s ``pieces``): flat patches, few large pieces.
