@@ -149,7 +149,8 @@ def main() -> None:
         print(f"unfilled checkerboard with all {r['bridges']} contacts bridged: {r['seconds'] * 1000:.0f} ms")
     if "shell256" in results:
         r = results["shell256"]
-        print(f"256³ shell: {r['seconds']:.2f} s, {r['peak_rss_mb']:.0f} MB peak (goals < 5 s, < 2048 MB)")
+        side = "40³" if smoke else "256³"
+        print(f"{side} shell: {r['seconds']:.2f} s, {r['peak_rss_mb']:.0f} MB peak (goals < 5 s, < 2048 MB)")
     if "noise256" in results:
         r = results["noise256"]
         print(f"256³ noise: refused in {r['seconds']:.2f} s at {r['peak_rss_mb']:.0f} MB peak")
