@@ -19,8 +19,7 @@ import numpy as np
 import pytest
 from _net_sheets import pieces_of, queen, read_pieces
 
-from voxfab.fabricate.netdraw import DrawingOptions, NetOptions, fabricate_net
-from voxfab.shape import VoxelShape, examples, fill_cavities
+from voxfab.shape import examples, fill_cavities
 
 
 def _entities(path: Path):
@@ -51,15 +50,13 @@ CASES = [
 
 
 @pytest.mark.parametrize(("name", "make", "face", "sheet", "over"), CASES, ids=[c[0] for c in CASES])
-def test_dense_pages_read_back_from_the_files(tmp_path: Path, name, make, face, sheet, over) -> None:
+def test_dense_pages_read_back_from_the_files(sheet_net, name, make, face, sheet, over) -> None:
 
     grid = fill_cavities(make())
-    drawing = DrawingOptions(pitch=face, sheet=sheet, label_height=2.0)
-    made = fabricate_net(VoxelShape(grid), NetOptions(face_size=face, pieces="auto", fill=True, formats=("dxf",)),
-                         drawing, tmp_path, name=name, seed=1)
-    pieces = read_pieces(tmp_path, grid)
+    folder, made, drawing = sheet_net(name, grid, face, sheet)
+    pieces = read_pieces(folder, grid)
     faces = sum(p.face_count for p in pieces)
-    sheets = sorted(tmp_path.glob("net.sheet-*.dxf"))
+    sheets = sorted(folder.glob("net.sheet-*.dxf"))
     assert len(sheets) == made.report["sheets"]
     w, h = drawing.sheet_size
     m = drawing.margin

@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 from _net_sheets import pieces_of, queen, read_pieces
 
-from voxfab.fabricate.netdraw import DrawingOptions, NetOptions, fabricate_net
-from voxfab.shape import VoxelShape, examples
+from voxfab.fabricate.netdraw import DrawingOptions
+from voxfab.shape import examples
 
 
 def _rings(path: Path) -> list[np.ndarray]:
@@ -32,17 +32,14 @@ CASES = [
 
 
 @pytest.mark.parametrize(("name", "make", "face", "sheet"), CASES, ids=[c[0] for c in CASES])
-def test_pieces_on_sheets_read_back_from_the_files(tmp_path: Path, name, make, face, sheet) -> None:
+def test_pieces_on_sheets_read_back_from_the_files(sheet_net, name, make, face, sheet) -> None:
 
     grid = make()
-    drawing = DrawingOptions(pitch=face, sheet=sheet, label_height=2.0)
-    made = fabricate_net(VoxelShape(grid), NetOptions(face_size=face, pieces="auto", fill=True,
-                                                        formats=("dxf", "pdf")),
-                         drawing, tmp_path, name=name, seed=1)
-    pieces = read_pieces(tmp_path, grid)
+    folder, made, drawing = sheet_net(name, grid, face, sheet)
+    pieces = read_pieces(folder, grid)
     faces = sum(p.face_count for p in pieces)
     # Each sheet: one closed outline per piece on it, none meeting another, all inside the margin.
-    sheets = sorted(tmp_path.glob("net.sheet-*.dxf"))
+    sheets = sorted(folder.glob("net.sheet-*.dxf"))
     assert len(sheets) == made.report["sheets"]
     w, h = drawing.sheet_size
     m = drawing.margin
@@ -60,7 +57,7 @@ def test_pieces_on_sheets_read_back_from_the_files(tmp_path: Path, name, make, f
     marked = [int(line.split()[0]) for line in made.warnings if "without room for a tab" in line]
     assert sum(marked) <= 0.01 * faces
     # The PDF: an assembly page, then the sheets.
-    assert (tmp_path / "net.pdf").read_bytes().count(b"/Type /Page ") == len(sheets) + 1
+    assert (folder / "net.pdf").read_bytes().count(b"/Type /Page ") == len(sheets) + 1
 
 
 def test_quarter_turns_pack_two_pieces_on_one_sheet() -> None:
