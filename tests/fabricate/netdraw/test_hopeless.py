@@ -33,14 +33,14 @@ def no_search(monkeypatch):
     monkeypatch.setattr(voxfab.unfold, "unfold_many", searched)
 
 
-def test_a_60_mm_sheet_is_refused_before_any_search_with_a_larger_sheet(grid, no_search) -> None:
-    opts = DrawingOptions(pitch=8.6, sheet="60x60", label_height=2.0)
+def test_a_55_mm_sheet_is_refused_before_any_search_with_a_larger_sheet(grid, no_search) -> None:
+    opts = DrawingOptions(pitch=8.6, sheet="55x55", label_height=2.0)
     with pytest.raises(HopelessSheetError) as info:
         find_sheet_nets(grid, opts, rng=0, pieces="auto")
     err = info.value
     faces = surface_graph(grid).face_count
     assert pieces_sheets_at_least(faces, opts, 8.6) > PIECES_MOST_SHEETS
-    assert "60x60" in str(err) and f"more than {PIECES_MOST_SHEETS}" in str(err)
+    assert "55x55" in str(err) and f"more than {PIECES_MOST_SHEETS}" in str(err)
     # The ways out: a larger sheet that works (never "split into pieces": it is split already).
     assert all("pieces" not in w["options"] for w in err.ways_out)
     sheets = [w["options"]["sheet"] for w in err.ways_out if "sheet" in w["options"]]
@@ -57,7 +57,7 @@ def test_a_sheet_one_face_wide_is_refused(grid, no_search) -> None:
 
 def test_smaller_faces_are_offered_when_they_work(grid) -> None:
     faces = surface_graph(grid).face_count
-    opts = DrawingOptions(pitch=8.6, sheet="64x64", label_height=2.0, min_label_height=1.5)
+    opts = DrawingOptions(pitch=8.6, sheet="58x58", label_height=2.0, min_label_height=1.5)
     with pytest.raises(HopelessSheetError) as info:
         check_pieces_sheet(faces, opts, 8.6, 5.0)
     best = info.value.largest_face_size
