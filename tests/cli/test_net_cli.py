@@ -171,7 +171,7 @@ def test_hopeless_sheets_for_pieces_are_refused_in_one_line_with_the_library_wor
 
     grid = _recipe_grid("chess/queen")
     np.save(tmp_path / "queen.npy", grid)
-    for sheet in ("60x60", "40x297"):
+    for sheet in ("55x55", "40x297"):
         r = _run("queen.npy", "--pieces", "auto", "--sheet", sheet, "--face-size", "8.6", "-o", "q.pdf",
                  cwd=tmp_path)
         assert r.returncode != 0 and "Traceback" not in r.stderr

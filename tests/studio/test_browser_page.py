@@ -13,6 +13,7 @@ import re
 
 import numpy as np
 import pytest
+from _dxf_read import entity_points
 
 from ._helpers import SHOTS
 from .conftest import start_studio, stop_studio
@@ -308,14 +309,10 @@ def _dxf_fold_lengths(raw: bytes) -> np.ndarray:
     for e in doc.modelspace():
         if e.dxf.layer not in ("MOUNTAIN", "VALLEY"):
             continue
-        if e.dxftype() == "LINE":
-            pts = [tuple(e.dxf.start)[:2], tuple(e.dxf.end)[:2]]
-        elif e.dxftype() == "POLYLINE":
-            pts = [tuple(v.dxf.location)[:2] for v in e.vertices]
-            if e.is_closed:
-                pts.append(pts[0])
-        else:
+        got = entity_points(e)  # LINE, POLYLINE (R12) or LWPOLYLINE (R2000, the default)
+        if got is None:
             continue
+        pts = [tuple(p) for p in got[0]] + ([tuple(got[0][0])] if got[1] else [])
         out += [float(np.hypot(b[0] - a[0], b[1] - a[1])) for a, b in zip(pts, pts[1:])]
     return np.array([d for d in out if d > 1e-6])
 

@@ -125,3 +125,51 @@ def test_every_shipped_recipe_mesh_passes_prusa_slicer(tmp_path, recipe):
     info = _info(mesh_file)
     assert info["manifold"] == "yes"
     assert info["number_of_parts"] == "1"
+
+
+def _ziggurat() -> np.ndarray:
+    """Square layers, each one voxel in from the layer below: no voxel stands over air."""
+    g = np.zeros((11, 11, 6), bool)
+    for k in range(6):
+        g[k:11 - k, k:11 - k, k] = True
+    return g
+
+
+@needs_prusa
+@pytest.mark.parametrize("name", ["spinning_top", "chess/queen", "chess/knight", "ziggurat"])
+def test_mesh_json_says_what_prusa_slicer_supports(tmp_path, name):
+    """mesh.json's support figures against PrusaSlicer with automatic supports: the top, the queen and the
+    knight get support under their voxel ledges, as mesh.json says; a ziggurat gets none, as it says too."""
+    import json
+    from pathlib import Path
+
+    from voxfab.fabricate.mesh import MeshOptions, estimate_line, fabricate_mesh
+    from voxfab.recipe import load_recipe, make_shape
+    from voxfab.shape import VoxelShape
+
+    if name == "ziggurat":
+        shape = VoxelShape(_ziggurat(), 4.0)
+    else:
+        shape = make_shape(load_recipe(Path(__file__).resolve().parents[3] / "recipes" / f"{name}.toml"))
+    made = fabricate_mesh(shape, MeshOptions(), tmp_path / "mesh.3mf", name="x", report_path=tmp_path / "mesh.json")
+    report = json.loads((tmp_path / "mesh.json").read_text())
+    grams = {}
+    for supports in (False, True):
+        gcode = tmp_path / f"s{supports}.gcode"
+        args = [PRUSA, "--export-gcode", str(tmp_path / made.files[0].path), "--bed-shape", "0x0,220x0,220x220,0x220",
+                "--max-print-height", "250", "--filament-density", "1.24", "--output", str(gcode)]
+        run = subprocess.run(args + (["--support-material", "--support-material-auto"] if supports else []),
+                             capture_output=True, text=True, timeout=600)
+        assert run.returncode == 0, run.stderr[-2000:]
+        text = gcode.read_text()
+        grams[supports] = float(re.search(r"^; filament used \[g\] = ([0-9.]+)", text, re.M).group(1))
+        if supports:
+            supported = ";TYPE:Support material" in text
+    needs = report["support_lowest_mm"] is not None
+    assert needs == (name != "ziggurat") == supported, (report["support_area_mm2"], supported)
+    assert (grams[True] > grams[False] + 0.5) == needs, grams
+    assert ("needs support under" in estimate_line(report)) == needs
+    if needs:
+        assert report["support_area_mm2"] > 0 and report["support_lowest_mm"] >= shape.pitch - 1e-6
+    else:
+        assert report["support_area_mm2"] == 0

@@ -41,6 +41,7 @@ from ._mass import (
     estimate_print,
     format_duration,
     mass_properties,
+    overhang_area,
     spin_report,
 )
 from ._options import MeshOptions
@@ -71,6 +72,7 @@ __all__ = [
     "estimate_print",
     "format_duration",
     "mass_properties",
+    "overhang_area",
     "spin_report",
     "find_contacts",
     "format_for",
@@ -107,6 +109,7 @@ def report_dict(result: MeshResult, *, name: str, infill: float = DEFAULT_INFILL
     density = estimate.mass_g / props.volume  # g/mm³, averaged over walls and infill
     moments, axes = np.linalg.eigh(props.inertia * density)
     warnings = list(result.warnings)
+    ledges, lowest = overhang_area(result.mesh)
     figures: dict[str, object] = {
         "center_of_mass_mm": _rounded(props.center),
         "inertia_tensor_g_mm2": _rounded(props.inertia * density),
@@ -118,6 +121,9 @@ def report_dict(result: MeshResult, *, name: str, infill: float = DEFAULT_INFILL
         "mass_g": round(estimate.mass_g, 9),
         "print_time_s": round(estimate.time_s),
         "print_time": format_duration(estimate.time_s),
+        # voxel steps are horizontal ledges: what a slicer's automatic supports go under
+        "support_area_mm2": round(ledges, 6),
+        "support_lowest_mm": None if lowest is None else round(lowest, 6),
     }
     if spin:
         top = spin_report(result.mesh, props, pitch=result.pitch)
@@ -155,6 +161,11 @@ def estimate_line(report: dict[str, object]) -> str:
     size = " x ".join(f"{s:g}" for s in report["size_mm"])  # type: ignore[attr-defined]
     line = (f"{size} mm, {report['mass_g']:.1f} g of PLA at {report['infill_percent']:g} % infill, "
             f"about {report['print_time']}")
+    if report.get("support_lowest_mm") is not None:
+        line += (f"; needs support under {report['support_area_mm2']:.0f} mm² of voxel ledges (the lowest "
+                 f"{report['support_lowest_mm']:g} mm up)")
+    else:
+        line += "; no support needed (every layer stands on the one below)"
     spin = report.get("spin")
     if isinstance(spin, dict):
         verdict = "spins" if spin["spins"] else "wobbles"

@@ -125,6 +125,28 @@ def surface_areas(mesh: MeshData) -> tuple[float, float]:
     return float(area[flat].sum()), float(area[~flat].sum())
 
 
+def overhang_area(mesh: MeshData) -> tuple[float, float | None]:
+    """Downward faces above the bed that a slicer supports, mm², and the height of the lowest, mm (None: none).
+
+    A face overhangs when it leans more than 45° from vertical towards the bed and
+    is not on the bed itself.  A voxel print's only such faces are the horizontal
+    ledges under each voxel step, so a shape needs no support exactly when every
+    layer stands within the layer below it.
+    """
+    v = np.asarray(mesh.vertices, dtype=np.float64)
+    t = np.asarray(mesh.triangles, dtype=np.int64)
+    if not len(t):
+        return 0.0, None
+    n = np.cross(v[t[:, 1]] - v[t[:, 0]], v[t[:, 2]] - v[t[:, 0]])
+    length = np.linalg.norm(n, axis=1)
+    low = v[t][:, :, 2].min(axis=1)
+    bed = float(v[:, 2].min())
+    down = (-n[:, 2] * np.sqrt(2.0) > length) & (low > bed + 1e-6)
+    if not down.any():
+        return 0.0, None
+    return float(length[down].sum() / 2.0), float(low[down].min() - bed)
+
+
 @dataclasses.dataclass(frozen=True)
 class PrintEstimate:
     """Filament and time a print takes under a :class:`PrintProfile`.

@@ -21,6 +21,11 @@ _HEIGHTS = (0.6, 0.45, 0.32, 0.22)
 MIN_HEIGHT = 0.8
 
 
+def full_height(pitch: float) -> float:
+    """The height a label is engraved at when its plate has room: the largest tried."""
+    return max(MIN_HEIGHT, _HEIGHTS[0] * pitch)
+
+
 def text_size(text: str, height: float) -> tuple[float, float]:
     """Width and height in mm of ``text`` drawn ``height`` mm tall."""
     return text_width(text, height), height
@@ -135,7 +140,8 @@ def _fit(
     return None
 
 
-def place_label(text: str, plate: object, hidden_region: object, *, pitch: float, clearance: float) -> Label:
+def place_label(text: str, plate: object, hidden_region: object, *, pitch: float, clearance: float,
+                sizes: tuple[float, ...] | None = None, upright: bool = False, fallback: bool = True) -> Label | None:
     """Place ``text`` on ``plate``, inside ``hidden_region`` when it fits.
 
     Parameters
@@ -150,16 +156,23 @@ def place_label(text: str, plate: object, hidden_region: object, *, pitch: float
         Voxel pitch in mm; label sizes scale with it.
     clearance : float
         Distance in mm kept between the label and any edge of its region.
+    sizes : tuple of float, optional
+        Heights in mm to try, largest first (default: fractions of the pitch).
+    upright : bool
+        Only horizontal text, never turned.
+    fallback : bool
+        When nothing fits: the smallest size clipped to the plate (True), or None.
 
     Returns
     -------
-    Label
+    Label or None
         Horizontal when it fits, else turned 90° counter-clockwise.
     """
     from shapely.ops import polylabel
 
-    heights = [max(MIN_HEIGHT, f * pitch) for f in _HEIGHTS]
-    heights = sorted(set(heights), reverse=True)
+    heights = sorted(set(sizes if sizes is not None else [full_height(pitch)] + [max(MIN_HEIGHT, f * pitch)
+                                                                                 for f in _HEIGHTS[1:]]),
+                     reverse=True)
     tight = min(clearance, 0.1)
     passes = ((hidden_region, True, clearance), (hidden_region, True, tight), (plate, False, clearance), (plate, False, tight))
     for region, hidden, clear in passes:
@@ -177,10 +190,12 @@ def place_label(text: str, plate: object, hidden_region: object, *, pitch: float
                 continue
             # a coarse lattice first; a fine one only where the coarse one found no room
             for step in (max(0.1, 0.125 * pitch), max(0.025, 0.03 * pitch)):
-                for turned, (bw, bh) in ((False, (w, h)), (True, (h, w))):
+                for turned, (bw, bh) in ((False, (w, h)),) + (() if upright else ((True, (h, w)),)):
                     at = _fit(inner, core, bw, bh, step, pole)
                     if at is not None:
                         return Label(text, _render(text, h, at, turned), h, hidden, origin=at, turned=turned)
+    if not fallback:
+        return None
     # Nothing fits: smallest size centred on the plate's pole, clipped to the
     # plate so that no stroke can reach a neighbouring part on the sheet.
     import shapely

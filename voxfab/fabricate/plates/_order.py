@@ -17,7 +17,7 @@ from voxfab.drawing import Drawing, Fill, Page, Polylines, text_polylines, text_
 
 from ._slotted import Construction
 
-__all__ = ["construction_drawing", "construction_pdf", "write_construction_pdf"]
+__all__ = ["construction_drawing", "construction_pdf", "plan_label_boxes", "write_construction_pdf"]
 
 PAGE = (210.0, 297.0)
 MARGIN = 10.0
@@ -55,6 +55,47 @@ def _view_axis(construction: Construction) -> int:
     return int(np.argmin(normals.max(axis=0)))
 
 
+#: Height of the plate labels in the plan, mm.
+PLAN_LABEL = 2.2
+
+
+def plan_label_boxes(rings: list[np.ndarray], texts: list[str], *, height: float = PLAN_LABEL,
+                     page: tuple[float, float] = PAGE) -> list[tuple[float, float, float, float]]:
+    """Where each bar's label goes in the plan: ``(x0, y0, x1, y1)`` of its text, no two overlapping.
+
+    Tried in order: beyond the bar's far end (up and to the right), beyond its near
+    end, then above, below, left and right of the bar; the first spot clear of every
+    bar and of the labels already placed wins, on the page.  Only when none is clear
+    does the label take the spot nearest its bar that overlaps no other label.
+    """
+    import shapely
+
+    bars = [shapely.Polygon(r) for r in rings]
+    placed: list[object] = []
+    out = []
+    direction = np.array([1.0, 0.37])
+    for ring, text, bar in zip(rings, texts, bars):
+        w = text_width(text, height)
+        far, near = ring[np.argmax(ring @ direction)], ring[np.argmin(ring @ direction)]
+        x0, y0, x1, y1 = bar.bounds
+        cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
+        spots = [(far[0] + 1.0, far[1] + 1.0), (near[0] - 1.0 - w, near[1] - 1.0 - height),
+                 (cx - w / 2, y1 + 1.0), (cx - w / 2, y0 - 1.0 - height),
+                 (x0 - 1.0 - w, cy - height / 2), (x1 + 1.0, cy - height / 2)]
+        # then a ring of spots around the bar, further out each round
+        spots += [(cx + r * np.cos(a) - w / 2, cy + r * np.sin(a) - height / 2)
+                  for r in np.arange(1.0, 6.0) * (max(x1 - x0, y1 - y0) / 2 + height)
+                  for a in np.linspace(0, 2 * np.pi, 16, endpoint=False)]
+        boxes = [shapely.box(x, y, x + w, y + height) for x, y in spots]
+        on_page = [b for b in boxes if b.bounds[0] >= 0 and b.bounds[1] >= 0 and b.bounds[2] <= page[0]
+                   and b.bounds[3] <= page[1]] or boxes
+        clear = [b for b in on_page if not any(b.intersects(o) for o in placed)]
+        best = next((b for b in clear if not any(b.intersects(o) for o in bars)), clear[0] if clear else on_page[0])
+        placed.append(best.buffer(0.3, join_style="mitre"))
+        out.append(tuple(float(v) for v in best.bounds))
+    return out
+
+
 def construction_drawing(construction: Construction, *, title: str = "") -> Drawing:
     """One A4 page: heading, plan view of the plates with their labels, and the numbered steps."""
     import shapely
@@ -87,12 +128,12 @@ def construction_drawing(construction: Construction, *, title: str = "") -> Draw
     k = float(np.min(room / size))
     shift = np.array([MARGIN, MARGIN + 6.0]) + (room - size * k) / 2 - lo * k
     rings: dict[str, list[np.ndarray]] = {}
-    for p, bar in zip(construction.plates, bars):
-        ring = np.asarray(bar.exterior.coords)[:-1] * k + shift
+    placed = [np.asarray(bar.exterior.coords)[:-1] * k + shift for bar in bars]
+    texts = [p.label.text for p in construction.plates]
+    for p, ring, box in zip(construction.plates, placed, plan_label_boxes(placed, texts)):
         rings.setdefault(p.family, []).append(ring)
-        # the label sits beyond the bar's far end, so every bar can be named
-        far = ring[np.argmax(ring @ np.array([1.0, 0.37]))]
-        _text(label, p.label.text, float(far[0]) + 1.0, float(far[1]) + 1.0, 2.2)
+        # every bar named, its label clear of the other bars and labels where the page has room
+        _text(label, p.label.text, box[0], box[1], PLAN_LABEL)
     cut = [r for fam in sorted(rings) for r in rings[fam]]
     fills = tuple(Fill(Polylines.from_list(rings[f], [True] * len(rings[f])), SHADES.get(f, "#dddddd"))
                   for f in sorted(rings))

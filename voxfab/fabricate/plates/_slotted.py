@@ -24,7 +24,7 @@ from voxfab._shared.validate import as_grid, check_positive
 from voxfab.errors import FabricationError, InvalidShapeError
 from voxfab.shape import crop
 
-from ._labels import place_label
+from ._labels import full_height, place_label
 from ._outline import cells_outline, label_layer, scaled
 from ._stack import Plate
 
@@ -525,15 +525,24 @@ def _finish(d: _Draft, number: int, style: str, thickness: float, pitch: float, 
     taken = shapely.union_all([shapely.box(*shapely.LineString(s).bounds).buffer(clearance) for s in strokes
                                if len(s) > 1]) if strokes else shapely.Polygon()
     clipped = 0
+    full = (full_height(pitch),)
     for s in slots:
-        # the partner's label beside the slot, nearest its end where the partner's edge meets this plate
+        # The partner's label, in parentheses so it never reads as this plate's own: beside the slot, at
+        # full size and the right way up; else elsewhere on the plate so; only then turned or smaller.
+        text = f"({s.partner})"
         near = s.box().buffer(2.0 * pitch, join_style="mitre")
         region = shapely.difference(shapely.intersection(d.body, near), taken)
-        if region.is_empty or region.area <= 0:
+        free = shapely.difference(d.body, taken)
+        mark = None
+        for where in (region, free):
+            if mark is None and not where.is_empty and where.area > 0:
+                mark = place_label(text, where, shapely.Polygon(), pitch=pitch, clearance=clearance,
+                                   sizes=full, upright=True, fallback=False)
+        if mark is None and not region.is_empty and region.area > 0:
+            mark = place_label(text, _single(region)[0], shapely.Polygon(), pitch=pitch, clearance=clearance)
+        if mark is None:
             clipped += 1  # no room at all: the slot goes unlabelled, and the report says so
             continue
-        # in parentheses, so a partner's label never reads as this plate's own
-        mark = place_label(f"({s.partner})", _single(region)[0], shapely.Polygon(), pitch=pitch, clearance=clearance)
         clipped += not mark.complete
         strokes.extend(mark.strokes)
         if mark.strokes:
