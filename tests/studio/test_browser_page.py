@@ -310,9 +310,13 @@ def _dxf_fold_lengths(raw: bytes) -> np.ndarray:
             continue
         if e.dxftype() == "LINE":
             pts = [tuple(e.dxf.start)[:2], tuple(e.dxf.end)[:2]]
-        elif e.dxftype() == "POLYLINE":
+        elif e.dxftype() == "POLYLINE":  # R12
             pts = [tuple(v.dxf.location)[:2] for v in e.vertices]
             if e.is_closed:
+                pts.append(pts[0])
+        elif e.dxftype() == "LWPOLYLINE":  # R2000 and later
+            pts = [(x, y) for x, y, *_ in e.get_points()]
+            if e.closed:
                 pts.append(pts[0])
         else:
             continue

@@ -21,8 +21,10 @@ def _label_strokes(path: str) -> list[np.ndarray]:
     for e in ezdxf.readfile(path).modelspace():
         if e.dxf.layer != "LABEL":
             continue
-        if e.dxftype() == "POLYLINE":
+        if e.dxftype() == "POLYLINE":  # R12
             out.append(np.array([tuple(v.dxf.location)[:2] for v in e.vertices]))
+        elif e.dxftype() == "LWPOLYLINE":  # R2000 and later
+            out.append(np.array([(x, y) for x, y, *_ in e.get_points()]))
         elif e.dxftype() == "LINE":
             out.append(np.array([tuple(e.dxf.start)[:2], tuple(e.dxf.end)[:2]]))
     return out
