@@ -100,7 +100,10 @@ def _generate(browser, *, refused=False):
     by_id(browser, "net-generate").click()
     if refused:
         return wait(browser, _ways_out, timeout=NET_WAIT, what="the refusal's ways out")
-    return wait(browser, _gallery_items, timeout=NET_WAIT, what="the gallery")
+    # the nets come one by one; the summary once the last is there
+    wait(browser, lambda d: d.find_element("id", "net-summary").get_attribute("data-found"), timeout=NET_WAIT,
+         what="the whole gallery")
+    return _gallery_items(browser)
 
 
 def _fits(caption):
@@ -126,8 +129,9 @@ def test_every_way_out_applies_all_its_options_and_succeeds(queen_studio, browse
         button.click()
         shown = _controls(browser)
         assert {k: shown[k] for k in options} == options, (label, shown)
-        items = wait(browser, lambda d: _gallery_items(d) or (not _ways_out(d) and None), timeout=NET_WAIT,
-                     what=f"the gallery after {label!r}")
+        wait(browser, lambda d: d.find_element("id", "net-summary").get_attribute("data-found") or _ways_out(d),
+             timeout=NET_WAIT, what=f"the gallery after {label!r}")
+        items = _gallery_items(browser)
         assert not _ways_out(browser), f"{label!r} was refused again"
         assert _fits(items[0].text), (label, items[0].text)
         browser.save_screenshot(str(SHOTS / f"page-way-out-{n + 1}.png"))

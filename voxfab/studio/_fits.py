@@ -79,4 +79,4 @@ def _answer(job: Any, grid: Any, *, net: Any, drawing: Any) -> None:
         item = net_item(grid, fit.net, None, history=0, extra={}, drawing=drawing)
         result["net"] = {**item, "extent": [x1 - x0, y1 - y0]}
     job.result = result
-    job.step(1, 1, fit.message)
+    job.step(1, 1, said["text"])

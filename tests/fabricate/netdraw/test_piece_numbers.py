@@ -38,7 +38,7 @@ def test_piece_numbers_are_at_least_as_tall_as_the_seam_labels(tmp_path: Path) -
     queen = make_shape(load_recipe(ROOT / "recipes" / "chess" / "queen.toml")).grid
     options = DrawingOptions(sheet="A4", pitch=8.6)  # the smallest faces with legible marks
     pieces = unfold(queen, rng=0, pieces="flat", fit=(21, 29), timeout=60.0)
-    assert len(pieces) >= 5
+    assert len(pieces) > 2
     drawing = draw_pieces(queen, pieces, options=options)  # where each number stands, per sheet
     files = write_net_drawing(queen, pieces, tmp_path / "queen.dxf", options, title="queen").files
     heading = float(options.margin) + float(options.title_height) + 1.5  # the title band at the foot

@@ -529,8 +529,10 @@ function galleryFigure(n, i) {
   const cap = document.createElement('figcaption');
   cap.innerHTML = '<b></b> <span class="fits"></span>';
   cap.querySelector('b').textContent = `#${i + 1}`;
-  cap.querySelector('span').textContent = `${n.pieces} piece${n.pieces > 1 ? 's' : ''} on ${f.sheets} `
-    + `sheet${f.sheets > 1 ? 's' : ''} ${f.sheet}, faces ${f.face_size} mm`;
+  cap.querySelector('span').textContent = f.fits
+    ? `${n.pieces} piece${n.pieces > 1 ? 's' : ''} on ${f.sheets} sheet${f.sheets > 1 ? 's' : ''} ${f.sheet}, `
+      + `faces ${f.face_size} mm`
+    : `${n.pieces} piece${n.pieces > 1 ? 's' : ''}: does not fit ${f.sheet} at ${f.face_size} mm faces`;
   fig.append(cv, cap);
   fig.addEventListener('click', () => choose(i));
   return fig;

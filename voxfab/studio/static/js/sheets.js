@@ -16,6 +16,7 @@ function copyPlacement(p) { return JSON.parse(JSON.stringify(p)); }
 
 // The layout with every face where its piece sits, in cells; sheets side by side (for the net views).
 export function placedLayout(layout, placement) {
+  if (!placement) return layout; // a net that does not fit the sheet has no place on it: as unfolded
   const f = placement.face_size, [W] = placement.sheet;
   const stride = W / f + 2;
   const corners = layout.corners.slice();
