@@ -106,7 +106,6 @@ def write_page(outdir: Path, data: dict[str, Any]) -> Path:
     from voxfab._shared.atomic import write_text
 
     shapes = data["shapes"]
-    by_id = {r["id"]: r for r in shapes}
     head = ["n", "free", "free_mirror", "unfold_found", "unfold_none", "unfold_undecided", "manifold",
             "unzip_found", "unzip_none", "unzip_undecided", "edge_touching", "vertex_touching", "handle",
             "square_zipper_found", "square_zipper_none", "seconds", "cpu_seconds"]
@@ -150,7 +149,6 @@ def write_page(outdir: Path, data: dict[str, Any]) -> Path:
             continue
         parts.append(f'<figure>{cubes_svg(first["cells"])}{net_svg(net)}<figcaption>{first["id"]}'
                      "</figcaption></figure>")
-    del by_id
     parts.append("</body></html>\n")
     page = outdir / "census.html"
     write_text(page, "".join(parts))
