@@ -36,8 +36,8 @@ class NetOptions(Options):
                         recipe=False, metavar="N")
     budget: float = option(60.0, help="search budget for all the nets of --count together", unit="s", low=0.0,
                            low_open=True, high=MAX_TIMEOUT, recipe=False)
-    pieces: str = option("one", help="auto: when no one-piece net fits the sheet, the fewest pieces, packed on as "
-                         "few sheets as possible", choices=("one", "auto"))
+    pieces: str = option("one", help="auto: when no one-piece net fits the sheet, compact pieces (whole flat "
+                         "patches of the surface), packed on as few sheets as possible", choices=("one", "auto"))
     fill: bool = option(False, help="unfold the outer surface only, as if enclosed cavities were filled")
     compact: bool = option(False, help="prefer a small bounding box (slower)")
     min_box: bool = option(False, help="strategy exact: the net of least bounding-box area, every smaller "
