@@ -2,8 +2,8 @@
 
 Run ``python bench/bench_gallery.py [--nets N] [--sheet A4] [--runs R] [--pieces one|auto] [--smoke]``.  It builds
 the queen from ``recipes/chess/queen.toml``, compiles the net kernels once (numba's cache; not timed),
-then times :func:`voxfab.fabricate.netdraw.net_gallery` at the default face size (the smallest with
-legible marks) and the studio's defaults (5 s per net), split into
+then times :func:`voxfab.fabricate.netdraw.net_gallery` at 8.6 mm faces (``--face-size``; the smallest
+with legible marks, which a net in pieces takes by default) and the studio's defaults (5 s per net), split into
 
 * the search and validation (distinct nets by :func:`voxfab.unfold.unfold_many`, each fitted to the
   sheet and refolded by :func:`voxfab.unfold.validate`),
@@ -37,6 +37,8 @@ def main() -> None:
     ap.add_argument("--sheet", default="A4")
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--pieces", default="one", choices=("one", "auto"))
+    # One piece without a face size takes the largest at which a net fits, and no legible one fits A4.
+    ap.add_argument("--face-size", type=float, default=8.6, help="face size in mm")
     ap.add_argument("--studio", action="store_true", help="time the nets as the page reads them from a real studio")
     ap.add_argument("--smoke", action="store_true", help="2 nets in pieces, one run")
     args = ap.parse_args()
@@ -55,10 +57,10 @@ def main() -> None:
     grid = make_shape(load_recipe(ROOT / "recipes" / "chess" / "queen.toml")).grid
     unfold(grid, rng=0, timeout=300)  # compile or load the kernels: not part of a gallery
     if args.pieces == "auto":  # and the packer's, as the studio does at start
-        from voxfab.studio._work import warm_gallery_here
+        from voxfab.studio import warm_gallery_here
 
         warm_gallery_here()
-    net, drawing = netdraw.gallery_options({"sheet": args.sheet, "pieces": args.pieces},
+    net, drawing = netdraw.gallery_options({"sheet": args.sheet, "pieces": args.pieces, "face_size": args.face_size},
                                            defaults={"timeout": 5.0, "budget": 180.0})
     rows = []
     handed: list[tuple[float, float]] = []  # (first, last) net handed over, wall seconds, per run
@@ -106,7 +108,7 @@ def studio(args: argparse.Namespace) -> None:
 
     grid = make_shape(load_recipe(ROOT / "recipes" / "chess" / "queen.toml")).grid
     body = {"grid": pack(np.asarray(grid)), "count": args.nets,
-            "options": {"sheet": args.sheet, "pieces": args.pieces}}
+            "options": {"sheet": args.sheet, "pieces": args.pieces, "face_size": args.face_size}}
     with tempfile.TemporaryDirectory() as tmp:
         proc, url = _start(Path(tmp))
         try:

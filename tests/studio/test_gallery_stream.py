@@ -123,7 +123,7 @@ def test_cancel_stops_a_queen_net_file_in_pieces_within_a_second(client, queen):
     end = time.monotonic() + 120
     while client.get(f"/api/jobs/{job}").json()["state"] == "queued" and time.monotonic() < end:
         time.sleep(0.02)
-    time.sleep(1.5)
+    time.sleep(0.3)  # under way: the net is cut, packed and drawn in a second or two of CPU
     latency = _cancel_latency(client, job)
     assert latency < 1.0, f"cancel took {latency:.2f} s"
 
@@ -139,7 +139,8 @@ def test_the_packer_sees_the_cancel_scope(queen):
     from voxfab.unfold import unfold
 
     _, options = gallery_options({"sheet": "A4", "face_size": 8.6})
-    pieces = unfold(queen, rng=0, fit=sheet_cells(options, 8.6), pieces="flat", timeout=60)
+    # A seed no other test packs: the packer keeps the packings it made (in this process) and returns them.
+    pieces = unfold(queen, rng=98765, fit=sheet_cells(options, 8.6), pieces="flat", timeout=60)
     graph = surface_graph(queen)
     assert len(pieces) > 1
     stop = threading.Event()

@@ -10,12 +10,13 @@ never imports this package).
 
 Public API: :func:`create_app`, :class:`Settings`, :func:`allowed_hosts`, :func:`serve`, and the
 grids on the wire: :func:`pack` (a bool grid to ``{"dims", "bits"}``, the JSON body's ``grid``) and
-:func:`unpack` (back, checked).
+:func:`unpack` (back, checked); :func:`warm_gallery_here` (load what a gallery in pieces first calls, as the
+server does at start).
 """
 
 from ._server import serve
 
-__all__ = ["Settings", "allowed_hosts", "create_app", "pack", "serve", "unpack"]
+__all__ = ["Settings", "allowed_hosts", "create_app", "pack", "serve", "unpack", "warm_gallery_here"]
 
 
 def __getattr__(name: str):  # noqa: ANN202 - lazy re-exports keep `import voxfab.studio` free of Starlette
@@ -27,4 +28,8 @@ def __getattr__(name: str):  # noqa: ANN202 - lazy re-exports keep `import voxfa
         from . import _grid
 
         return getattr(_grid, name)
+    if name == "warm_gallery_here":
+        from . import _work
+
+        return _work.warm_gallery_here
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
