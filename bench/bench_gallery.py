@@ -54,10 +54,12 @@ def main() -> None:
 
     grid = make_shape(load_recipe(ROOT / "recipes" / "chess" / "queen.toml")).grid
     unfold(grid, rng=0, timeout=300)  # compile or load the kernels: not part of a gallery
-    if args.pieces == "auto":  # and the packer's, as the studio does at start
-        from voxfab.studio._work import warm_gallery_here
+    if args.pieces == "auto":  # and the packer's, as the studio does at start: a small gallery in pieces
+        from voxfab.shape import examples
 
-        warm_gallery_here()
+        ball = examples.ball(3)
+        warm = netdraw.gallery_options({"sheet": "80x80", "face_size": 10, "pieces": "auto", "timeout": 5.0})
+        netdraw.gallery_json(netdraw.net_gallery(ball, *warm, count=2, seed=0), ball)
     net, drawing = netdraw.gallery_options({"sheet": args.sheet, "pieces": args.pieces},
                                            defaults={"timeout": 5.0, "budget": 180.0})
     rows = []
