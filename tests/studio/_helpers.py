@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import io
 import time
 from pathlib import Path
@@ -30,6 +31,19 @@ def wait_job(client, job: str, limit: float = 120.0) -> dict:
             return s
         time.sleep(0.1)
     raise AssertionError(f"job {job} still running after {limit} s")
+
+
+@functools.cache
+def _bundled_queen() -> np.ndarray:
+    from voxfab.recipe import load_recipe
+    from voxfab.recipe._build import make_shape
+
+    return make_shape(load_recipe(Path(__file__).resolve().parents[2] / "recipes" / "chess" / "queen.toml")).grid
+
+
+def queen() -> np.ndarray:
+    """The bundled chess queen's voxels (built once; each caller gets its own copy)."""
+    return _bundled_queen().copy()
 
 
 def small_shape() -> np.ndarray:

@@ -11,6 +11,7 @@ import time
 import urllib.request
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -84,6 +85,23 @@ def server(tmp_path_factory):
     proc, url = start_studio(folder)
     try:
         yield {"url": url, "repo": folder / "repo.sqlite", "folder": folder}
+    finally:
+        stop_studio(proc)
+
+
+@pytest.fixture(scope="module")
+def queen_studio(tmp_path_factory):
+    """``voxfab studio queen.npy`` (the bundled queen) as a real server on 127.0.0.1; always stopped.
+
+    One per module: a module's queen searches end with its server, so none waits behind another's.
+    """
+    from ._helpers import queen
+
+    folder = tmp_path_factory.mktemp("queen-studio")
+    np.save(folder / "queen.npy", queen())
+    proc, url = start_studio(folder, "queen.npy")
+    try:
+        yield {"url": url, "folder": folder}
     finally:
         stop_studio(proc)
 

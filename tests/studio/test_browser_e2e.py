@@ -12,9 +12,9 @@ import numpy as np
 import pytest
 
 from ._helpers import SHOTS
-from .conftest import start_studio, stop_studio
+from ._helpers import queen as bundled_queen
 from .test_browser import attr, wait
-from .test_browser_net import _check_files, _downloads, _files_ready, _hrefs, _placement, _queen, by_id
+from .test_browser_net import _check_files, _downloads, _files_ready, _hrefs, _placement, by_id
 from .test_browser_netedit import _edit_by_click, _layout
 
 pytestmark = pytest.mark.slow
@@ -40,25 +40,13 @@ def _edit_zoomed(browser, canvas, layout, pairs, kind):
     raise AssertionError(f"no {kind} could be made")
 
 
-@pytest.fixture(scope="module")
-def queen_studio(tmp_path_factory):
-    """``voxfab studio queen.npy`` as a real server on 127.0.0.1; always stopped."""
-    folder = tmp_path_factory.mktemp("queen-studio")
-    np.save(folder / "queen.npy", _queen())
-    proc, url = start_studio(folder, "queen.npy")
-    try:
-        yield {"url": url, "folder": folder}
-    finally:
-        stop_studio(proc)
-
-
 def test_the_queen_from_voxfab_studio_to_checked_files_edited_and_folded(queen_studio, browser):
     from selenium.webdriver.common.keys import Keys
     from selenium.webdriver.support.ui import Select
 
     from voxfab.studio._grid import centred
 
-    queen = centred(_queen())
+    queen = centred(bundled_queen())
     # 1. The page opens with the queen already loaded.
     browser.get(queen_studio["url"] + "/")
     wait(browser, lambda d: attr(d, "volume", "data-volume") == str(int(queen.sum())), timeout=60,

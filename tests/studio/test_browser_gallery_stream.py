@@ -6,29 +6,15 @@ from __future__ import annotations
 import json
 import urllib.request
 
-import numpy as np
 import pytest
 
-from ._helpers import SHOTS
-from .conftest import start_studio, stop_studio
+from ._helpers import SHOTS, queen
 from .test_browser import attr, wait
-from .test_browser_net import _queen, by_id
+from .test_browser_net import by_id
 
 pytestmark = pytest.mark.slow
 
 COUNT = 4
-
-
-@pytest.fixture(scope="module")
-def queen_studio(tmp_path_factory):
-    """``voxfab studio queen.npy`` as a real server on 127.0.0.1; always stopped."""
-    folder = tmp_path_factory.mktemp("queen-stream")
-    np.save(folder / "queen.npy", _queen())
-    proc, url = start_studio(folder, "queen.npy")
-    try:
-        yield {"url": url}
-    finally:
-        stop_studio(proc)
 
 
 def _status(url: str, job: str) -> dict:
@@ -53,7 +39,7 @@ def test_the_first_queen_net_in_pieces_is_on_screen_before_the_last_is_made(quee
 
     url = queen_studio["url"]
     browser.get(url + "/")
-    wait(browser, lambda d: attr(d, "volume", "data-volume") == str(int(centred(_queen()).sum())), timeout=60,
+    wait(browser, lambda d: attr(d, "volume", "data-volume") == str(int(centred(queen()).sum())), timeout=60,
          what="the queen from the command line")
     by_id(browser, "tab-net").click()
     Select(by_id(browser, "net-sheet")).select_by_value("A4")

@@ -24,19 +24,13 @@ from _dxf_read import entity_points
 from voxfab.repo import Repository
 from voxfab.studio._grid import centred
 
-from ._helpers import SHOTS
+from ._helpers import SHOTS, queen
 from .test_browser import attr, open_page, wait
 
 pytestmark = pytest.mark.slow
 
 ROOT = Path(__file__).resolve().parents[2]
 
-
-def _queen() -> np.ndarray:
-    from voxfab.recipe import load_recipe
-    from voxfab.recipe._build import make_shape
-
-    return make_shape(load_recipe(ROOT / "recipes" / "chess" / "queen.toml")).grid
 
 
 def by_id(driver, testid, many=False):
@@ -141,7 +135,7 @@ def test_queen_to_a4_in_pieces_moved_on_the_page(server, browser):
     from voxfab.fabricate.netdraw import SHEETS
 
     with Repository(server["repo"]) as repo:
-        name = repo.add(_queen()).name
+        name = repo.add(queen()).name
         grid = centred(repo.get(name))
     open_page(browser, server)
     # The queen, opened from the repository as the artist would.

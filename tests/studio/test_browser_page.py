@@ -15,10 +15,9 @@ import numpy as np
 import pytest
 from _dxf_read import entity_points
 
-from ._helpers import SHOTS
-from .conftest import start_studio, stop_studio
+from ._helpers import SHOTS, queen
 from .test_browser import attr, tab, wait
-from .test_browser_net import _check_files, _downloads, _files_ready, _placement, _queen, by_id
+from .test_browser_net import _check_files, _downloads, _files_ready, _placement, by_id
 from .test_browser_netedit import _edge_mid, _layout, _move_to_net_point
 
 pytestmark = pytest.mark.slow
@@ -27,23 +26,11 @@ pytestmark = pytest.mark.slow
 NET_WAIT = 420
 
 
-@pytest.fixture(scope="module")
-def queen_studio(tmp_path_factory):
-    """``voxfab studio queen.npy`` as a real server on 127.0.0.1; always stopped."""
-    folder = tmp_path_factory.mktemp("queen-page")
-    np.save(folder / "queen.npy", _queen())
-    proc, url = start_studio(folder, "queen.npy")
-    try:
-        yield {"url": url, "folder": folder}
-    finally:
-        stop_studio(proc)
-
-
 def _open_queen(browser, studio):
     from voxfab.studio._grid import centred
 
     browser.get(studio["url"] + "/")
-    volume = str(int(centred(_queen()).sum()))
+    volume = str(int(centred(queen()).sum()))
     wait(browser, lambda d: attr(d, "volume", "data-volume") == volume, timeout=60, what="the queen")
     wait(browser, lambda d: attr(d, "make-buttons", "data-ready"), what="the Make buttons")
 
@@ -364,7 +351,7 @@ def test_a_yes_opens_the_net_found_in_the_editor_with_its_files(queen_studio, br
     # the files of the net found, checked as the CLI checks its own: every face, refolded onto the queen
     from voxfab.studio._grid import centred
 
-    pieces = _check_files(_downloads(browser, queen_studio), centred(_queen()), _placement(browser))
+    pieces = _check_files(_downloads(browser, queen_studio), centred(queen()), _placement(browser))
     assert len(pieces) == 1 and pieces[0].face_count == len(layout["faces"])
     assert browser.find_element("id", "net-summary").text
     # named after the shape the studio opened (queen.npy), not "studio"
