@@ -229,6 +229,11 @@ def _gallery(browser, count):
     field = browser.find_element("id", "net-timeout")
     field.clear()
     field.send_keys("10")
+    # 8.6 mm faces (legible marks), not the largest that fits: a net searched with room on the sheet,
+    # whose edges can be cut and their faces hung elsewhere
+    field = browser.find_element("id", "net-face")
+    field.clear()
+    field.send_keys("8.6")
 
 
 def test_mark_an_edge_then_regenerate_honours_it(server, browser):
