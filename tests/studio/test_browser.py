@@ -240,10 +240,9 @@ def test_mark_an_edge_then_regenerate_honours_it(server, browser):
     import json
 
     from selenium.webdriver import ActionChains
+    from selenium.webdriver.support.ui import Select
 
     from voxfab.unfold import Net
-
-    from selenium.webdriver.support.ui import Select
 
     open_page(browser, server)
     slim_column(browser)
