@@ -108,7 +108,8 @@ def test_shipped_recipe_makes_a_well_formed_solid(path):
             assert (path.parent / value).is_file(), value
             assert (path.parent / value).stat().st_size < 20_000
     grid = maker(base_dir=path.parent, **params)
-    assert grid.dtype == bool and grid.shape == (25, 25, 25)
+    side = params.get("size", 25)  # a body the operations complete (the king's cross) may take fewer voxels
+    assert grid.dtype == bool and grid.shape == (side, side, side)
     assert params.get("mode", "solid") == "solid"
     # deterministic
     assert np.array_equal(grid, maker(base_dir=path.parent, **params))

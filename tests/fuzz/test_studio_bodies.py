@@ -312,7 +312,8 @@ def test_fits_reads_its_options_and_refuses_the_old_top_level_body(studio) -> No
 # --- class 5: cancel stops the exact solver -----------------------------------------------------------
 
 def test_cancel_stops_exact_fits_jobs_within_a_second(studio, queen) -> None:
-    body = {"grid": pack(queen), "options": {"sheet": "A2", "face_size": 10.5, "timeout": 100}}
+    # A3 at 10.5 mm: 862 faces in a 25 x 36 box, a search that runs its whole timeout undecided
+    body = {"grid": pack(queen), "options": {"sheet": "A3", "face_size": 10.5, "timeout": 100}}
     jobs = [studio.post("/api/fits", json=body).json()["job"] for _ in range(2)]
     end = time.monotonic() + 30
     while any(studio.get(f"/api/jobs/{j}").json()["state"] != "running" for j in jobs):
