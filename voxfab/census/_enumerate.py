@@ -16,11 +16,12 @@ Counts (OEIS A000162 up to rotation, A038119 up to rotation and reflection):
 
 from __future__ import annotations
 
-import itertools
 from collections.abc import Iterator
 
 import numpy as np
 import numpy.typing as npt
+
+from voxfab.shape import rotation_matrices
 
 __all__ = ["MAX_CUBES", "canonical_cells", "count_free", "polycube_levels", "polycubes"]
 
@@ -31,20 +32,8 @@ MAX_CUBES = 11
 _CHUNK = 50_000
 
 
-def _rotations() -> npt.NDArray[np.int64]:
-    """The 24 proper rotations of the cube as signed permutation matrices, in a fixed order."""
-    out = []
-    for perm in itertools.permutations(range(3)):
-        for signs in itertools.product((1, -1), repeat=3):
-            m = np.zeros((3, 3), dtype=np.int64)
-            for row, (col, s) in enumerate(zip(perm, signs)):
-                m[row, col] = s
-            if round(np.linalg.det(m)) == 1:
-                out.append(m)
-    return np.stack(out)
-
-
-_ROTATIONS = _rotations()
+# The 24 proper rotations of the cube, as the shape package orders them.
+_ROTATIONS = np.stack(rotation_matrices())
 _MIRROR = np.diag([-1, 1, 1]).astype(np.int64)
 
 

@@ -28,6 +28,7 @@ __all__ = [
     "difference",
     "translate",
     "rotations",
+    "rotation_matrices",
     "rotate",
     "mirror",
     "symmetries",
@@ -251,8 +252,8 @@ def translate(grid: npt.ArrayLike, offset: tuple[int, int, int]) -> BoolGrid:
 
 
 @lru_cache(maxsize=1)
-def _rotation_matrices() -> tuple[npt.NDArray[np.int64], ...]:
-    """The 24 proper rotations of the cube as signed permutation matrices."""
+def rotation_matrices() -> tuple[npt.NDArray[np.int64], ...]:
+    """The 24 proper rotations of the cube as signed permutation matrices, in a fixed order."""
     import itertools
 
     mats = []
@@ -270,7 +271,7 @@ def _rotation_matrices() -> tuple[npt.NDArray[np.int64], ...]:
 def _rotation_moves() -> tuple[tuple[tuple[int, ...], tuple[int, ...]], ...]:
     """Each rotation as (axis order, axes to flip), the form numpy applies directly."""
     moves = []
-    for m in _rotation_matrices():
+    for m in rotation_matrices():
         # New axis `row` reads old axis `perm[row]`, reversed where the sign is negative.
         perm = tuple(int(np.flatnonzero(m[row])[0]) for row in range(3))
         flips = tuple(row for row in range(3) if m[row, perm[row]] < 0)
