@@ -108,7 +108,7 @@ def unzip(grid: npt.ArrayLike, *, timeout: float = 10.0) -> Unzipping:
         The surface is not a manifold of genus 0.
     """
     from voxfab.shape import surface_graph
-    from voxfab.unfold._exact import _SOLVER_SEED, _cp_model
+    from voxfab.unfold._exact import _cp_model, one_worker_solver
     from voxfab.unfold._layout import build_net, count_without_tab_room
     from voxfab.unfold._validate import validate
     from voxfab.unfold._zipper import _edges, _fold_flat, _short_overlaps, _tree_path
@@ -163,10 +163,8 @@ def unzip(grid: npt.ArrayLike, *, timeout: float = 10.0) -> Unzipping:
     for path in _short_overlaps(sg, faces, edges, _SHORT_PATH, deadline):
         m.add_bool_or([lit for i in path for lit in cut[i]])
         nogoods.append(list(path))
-    solver = cp_model.CpSolver()
+    solver = one_worker_solver()
     prm = solver.parameters
-    prm.num_search_workers = 1  # one worker, one seed: the same search every run
-    prm.random_seed = _SOLVER_SEED
     prm.cp_model_presolve = False  # re-solved after each round of no-goods, as the zipper search
     slit_rules: list[tuple[list[int], int]] = []
     rounds = 0

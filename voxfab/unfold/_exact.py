@@ -32,7 +32,7 @@ from voxfab.shape import SurfaceGraph
 
 from ._constraints import _SIDE_STEP, CUT, KEEP, Resolved
 
-__all__ = ["ExactLayout", "any_box", "exact_layout", "min_box_layout"]
+__all__ = ["ExactLayout", "any_box", "exact_layout", "min_box_layout", "one_worker_solver"]
 
 #: The solver's seed: fixed, so that a run never depends on anything but the input.
 _SOLVER_SEED = 0
@@ -69,6 +69,14 @@ def _cp_model():  # noqa: ANN202 - the ortools module
     except ImportError:
         raise MissingDependencyError("ortools", "the exact unfolding strategy") from None
     return cp_model
+
+
+def one_worker_solver():  # noqa: ANN201 - an ortools CpSolver
+    """A CP-SAT solver with one worker and a fixed seed: the same search, and so the same answer, every run."""
+    solver = _cp_model().CpSolver()
+    solver.parameters.num_search_workers = 1
+    solver.parameters.random_seed = _SOLVER_SEED
+    return solver
 
 
 def _arcs(sg: SurfaceGraph, faces: npt.NDArray[np.int64]) -> list[tuple[int, int, int, int]]:
@@ -183,10 +191,8 @@ def exact_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], resolved: Resol
     if zipper:
         _one_cut_path(m, sg, arcs, par)
 
-    solver = cp_model.CpSolver()
+    solver = one_worker_solver()
     prm = solver.parameters
-    prm.num_search_workers = 1  # one worker, one seed: the same search every run
-    prm.random_seed = _SOLVER_SEED
     status = None
     if hint is not None:
         _add_hint(m, hint, faces, sg, (x, y, cell, rot, depth, par), h)

@@ -37,7 +37,7 @@ from voxfab.errors import NoNetExistsError, UnfoldError
 from voxfab.shape import SurfaceGraph
 
 from ._constraints import _SIDE_STEP
-from ._exact import _SOLVER_SEED, ExactLayout, Undecided, _cp_model, _solve
+from ._exact import ExactLayout, Undecided, _cp_model, _solve, one_worker_solver
 
 __all__ = ["zipper_layout"]
 
@@ -236,10 +236,8 @@ def zipper_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], deadline: floa
         m.Add(sum(ends[: v + 1]) >= 1).OnlyEnforceIf(starts[v])
     for path in _short_overlaps(sg, faces, edges, _SHORT_PATH, deadline):
         m.AddBoolOr([lit for i in path for lit in cut[i]])
-    solver = cp_model.CpSolver()
+    solver = one_worker_solver()
     prm = solver.parameters
-    prm.num_search_workers = 1  # one worker, one seed: the same search every run
-    prm.random_seed = _SOLVER_SEED
     # The model is solved again after each round of no-goods: presolving it each time costs more
     # than it saves, and it drops the previous path given as a hint (measured: 10 of 12 explored
     # shapes decided in 8 s without presolve, 3 with it).
