@@ -132,6 +132,8 @@ def run_census(
     workers: int = 2,
     connect_timeout: float = 30.0,
     on_progress: Callable[[int, int], None] | None = None,
+    store: str | None = None,
+    repository: str | Path | None = None,
 ) -> CensusReport:
     """Census every polycube of 1..``n_max`` cubes into ``outdir``.
 
@@ -150,6 +152,12 @@ def run_census(
         Seconds to wait for the scheduler and its first worker.
     on_progress : callable, optional
         Called with (shapes done, shapes to do) as records arrive.
+    store : str, optional
+        Also store every polycube in the repository as the named range
+        ``store`` (members named by census id: ``polycubes-8:08-000001``), before
+        the searches; a range stored by a smaller census grows.
+    repository : path, optional
+        The repository file for ``store`` (default ``output/repository.sqlite``, made when missing).
 
     Raises
     ------
@@ -165,8 +173,13 @@ def run_census(
 
     from ._enumerate import _decode as decode_forms
     from ._enumerate import count_free, polycube_levels
+    from ._topology import grid_of
 
     n_max = check_census_size(n_max)
+    if store is not None:
+        from voxfab.repo._records import check_range_name
+
+        check_range_name(store)
     settings = settings if settings is not None else CensusSettings()
     connect_timeout = check_wait(connect_timeout)
     if scheduler is None and workers != 0:
@@ -180,13 +193,22 @@ def run_census(
     kept = len(records)
     counts: dict[int, tuple[int, int]] = {}
     todo: list[tuple[str, int, tuple[tuple[int, int, int], ...]]] = []
+    members: list[tuple[str, Any]] = []  # the range to store, when asked
     for n, forms in polycube_levels(n_max):
         counts[n] = count_free(n, forms)
         for i, cells in enumerate(decode_forms(forms, n).tolist()):
             sid = shape_id(n, i)
+            if store is not None:
+                members.append((sid, grid_of(cells)))
             if sid in records:
                 continue
             todo.append((sid, n, tuple(tuple(c) for c in cells)))
+    if store is not None:
+        from voxfab.repo import DEFAULT_PATH, Repository
+
+        with Repository(repository or DEFAULT_PATH, create=True) as repo:
+            repo.add_range(store, members, meta={"source": f"polycube census of 1..{n_max} cubes"})
+        members.clear()
     wall: dict[int, float] = {}  # search seconds per n, this run's, added over the shapes
     cpu: dict[int, float] = {}
     start = time.perf_counter()

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 
 from voxfab.census._task import CensusSettings
-from voxfab.cli._common import path_argument
+from voxfab.cli._common import add_repository_option, check_repository_path, path_argument
 from voxfab.cli._options import add_option_arguments, options_from_args
 
 HELP = ("census every polycube of 1..N cubes: an edge unfolding and an edge-unzipping of each "
@@ -21,6 +21,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="a running Dask scheduler (tcp://HOST:PORT); default: --workers local processes")
     parser.add_argument("--workers", type=int, default=2, metavar="K",
                         help="local Dask worker processes; 0 runs in this process (default 2)")
+    parser.add_argument("--store", metavar="RANGE",
+                        help="also store every polycube in the repository (--repo) as the named range RANGE, "
+                             "members named by census id (RANGE:08-000001)")
+    add_repository_option(parser)
     parser.add_argument("--connect-timeout", type=float, default=30.0, metavar="S",
                         help="seconds to wait for the scheduler and a first worker (default 30)")
 
@@ -30,6 +34,11 @@ def run(args: argparse.Namespace) -> int:
     from voxfab.census import check_census_size, run_census
 
     check_census_size(args.n)
+    if args.store is not None:
+        from voxfab.repo._records import check_range_name
+
+        check_range_name(args.store)
+        check_repository_path(args.repo)  # before the enumeration, not after it
     settings = options_from_args(CensusSettings, args)
     with meter(None, desc="census") as bar:
         def progress(done: int, total: int) -> None:
@@ -37,7 +46,8 @@ def run(args: argparse.Namespace) -> int:
             bar.update(done - bar.done)
 
         report = run_census(args.n, args.output, settings=settings, scheduler=args.scheduler,
-                            workers=args.workers, connect_timeout=args.connect_timeout, on_progress=progress)
+                            workers=args.workers, connect_timeout=args.connect_timeout, on_progress=progress,
+                            store=args.store, repository=args.repo)
     print(f"{report.censused} polycubes censused, {report.kept} kept from an earlier run, in "
           f"{report.seconds:.1f} s on {report.workers} worker(s)")
     print(f"{'n':>3} {'free':>7} {'mirror':>7} {'unfold':>16} {'unzip':>16} {'outside':>8}")
@@ -48,4 +58,6 @@ def run(args: argparse.Namespace) -> int:
               f"{r['unzip_found']:>6}/{r['unzip_none']}/{r['unzip_undecided']:<6} {outside:>8}")
     print("(unfold and unzip: found/none/undecided; outside: touchings and handles, not unzipped)")
     print(f"wrote {report.path} and {report.page}")
+    if args.store:
+        print(f"stored as the range {args.store} in {args.repo} (voxfab repo list --range {args.store})")
     return 0

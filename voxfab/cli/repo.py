@@ -22,7 +22,8 @@ def _subparser(sub: argparse._SubParsersAction, name: str, help_text: str) -> ar
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """Add the ``add``, ``list``, ``stats``, ``show``, ``export``, ``remove`` and ``check`` actions."""
+    """Add the ``add``, ``list``, ``ranges``, ``stats``, ``show``, ``export``, ``remove``, ``remove-range``
+    and ``check`` actions."""
     sub = parser.add_subparsers(dest="_repo_action", metavar="ACTION", required=True)
 
     p = _subparser(sub, "add", "store shapes and print their names (NAME created / NAME exists)")
@@ -39,6 +40,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     p.add_argument("--after", metavar="NAME",
                    help="start after this name (the last of the previous page; JSON gives it as 'next_after')")
     p.add_argument("--no-drafts", action="store_true", help="leave the drafts out")
+    p.add_argument("--range", metavar="RANGE", help="list the members of this range instead, in stored order")
+
+    _subparser(sub, "ranges", "list the named ranges (a census's polycubes) and their sizes")
 
     p = _subparser(sub, "stats", "count the stored shapes per volume")
     p.add_argument("--json", action="store_true", help="print one JSON object")
@@ -47,15 +51,18 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                    help="group the volumes into at most N ranges of a round width instead of one line per volume")
 
     p = _subparser(sub, "show", "show what is stored about one shape")
-    p.add_argument("name", metavar="NAME", help="a name such as 00797.001, or draft-N")
+    p.add_argument("name", metavar="NAME", help="a name such as 00797.001, draft-N, or RANGE:MEMBER")
     p.add_argument("--json", action="store_true", help="print one JSON object")
 
     p = _subparser(sub, "export", "write a stored shape to a file (format by extension)")
-    p.add_argument("name", metavar="NAME", help="a name such as 00797.001, or draft-N")
+    p.add_argument("name", metavar="NAME", help="a name such as 00797.001, draft-N, or RANGE:MEMBER")
     p.add_argument("out", metavar="OUT", type=Path, help="the file to write")
 
-    p = _subparser(sub, "remove", "delete a shape (the other names do not change)")
-    p.add_argument("name", metavar="NAME", help="a name such as 00797.001, or draft-N")
+    p = _subparser(sub, "remove", "delete a shape or a range member (the other names do not change)")
+    p.add_argument("name", metavar="NAME", help="a name such as 00797.001, draft-N, or RANGE:MEMBER")
+
+    p = _subparser(sub, "remove-range", "delete a named range and the drafts only it holds")
+    p.add_argument("range", metavar="RANGE", help="a range name such as polycubes-8")
 
     _subparser(sub, "check", "check every row of the file; list the bad ones (an error when any)")
 
@@ -82,6 +89,11 @@ def run(args: argparse.Namespace) -> int:
             print(f"{args.name} -> {args.out}")
         elif action == "check":
             return _check(repo)
+        elif action == "ranges":
+            for r in repo.ranges():
+                print(f"{r.name:<24} {r.count:>8}")
+        elif action == "remove-range":
+            print(f"{args.range}: {repo.remove_range(args.range)} members removed")
         else:
             repo.remove(args.name)
             print(f"{args.name} removed")
@@ -137,8 +149,14 @@ def _list(repo: Repository, args: argparse.Namespace) -> None:
 
     if args.limit is not None and args.limit < 1:
         raise RepositoryError(f"--limit: expected at least 1, got {args.limit}")
-    entries = repo.list(volume=_volume(args.volume), after=args.after, limit=args.limit,
-                        drafts=not args.no_drafts)
+    if args.range is not None:
+        if args.volume is not None or args.no_drafts:
+            raise RepositoryError("--range lists a whole range: it takes --after and --limit, not --volume or "
+                                  "--no-drafts")
+        entries = repo.list_range(args.range, after=args.after, limit=args.limit)
+    else:
+        entries = repo.list(volume=_volume(args.volume), after=args.after, limit=args.limit,
+                            drafts=not args.no_drafts)
     if args.json:
         data: dict[str, object] = {
             "repository": str(repo.path),
@@ -172,6 +190,8 @@ def _stats(repo: Repository, args: argparse.Namespace) -> None:
         return
     print(f"shapes: {info['shapes']}")
     print(f"drafts: {info['drafts']}")
+    for r in info["named_ranges"]:
+        print(f"range {r['name']}: {r['count']} members")
     print(f"volumes: {len(info['volumes'])}")
     if "ranges" in info:
         for r in info["ranges"]:

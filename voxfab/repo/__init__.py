@@ -4,13 +4,15 @@ A well-formed shape is named ``VVVVV.NNN``: its volume (voxel count) zero-padded
 to five digits, then its three-digit rank among the shapes of that volume in
 insertion order.  Names are stable: removing a shape renumbers nothing and its
 name is never given again.  Shapes that are not well formed may be kept as drafts
-(``draft-N``).  Equal shapes, up to translation (or up to the 48 cube symmetries
+(``draft-N``), and any shapes as a named range (``RANGE:MEMBER``, such as a
+census's ``polycubes-8:08-000001``).  Equal shapes, up to translation (or up to the 48 cube symmetries
 on request), are stored once, found through indexed canonical keys.
 
 Only this package touches :mod:`sqlite3`.  See :class:`Repository`.
 """
 
 from ._load import LoadedShape, load_shape
+from ._ranges import RangeInfo
 from ._records import DRAFT_PATTERN, MAX_RANK, NAME_PATTERN, decode_bits, encode_bits, format_name
 from ._repository import DEFAULT_PATH, AddResult, Entry, Repository
 from ._sqlite import SCHEMA_VERSION
@@ -21,6 +23,7 @@ __all__ = [
     "load_shape",
     "AddResult",
     "Entry",
+    "RangeInfo",
     "DEFAULT_PATH",
     "SCHEMA_VERSION",
     "MAX_RANK",

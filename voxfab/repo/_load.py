@@ -8,7 +8,7 @@ from typing import Any, NamedTuple
 from voxfab._shared.typing import PathLike
 from voxfab.shape import VoxelShape
 
-from ._records import NAME_PATTERN
+from ._records import is_shape_name
 from ._repository import DEFAULT_PATH
 
 
@@ -37,7 +37,7 @@ class LoadedShape(NamedTuple):
 
 def load_shape(source: str, repository: PathLike | None = None, *, pitch: float | None = None,
                **options: Any) -> LoadedShape:
-    """Load ``source``, a shape file or a repository name (``VVVVV.NNN``, ``draft-N``), at its scale.
+    """Load ``source``, a shape file or a repository name (``VVVVV.NNN``, ``draft-N``, ``RANGE:MEMBER``), at its scale.
 
     Parameters
     ----------
@@ -55,9 +55,7 @@ def load_shape(source: str, repository: PathLike | None = None, *, pitch: float 
     from voxfab.shape import ShapeOptions
 
     ShapeOptions(pitch=pitch)  # checked before reading
-    from ._records import DRAFT_PATTERN
-
-    if (NAME_PATTERN.match(source) or DRAFT_PATTERN.match(source)) and not Path(source).exists():
+    if is_shape_name(source) and not Path(source).exists():
         from ._repository import Repository
 
         with Repository(repository or DEFAULT_PATH, create=False) as repo:

@@ -21,6 +21,8 @@ __all__ = [
     "MAX_RANK",
     "NAME_PATTERN",
     "DRAFT_PATTERN",
+    "RANGE_PATTERN",
+    "MEMBER_PATTERN",
     "Record",
     "check_grid",
     "encode_meta",
@@ -33,6 +35,8 @@ __all__ = [
     "format_name",
     "draft_name",
     "check_name",
+    "check_range_name",
+    "is_shape_name",
 ]
 
 #: Ranks run 001..999 per volume.
@@ -41,6 +45,10 @@ MAX_RANK = 999
 NAME_PATTERN = re.compile(r"^(\d{5})\.(\d{3})$")
 #: The id of a draft (a stored shape that is not well formed).
 DRAFT_PATTERN = re.compile(r"^draft-(\d+)$")
+#: The name of a range: lowercase letters, digits, ``-`` and ``_``, starting with a letter.
+RANGE_PATTERN = re.compile(r"^[a-z][a-z0-9_-]{0,39}$")
+#: A member of a range: ``RANGE:MEMBER`` (``polycubes-9:08-000001``).
+MEMBER_PATTERN = re.compile(r"^([a-z][a-z0-9_-]{0,39}):([0-9a-z][0-9a-z_-]{0,39})$")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -235,10 +243,26 @@ def draft_name(row_id: int) -> str:
     return f"draft-{row_id}"
 
 
+def is_shape_name(text: str) -> bool:
+    """Whether ``text`` has the form of a stored shape's name: ``VVVVV.NNN``, ``draft-N`` or ``RANGE:MEMBER``."""
+    return bool(NAME_PATTERN.match(text) or DRAFT_PATTERN.match(text) or MEMBER_PATTERN.match(text))
+
+
 def check_name(name: object) -> str:
-    """Return ``name`` if it looks like a shape name or a draft id, else raise RepositoryError."""
-    if not isinstance(name, str) or not (NAME_PATTERN.match(name) or DRAFT_PATTERN.match(name)):
+    """Return ``name`` if it looks like a shape name, a draft id or a range member, else raise RepositoryError."""
+    if not isinstance(name, str) or not is_shape_name(name):
         raise RepositoryError(
-            f"{name!r}: not a shape name (expected VVVVV.NNN such as 00797.001, or draft-N)"
+            f"{name!r}: not a shape name (expected VVVVV.NNN such as 00797.001, draft-N, or RANGE:MEMBER "
+            "such as polycubes-8:08-000001)"
+        )
+    return name
+
+
+def check_range_name(name: object) -> str:
+    """Return ``name`` if it can name a range, else raise RepositoryError."""
+    if not isinstance(name, str) or not RANGE_PATTERN.match(name):
+        raise RepositoryError(
+            f"{name!r}: not a range name (expected lowercase letters, digits, '-' and '_', starting with a "
+            "letter, at most 40 characters, such as polycubes-8)"
         )
     return name

@@ -16,11 +16,13 @@ from voxfab._shared.typing import BoolGrid, PathLike
 from voxfab.errors import RepositoryError
 from voxfab.shape import canonical_key, well_formed_reasons
 
+from ._ranges import RangeInfo, check_members, insert_members, member_rows, range_infos, split_member
 from ._records import (
     MAX_RANK,
     Record,
     check_grid,
     check_name,
+    check_range_name,
     decode_meta,
     decode_reasons,
     decode_row,
@@ -233,6 +235,25 @@ class Repository:
         list of AddResult
             In the order of ``grids``.
         """
+        results, pending = self._prepare_many(grids, symmetric=symmetric, draft=draft, metas=metas, keys=keys,
+                                              reasons=reasons)
+        if pending:
+            db = self._db
+            with sqlite_errors(self._path), immediate(db):
+                self._insert_pending(db, results, pending, symmetric=symmetric)
+        return [r for r in results if r is not None]
+
+    def _prepare_many(
+        self,
+        grids: Iterable[npt.ArrayLike],
+        *,
+        symmetric: bool,
+        draft: bool,
+        metas: Sequence[Mapping[str, Any] | None] | None,
+        keys: Sequence[str] | None = None,
+        reasons: Sequence[Sequence[str]] | None = None,
+    ) -> tuple[list[AddResult | None], list[tuple[int, Record]]]:
+        """The results known before any lock (shapes stored already) and the records still to insert."""
         grids = list(grids)
         if metas is None:
             metas = [None] * len(grids)
@@ -269,12 +290,99 @@ class Repository:
                 raise _not_well_formed(label, record.reasons)
             results.append(None)
             pending.append((i, record))
-        if pending:
-            db = self._db
-            with sqlite_errors(self._path), immediate(db):
-                for i, record in pending:
-                    results[i] = self._insert(db, record, symmetric=symmetric)
-        return [r for r in results if r is not None]
+        return results, pending
+
+    def _insert_pending(self, db: sqlite3.Connection, results: list[AddResult | None],
+                        pending: list[tuple[int, Record]], *, symmetric: bool) -> None:
+        """Insert the prepared records (inside the caller's transaction), filling in their results."""
+        for i, record in pending:
+            results[i] = self._insert(db, record, symmetric=symmetric)
+
+    def add_range(self, range_name: str, members: Sequence[tuple[str, npt.ArrayLike]], *,
+                  meta: Mapping[str, Any] | None = None) -> int:
+        """Store shapes as the named range ``range_name``, in order, in one transaction.
+
+        Each shape is stored as :meth:`add` with ``draft=True`` would (an equal
+        shape stored already is shared), and named ``RANGE:MEMBER`` as well.  The
+        shapes need not be well formed: a census's polycubes do not span the grid.
+
+        Parameters
+        ----------
+        range_name : str
+            Lowercase letters, digits, ``-`` and ``_``, starting with a letter (``polycubes-8``).
+        members : sequence of (str, (X, Y, Z) bool array_like)
+            Member names (``08-000001``: lowercase letters, digits, ``-``, ``_``) and their shapes.
+            Members already in the range with the same shape are kept; the rest are
+            added after the range's last member.
+        meta : mapping, optional
+            JSON-compatible metadata stored with each new shape.
+
+        Returns
+        -------
+        int
+            How many members were added.
+
+        Raises
+        ------
+        RepositoryError
+            A bad range or member name, a member name given twice, or a member
+            name the range holds already for another shape (then nothing is written).
+        """
+        check_range_name(range_name)
+        names = [m for m, _ in members]
+        for m in names:
+            check_name(f"{range_name}:{m}")
+        if len(set(names)) != len(names):
+            twice = next(m for i, m in enumerate(names) if m in names[:i])
+            raise RepositoryError(f"{range_name}:{twice}: a member name given twice")
+        results, pending = self._prepare_many([g for _, g in members], symmetric=False, draft=True,
+                                              metas=[meta] * len(names))
+        db = self._db
+        with sqlite_errors(self._path), immediate(db):
+            self._insert_pending(db, results, pending, symmetric=False)
+            return insert_members(db, range_name, [(m, r.name) for m, r in zip(names, results) if r is not None])
+
+    def ranges(self) -> list[RangeInfo]:
+        """Every stored range, by name, with its number of members."""
+        with sqlite_errors(self._path):
+            return range_infos(self._db)
+
+    def list_range(self, range_name: str, *, after: str | None = None, limit: int | None = None) -> list[Entry]:
+        """The members of a range in stored order, named ``RANGE:MEMBER``.
+
+        ``after`` (a member, with or without ``RANGE:``) and ``limit`` page as in :meth:`list`.
+
+        Raises
+        ------
+        RepositoryError
+            A bad range name, a range that holds nothing, an unknown ``after`` or a limit below 1.
+        """
+        check_range_name(range_name)
+        if limit is not None and int(limit) < 1:
+            raise RepositoryError(f"limit: expected at least 1, got {limit}")
+        if after is not None and after.startswith(f"{range_name}:"):
+            after = after[len(range_name) + 1:]
+        with sqlite_errors(self._path):
+            if not any(r.name == range_name for r in range_infos(self._db)):
+                raise RepositoryError(f"{range_name}: no such range in {self._path}")
+            rows = member_rows(self._db, range_name, after, None if limit is None else min(int(limit), 2**62))
+        return [Entry(f"{range_name}:{m}", v, (nx, ny, nz), bool(d)) for m, v, nx, ny, nz, d in rows]
+
+    def remove_range(self, range_name: str) -> int:
+        """Delete a range: its members, and its drafts that no other range holds.  Return the member count.
+
+        Named shapes (``VVVVV.NNN``) in the range stay stored.
+        """
+        check_range_name(range_name)
+        db = self._db
+        with sqlite_errors(self._path), immediate(db):
+            shapes = [r[0] for r in db.execute("SELECT shape FROM range_members WHERE range = ?", (range_name,))]
+            if not shapes:
+                raise RepositoryError(f"{range_name}: no such range in {self._path}")
+            db.execute("DELETE FROM range_members WHERE range = ?", (range_name,))
+            db.execute("DELETE FROM shapes WHERE draft = 1 AND id IN (SELECT value FROM json_each(?))"
+                       " AND id NOT IN (SELECT shape FROM range_members)", (json.dumps(shapes),))
+        return len(shapes)
 
     def _lookup(self, key: str, *, symmetric: bool) -> tuple[str, tuple[str, ...]] | None:
         """Name and reasons of the first stored shape with this canonical key, or None."""
@@ -323,8 +431,13 @@ class Repository:
 
     def _row(self, name: str, columns: str) -> tuple[Any, ...]:
         check_name(name)
+        member = split_member(name)
         with sqlite_errors(self._path):
-            row = self._db.execute(f"SELECT {columns} FROM shapes WHERE name = ?", (name,)).fetchone()
+            if member is None:
+                row = self._db.execute(f"SELECT {columns} FROM shapes WHERE name = ?", (name,)).fetchone()
+            else:  # the member's shape row (the range table's columns have other names than the shape's)
+                row = self._db.execute(f"SELECT {columns} FROM shapes JOIN range_members ON shape = id"
+                                       " WHERE range = ? AND member = ?", member).fetchone()
         if row is None:
             raise RepositoryError(f"{name}: no such shape in {self._path}")
         return tuple(row)
@@ -424,7 +537,8 @@ class Repository:
                 params += [start[1], start[3]]
             parts.append((" AND ".join(where), params))
         if drafts:
-            where, params = ["draft = 1"], []
+            # A range's drafts are listed with the range (list_range), not among the artist's drafts.
+            where, params = ["draft = 1 AND id NOT IN (SELECT shape FROM range_members)"], []
             if start is not None and start[0] == 1:
                 where.append("(volume, id) > (?, ?)")
                 params += [start[1], start[2]]
@@ -449,7 +563,8 @@ class Repository:
         Returns
         -------
         dict
-            ``shapes`` (named shapes), ``drafts``, and ``volumes``: a list of
+            ``shapes`` (named shapes), ``drafts`` (outside ranges), ``named_ranges``
+            (each range's ``name`` and ``count``), and ``volumes``: a list of
             ``{"volume", "count", "last_rank"}`` by volume, where ``last_rank`` is the
             highest rank ever given (removed names are not reused, so it can exceed
             ``count``).  ``volume`` = ``(min, max)`` restricts all three.
@@ -463,11 +578,14 @@ class Repository:
                 (lo, hi),
             ).fetchall()
             drafts = self._db.execute(
-                "SELECT count(*) FROM shapes WHERE draft = 1 AND volume BETWEEN ? AND ?", (lo, hi)
+                "SELECT count(*) FROM shapes WHERE draft = 1 AND volume BETWEEN ? AND ?"
+                " AND id NOT IN (SELECT shape FROM range_members)", (lo, hi)
             ).fetchone()[0]
+            ranges = range_infos(self._db)
         return {
             "shapes": sum(r[1] for r in rows),
             "drafts": int(drafts),
+            "named_ranges": [{"name": r.name, "count": r.count} for r in ranges],
             "volumes": [{"volume": v, "count": n, "last_rank": last} for v, n, last in rows],
         }
 
@@ -518,14 +636,31 @@ class Repository:
     def remove(self, name: str) -> None:
         """Delete ``name``.  Other shapes keep their names and the name is not reused.
 
+        A range member (``RANGE:MEMBER``) leaves its range, and its draft goes with
+        it unless another range holds it; a shape that a range holds is refused.
+
         Raises
         ------
         RepositoryError
             For a malformed or unknown name.
         """
         check_name(name)
+        member = split_member(name)
         db = self._db
         with sqlite_errors(self._path), immediate(db):
+            if member is not None:  # the member, and its draft when no range holds it any more
+                row = db.execute("SELECT shape FROM range_members WHERE range = ? AND member = ?", member).fetchone()
+                if row is None:
+                    raise RepositoryError(f"{name}: no such shape in {self._path}")
+                db.execute("DELETE FROM range_members WHERE range = ? AND member = ?", member)
+                db.execute("DELETE FROM shapes WHERE id = ? AND draft = 1"
+                           " AND id NOT IN (SELECT shape FROM range_members)", (row[0],))
+                return
+            held = db.execute("SELECT m.range || ':' || m.member FROM range_members m JOIN shapes s"
+                              " ON s.id = m.shape WHERE s.name = ? LIMIT 1", (name,)).fetchone()
+            if held is not None:
+                raise RepositoryError(f"{name}: the range member {held[0]} is this shape; remove the member "
+                                      "or its range first")
             deleted = db.execute("DELETE FROM shapes WHERE name = ?", (name,)).rowcount
         if deleted == 0:
             raise RepositoryError(f"{name}: no such shape in {self._path}")
@@ -570,6 +705,8 @@ class Repository:
                 problems.append(f"{label}: a named shape that is not well formed")
             if d and not why:
                 problems.append(f"{label}: a draft that gives no reason")
+        with sqlite_errors(self._path):
+            problems += check_members(self._db)
         return problems
 
     # -- container protocol -----------------------------------------------------
@@ -585,7 +722,11 @@ class Repository:
     def __contains__(self, name: object) -> bool:
         if not isinstance(name, str):
             return False
+        member = split_member(name)
         with sqlite_errors(self._path):
+            if member is not None:
+                return self._db.execute("SELECT 1 FROM range_members WHERE range = ? AND member = ?",
+                                        member).fetchone() is not None
             return self._db.execute("SELECT 1 FROM shapes WHERE name = ?", (name,)).fetchone() is not None
 
 

@@ -12,6 +12,11 @@ processes may open (and create) the same file at the same time.
 Schema 2 stores the two canonical keys as 32-byte blobs instead of 64-character
 hex text: with a million shapes the keys and their two indexes are most of the
 file, and halving them halves the pages a lookup touches.
+
+Schema 3 adds named ranges (``range_members``): an ordered set of stored shapes
+under one name, such as the polycubes of a census, each member named
+``RANGE:MEMBER``.  Most members are drafts (a census shape need not span the
+grid); the drafts of a range stay out of the plain listing.
 """
 
 from __future__ import annotations
@@ -27,7 +32,7 @@ from voxfab.errors import RepositoryError
 __all__ = ["SCHEMA_VERSION", "APPLICATION_ID", "BUSY_TIMEOUT_S", "connect", "immediate", "sqlite_errors"]
 
 #: Version of the schema written by this code (``PRAGMA user_version``).
-SCHEMA_VERSION = 2
+SCHEMA_VERSION = 3
 #: ``PRAGMA application_id`` of a voxfab repository: the bytes "VXFB".
 APPLICATION_ID = 0x56584642
 #: How long a writer waits for another process's write lock before giving up.
@@ -101,6 +106,21 @@ _MIGRATIONS: tuple[tuple[str, ...], ...] = (
         "CREATE INDEX shapes_key ON shapes (key)",
         "CREATE INDEX shapes_symmetric_key ON shapes (symmetric_key)",
         "CREATE INDEX shapes_order ON shapes (draft, volume, rank, id)",
+    ),
+    # 2 -> 3: named ranges.  A member points at its shape's row; ``position`` keeps the
+    # range in the order it was stored (a census's fixed order).
+    (
+        """
+        CREATE TABLE range_members (
+            range TEXT NOT NULL,
+            member TEXT NOT NULL,
+            position INTEGER NOT NULL CHECK (position > 0),
+            shape INTEGER NOT NULL REFERENCES shapes (id),
+            PRIMARY KEY (range, member),
+            UNIQUE (range, position)
+        )
+        """,
+        "CREATE INDEX range_members_shape ON range_members (shape)",
     ),
 )
 assert len(_MIGRATIONS) == SCHEMA_VERSION
