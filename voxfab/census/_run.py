@@ -230,6 +230,9 @@ def run_census(
     used = [0]
     per_worker: dict[str, int] = {}
     where = str(out.resolve())  # workers elsewhere see the shared folder by its full path, not the client's cwd
+    # The largest polycubes first: they cost the most, so the last chunks, which leave a worker idle
+    # while the other finishes, are the cheapest (the order of the records in the file does not change).
+    todo.sort(key=lambda item: -item[1])
     chunks = (CensusTask(tuple(todo[i:i + _CHUNK]), where, settings) for i in range(0, len(todo), _CHUNK))
     with _runner(scheduler, workers, connect_timeout) as (run, used[0]):
         for recs, worker in run(chunks):
