@@ -76,7 +76,7 @@ def test_allowed_hosts_are_the_servers_own_address():
 
 
 def test_request_size_is_limited(client):
-    from voxfab.studio._app import MAX_BODY
+    from voxfab.studio._guard import MAX_BODY
 
     big = b"x" * (MAX_BODY + 1)
     r = client.post("/api/preview", content=big, headers={"content-type": "application/json"})

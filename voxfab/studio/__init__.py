@@ -19,17 +19,14 @@ from ._server import serve
 __all__ = ["Settings", "allowed_hosts", "create_app", "pack", "serve", "unpack", "warm_gallery_here"]
 
 
+#: Where each lazily exported name is defined (importing Starlette only when one is asked for).
+_LAZY = {"Settings": "_session", "allowed_hosts": "_guard", "create_app": "_app", "pack": "_grid",
+         "unpack": "_grid", "warm_gallery_here": "_work"}
+
+
 def __getattr__(name: str):  # noqa: ANN202 - lazy re-exports keep `import voxfab.studio` free of Starlette
-    if name in ("Settings", "allowed_hosts", "create_app"):
-        from . import _app
+    if name in _LAZY:
+        from importlib import import_module
 
-        return getattr(_app, name)
-    if name in ("pack", "unpack"):
-        from . import _grid
-
-        return getattr(_grid, name)
-    if name == "warm_gallery_here":
-        from . import _work
-
-        return _work.warm_gallery_here
+        return getattr(import_module(f"{__name__}.{_LAZY[name]}"), name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -1,4 +1,4 @@
-"""``POST /api/fits``: "does it fit this sheet?", answered by the exact strategy as a job.
+"""What ``POST /api/fits`` asks, "does it fit this sheet?", answered by the exact strategy as a job.
 
 The request is ``{"grid": ..., "options": {"sheet": "A4", "face_size": 10, "timeout": 20}}`` (the
 gallery's options, checked by the same dataclasses; no face size: the smallest legible one); the
@@ -7,23 +7,19 @@ answer is a job (the search may take up to ``timeout`` seconds) whose result is
 or ``undecided``), the box of faces, the message in plain words (``detail``: the
 library's), and with ``yes`` the net as a gallery's net (layout, fit, placement).
 That net is the job's net 0, so ``/api/make`` draws it and ``/api/nets/edit``
-edits it when asked for ``{"job": ID, "index": 0}``.
+edits it when asked for ``{"job": ID, "index": 0}``.  The route is in :mod:`._routes.net`.
 """
 
 from __future__ import annotations
 
-from collections.abc import Awaitable, Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from starlette.requests import Request
+if TYPE_CHECKING:
+    import numpy as np
 
-from voxfab.errors import InvalidShapeError
+    from ._jobs import Job
 
-from . import _bodies, _grid
-from ._http import read_object
-from ._jobs import Jobs
-
-__all__ = ["endpoint", "MAX_FITS_SECONDS"]
+__all__ = ["fits_answer", "FITS_DEFAULTS", "MAX_FITS_SECONDS"]
 
 #: Longest exact search the page may ask for, seconds.
 MAX_FITS_SECONDS = 120.0
@@ -31,35 +27,15 @@ MAX_FITS_SECONDS = 120.0
 FITS_DEFAULTS = {"timeout": 5.0}
 
 
-def endpoint(jobs: Callable[[], Jobs]) -> Callable[[Request], Awaitable[dict[str, Any]]]:
-    """The handler of ``POST /api/fits`` on the session's ``jobs``."""
+def fits_answer(job: Job, grid: np.ndarray, *, net: Any, drawing: Any) -> None:
+    """Answer "does one piece of ``grid`` fit the sheet?" as ``job``'s result, its net (if any) kept as net 0.
 
-    async def fits(request: Request) -> dict[str, Any]:
-        from voxfab.shape import well_formed_reasons
-
-        data = await read_object(request, _bodies.FITS,
-                                 example='{"grid": ..., "options": {"sheet": "A4", "face_size": 10}}')
-        grid = _grid.unpack(data.get("grid"))
-        # Only the options the question reads, each checked by its declaration (the CLI's bounds and words).
-        net, drawing = _bodies.fits_options(data.get("options"), defaults=FITS_DEFAULTS)
-        if net.timeout > MAX_FITS_SECONDS:
-            raise InvalidShapeError(f"options.timeout: expected at most {MAX_FITS_SECONDS:g} s for the page's "
-                                    f"question, got {net.timeout:g}")
-        reasons = well_formed_reasons(grid)
-        if any("piece" in r for r in reasons) or not grid.any():
-            raise InvalidShapeError("shape: a net needs one piece of face-connected voxels: "
-                                    + "; ".join(reasons or ["the shape is empty"]))
-        job = jobs().submit("fits", lambda j: _answer(j, grid, net=net, drawing=drawing))
-        return {"job": job.id}
-
-    return fits
-
-
-def _answer(job: Any, grid: Any, *, net: Any, drawing: Any) -> None:
+    ``net`` and ``drawing`` are the gallery's checked options (``NetOptions``, ``DrawingOptions``).
+    """
     from voxfab.fabricate.fits import fits_sheet
     from voxfab.fabricate.netdraw import gallery_face_size
 
-    from ._edit import net_item
+    from ._netedit import net_item
     from ._words import explained
 
     # No face size asked for: the smallest with legible marks, as the gallery takes it.

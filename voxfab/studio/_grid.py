@@ -48,6 +48,12 @@ def unpack(data: Any, *, name: str = "grid") -> np.ndarray:
     return np.asarray(as_grid(g, name=name, allow_empty=True))
 
 
+def require_voxels(grid: np.ndarray) -> None:
+    """Refuse an empty shape: there is nothing to keep or make."""
+    if not grid.any():
+        raise InvalidShapeError("shape: empty; draw or add voxels first")
+
+
 def centred(grid: np.ndarray, side: int = SIDE) -> np.ndarray:
     """The shape cropped and centred in a ``side``³ grid (the editor's canvas)."""
     from voxfab.shape import crop

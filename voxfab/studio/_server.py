@@ -48,7 +48,9 @@ def serve(*, host: str = "127.0.0.1", port: int = 8765, repo: Path, open_browser
         import uvicorn
     except ImportError:
         raise MissingDependencyError("uvicorn", "voxfab studio") from None
-    from ._app import Settings, allowed_hosts, create_app
+    from ._app import create_app
+    from ._guard import allowed_hosts
+    from ._session import Settings
 
     if not 1 <= port <= 65535:
         raise InvalidShapeError(f"--port: expected 1..65535, got {port}")

@@ -78,6 +78,20 @@ class RecipeText:
         path.write_text(self.toml, encoding="utf-8")
         return path
 
+    def download(self) -> tuple[str, bytes]:
+        """The file the page downloads and its name: the TOML alone, or a zip of a folder with its files."""
+        if not self.files:
+            return f"{self.name}.toml", self.toml.encode()
+        import io
+        import zipfile
+
+        buf = io.BytesIO()
+        with zipfile.ZipFile(buf, "w", compression=zipfile.ZIP_DEFLATED) as zf:
+            for fname, raw in ((f"{self.name}.toml", self.toml.encode()), *self.files):
+                # fixed dates: the same drawing gives the same archive
+                zf.writestr(zipfile.ZipInfo(f"{self.name}/{fname}", date_time=(1980, 1, 1, 0, 0, 0)), raw)
+        return f"{self.name}.zip", buf.getvalue()
+
 
 # --- reading the page's JSON ------------------------------------------------------------------
 

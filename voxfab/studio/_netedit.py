@@ -1,10 +1,10 @@
-"""``POST /api/nets/edit``: cut or join one edge of a chosen net, or undo the last edit.
+"""What ``POST /api/nets/edit`` does: cut or join one edge of a chosen net, or undo the last edit.
 
 The edit itself is :func:`voxfab.unfold.cut_edge` / :func:`voxfab.unfold.join_edge`
-(a local repair, validated); this module only finds the net the page names,
-keeps the result as a new job (its net 0, so ``/api/make`` can use it) with the
-marks made so far and the nets before it (for undo), and answers with the net
-laid out for the page.
+(a local repair, validated); this module only finds the net the page names in
+its job, and makes the record the route keeps as a new job (its net 0, so
+``/api/make`` can use it) with the marks made so far and the nets before it (for
+undo), and the net laid out for the page (:mod:`._routes.net` is the route).
 
 Body: ``{"job": ID, "index": N, "cut": [faceA, faceB]}`` or ``"join": [...]`` or
 ``"undo": true``, faces as ``[x, y, z, "+z"]``; ``"grid"`` (packed) is needed only
@@ -19,7 +19,6 @@ and ``"undo"`` (edits that undo can take back).
 from __future__ import annotations
 
 import time
-from collections.abc import Awaitable, Callable
 from typing import Any
 
 import numpy as np
@@ -136,36 +135,3 @@ def apply_edit(job: Any, data: dict[str, Any]) -> dict[str, Any]:
                     drawing=options[1] if options is not None else None)
     record = {"nets": [net], "grid": grid, "marks": marks, "history": history, "options": options}
     return {"record": record, "item": item}
-
-
-def edit_route(jobs: Callable[[], Any]) -> Callable[[Any], Awaitable[dict[str, Any]]]:
-    """The handler of ``POST /api/nets/edit`` over the session's jobs (wrap it in the app's ``api``)."""
-    from starlette.concurrency import run_in_threadpool
-
-    from ._bodies import EDIT
-    from ._http import only_fields, read_json
-
-    async def edit(request: Any) -> dict[str, Any]:
-        data = await read_json(request)
-        if not isinstance(data, dict) or not isinstance(data.get("job"), str):
-            raise InvalidShapeError("request: expected {\"job\": ID, \"index\": N, \"cut\" | \"join\": [face, face]"
-                                    " | \"undo\": true}")
-        only_fields(data, EDIT, where="request")
-        source = jobs().get(data["job"]) if len(data["job"]) <= 40 else None
-        if source is None:
-            raise InvalidShapeError(f"job: no job {data['job'][:20]!r} in this session")
-        # an edit's job holds its net from the start (the pool only marks it done), a gallery each net once made
-        if source.state != "done" and source.kind != "edit" and not (source.kind == "nets" and source.items):
-            raise InvalidShapeError(f"job: job {source.id} has not finished")
-        made = await run_in_threadpool(apply_edit, source, data)
-        record, item = made["record"], made["item"]
-
-        def keep(job: Any) -> None:
-            job.data.update(record)
-            job.result = {"asked": 1, "found": 1, "seconds": item["seconds"], "nets": [item]}
-
-        job = jobs().submit("edit", keep)
-        keep(job)  # at once too, so /api/make finds the net before the pool has run the job
-        return {"job": job.id, "net": item}
-
-    return edit
