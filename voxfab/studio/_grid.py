@@ -56,17 +56,14 @@ def require_voxels(grid: np.ndarray) -> None:
 
 def centred(grid: np.ndarray, side: int = SIDE) -> np.ndarray:
     """The shape cropped and centred in a ``side``³ grid (the editor's canvas)."""
-    from voxfab.shape import crop
+    from voxfab.shape import crop, pad_to
 
     if not grid.any():
         return np.zeros((side,) * 3, dtype=bool)
     c = crop(grid)
     if max(c.shape) > side:
         raise InvalidShapeError(f"shape: {'x'.join(map(str, c.shape))} voxels does not fit the {side}³ editor")
-    out = np.zeros((side,) * 3, dtype=bool)
-    off = [(side - s) // 2 for s in c.shape]
-    out[off[0]:off[0] + c.shape[0], off[1]:off[1] + c.shape[1], off[2]:off[2] + c.shape[2]] = c
-    return out
+    return pad_to(c, (side,) * 3)
 
 
 def facts(grid: np.ndarray) -> dict[str, Any]:
