@@ -14,6 +14,7 @@ from PIL import Image
 from voxfab.digitize import revolution
 from voxfab.recipe import load_recipe, make_shape
 from voxfab.repo import Repository
+from voxfab.shape import canonical_key
 from voxfab.studio._grid import centred, pack, unpack
 
 from ._helpers import png, small_shape, wait_job
@@ -322,6 +323,20 @@ def test_repository_errors_and_drafts(client):
         assert r.status_code == 400 and "repository name" in r.json()["error"]
     r = client.get("/api/repo/thumb?name=99999.999")
     assert r.status_code == 400 and "99999.999" in r.json()["error"]
+
+
+def test_a_census_range_member_opens_in_the_editor(client, tmp_path):
+    from voxfab.census import grid_of, polycubes, shape_id
+
+    members = [(shape_id(n, i), grid_of(cells)) for n, i, cells in polycubes(5)]
+    with Repository(tmp_path / "repo.sqlite") as repo:
+        repo.add_range("polycubes-5", members)
+    opened = client.get("/api/repo/shape?name=polycubes-5:05-000007").json()
+    grid = unpack(opened["grid"])
+    assert grid.shape == (25, 25, 25) and grid.sum() == 5 and opened["name"] == "polycubes-5:05-000007"
+    assert canonical_key(grid) == canonical_key(dict(members)["05-000007"])
+    r = client.get("/api/repo/shape?name=polycubes-5:05-000099")
+    assert r.status_code == 400 and "polycubes-5:05-000099" in r.json()["error"]
 
 
 # --- nets and files ---------------------------------------------------------------------------

@@ -13,7 +13,16 @@ Only this package touches :mod:`sqlite3`.  See :class:`Repository`.
 
 from ._load import LoadedShape, load_shape
 from ._ranges import RangeInfo
-from ._records import DRAFT_PATTERN, MAX_RANK, NAME_PATTERN, decode_bits, encode_bits, format_name
+from ._records import (
+    DRAFT_PATTERN,
+    MAX_RANK,
+    MEMBER_PATTERN,
+    NAME_PATTERN,
+    decode_bits,
+    encode_bits,
+    format_name,
+    is_shape_name,
+)
 from ._repository import DEFAULT_PATH, AddResult, Entry, Repository
 from ._sqlite import SCHEMA_VERSION
 
@@ -29,6 +38,8 @@ __all__ = [
     "MAX_RANK",
     "NAME_PATTERN",
     "DRAFT_PATTERN",
+    "MEMBER_PATTERN",
+    "is_shape_name",
     "format_name",
     "encode_bits",
     "decode_bits",

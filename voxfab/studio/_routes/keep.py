@@ -27,11 +27,11 @@ MAX_THUMBS = 2000
 
 
 def shape_name(request: Request, key: str = "name") -> str:
-    """The repository name in the query's ``key`` (``VVVVV.NNN`` or ``draft-N``), or a one-line error."""
-    from voxfab.repo import DRAFT_PATTERN, NAME_PATTERN
+    """The repository name in the query's ``key`` (``VVVVV.NNN``, ``draft-N``, ``RANGE:MEMBER``), or a one-line error."""
+    from voxfab.repo import is_shape_name
 
     name = request.query_params.get(key, "")
-    if not (NAME_PATTERN.match(name) or DRAFT_PATTERN.match(name)):
+    if not is_shape_name(name):
         raise InvalidShapeError(f"{key}: expected a repository name such as 00797.001, got {name[:40]!r}")
     return name
 
