@@ -37,8 +37,11 @@ CENSUS_FORMAT = "voxfab-census/1"
 _CHUNK = 24
 #: Shapes listed per n as the first without an unzipping (or undecided), with their proofs.
 _LISTED = 10
-#: Seconds between two saves of the partial census.
+#: Seconds between two saves of the partial census, at the least.
 _SAVE_EVERY = 15.0
+#: ... and at least this many times the last save's own time: the client shares the workers' cores,
+#: and rewriting a census of 50,000 shapes takes seconds, so saving stays under 5 % of one core.
+_SAVE_SHARE = 20.0
 
 
 def shape_id(n: int, index: int) -> str:
@@ -212,7 +215,7 @@ def run_census(
     wall: dict[int, float] = {}  # search seconds per n, this run's, added over the shapes
     cpu: dict[int, float] = {}
     start = time.perf_counter()
-    last = time.monotonic()
+    last, wait = time.monotonic(), _SAVE_EVERY
 
     def save(complete: bool) -> None:
         data = {
@@ -244,9 +247,11 @@ def run_census(
             done += len(recs)
             if on_progress is not None:
                 on_progress(done, len(todo))
-            if time.monotonic() - last > _SAVE_EVERY:
+            if time.monotonic() - last > wait:
+                began = time.monotonic()
                 save(False)
                 last = time.monotonic()
+                wait = max(_SAVE_EVERY, _SAVE_SHARE * (last - began))
     save(True)
     from ._report import write_page
 
