@@ -15,7 +15,7 @@ Temporaries are named ``.NAME.PID-<8 random characters>.tmp``.  They are removed
 fails, is interrupted (SIGINT) or terminated (SIGTERM: the CLI turns it into an
 exception).  A run killed outright (SIGKILL, power cut) leaves them behind; the
 next run writing into the same folder removes those whose process is gone
-(:func:`sweep`).
+(:func:`sweep`; a long-running process sweeps a folder once a minute at most).
 
 An output the user names must go in an existing folder: a mistyped ``-o
 /nonexistent/dir/x.json`` is refused by :func:`check_output`, which each command
@@ -33,6 +33,7 @@ import os
 import re
 import shutil
 import tempfile
+import time
 from collections.abc import Iterator
 from contextvars import ContextVar
 from pathlib import Path
@@ -126,15 +127,32 @@ def sweep(folder: PathLike) -> list[Path]:
     """
     removed = []
     try:
-        entries = list(Path(folder).iterdir())
+        with os.scandir(folder) as listing:  # a census's nets folder holds 100,000 files: no Path per entry
+            names = [e.name for e in listing if e.name.startswith(".") and e.name.endswith(".tmp")]
     except OSError:
         return removed
-    for entry in entries:
-        m = _TEMPORARY.match(entry.name)
+    for name in names:
+        m = _TEMPORARY.match(name)
         if m and not _alive(int(m.group("pid"))):
+            entry = Path(folder) / name
             _remove(entry)
             removed.append(entry)
     return removed
+
+
+#: When this process last swept each folder it writes into (``time.monotonic()``).
+_SWEPT: dict[str, float] = {}
+#: A folder is swept again after this many seconds: a run killed meanwhile leaves its temporaries
+#: for a while at most, and a worker writing thousands of files into one folder lists it once a minute.
+SWEEP_EVERY = 60.0
+
+
+def _sweep_once_in_a_while(folder: Path) -> None:
+    key = os.path.abspath(folder)
+    now = time.monotonic()
+    if now - _SWEPT.get(key, -SWEEP_EVERY) >= SWEEP_EVERY:
+        sweep(folder)
+        _SWEPT[key] = now
 
 
 def _make_folder(target: Path) -> Path:
@@ -204,7 +222,7 @@ def atomic_open(path: PathLike, mode: str = "wb") -> Iterator[IO]:
     if target.is_dir():
         raise OutputError(f"{target}: is a folder, expected a file name")
     folder = _make_folder(target)
-    sweep(folder)
+    _sweep_once_in_a_while(folder)
     try:
         fd, tmp = tempfile.mkstemp(prefix=_prefix(target), suffix=".tmp", dir=folder)
     except OSError as exc:
@@ -315,7 +333,7 @@ def atomic_dir(path: PathLike, *, marker: str | None = None) -> Iterator[Path]:
     target = Path(path)
     folder = _make_folder(target)
     check_output(target, folder=True, marker=marker)
-    sweep(folder)
+    _sweep_once_in_a_while(folder)
     try:
         tmp = Path(tempfile.mkdtemp(prefix=_prefix(target), suffix=".tmp", dir=folder))
     except OSError as exc:
