@@ -1,6 +1,9 @@
 import dataclasses
+import hashlib
 import json
+import shutil
 import textwrap
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -225,3 +228,49 @@ def test_a_net_split_into_pieces_is_a_warning(tmp_path):
     manifest = json.loads((build(r, tmp_path / "out") / "manifest.json").read_text())
     assert any(w.startswith("net: net split into") for w in manifest["warnings"]), manifest["warnings"]
     assert any(f["path"] == "net.sheet-2.svg" for f in manifest["files"])
+
+
+CHESS = Path(__file__).resolve().parents[2] / "recipes" / "chess"
+
+
+def test_the_pictures_draw_the_net_written_whatever_the_order_of_outputs(tmp_path):
+    """The net output hands its net to the pictures: listed before or after the net, they draw the very net of
+    net.json, and the build is the same file for file."""
+    from voxfab.render import PictureOptions, png_bytes
+    from voxfab.render._net import net_picture
+    from voxfab.render._triptych import make_net
+    from voxfab.shape import fill_cavities
+    from voxfab.unfold import Net, validate
+
+    head = (CHESS / "queen.toml").read_text().split("[outputs.")[0]
+    net = '[outputs.net]\nface_size = 8.6\nsheet = "900x600"\nlabel_height = 2.0\nformats = ["svg"]\n'
+    pictures = "[outputs.pictures]\nsize = 200\nnet_picture = true\n"
+    built = {}
+    for order, outputs in (("pictures-first", pictures + net), ("net-first", net + pictures)):
+        (tmp_path / order).mkdir()
+        shutil.copy(CHESS / "queen_generatrix.svg", tmp_path / order)
+        (tmp_path / order / "queen.toml").write_text(head + outputs)
+        built[order] = build(load_recipe(tmp_path / order / "queen.toml"), tmp_path / order / "out")
+    folder = built["pictures-first"]
+    grid = np.load(folder / "shape.npy")
+    written = Net.from_json((folder / "net.json").read_text())
+    assert validate(fill_cavities(grid) if written.filled else grid, written).ok
+    background = PictureOptions().background
+
+    def picture(of: Net) -> bytes:
+        return png_bytes(net_picture(of, fill_cavities(grid) if of.filled else grid, size=200, background=background))
+
+    drawn = (folder / "net_picture.png").read_bytes()
+    assert drawn == picture(written)
+    # Not the net the pictures would unfold on their own: they were given the one written.
+    assert drawn != picture(make_net(grid, rng=load_recipe(tmp_path / "net-first" / "queen.toml").seed))
+    manifests = {order: json.loads((f / "manifest.json").read_text()) for order, f in built.items()}
+    for order, manifest in manifests.items():
+        recipe = (tmp_path / order / "queen.toml").read_bytes()
+        assert manifest.pop("recipe_sha256") == hashlib.sha256(recipe).hexdigest()
+    assert manifests["pictures-first"] == manifests["net-first"]
+    assert manifests["net-first"]["outputs"] == ["net", "pictures"]
+    # Every file listed with its sha256 is the same: byte-identical builds.
+    first, second = ((f / "manifest.json").read_text() for f in built.values())
+    assert [line for line in first.splitlines() if "recipe_sha256" not in line] == [
+        line for line in second.splitlines() if "recipe_sha256" not in line]

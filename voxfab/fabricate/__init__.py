@@ -7,6 +7,7 @@ recipes, the studio and batch runs all call; a pipeline returns an
 """
 
 from ._outputs import Artefact, OutputFile
-from ._table import BuildContext, OptionTable, Output, output_for_download, outputs
+from ._table import BuildContext, OptionTable, Output, build_order, output_for_download, outputs
 
-__all__ = ["Artefact", "OutputFile", "BuildContext", "Output", "OptionTable", "output_for_download", "outputs"]
+__all__ = ["Artefact", "OutputFile", "BuildContext", "Output", "OptionTable", "build_order", "output_for_download",
+           "outputs"]

@@ -28,8 +28,13 @@ class Artefact:
         (plates without dowels, a print in several parts, ...).
     report : mapping
         The pipeline's figures as plain JSON values.
+    gives : mapping
+        What the pipeline made for the outputs built after it, by the names its
+        row of the table declares (:attr:`voxfab.fabricate.Output.gives`): the net
+        pipeline gives ``"net"``, the pieces of the net it wrote.
     """
 
     files: tuple[OutputFile, ...]
     warnings: tuple[str, ...] = ()
     report: Mapping[str, Any] = dataclasses.field(default_factory=dict)
+    gives: Mapping[str, Any] = dataclasses.field(default_factory=dict)

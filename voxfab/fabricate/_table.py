@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import dataclasses
 import importlib
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -22,7 +22,7 @@ from voxfab._shared.options import from_mapping, option_specs
 
 from ._outputs import Artefact, OutputFile
 
-__all__ = ["Output", "OptionTable", "BuildContext", "outputs", "output_for_download", "resolve"]
+__all__ = ["Output", "OptionTable", "BuildContext", "outputs", "output_for_download", "resolve", "build_order"]
 
 
 def resolve(path: str | Any) -> Any:
@@ -50,15 +50,19 @@ class OptionTable:
 class BuildContext:
     """What an output may need beyond the shape and its options.
 
+    A build starts from the source's fields; each output then adds what its row
+    :attr:`Output.gives` to the context of the outputs after it.
+
     Attributes
     ----------
     maker, params, base_dir
         The source that made the shape (the animation re-runs a tube maker):
         maker name (None for a file), its parameters, and the folder its file
         names are relative to.
-    net : Net or list of Net, optional
-        A net chosen already (the studio's gallery pick, or the build's own net
-        output): the net output draws it instead of searching, the pictures show it.
+    net : Net or sequence of Net, optional
+        A net, or its pieces, chosen already (the studio's gallery pick, or what the
+        build's net output gave): the net output draws it instead of searching, the
+        pictures show it when it is in one piece.
     paper_at_pitch : bool
         A net without a ``face_size`` is drawn at the shape's pitch, so the paper
         model is the printed object (a recipe's one-scale rule); False lets the net
@@ -111,6 +115,12 @@ class Output:
         The compiled kernels of that group, to tell whether numba's cache holds them.
     command : str, optional
         The ``voxfab`` command that makes it alone (``voxfab mesh``, ``voxfab render``...).
+    gives : tuple of str
+        The :class:`BuildContext` fields its run fills for the outputs after it, in its
+        :attr:`Artefact.gives` (the net output gives ``"net"``).
+    uses : tuple of str
+        The :class:`BuildContext` fields, given by other outputs, that it draws on when
+        they are set (the pictures use ``"net"``): a build runs it after the outputs that give them.
     """
 
     name: str
@@ -127,6 +137,21 @@ class Output:
     warm: Callable[[Path], None] | None = None
     kernels: tuple[tuple[str, str], ...] = ()
     command: str | None = None
+    gives: tuple[str, ...] = ()
+    uses: tuple[str, ...] = ()
+
+    def __post_init__(self) -> None:
+        fields = {f.name for f in dataclasses.fields(BuildContext)}
+        for name in (*self.gives, *self.uses):
+            if name not in fields:
+                raise ValueError(f"output {self.name}: {name!r} is not a BuildContext field")
+
+    def pass_on(self, made: Artefact, context: BuildContext) -> BuildContext:
+        """``context`` with what ``made`` (this output's run) gives the outputs after it."""
+        if set(made.gives) != set(self.gives):
+            raise RuntimeError(f"output {self.name}: its run gave {sorted(made.gives)}, its row declares "
+                               f"{sorted(self.gives)}")
+        return dataclasses.replace(context, **made.gives)
 
     @property
     def keys(self) -> tuple[str, ...]:
@@ -200,7 +225,11 @@ def _run_pictures(shape: Any, options: Any, outdir: Path, *, name: str, seed: in
                   context: BuildContext) -> Artefact:
     from voxfab.render import render_pictures
 
-    return render_pictures(shape, options, outdir, name=name, seed=seed, net=context.net)
+    net = context.net
+    if isinstance(net, (list, tuple)):
+        # The pictures draw a net in one piece; for a net in pieces they unfold one of their own.
+        net = net[0] if len(net) == 1 else None
+    return render_pictures(shape, options, outdir, name=name, seed=seed, net=net)
 
 
 def _pictures_download(download: str, values: Mapping[str, Any]) -> dict[str, Any]:
@@ -333,12 +362,13 @@ def _table() -> dict[str, Output]:
                "voxfab.fabricate.netdraw:fabricate_net", ("net.json", "net*.svg", "net*.dxf", "net*.pdf", "net*.png"),
                _run_net, parse=_parse_net, downloads=("net.svg", "net.dxf", "net.pdf", "net.json"),
                download_table=_net_download, unfolds=True, warm_group="net", warm=_warm_net, command="net",
-               kernels=(("voxfab.unfold._growth", "grow"), ("voxfab.unfold._tabroom", "anneal"))),
+               kernels=(("voxfab.unfold._growth", "grow"), ("voxfab.unfold._tabroom", "anneal")),
+               gives=("net",), uses=("net",)),
         Output("pictures", (OptionTable("voxfab.render:PictureOptions", "pictures"),),
                "voxfab.render:render_pictures", ("render_*.png", "turntable.gif", "slices.png", "net_picture.png",
                                                  "triptych.png", "triptych.pdf"),
                _run_pictures, downloads=("triptych.png", "triptych.pdf"), download_table=_pictures_download,
-               unfolds=True, command="render"),
+               unfolds=True, command="render", uses=("net",)),
         Output("slices", (OptionTable("voxfab.fabricate.plates:PlateOptions", "slices"),),
                "voxfab.fabricate.plates:fabricate_plates", ("slices/*",), _run_slices,
                downloads=("plates.zip",), download_table=_slices_download, command="slices"),
@@ -355,6 +385,28 @@ def outputs() -> dict[str, Output]:
     if not OUTPUTS:
         OUTPUTS.update(_table())
     return OUTPUTS
+
+
+def build_order(names: Iterable[str]) -> tuple[str, ...]:
+    """The outputs ``names`` in the order a build runs them, whatever order they are listed in.
+
+    Each output runs after every other one that gives what it uses (the pictures
+    after the net, so they draw the net written); otherwise outputs run in name order.
+    """
+    rows = outputs()
+    left = sorted(set(names))
+    order: list[str] = []
+
+    def waits(name: str) -> bool:
+        return any(set(rows[name].uses) & set(rows[other].gives) for other in left if other != name)
+
+    while left:
+        ready = next((n for n in left if not waits(n)), None)
+        if ready is None:
+            raise RuntimeError(f"outputs {', '.join(left)}: each uses what another gives")
+        order.append(ready)
+        left.remove(ready)
+    return tuple(order)
 
 
 def output_for_download(download: str) -> Output:

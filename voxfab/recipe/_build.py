@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 import hashlib
 import json
 from pathlib import Path
@@ -114,17 +113,17 @@ def _build_into(recipe: Recipe, target: Path, aside: Aside) -> None:
     """Make the shape and write every output and the manifest into ``target``."""
     from voxfab import io
     from voxfab._shared.progress import progress
-    from voxfab.fabricate import BuildContext, OutputFile
+    from voxfab.fabricate import BuildContext, OutputFile, build_order
     from voxfab.fabricate import outputs as output_kinds
-    from voxfab.unfold import Net
 
     shape = make_shape(recipe)
     source = recipe.source
     context = BuildContext(maker=source.maker, params=dict(source.params), base_dir=recipe.base_dir)
     kinds = output_kinds()
-    # The outputs that write a net come first, and pass it on: the pictures draw that very net
-    # instead of searching again.
-    ordered = sorted(recipe.outputs, key=lambda spec: "net.json" not in kinds[spec.name].files)
+    specs = {spec.name: spec for spec in recipe.outputs}
+    # Each output hands what it made to those after it (the net output its net, which the
+    # pictures draw), so the order is the table's, not the recipe's.
+    order = build_order(specs)
     with atomic_dir(target, marker="manifest.json") as tmp:
         io.write(shape.grid, tmp / "shape.npy")
         io.write(shape.grid, tmp / "shape.vox")
@@ -133,14 +132,13 @@ def _build_into(recipe: Recipe, target: Path, aside: Aside) -> None:
             OutputFile("shape.vox", "the voxel shape for MagicaVoxel and other voxel editors"),
         ]
         warnings: list[str] = []
-        for spec in progress(ordered, desc="outputs"):
+        for spec in progress([specs[name] for name in order], desc="outputs"):
             kind = kinds[spec.name]
             if kind.unfolds:
                 aside.wait()  # the net kernels are compiled by now, or never will be aside
             settings = spec.settings if spec.settings is not None else kind.settings(dict(spec.options))
             made = kind.run(shape, settings, tmp, name=recipe.name, seed=recipe.seed, context=context)
-            if context.net is None and any(f.path == "net.json" for f in made.files):
-                context = dataclasses.replace(context, net=Net.from_json((tmp / "net.json").read_text()))
+            context = kind.pass_on(made, context)
             files += made.files
             warnings += [f"{spec.name}: {w}" for w in made.warnings]
         manifest = {
@@ -158,7 +156,7 @@ def _build_into(recipe: Recipe, target: Path, aside: Aside) -> None:
                 "reasons": shape.reasons,
                 "key": canonical_key(shape.grid),
             },
-            "outputs": [spec.name for spec in recipe.outputs],
+            "outputs": list(order),
             "warnings": warnings,
             "files": [
                 {"path": f.path, "sha256": _sha256(tmp / f.path), "purpose": f.purpose}

@@ -284,8 +284,9 @@ def fabricate_net(shape: VoxelShape, net: NetOptions, drawing: DrawingOptions, o
     -------
     Artefact
         ``net.json`` (``net.piece-N.json`` per piece) and the drawings, the
-        warnings (net split, labels shrunk, seams without tabs) and a report
-        with the face size and the fill of every sheet.
+        warnings (net split, labels shrunk, seams without tabs), a report
+        with the face size and the fill of every sheet, and the net it wrote
+        as ``gives["net"]``: a tuple of its pieces (one for a one-piece net).
     """
     from voxfab._shared.atomic import write_text
     from voxfab.fabricate._outputs import Artefact
@@ -311,7 +312,8 @@ def fabricate_net(shape: VoxelShape, net: NetOptions, drawing: DrawingOptions, o
                                            "corners, and the folds"))
     if chosen is not None and not net.formats:
         # The chosen net itself, with nothing to draw: no sheet to fit, no marks to size.
-        return Artefact(tuple(files), (), {"faces": sum(n.face_count for n in nets), "pieces": len(nets)})
+        return Artefact(tuple(files), (), {"faces": sum(n.face_count for n in nets), "pieces": len(nets)},
+                        gives={"net": tuple(nets)})
     from ._writers import write
 
     drawing = _draw_any(grid, nets, fitted, name, placement)
@@ -323,4 +325,4 @@ def fabricate_net(shape: VoxelShape, net: NetOptions, drawing: DrawingOptions, o
               "sheets": len(result.fill),
               "sheet_fill": [round(f, 4) for f in result.fill], "seams_without_tab_room": result.seams_without_tab,
               "notes": notes}
-    return Artefact(tuple(files), tuple(result.warnings), report)
+    return Artefact(tuple(files), tuple(result.warnings), report, gives={"net": tuple(nets)})
