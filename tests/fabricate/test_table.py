@@ -2,14 +2,16 @@
 
 from __future__ import annotations
 
+import dataclasses
 import fnmatch
+import itertools
 import json
 import shutil
 from pathlib import Path
 
 import pytest
 
-from voxfab.fabricate import outputs
+from voxfab.fabricate import Artefact, BuildContext, build_order, outputs
 from voxfab.fabricate._table import resolve
 from voxfab.recipe import build, load_recipe
 
@@ -63,3 +65,29 @@ def test_a_build_writes_only_the_files_its_rows_declare(tmp_path, recipe):
         assert (built / entry["path"]).is_file()
     for row in outputs().values():
         assert any(fnmatch.fnmatch(e["path"], p) for e in manifest["files"] for p in row.files), row.name
+
+
+def test_outputs_run_after_those_that_give_what_they_use_whatever_their_listing():
+    rows = outputs()
+    order = build_order(rows)
+    assert sorted(order) == sorted(rows)
+    assert all(build_order(listing) == order for listing in itertools.permutations(rows))
+    for row in rows.values():
+        for other in rows.values():
+            if other is not row and set(row.uses) & set(other.gives):
+                assert order.index(other.name) < order.index(row.name), (other.name, row.name)
+    assert order.index("net") < order.index("pictures")
+    assert build_order(["pictures", "mesh"]) == ("mesh", "pictures")
+
+
+def test_an_output_passes_on_exactly_what_its_row_declares():
+    net_row = outputs()["net"]
+    context = BuildContext(maker="revolution")
+    made = Artefact((), gives={"net": ("the pieces",)})
+    assert net_row.pass_on(made, context) == dataclasses.replace(context, net=("the pieces",))
+    with pytest.raises(RuntimeError, match="declares"):
+        net_row.pass_on(Artefact(()), context)
+    with pytest.raises(RuntimeError, match="declares"):
+        outputs()["mesh"].pass_on(made, context)
+    with pytest.raises(ValueError, match="not a BuildContext field"):
+        dataclasses.replace(net_row, gives=("nett",))

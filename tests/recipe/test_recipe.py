@@ -234,8 +234,8 @@ CHESS = Path(__file__).resolve().parents[2] / "recipes" / "chess"
 
 
 def test_the_pictures_draw_the_net_written_whatever_the_order_of_outputs(tmp_path):
-    """The net output hands its net to the pictures: listed before or after the net, they draw the very net of
-    net.json, and the build is the same file for file."""
+    """The net output hands its net to the pictures: listed before or after the net (in the recipe's text, or in
+    a Recipe made in code), they draw the very net of net.json, and the build is the same file for file."""
     from voxfab.render import PictureOptions, png_bytes
     from voxfab.render._net import net_picture
     from voxfab.render._triptych import make_net
@@ -245,13 +245,21 @@ def test_the_pictures_draw_the_net_written_whatever_the_order_of_outputs(tmp_pat
     head = (CHESS / "queen.toml").read_text().split("[outputs.")[0]
     net = '[outputs.net]\nface_size = 8.6\nsheet = "900x600"\nlabel_height = 2.0\nformats = ["svg"]\n'
     pictures = "[outputs.pictures]\nsize = 200\nnet_picture = true\n"
-    built = {}
+    recipes = {}
     for order, outputs in (("pictures-first", pictures + net), ("net-first", net + pictures)):
         (tmp_path / order).mkdir()
         shutil.copy(CHESS / "queen_generatrix.svg", tmp_path / order)
         (tmp_path / order / "queen.toml").write_text(head + outputs)
-        built[order] = build(load_recipe(tmp_path / order / "queen.toml"), tmp_path / order / "out")
-    folder = built["pictures-first"]
+        recipes[order] = load_recipe(tmp_path / order / "queen.toml")
+    by_name = {spec.name: spec for spec in recipes["pictures-first"].outputs}
+    recipes["pictures-first in code"] = dataclasses.replace(
+        recipes["pictures-first"], outputs=(by_name["pictures"], by_name["net"]))
+    built = {}
+    for order, recipe in recipes.items():
+        (tmp_path / "out" / order).mkdir(parents=True)
+        built[order] = build(recipe, tmp_path / "out" / order)
+
+    folder = built["pictures-first in code"]
     grid = np.load(folder / "shape.npy")
     written = Net.from_json((folder / "net.json").read_text())
     assert validate(fill_cavities(grid) if written.filled else grid, written).ok
@@ -263,14 +271,12 @@ def test_the_pictures_draw_the_net_written_whatever_the_order_of_outputs(tmp_pat
     drawn = (folder / "net_picture.png").read_bytes()
     assert drawn == picture(written)
     # Not the net the pictures would unfold on their own: they were given the one written.
-    assert drawn != picture(make_net(grid, rng=load_recipe(tmp_path / "net-first" / "queen.toml").seed))
-    manifests = {order: json.loads((f / "manifest.json").read_text()) for order, f in built.items()}
-    for order, manifest in manifests.items():
-        recipe = (tmp_path / order / "queen.toml").read_bytes()
-        assert manifest.pop("recipe_sha256") == hashlib.sha256(recipe).hexdigest()
-    assert manifests["pictures-first"] == manifests["net-first"]
-    assert manifests["net-first"]["outputs"] == ["net", "pictures"]
-    # Every file listed with its sha256 is the same: byte-identical builds.
-    first, second = ((f / "manifest.json").read_text() for f in built.values())
-    assert [line for line in first.splitlines() if "recipe_sha256" not in line] == [
-        line for line in second.splitlines() if "recipe_sha256" not in line]
+    assert drawn != picture(make_net(grid, rng=recipes["net-first"].seed))
+
+    manifest = {order: (f / "manifest.json").read_bytes() for order, f in built.items()}
+    assert manifest["pictures-first in code"] == manifest["pictures-first"]
+    # The texts differ in their order of outputs, so in recipe_sha256 only.
+    first, second = (json.loads(manifest[order]) for order in ("pictures-first", "net-first"))
+    for order, data in (("pictures-first", first), ("net-first", second)):
+        assert data.pop("recipe_sha256") == hashlib.sha256((tmp_path / order / "queen.toml").read_bytes()).hexdigest()
+    assert first == second and first["outputs"] == ["net", "pictures"]
