@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Callable
-from typing import Any
+from typing import Any, TypeVar
 
 import numpy as np
 
@@ -32,6 +32,9 @@ from ._sheets import check_pieces_sheet, extent_of, fit_error, largest_face_size
 
 #: Budget of the search that measures a net when the sheet search gave no extent, seconds.
 MEASURE_TIMEOUT = 20.0
+
+#: What :func:`distinct_cuts` keeps of each distinct net.
+Kept = TypeVar("Kept")
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -231,33 +234,53 @@ def _nets(grid: Any, count: int, rng: int, budget: float, progress: Callable[[in
 def _piece_nets(grid: Any, rng: int, fit: tuple[int, int], count: int, budget: float,
                 progress: Callable[[int, int], None] | None, search: dict[str, Any],
                 notes: list[str]) -> list[list[Net]]:
-    """Nets in pieces, one per seed (seed ``rng`` first, then seeds drawn from it)."""
+    """Nets in pieces, one per seed: seed ``rng`` for one net, seeds drawn from it for several."""
+    if count == 1:
+        return [_cut_pieces(grid, fit, rng, search)]
+    gen = np.random.default_rng(rng)
+    timeout = float(search.pop("timeout", 60.0))
+
+    def cut(seconds: float) -> list[Net]:
+        seed = int(gen.integers(0, 2**31 - 1))
+        return _cut_pieces(grid, fit, seed, {**search, "timeout": min(timeout, seconds)})
+
+    return distinct_cuts(cut, list, count=count, budget=budget, notes=notes, progress=progress)
+
+
+def distinct_cuts(cut: Callable[[float], list[Net]], keep: Callable[[list[Net]], Kept], *, count: int,
+                  budget: float, notes: list[str], progress: Callable[[int, int], None] | None = None,
+                  on_item: Callable[[int, Kept], None] | None = None) -> list[Kept]:
+    """Up to ``count`` nets in pieces that differ once cut out, within ``budget`` seconds.
+
+    ``cut(seconds)`` cuts one net, given the seconds left (an ``UnfoldError``
+    skips the try); a net whose outlines repeat one kept is dropped; ``keep``
+    turns each other one into what is returned, handed to ``on_item(index, kept)``
+    at once.  At most ``4 * count + 8`` tries: a shape with few distinct nets
+    ends early, and the notes say how many were found.
+    """
     import time
 
     from voxfab._shared.progress import check_cancelled
     from voxfab.unfold import outline_key
 
-    if count == 1:
-        return [_cut_pieces(grid, fit, rng, search)]
-    gen = np.random.default_rng(rng)
     end = time.monotonic() + budget
-    timeout = float(search.pop("timeout", 60.0))
-    out: list[list[Net]] = []
+    out: list[Kept] = []
     seen: set[bytes] = set()
     tries = 0
     while len(out) < count and tries < 4 * count + 8 and time.monotonic() < end:
         check_cancelled()
         tries += 1
-        seed = int(gen.integers(0, 2**31 - 1))
         try:
-            nets = _cut_pieces(grid, fit, seed, {**search, "timeout": min(timeout, end - time.monotonic())})
+            nets = cut(end - time.monotonic())
         except UnfoldError:
             continue
         key = b"|".join(sorted(outline_key(n) for n in nets))
         if key in seen:
             continue
         seen.add(key)
-        out.append(nets)
+        out.append(keep(nets))
+        if on_item is not None:
+            on_item(len(out) - 1, out[-1])
         if progress is not None:
             progress(len(out), count)
     if not out:

@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-from voxfab.errors import InvalidShapeError, UnfoldError
+from voxfab.errors import InvalidShapeError
 from voxfab.unfold import EdgeConstraints, Net
 
 from ._net_options import NetOptions
@@ -240,54 +240,41 @@ def _piece_gallery(grid: Any, net: NetOptions, options: DrawingOptions, *, count
     ``voxfab net --pieces auto`` chooses).  A cut whose outlines repeat one shown is
     dropped; the whole gallery keeps within ``net.budget`` seconds.
     """
-    from voxfab._shared.progress import check_cancelled
     from voxfab.shape import fill_cavities, surface_graph
-    from voxfab.unfold import outline_key, unfold
+    from voxfab.unfold import unfold
 
+    from ._fit import distinct_cuts
     from ._pipeline import validate_net
     from ._sheets import sheet_cells
 
     g = np.asarray(grid, dtype=bool)
     graph = surface_graph(fill_cavities(g) if net.fill else g)
     fit = sheet_cells(options, float(options.pitch))
-    end = time.monotonic() + float(net.budget)
     timeout = float(search.pop("timeout"))
     gen = np.random.default_rng(seed)
     plan = [(seed, cut) for cut in CUTS]  # (seed, cut) still to try
     ranked: dict[str, tuple[int, int, int]] = {}  # each cut's packing of the first seed
-    items: list[GalleryNet] = []
-    seen: set[bytes] = set()
-    tries = 0
-    while len(items) < count and tries < 4 * count + 8 and time.monotonic() < end:
-        check_cancelled()
-        tries += 1
+    tried = plan[0]
+
+    def cut_next(seconds: float) -> list[Net]:
+        nonlocal tried
         if not plan:
             best = min(ranked, key=ranked.__getitem__) if ranked else CUTS[0]
             plan.append((int(gen.integers(0, 2**31 - 1)), best))
-        rng, cut = plan.pop(0)
-        try:
-            pieces = list(unfold(g, rng=rng, fit=fit, pieces=cut,
-                                 timeout=min(timeout, max(end - time.monotonic(), 0.1)), **search))
-        except UnfoldError:
-            continue
-        key = b"|".join(sorted(outline_key(n) for n in pieces))
-        if key in seen:
-            continue
-        seen.add(key)
+        tried = plan.pop(0)
+        rng, cut = tried
+        return list(unfold(g, rng=rng, fit=fit, pieces=cut, timeout=min(timeout, max(seconds, 0.1)), **search))
+
+    def lay_out(pieces: list[Net]) -> GalleryNet:
         validate_net(g, pieces, constraints=search.get("constraints"))
         fit_of, placement, untabbed = _laid_out(pieces, options, graph)
+        rng, cut = tried
         if rng == seed and fit_of["fits"]:
             ranked[cut] = (int(fit_of["sheets"]), untabbed, len(pieces))
-        items.append(GalleryNet(pieces, fit_of, placement))
-        if on_item is not None:
-            on_item(len(items) - 1, items[-1])
-        if progress is not None:
-            progress(len(items), count)
-    if not items:
-        raise UnfoldError(f"no net in pieces found within the budget of {net.budget:g} s")
-    if len(items) < count:
-        notes.append(f"{len(items)} distinct nets found of the {count} asked for")
-    return items
+        return GalleryNet(pieces, fit_of, placement)
+
+    return distinct_cuts(cut_next, lay_out, count=count, budget=float(net.budget), notes=notes, progress=progress,
+                         on_item=on_item)
 
 
 def fit_order(fit: dict[str, Any]) -> tuple[Any, ...]:
