@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from voxfab.repo import Repository
+    from voxfab.shape import VoxelShape
 
 #: The repository the commands use by default: ``voxfab.repo.DEFAULT_PATH``, named here so that
 #: parsing arguments does not import the repository (sqlite3).
@@ -102,6 +103,24 @@ def shape_pitch(args: argparse.Namespace) -> float | None:
     from voxfab.shape import ShapeOptions
 
     return options_from_args(ShapeOptions, args).pitch
+
+
+def load_command_shape(args: argparse.Namespace, *, pitch: float | None = None) -> tuple[VoxelShape, str, bool]:
+    """The shape SHAPE names (a file, or a name in ``--repo``) at ``pitch``, its reader's notes printed.
+
+    Returns
+    -------
+    shape : VoxelShape
+    title : str
+        Its repository name, else the file's stem: the name its artefacts carry.
+    scaled : bool
+        Whether its scale is known (``pitch``, or the file's own).
+    """
+    from voxfab.repo import load_shape
+
+    shape, name, notes, scaled = load_shape(args.shape, args.repo, pitch=pitch)
+    print_notes(notes)
+    return shape, name or Path(args.shape).stem, scaled
 
 
 def print_warnings(warnings: Sequence[str], *, strict: bool = False) -> int:

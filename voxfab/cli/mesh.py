@@ -9,8 +9,8 @@ from ._common import (
     add_pitch_option,
     add_shape_argument,
     add_strict_option,
+    load_command_shape,
     print_json,
-    print_notes,
     print_warnings,
     shape_pitch,
 )
@@ -50,11 +50,7 @@ def run(args: argparse.Namespace) -> int:
         from voxfab._shared.deps import require_extra
 
         require_extra("cad", "--label (an engraved label)")
-    from voxfab.repo import load_shape
-
-    shape, repo_name, notes, _ = load_shape(args.shape, args.repo, pitch=shape_pitch(args))
-    print_notes(notes)
-    name = repo_name or Path(args.shape).stem
+    shape, name, _ = load_command_shape(args, pitch=shape_pitch(args))
     made = fabricate_mesh(shape, options, args.output, name=name)
     info = made.report
     if args.json:

@@ -10,6 +10,7 @@ from ._common import (
     add_pitch_option,
     add_shape_argument,
     add_strict_option,
+    load_command_shape,
     print_json,
     print_notes,
     print_warnings,
@@ -76,14 +77,11 @@ def run(args: argparse.Namespace) -> int:
     pitch = shape_pitch(args)
     face_size = search.face_size if search.face_size is not None else pitch
     drawing = options_from_args(netdraw.DrawingOptions, args, pitch=face_size)  # checked before the search
-    from voxfab.repo import load_shape
-
-    shape, name, notes, scaled = load_shape(args.shape, args.repo, pitch=pitch)
-    print_notes(notes)
+    shape, title, scaled = load_command_shape(args, pitch=pitch)
     if face_size is None and scaled:
         face_size = shape.pitch
         drawing = drawing.replace(pitch=face_size)
-    made = netdraw.net_files(shape.grid, search, drawing, args.output, title=name or Path(args.shape).stem,
+    made = netdraw.net_files(shape.grid, search, drawing, args.output, title=title,
                              seed=seed, constraints=_constraints(args.constraints),
                              box=netdraw.parse_box(args.fit, face_size))
     print_notes(made.notes)

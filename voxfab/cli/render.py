@@ -6,7 +6,7 @@ import argparse
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from voxfab.cli._common import add_repository_option, print_json, print_notes
+from voxfab.cli._common import add_repository_option, load_command_shape, print_json
 from voxfab.errors import InvalidShapeError, UnknownFormatError
 
 if TYPE_CHECKING:
@@ -122,11 +122,7 @@ def run(args: argparse.Namespace) -> int:
     if args.shape is None:
         raise InvalidShapeError("render: SHAPE is required (a file or a repository name)")
     picture = _picture(args, out, args.net is not None)
-    from voxfab.repo import load_shape
-
-    shape, name, notes, _ = load_shape(args.shape, args.repo)
-    print_notes(notes)
-    title = name or Path(args.shape).stem
+    shape, title, _ = load_command_shape(args)
     net = _read_net(args.net) if args.net is not None else None
     made = render.render_pictures(shape, o, out.parent, name=title, seed=seed, net=net, pictures=(picture,))
     drawn = dict(made.report["pictures"][0])

@@ -9,8 +9,8 @@ from voxfab.cli._common import (
     add_pitch_option,
     add_shape_argument,
     add_strict_option,
+    load_command_shape,
     print_json,
-    print_notes,
     print_warnings,
     shape_pitch,
 )
@@ -39,11 +39,7 @@ def run(args: argparse.Namespace) -> int:
 
     options = options_from_args(PlateOptions, args)
     check_output(args.output, folder=True, marker="plates.json")  # an existing folder, before the work
-    from voxfab.repo import load_shape
-
-    shape, name, notes, _ = load_shape(args.shape, args.repo, pitch=shape_pitch(args))
-    print_notes(notes)
-    title = name or Path(args.shape).stem
+    shape, title, _ = load_command_shape(args, pitch=shape_pitch(args))
     made = fabricate_plates(shape, options, args.output, name=title)
     print_json({**made.report, "files": [str(args.output / f.path) for f in made.files]})
     return print_warnings(made.warnings, strict=args.strict)
