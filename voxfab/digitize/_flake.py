@@ -288,10 +288,9 @@ def digitize_sector(
     def mark(where: np.ndarray, pts: Sequence[np.ndarray]) -> None:
         if not len(where):
             return
-        val = np.broadcast_to(np.asarray(f(*[p[where] for p in pts]), dtype=np.float64), where.shape)
-        val = np.where(np.isnan(val), 1.0, val)
-        le[where] |= val <= 0
-        ge[where] |= val >= 0
+        at_le, at_ge = _signs(f(*[p[where] for p in pts]), where.shape)
+        le[where] |= at_le
+        ge[where] |= at_ge
 
     rays = [(math.cos(t), math.sin(t)) for t in ((start, end) if span < 2 * np.pi - 1e-12 else ())]
     ca, cb = planar(*centre)
@@ -303,13 +302,12 @@ def digitize_sector(
         tip = [centre[d] + v[d] * stp[d] for d in range(n)]
         ta, tb = planar(*tip)
         ta, tb = np.broadcast_to(ta, le.shape), np.broadcast_to(tb, le.shape)
-        val = np.broadcast_to(np.asarray(f(*tip), dtype=np.float64), le.shape)
-        val = np.where(np.isnan(val), 1.0, val)
-        full_le |= val <= 0
-        full_ge |= val >= 0
+        tip_le, tip_ge = _signs(f(*tip), le.shape)
+        full_le |= tip_le
+        full_ge |= tip_ge
         kept = _in_sector(ta, tb, start, span)
-        le |= kept & (val <= 0)
-        ge |= kept & (val >= 0)
+        le |= kept & tip_le
+        ge |= kept & tip_ge
         for c, s in rays:
             phi0, phi1 = c * cb - s * ca, c * tb - s * ta
             sel = np.flatnonzero((phi0 * phi1 <= 0) & ~((phi0 == 0) & (phi1 == 0)) & (phi0 != 0))
