@@ -13,7 +13,7 @@ import pytest
 
 from voxfab.fabricate import Artefact, BuildContext, build_order, outputs
 from voxfab.fabricate._table import resolve
-from voxfab.recipe import build, load_recipe
+from voxfab.recipe import build, load_recipe, make_shape
 
 RECIPES = Path(__file__).resolve().parents[2] / "recipes"
 
@@ -91,3 +91,31 @@ def test_an_output_passes_on_exactly_what_its_row_declares():
         outputs()["mesh"].pass_on(made, context)
     with pytest.raises(ValueError, match="not a BuildContext field"):
         dataclasses.replace(net_row, gives=("nett",))
+
+
+def test_the_pictures_draw_a_net_given_as_its_pieces_when_it_is_one(tmp_path):
+    """A gallery pick and the net output's gift are the net as its pieces: one piece is drawn, a net in several
+    pieces leaves the pictures to unfold a one-piece net of their own (as ``voxfab render`` would)."""
+    from voxfab.render import PictureOptions, png_bytes
+    from voxfab.render._net import net_picture
+    from voxfab.render._triptych import make_net
+    from voxfab.unfold import unfold
+
+    shape = make_shape(load_recipe(RECIPES / "chess" / "pawn.toml"))
+    row = outputs()["pictures"]
+    settings = row.settings({"size": 160, "views": [], "triptych": False, "net_picture": True})
+
+    def drawn(net, folder):
+        folder.mkdir()
+        row.run(shape, settings, folder, name="pawn", seed=0, context=BuildContext(net=net))
+        return (folder / "net_picture.png").read_bytes()
+
+    def picture(net):
+        return png_bytes(net_picture(net, shape.grid, size=160, background=PictureOptions().background))
+
+    picked = unfold(shape.grid, rng=3)
+    assert not picked.filled
+    assert drawn([picked], tmp_path / "one") == picture(picked) != picture(make_net(shape, rng=0))
+    pieces = unfold(shape.grid, rng=0, fit=(20, 20), pieces="flat")
+    assert len(pieces) > 1
+    assert drawn(pieces, tmp_path / "several") == picture(make_net(shape, rng=0))
