@@ -125,3 +125,31 @@ def test_selection_by_name_range_and_limit(tmp_path: Path) -> None:
         with pytest.raises(RepositoryError, match="--limit"):
             select_names(repo, limit=0)
     assert parse_name_range("00001.002:00003.004") == ((1, 2), (3, 4))
+
+
+@pytest.mark.parametrize(("outputs", "drawn"), [
+    ('[outputs.net]\nformats = []\nsheet = "900x600"\n', ["net.json"]),
+    ("[outputs.hunt]\nzipper_timeout = 2\n", ["hunt-zipper.json", "hunt-net.json"]),
+])
+def test_the_net_thumbnail_is_the_net_the_build_wrote(tmp_path: Path, outputs: str, drawn: list[str]) -> None:
+    """The thumbnail draws the net the outputs made, handed over by the build (the net output's, else the
+    hunt's zipper net, else its one-piece net), not one of its own."""
+    from PIL import Image
+
+    from voxfab.recipe import load_recipe, make_shape
+    from voxfab.render import make_net, net_picture
+    from voxfab.unfold import Net
+
+    grid = make_shape(load_recipe(Path(__file__).parents[2] / "recipes" / "chess" / "pawn.toml")).grid
+    outcome = build_task(_task("00555.001", grid, tmp_path, f"pitch = 8.6\nseed = 4\n{outputs}", thumbnails=True))
+    assert outcome.status == "built", outcome.error
+    written = next(tmp_path / "00555.001" / f for f in drawn if (tmp_path / "00555.001" / f).is_file())
+    net = Net.from_json(written.read_text())
+
+    def pixels(of: Net) -> np.ndarray:
+        return np.asarray(net_picture(of, grid, size=160, legend=False, numbers=False).convert("RGB"))
+
+    with Image.open(tmp_path / "thumbs" / "00555.001-net.png") as im:
+        thumbnail = np.asarray(im.convert("RGB"))
+    assert np.array_equal(thumbnail, pixels(net))
+    assert not np.array_equal(thumbnail, pixels(make_net(grid, rng=4)))

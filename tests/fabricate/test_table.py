@@ -89,8 +89,11 @@ def test_an_output_passes_on_exactly_what_its_row_declares():
         net_row.pass_on(Artefact(()), context)
     with pytest.raises(RuntimeError, match="declares"):
         outputs()["mesh"].pass_on(made, context)
+    # What no output can use goes to the build's caller only (the hunt's nets, for the batch's thumbnails).
+    hunt = Artefact((), gives={"hunt_net": None, "zipper_net": ("a zipper net",)})
+    assert outputs()["hunt"].pass_on(hunt, context) == context
     with pytest.raises(ValueError, match="not a BuildContext field"):
-        dataclasses.replace(net_row, gives=("nett",))
+        dataclasses.replace(outputs()["pictures"], uses=("nett",))
 
 
 def test_the_pictures_draw_a_net_given_as_its_pieces_when_it_is_one(tmp_path):

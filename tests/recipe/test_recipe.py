@@ -10,7 +10,7 @@ import pytest
 
 from voxfab._shared.options import Options, option
 from voxfab.errors import RecipeError
-from voxfab.recipe import build, load_recipe, make_shape
+from voxfab.recipe import build, build_recipe, load_recipe, make_shape
 from voxfab.shape import examples
 
 
@@ -254,15 +254,18 @@ def test_the_pictures_draw_the_net_written_whatever_the_order_of_outputs(tmp_pat
     by_name = {spec.name: spec for spec in recipes["pictures-first"].outputs}
     recipes["pictures-first in code"] = dataclasses.replace(
         recipes["pictures-first"], outputs=(by_name["pictures"], by_name["net"]))
-    built = {}
+    built, gives = {}, {}
     for order, recipe in recipes.items():
         (tmp_path / "out" / order).mkdir(parents=True)
-        built[order] = build(recipe, tmp_path / "out" / order)
+        made = build_recipe(recipe, tmp_path / "out" / order)
+        built[order], gives[order] = made.folder, made.gives
 
     folder = built["pictures-first in code"]
     grid = np.load(folder / "shape.npy")
     written = Net.from_json((folder / "net.json").read_text())
     assert validate(fill_cavities(grid) if written.filled else grid, written).ok
+    # The build hands its caller the very net written.
+    assert [n.to_json() for n in gives["pictures-first in code"]["net"]] == [written.to_json()]
     background = PictureOptions().background
 
     def picture(of: Net) -> bytes:

@@ -6,7 +6,7 @@ import dataclasses
 import html
 import json
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -21,25 +21,24 @@ THUMBS = "thumbs"
 SHEET_SHAPES = 400
 
 
-def draw_thumbnails(grid: BoolGrid, folder: Path, thumbs: Path, *, name: str, seed: int, size: int) -> list[str]:
+def draw_thumbnails(grid: BoolGrid, gives: Mapping[str, Any], thumbs: Path, *, name: str, seed: int,
+                    size: int) -> list[str]:
     """Write ``thumbs/<name>.png`` (isometric render) and ``thumbs/<name>-net.png``.
 
-    The net is the batch's own (``folder/net.json``) when the outputs include a net,
-    else the hunt's (its zipper net, else its one-piece net), else the pictures
-    pipeline's net for the recipe's seed (the triptych's).  Returns notes (why a
-    net is missing).
+    The net is what the build's outputs gave (``gives``, :attr:`voxfab.recipe.BuiltRecipe.gives`):
+    the net output's net when it is in one piece, else the hunt's zipper net, else its
+    one-piece net; else the pictures pipeline's net for the recipe's seed (the
+    triptych's).  Returns notes (why a net is missing).
     """
     from voxfab.render import make_net, net_picture, render, save_picture
-    from voxfab.unfold import Net
 
     thumbs.mkdir(parents=True, exist_ok=True)
     save_picture(render(grid, view="iso", size=size), thumbs / f"{name}.png")
-    built = next((folder / f for f in ("net.json", "hunt-zipper.json", "hunt-net.json") if (folder / f).is_file()),
-                 None)
+    pieces = gives.get("net") or ()
+    built = [pieces[0] if len(pieces) == 1 else None, gives.get("zipper_net"), gives.get("hunt_net")]
     try:
-        if built is not None:
-            net = Net.from_json(built.read_text())
-        else:
+        net = next((n for n in built if n is not None), None)
+        if net is None:
             net = make_net(grid, rng=seed)
         picture = net_picture(net, grid, size=size, legend=False, numbers=False)
     except Exception as exc:  # noqa: BLE001 - a missing thumbnail must not fail a built shape

@@ -3,7 +3,7 @@
 A task carries the shape's name, its packed bits and the outputs text: a few
 hundred bytes, whatever the repository's size.  The worker rebuilds the grid,
 writes the per-shape recipe (``DIR/recipes/<name>.toml`` and ``.npy``) and builds it
-with :func:`voxfab.recipe.build`, so ``DIR/<name>/`` holds exactly what
+with :func:`voxfab.recipe.build_recipe`, so ``DIR/<name>/`` holds exactly what
 ``voxfab build DIR/recipes/<name>.toml -o DIR`` writes, and appears only complete.
 """
 
@@ -175,7 +175,7 @@ def build_task(task: BatchTask) -> Outcome:
 def _build(task: BatchTask) -> tuple[int, tuple[str, ...]]:
     from voxfab import io
     from voxfab._shared.atomic import write_text
-    from voxfab.recipe import build, load_recipe
+    from voxfab.recipe import build_recipe, load_recipe
     from voxfab.repo import decode_bits
 
     outdir = Path(task.outdir)
@@ -188,13 +188,13 @@ def _build(task: BatchTask) -> tuple[int, tuple[str, ...]]:
     recipe = load_recipe(recipe_path)
     if recipe.name != task.name:
         raise RecipeError(f"{recipe_path}: builds {recipe.name!r}, expected {task.name!r}")
-    folder = build(recipe, outdir)
-    files = len(json.loads((folder / "manifest.json").read_text())["files"])
+    built = build_recipe(recipe, outdir)
+    files = len(json.loads((built.folder / "manifest.json").read_text())["files"])
     notes: tuple[str, ...] = ()
     if task.thumbnails:
         from ._index import draw_thumbnails
 
-        notes = tuple(draw_thumbnails(grid, folder, outdir / THUMBS, name=task.name, seed=recipe.seed,
+        notes = tuple(draw_thumbnails(grid, built.gives, outdir / THUMBS, name=task.name, seed=recipe.seed,
                                       size=THUMB_SIZE))
     return files, notes
 

@@ -79,6 +79,10 @@ class BuildContext:
     placement: Any = None
 
 
+#: What an output may use: the fields of :class:`BuildContext`.
+_CONTEXT_FIELDS = frozenset(f.name for f in dataclasses.fields(BuildContext))
+
+
 @dataclasses.dataclass(frozen=True)
 class Output:
     """One row of the table.
@@ -116,8 +120,10 @@ class Output:
     command : str, optional
         The ``voxfab`` command that makes it alone (``voxfab mesh``, ``voxfab render``...).
     gives : tuple of str
-        The :class:`BuildContext` fields its run fills for the outputs after it, in its
-        :attr:`Artefact.gives` (the net output gives ``"net"``).
+        What its run makes for the outputs after it and for the build's caller, by
+        name, in its :attr:`Artefact.gives`: the net output gives ``"net"`` (a
+        :class:`BuildContext` field, which the outputs after it read), the hunt
+        ``"hunt_net"`` and ``"zipper_net"`` (the batch's thumbnails draw them).
     uses : tuple of str
         The :class:`BuildContext` fields, given by other outputs, that it draws on when
         they are set (the pictures use ``"net"``): a build runs it after the outputs that give them.
@@ -141,9 +147,8 @@ class Output:
     uses: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
-        fields = {f.name for f in dataclasses.fields(BuildContext)}
-        for name in (*self.gives, *self.uses):
-            if name not in fields:
+        for name in self.uses:
+            if name not in _CONTEXT_FIELDS:
                 raise ValueError(f"output {self.name}: {name!r} is not a BuildContext field")
 
     def pass_on(self, made: Artefact, context: BuildContext) -> BuildContext:
@@ -151,7 +156,7 @@ class Output:
         if set(made.gives) != set(self.gives):
             raise RuntimeError(f"output {self.name}: its run gave {sorted(made.gives)}, its row declares "
                                f"{sorted(self.gives)}")
-        return dataclasses.replace(context, **made.gives)
+        return dataclasses.replace(context, **{k: v for k, v in made.gives.items() if k in _CONTEXT_FIELDS})
 
     @property
     def keys(self) -> tuple[str, ...]:
@@ -349,7 +354,7 @@ def _table() -> dict[str, Output]:
                downloads=("animation.gif",), download_table=_animation_download, maker="tube", command="render"),
         Output("hunt", (OptionTable("voxfab.fabricate.hunt:HuntOptions", "hunt"),),
                "voxfab.fabricate.hunt:fabricate_hunt", ("hunt.json", "hunt-net.json", "hunt-zipper.json"),
-               _run_hunt, unfolds=True, command="build"),
+               _run_hunt, unfolds=True, command="build", gives=("hunt_net", "zipper_net")),
         Output("mesh", (OptionTable("voxfab.fabricate.mesh:MeshOptions", "mesh"),),
                "voxfab.fabricate.mesh:fabricate_mesh", ("mesh.3mf", "mesh.stl", "mesh.obj", "mesh.glb", "mesh.json"),
                _run_mesh, downloads=("mesh.3mf", "mesh.stl"), download_table=_mesh_download, command="mesh",

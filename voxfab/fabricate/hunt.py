@@ -55,7 +55,8 @@ def fabricate_hunt(shape: Any, options: HuntOptions, outdir: Path, *, name: str,
     Returns
     -------
     Artefact
-        ``report`` holds ``hunt.json``'s values and the searches' times.
+        ``report`` holds ``hunt.json``'s values and the searches' times;
+        ``gives["hunt_net"]`` and ``gives["zipper_net"]`` the nets found (None: none).
     """
     from voxfab._shared.atomic import write_text
     from voxfab.unfold import hunt_shape
@@ -73,7 +74,8 @@ def fabricate_hunt(shape: Any, options: HuntOptions, outdir: Path, *, name: str,
             write_text(outdir / file, net.to_json())
             files.append(OutputFile(file, what))
     report = dict(record, seconds=[round(s, 3) for s in outcome.seconds])
-    return Artefact(tuple(files), (), report)
+    return Artefact(tuple(files), (), report,
+                    gives={"hunt_net": outcome.one_piece, "zipper_net": outcome.zipper_net})
 
 
 def read_hunt(path: Path) -> dict[str, Any] | None:

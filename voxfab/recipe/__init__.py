@@ -3,17 +3,27 @@
 See the README's "Recipe format" section for the keys.
 """
 
-from ._build import MANIFEST_FORMAT, apply_operation, build, make_shape, make_source
+from ._build import (
+    MANIFEST_FORMAT,
+    BuiltRecipe,
+    apply_operation,
+    build,
+    build_recipe,
+    make_shape,
+    make_source,
+)
 from ._schema import OperationSpec, OutputSpec, Recipe, SourceSpec, load_recipe
 
 __all__ = [
     "MANIFEST_FORMAT",
+    "BuiltRecipe",
     "OperationSpec",
     "OutputSpec",
     "Recipe",
     "SourceSpec",
     "apply_operation",
     "build",
+    "build_recipe",
     "load_recipe",
     "make_shape",
     "make_source",

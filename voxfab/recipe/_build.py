@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import json
+from collections.abc import Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -87,15 +89,39 @@ def _sha256(path: Path) -> str:
     return hashlib.sha256(path.read_bytes()).hexdigest()
 
 
+@dataclasses.dataclass(frozen=True, eq=False)
+class BuiltRecipe:
+    """A recipe built.
+
+    Attributes
+    ----------
+    folder : Path
+        Its output folder, holding ``shape.npy``, ``shape.vox``, each output's
+        files and ``manifest.json``.
+    gives : mapping
+        What its outputs made, by the names the table of outputs declares
+        (:attr:`voxfab.fabricate.Output.gives`): ``"net"``, the pieces of the net
+        written, when it has a net output.
+    """
+
+    folder: Path
+    gives: Mapping[str, Any]
+
+
 def build(recipe: Recipe, outdir: PathLike) -> Path:
     """Build a recipe into ``outdir/<recipe.name>/``, replacing it only on success.
 
     Returns
     -------
     Path
-        The recipe's output folder, holding ``shape.npy``, ``shape.vox``, each
-        output's files and ``manifest.json``.
+        The recipe's output folder (:func:`build_recipe`, which also hands back what
+        its outputs made).
     """
+    return build_recipe(recipe, outdir).folder
+
+
+def build_recipe(recipe: Recipe, outdir: PathLike) -> BuiltRecipe:
+    """Build a recipe into ``outdir/<recipe.name>/``, replacing it only on success."""
     from voxfab.fabricate import outputs as output_kinds
     from voxfab.warmup import compile_aside
 
@@ -105,12 +131,12 @@ def build(recipe: Recipe, outdir: PathLike) -> Path:
     # process compiles them while this one makes the shape and the print.
     unfolds = any(output_kinds()[spec.name].unfolds for spec in recipe.outputs)
     with compile_aside(["net"] if unfolds else []) as aside:
-        _build_into(recipe, target, aside)
-    return target
+        gives = _build_into(recipe, target, aside)
+    return BuiltRecipe(target, gives)
 
 
-def _build_into(recipe: Recipe, target: Path, aside: Aside) -> None:
-    """Make the shape and write every output and the manifest into ``target``."""
+def _build_into(recipe: Recipe, target: Path, aside: Aside) -> dict[str, Any]:
+    """Make the shape, write every output and the manifest into ``target``, and return what the outputs gave."""
     from voxfab import io
     from voxfab._shared.progress import progress
     from voxfab.fabricate import BuildContext, OutputFile, build_order
@@ -132,6 +158,7 @@ def _build_into(recipe: Recipe, target: Path, aside: Aside) -> None:
             OutputFile("shape.vox", "the voxel shape for MagicaVoxel and other voxel editors"),
         ]
         warnings: list[str] = []
+        gives: dict[str, Any] = {}
         for spec in progress([specs[name] for name in order], desc="outputs"):
             kind = kinds[spec.name]
             if kind.unfolds:
@@ -139,6 +166,7 @@ def _build_into(recipe: Recipe, target: Path, aside: Aside) -> None:
             settings = spec.settings if spec.settings is not None else kind.settings(dict(spec.options))
             made = kind.run(shape, settings, tmp, name=recipe.name, seed=recipe.seed, context=context)
             context = kind.pass_on(made, context)
+            gives.update(made.gives)
             files += made.files
             warnings += [f"{spec.name}: {w}" for w in made.warnings]
         manifest = {
@@ -164,3 +192,4 @@ def _build_into(recipe: Recipe, target: Path, aside: Aside) -> None:
             ],
         }
         write_text(tmp / "manifest.json", json.dumps(manifest, indent=2, sort_keys=True) + "\n")
+    return gives
