@@ -125,27 +125,31 @@ class Slices:
         return "stacked" if self.stack is not None else self.construction.style
 
 
+#: The defaults of :func:`make_slices`, the recipe's and the CLI's: one declaration.
+_DEFAULTS = PlateOptions()
+
+
 def make_slices(
     shape: VoxelShape | npt.ArrayLike,
     *,
     pitch: float | None = None,
-    axis: str | Axis = "z",
-    thickness: float = 3.0,
-    sheet: str | tuple[float, float] = "600x400",
-    margin: float = 5.0,
-    spacing: float = 2.0,
-    kerf: float = 0.0,
-    dowel: float = 3.0,
-    dowel_margin: float = 1.0,
-    dowels_per_joint: int = 2,
-    score: bool = True,
-    min_width: float = 1.0,
-    style: str = "stacked",
-    axes: str = "xy",
-    count: int = 5,
-    interval: float = 12.0,
-    radial_plates: int = 4,
-    clearance: float = 0.1,
+    axis: str | Axis = _DEFAULTS.axis,
+    thickness: float = _DEFAULTS.thickness,
+    sheet: str | tuple[float, float] = _DEFAULTS.sheet,
+    margin: float = _DEFAULTS.margin,
+    spacing: float = _DEFAULTS.spacing,
+    kerf: float = _DEFAULTS.kerf,
+    dowel: float = _DEFAULTS.dowel,
+    dowel_margin: float = _DEFAULTS.dowel_margin,
+    dowels_per_joint: int = _DEFAULTS.dowels_per_joint,
+    score: bool = _DEFAULTS.score,
+    min_width: float = _DEFAULTS.min_width,
+    style: str = _DEFAULTS.style,
+    axes: str = _DEFAULTS.axes,
+    count: int = _DEFAULTS.count,
+    interval: float = _DEFAULTS.interval,
+    radial_plates: int = _DEFAULTS.radial_plates,
+    clearance: float = _DEFAULTS.clearance,
 ) -> Slices:
     """Slice a shape into plates and nest them onto sheets.
 

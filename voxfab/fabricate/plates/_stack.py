@@ -19,6 +19,7 @@ from voxfab.errors import InvalidShapeError
 
 from ._dowels import Dowel, place_dowels
 from ._labels import Label, place_label, relabel
+from ._options import PlateOptions
 from ._outline import Axis, Piece, axis_value, cells_outline, scaled, slice_stack
 
 #: Segments per quarter circle when a dowel hole is turned into a polygon.
@@ -254,18 +255,22 @@ def layer_runs(layers: int, pitch: float, thickness: float) -> tuple[tuple[int, 
     return tuple((int(source[a]), int(c)) for a, c in zip(starts, counts))
 
 
+#: The defaults of :func:`make_plates`: the plate options' own.
+_DEFAULTS = PlateOptions()
+
+
 def make_plates(
     grid: npt.ArrayLike,
     *,
     pitch: float,
-    axis: str | Axis = "z",
-    thickness: float = 3.0,
-    dowel: float = 3.0,
-    dowel_margin: float = 1.0,
-    dowels_per_joint: int = 2,
-    score: bool = True,
-    min_width: float = 1.0,
-    kerf: float = 0.0,
+    axis: str | Axis = _DEFAULTS.axis,
+    thickness: float = _DEFAULTS.thickness,
+    dowel: float = _DEFAULTS.dowel,
+    dowel_margin: float = _DEFAULTS.dowel_margin,
+    dowels_per_joint: int = _DEFAULTS.dowels_per_joint,
+    score: bool = _DEFAULTS.score,
+    min_width: float = _DEFAULTS.min_width,
+    kerf: float = _DEFAULTS.kerf,
 ) -> PlateStack:
     """Turn a voxel shape into a stack of plates.
 
