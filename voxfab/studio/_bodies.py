@@ -27,10 +27,6 @@ MAKE = ("grid", "artefact", "pitch", "title", "options", "net", "placement", "sh
 EDIT = ("job", "index", "cut", "join", "undo", "split", "grid", "marks")
 NET_PICK = ("job", "index")
 
-#: The outputs drawn from a chosen net (the net's files, and the triptych's net picture); the others are made
-#: from the shape alone, so a net picked for them would have no effect.
-NET_OUTPUTS = ("net", "pictures")
-
 #: Frames of the studio's animation preview (fewer than the recipe's 720: it is sent as JSON grids).
 ANIMATE_STEPS = (2, 72)
 

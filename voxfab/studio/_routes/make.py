@@ -30,7 +30,7 @@ def chosen_net(session: Session, artefact: str, pick: Any) -> Any:
         return None
     from voxfab.fabricate import output_for_download
 
-    if output_for_download(artefact).name not in _bodies.NET_OUTPUTS:
+    if "net" not in output_for_download(artefact).uses:  # the outputs drawn from a net, as the table declares
         raise InvalidShapeError(f"net: {artefact} is made from the shape, not from a chosen net")
     if not isinstance(pick, dict) or not isinstance(pick.get("job"), str):
         raise InvalidShapeError("net: expected {\"job\": ID, \"index\": N}")
