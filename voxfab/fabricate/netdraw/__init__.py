@@ -155,7 +155,7 @@ class DrawingResult:
         Face size, sheets and their fill, tabs, labels and folds.
     warnings : list of str
         The lines a maker must read before making it (a net split into pieces,
-        labels shrunk, seams without tabs); also the last lines of ``report``.
+        seams without tabs); also the last lines of ``report``.
     face_size : float
         Face edge, mm.
     fill : list of float
@@ -284,7 +284,7 @@ def fabricate_net(shape: VoxelShape, net: NetOptions, drawing: DrawingOptions, o
     -------
     Artefact
         ``net.json`` (``net.piece-N.json`` per piece) and the drawings, the
-        warnings (net split, labels shrunk, seams without tabs), a report
+        warnings (net split, seams without tabs), a report
         with the face size and the fill of every sheet, and the net it wrote
         as ``gives["net"]``: a tuple of its pieces (one for a one-piece net).
     """

@@ -175,15 +175,17 @@ class NetDrawing:
         return seam_labels(self.seam_numbers[~self.tab_seams & ~self.tab_elsewhere].tolist(), self.label_chars)
 
     def warnings(self) -> list[str]:
-        """The lines a maker must not miss: a net split into pieces, labels shrunk, seams without tabs."""
+        """The lines a maker must not miss: a net split into pieces, seams without tabs.
+
+        Labels that shrink to fit the faces are no warning: ``label_height`` is their largest
+        height, and a face too small for ``min_label_height`` is refused; :meth:`report` gives
+        the height drawn.
+        """
         out = []
         if self.pieces > 1:
             n = len(self.sheets)
             out.append(f"net split into {self.pieces} pieces on {n} sheet{'s' if n > 1 else ''}: "
                        "glue the seams between pieces by their labels")
-        if self.numbers and self.seams and self.label_height < self.label_wanted - 1e-9:
-            out.append(f"seam labels shrunk to {self.label_height:.1f} mm (asked {self.label_wanted:g} mm) "
-                       f"to fit {self.pitch:g} mm faces")
         marked = self.marked_seams
         if marked:
             shown = ", ".join(marked[:20]) + (" ..." if len(marked) > 20 else "")
@@ -200,7 +202,9 @@ class NetDrawing:
             f"faces {self.pitch:g} mm, {n} sheet{'s' if n > 1 else ''} of {w:g} x {h:g} mm, "
             f"filled {fills}" + (", net turned a quarter turn" if self.rotated else "")
         ]
-        numbers = (f", {self.label_chars}-character labels {self.label_height:.1f} mm high" if self.numbers
+        fitted = f" (fitted to the faces; at most {self.label_wanted:g} mm)" \
+            if self.label_height < self.label_wanted - 1e-9 else ""
+        numbers = (f", {self.label_chars}-character labels {self.label_height:.1f} mm high{fitted}" if self.numbers
                    else ", no labels")
         lines.append(
             f"{self.seams} glued seams; {int(self.tab_seams.sum())} tabs ({self.tab_height:.1f} mm deep){numbers}"
