@@ -529,7 +529,7 @@ def test_marked_edges_are_honoured(client):
 
 
 def test_a_seed_that_runs_out_of_time_is_skipped(client, monkeypatch):
-    import voxfab.unfold._search as engine
+    import voxfab.unfold._many as engine  # unfold_many's calls of unfold
     from voxfab.errors import UnfoldError
 
     real = engine.unfold

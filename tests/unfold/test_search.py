@@ -206,7 +206,7 @@ def test_search_counts_its_progress(monkeypatch):
     import contextlib
 
     from voxfab._shared.progress import Meter
-    from voxfab.unfold import _search
+    from voxfab.unfold import _many, _onepiece
 
     meters: list[Meter] = []
 
@@ -216,7 +216,8 @@ def test_search_counts_its_progress(monkeypatch):
         meters.append(m)
         yield m
 
-    monkeypatch.setattr(_search, "meter", recording)
+    monkeypatch.setattr(_many, "meter", recording)  # the nets
+    monkeypatch.setattr(_onepiece, "meter", recording)  # each net's growth and tab room
     g = examples.ball(4)
     nets = unfold_many(g, count=2, rng=3)
     by_desc = {}
@@ -233,11 +234,11 @@ def test_small_surfaces_skip_the_compiler_and_give_the_same_nets(monkeypatch):
     import subprocess
     import sys
 
-    from voxfab.unfold import _search
+    from voxfab.unfold import _growboard
 
     grid = examples.ball(3)  # 174 faces: plain Python by default
     plain = [unfold(grid, rng=s).to_json() for s in range(3)]
-    monkeypatch.setattr(_search, "_PURE_FACES", 0)
+    monkeypatch.setattr(_growboard, "_PURE_FACES", 0)
     compiled = [unfold(grid, rng=s).to_json() for s in range(3)]
     assert plain == compiled  # the same source, the same arithmetic
     code = ("import sys; from voxfab.shape import examples; from voxfab.unfold import unfold, validate; "

@@ -9,7 +9,7 @@ zipper of :mod:`voxfab.unfold._zipper` (``voxfab net --zipper``), whose path
 visits every vertex: the 2 x 2 x 2 cube has no unit-square zipper, yet it unzips
 here.
 
-The search is the zipper search's, with flat vertices optional:
+The search is the zipper search's (:mod:`voxfab.unfold._cutpath`), with flat vertices optional:
 
 0. the short fold paths whose end faces develop onto one cell are ruled out
    first (one of their edges is cut);
@@ -21,10 +21,11 @@ The search is the zipper search's, with flat vertices optional:
 3. two faces on one cell: one edge of the tree path between them is cut (a
    no-good valid for every cut); a cut edge whose two sides develop side by
    side closes up (a slit, not a cut): it is left uncut or the tree path between
-   its faces is cut.  Back to 1.  (The paper allows such a slit, as boundary
-   edges that touch; a net file keeps it as a fold, which breaks the cut path.
-   So a proof that leaned on a slit rule is no proof in the paper's model: the
-   outcome is then ``undecided``.)
+   its faces is cut.  Back to 1 (:func:`voxfab.unfold.solve_with_nogoods`).
+   (The paper allows such a slit, as boundary edges that touch; a net file
+   keeps it as a fold, which breaks the cut path.  So a proof that leaned on a
+   slit rule is no proof in the paper's model: the outcome is then
+   ``undecided``.)
 
 Without a path the search is a proof that none exists.  The cheap proof comes
 first, as in the paper: the vertex graph is bipartite (lattice colour ``x + y +
@@ -108,10 +109,16 @@ def unzip(grid: npt.ArrayLike, *, timeout: float = 10.0) -> Unzipping:
         The surface is not a manifold of genus 0.
     """
     from voxfab.shape import surface_graph
-    from voxfab.unfold._exact import _cp_model, one_worker_solver
+    from voxfab.unfold import solve_with_nogoods, validate
+    from voxfab.unfold._cutpath import (
+        cell_clashes,
+        fold_flat,
+        path_model,
+        short_overlaps,
+        surface_edges,
+        tree_path,
+    )
     from voxfab.unfold._layout import build_net, count_without_tab_room
-    from voxfab.unfold._validate import validate
-    from voxfab.unfold._zipper import _edges, _fold_flat, _short_overlaps, _tree_path
 
     from ._topology import topology
 
@@ -132,107 +139,66 @@ def unzip(grid: npt.ArrayLike, *, timeout: float = 10.0) -> Unzipping:
     sg = surface_graph(g)
     f = sg.face_count
     faces = np.arange(f, dtype=np.int64)
-    edges = _edges(sg, faces)
-    verts = np.unique(sg.vertex)
-    degree = np.bincount(sg.vertex.ravel(), minlength=verts.size)  # squares round each vertex
-    corner = degree != 4
-    cp_model = _cp_model()
-    m = cp_model.CpModel()
-    dummy = int(verts.size)
-    arcs: list[tuple[int, int, Any]] = []
-    cut = []
-    for i, (a, k, _, _) in enumerate(edges):
-        u, v = int(sg.vertex[a, k]), int(sg.vertex[a, (k + 1) % 4])
-        uv, vu = m.new_bool_var(f"u{i}"), m.new_bool_var(f"v{i}")
-        arcs += [(u, v, uv), (v, u, vu)]
-        cut.append((uv, vu))
-    starts, ends = [], []
-    for v in range(dummy):
-        if corner[v]:  # the path's ends, joined through the dummy node into one circuit
-            s, t = m.new_bool_var(f"s{v}"), m.new_bool_var(f"t{v}")
-            arcs += [(dummy, v, s), (v, dummy, t)]
-            starts.append(s)
-            ends.append(t)
-        else:  # a flat vertex may stay off the path
-            arcs.append((v, v, m.new_bool_var(f"skip{v}")))
-    m.add_circuit(arcs)
-    # A path and its reverse are one cut: the end at the lower corner is its start.
-    for j in range(len(starts)):
-        m.add(sum(ends[: j + 1]) >= 1).only_enforce_if(starts[j])
+    edges = surface_edges(sg, faces)
+    corner = np.bincount(sg.vertex.ravel()) != 4  # squares round each vertex: 4 at a flat one
+    m, cut = path_model(sg, faces, edges, optional=~corner)  # the path ends at corners, may pass flat vertices
     nogoods: list[list[int]] = []
-    for path in _short_overlaps(sg, faces, edges, _SHORT_PATH, deadline):
+    for path in short_overlaps(sg, faces, edges, _SHORT_PATH, deadline):
         m.add_bool_or([lit for i in path for lit in cut[i]])
         nogoods.append(list(path))
-    solver = one_worker_solver()
-    prm = solver.parameters
-    prm.cp_model_presolve = False  # re-solved after each round of no-goods, as the zipper search
     slit_rules: list[tuple[list[int], int]] = []
-    rounds = 0
-    while True:
-        left = deadline - time.monotonic()
-        if left <= 0:
-            break
-        prm.max_time_in_seconds = left
-        status = solver.solve(m)
-        if status == cp_model.INFEASIBLE and slit_rules:
-            # The paper allows a net whose boundary edges touch, so a cut edge that closes up again (a
-            # slit) is allowed there; a net file keeps it as a fold, which breaks the path.  Without a
-            # slit-free path the question stays open here.
-            return Unzipping("undecided", None, (), None,
-                             f"undecided: no unzipping of the {f}-square surface without a slit exists (proved), "
-                             "and one whose cut path closes up along an edge was not ruled out")
-        if status == cp_model.INFEASIBLE:
-            return Unzipping("none", None, (), {
-                "kind": "solver", "faces": [_face_key(sg, a) for a in range(f)],
-                "overlaps": [[list(edges[i][::2]) for i in ng] for ng in nogoods],
-                "slits": [[[list(edges[i][::2]) for i in p], list(edges[e][::2])] for p, e in slit_rules]},
-                f"no unzipping of the {f}-square surface exists (proved: every cut path through its "
-                f"{int(corner.sum())} corner vertices folds into an overlap; {rounds} rounds of overlaps ruled out)")
-        if status not in (cp_model.OPTIMAL, cp_model.FEASIBLE):
-            break
-        # Each literal read once: the solver's per-literal reads dominate small models otherwise.
-        forward = [solver.boolean_value(uv) for uv, _ in cut]
-        backward = [solver.boolean_value(vu) for _, vu in cut]
-        is_cut = [a or b for a, b in zip(forward, backward)]
+
+    def refuse(values: list[bool]) -> list[list]:
+        """No-goods for a cut whose uncut edges develop into an overlap, or whose cut closes up."""
+        is_cut = [uv or vu for uv, vu in zip(values[0::2], values[1::2])]
         fold_ids = [i for i, c in enumerate(is_cut) if not c]
-        folds = [edges[i] for i in fold_ids]
-        cell, rot, parent, via = _fold_flat(faces, folds, f)
-        owner: dict[tuple[int, int], int] = {}
-        clashes = []
-        for a in range(f):
-            c = (int(cell[a, 0]), int(cell[a, 1]))
-            if c in owner:
-                clashes.append((owner[c], a))
-            else:
-                owner[c] = a
-        slits = [] if clashes else _slits(sg, edges, is_cut, cell, rot)
-        if not clashes and not slits:
-            net = build_net(sg, faces, cell, rot, parent, seed=0, strategy="unzip")
-            net = dataclasses.replace(net, seams_without_tab_room=count_without_tab_room(g, net))
-            # The independent refold: a net the model let through but the validator refuses is a bug here.
-            validate(g, net, strict=True)
-            if net.folds.shape[0] != len(fold_ids):
-                raise UnfoldError("unzip: the developed net does not keep every uncut edge as a fold")
-            return Unzipping("found", net, _path_points(sg, edges, forward, backward), None, "")
-        for u, v in clashes:
-            tree = [fold_ids[i] for i in _tree_path(u, v, parent, via)]
-            m.add_bool_or([lit for i in tree for lit in cut[i]])
+        cell, rot, parent, via = fold_flat(faces, [edges[i] for i in fold_ids], f)
+        out = []
+        for u, v in cell_clashes(faces, cell):
+            tree = [fold_ids[i] for i in tree_path(u, v, parent, via)]
+            out.append([lit for i in tree for lit in cut[i]])
             nogoods.append(tree)
-        for e in slits:
+        if out:
+            return out
+        for e in _slits(sg, edges, is_cut, cell, rot):
             a, _, b, _ = edges[e]
-            tree = [fold_ids[i] for i in _tree_path(a, b, parent, via)]
+            tree = [fold_ids[i] for i in tree_path(a, b, parent, via)]
             lits = [lit for i in tree for lit in cut[i]]
-            for lit in cut[e]:  # the edge stays uncut, or the tree path between its squares is cut
-                m.add_bool_or([*lits, ~lit])
+            # The edge stays uncut, or the tree path between its squares is cut.
+            out += [[*lits, ~lit] for lit in cut[e]]
             slit_rules.append((tree, e))
-        rounds += 1
-        m.clear_hints()
-        for (uv, vu), a, b in zip(cut, forward, backward):
-            m.add_hint(uv, a)
-            m.add_hint(vu, b)
-    return Unzipping("undecided", None, (), None,
-                     f"undecided: the unzipping search ran out of time on the {f}-square surface "
-                     f"({rounds} rounds of overlaps ruled out); raise the timeout")
+        return out
+
+    search = solve_with_nogoods(m, [lit for pair in cut for lit in pair], refuse, deadline=deadline)
+    if search.status == "infeasible" and slit_rules:
+        # The paper allows a net whose boundary edges touch, so a cut edge that closes up again (a
+        # slit) is allowed there; a net file keeps it as a fold, which breaks the path.  Without a
+        # slit-free path the question stays open here.
+        return Unzipping("undecided", None, (), None,
+                         f"undecided: no unzipping of the {f}-square surface without a slit exists (proved), "
+                         "and one whose cut path closes up along an edge was not ruled out")
+    if search.status == "infeasible":
+        return Unzipping("none", None, (), {
+            "kind": "solver", "faces": [_face_key(sg, a) for a in range(f)],
+            "overlaps": [[list(edges[i][::2]) for i in ng] for ng in nogoods],
+            "slits": [[[list(edges[i][::2]) for i in p], list(edges[e][::2])] for p, e in slit_rules]},
+            f"no unzipping of the {f}-square surface exists (proved: every cut path through its "
+            f"{int(corner.sum())} corner vertices folds into an overlap; {search.rounds} rounds of overlaps "
+            "ruled out)")
+    if search.status == "timeout":
+        return Unzipping("undecided", None, (), None,
+                         f"undecided: the unzipping search ran out of time on the {f}-square surface "
+                         f"({search.rounds} rounds of overlaps ruled out); raise the timeout")
+    forward, backward = search.values[0::2], search.values[1::2]
+    fold_ids = [i for i, (uv, vu) in enumerate(zip(forward, backward)) if not (uv or vu)]
+    cell, rot, parent, _ = fold_flat(faces, [edges[i] for i in fold_ids], f)
+    net = build_net(sg, faces, cell, rot, parent, seed=0, strategy="unzip")
+    net = dataclasses.replace(net, seams_without_tab_room=count_without_tab_room(g, net))
+    # The independent refold: a net the model let through but the validator refuses is a bug here.
+    validate(g, net, strict=True)
+    if net.folds.shape[0] != len(fold_ids):
+        raise UnfoldError("unzip: the developed net does not keep every uncut edge as a fold")
+    return Unzipping("found", net, _path_points(sg, edges, forward, backward), None, "")
 
 
 def _slits(sg: Any, edges: list, is_cut: list[bool], cell: npt.NDArray[np.int64],

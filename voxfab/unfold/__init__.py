@@ -5,19 +5,23 @@ refolds a net and checks it against the shape, ``seam_pairs`` and ``tab_room``
 describe its cut edges for glue tabs, ``EdgeConstraints`` names edges to cut
 or keep folded, ``cut_edge`` and ``join_edge`` edit one edge of a net and
 repair its layout around the change, ``hunt_shape`` tells whether a shape has a
-one-piece net and a zipper net.
+one-piece net and a zipper net, ``solve_with_nogoods`` runs CP-SAT with
+no-goods added lazily (the zipper search's and the census's loop).
 """
 
 from voxfab.errors import NoNetExistsError
 
 from ._constraints import EdgeConstraints
+from ._cpsat import solve_with_nogoods
 from ._edit import EditResult, cut_edge, join_edge
 from ._exact import Undecided
 from ._hunt import HUNT_NET, HUNT_ZIPPER, HuntOutcome, hunt_shape
+from ._job import NoFitError, Pieces, Strategy
 from ._layout import seam_pairs, tab_room
+from ._many import unfold_many
 from ._net import NET_FORMAT, Net
 from ._outline import outline_key
-from ._search import NoFitError, Pieces, Strategy, unfold, unfold_many
+from ._search import unfold
 from ._validate import ValidationReport, validate
 
 __all__ = [
@@ -38,6 +42,7 @@ __all__ = [
     "outline_key",
     "join_edge",
     "seam_pairs",
+    "solve_with_nogoods",
     "tab_room",
     "unfold",
     "unfold_many",

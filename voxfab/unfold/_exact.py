@@ -20,22 +20,19 @@ from it; they are what limits the size of surface this strategy decides.
 
 from __future__ import annotations
 
-import threading
 import time
 from typing import NamedTuple
 
 import numpy as np
 import numpy.typing as npt
 
-from voxfab.errors import MissingDependencyError, NoNetExistsError, UnfoldError
+from voxfab.errors import NoNetExistsError, UnfoldError
 from voxfab.shape import SurfaceGraph
 
 from ._constraints import _SIDE_STEP, CUT, KEEP, Resolved
+from ._cpsat import cp_model, one_worker_solver, solve
 
-__all__ = ["ExactLayout", "any_box", "exact_layout", "min_box_layout", "one_worker_solver"]
-
-#: The solver's seed: fixed, so that a run never depends on anything but the input.
-_SOLVER_SEED = 0
+__all__ = ["ExactLayout", "any_box", "exact_layout", "min_box_layout"]
 
 
 class ExactLayout(NamedTuple):
@@ -61,22 +58,6 @@ def any_box(faces: int) -> tuple[int, int]:
     by the solver) and never has to prove anything: the same net on every run.
     """
     return ((faces + 1) // 2, faces)
-
-
-def _cp_model():  # noqa: ANN202 - the ortools module
-    try:
-        from ortools.sat.python import cp_model
-    except ImportError:
-        raise MissingDependencyError("ortools", "the exact unfolding strategy") from None
-    return cp_model
-
-
-def one_worker_solver():  # noqa: ANN201 - an ortools CpSolver
-    """A CP-SAT solver with one worker and a fixed seed: the same search, and so the same answer, every run."""
-    solver = _cp_model().CpSolver()
-    solver.parameters.num_search_workers = 1
-    solver.parameters.random_seed = _SOLVER_SEED
-    return solver
 
 
 def _arcs(sg: SurfaceGraph, faces: npt.NDArray[np.int64]) -> list[tuple[int, int, int, int]]:
@@ -133,8 +114,8 @@ def exact_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], resolved: Resol
     kind = "zipper net" if zipper else "one-piece net"
     if w * h < n:  # no model needed: the faces outnumber the cells
         raise NoNetExistsError(w, h, kind=kind)
-    cp_model = _cp_model()
-    m = cp_model.CpModel()
+    sat = cp_model()
+    m = sat.CpModel()
     local = {f: i for i, f in enumerate(faces.tolist())}
     x = [m.NewIntVar(0, w - 1, f"x{i}") for i in range(n)]
     y = [m.NewIntVar(0, h - 1, f"y{i}") for i in range(n)]
@@ -200,20 +181,20 @@ def exact_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], resolved: Resol
         # nothing about the box, so the full search follows.
         prm.fix_variables_to_their_hinted_value = True
         prm.max_time_in_seconds = max(deadline - time.monotonic(), 0.01)
-        status = _solve(solver, m)
-        if status == cp_model.UNKNOWN and resolved is None:
+        status = solve(solver, m)
+        if status == sat.UNKNOWN and resolved is None:
             # Out of time before the check ended: without edge constraints a
             # growth net in the box is a net the check would confirm (every
             # variable fixed), and the caller refolds it anyway, so a slow run
             # gives the same net as a fast one.
             return hint
         prm.fix_variables_to_their_hinted_value = False
-    if status not in (cp_model.OPTIMAL, cp_model.FEASIBLE):
+    if status not in (sat.OPTIMAL, sat.FEASIBLE):
         prm.max_time_in_seconds = max(deadline - time.monotonic(), 0.01)
-        status = _solve(solver, m)
-    if status == cp_model.INFEASIBLE:
+        status = solve(solver, m)
+    if status == sat.INFEASIBLE:
         raise NoNetExistsError(w, h, kind=kind)
-    if status not in (cp_model.OPTIMAL, cp_model.FEASIBLE):
+    if status not in (sat.OPTIMAL, sat.FEASIBLE):
         raise Undecided(
             f"undecided: the exact search ran out of time before it found a one-piece net of the "
             f"{n}-face surface that fits {w}x{h} faces or proved that none exists; raise the timeout")
@@ -228,37 +209,6 @@ def exact_layout(sg: SurfaceGraph, faces: npt.NDArray[np.int64], resolved: Resol
         if solver.BooleanValue(p):
             parent[int(sg.neighbor[a, k])] = a
     return ExactLayout(cells, rots, parent, (w, h))
-
-
-def _solve(solver, m):  # noqa: ANN001, ANN202 - ortools objects
-    """``solver.solve(m)``, stopped within a fraction of a second when this thread's work is cancelled.
-
-    CP-SAT runs in native code and never calls :func:`check_cancelled`; a watcher thread
-    polls the cancel event and stops the search (again each 0.05 s, in case the search
-    had not begun), then the cancel is raised here.
-    """
-    from voxfab._shared.progress import cancel_event, check_cancelled
-
-    event = cancel_event()
-    if event is None:
-        return solver.solve(m)
-    check_cancelled()
-    done = threading.Event()
-
-    def watch() -> None:
-        while not done.wait(0.05):
-            if event.is_set():
-                solver.stop_search()
-
-    watcher = threading.Thread(target=watch, name="exact-cancel", daemon=True)
-    watcher.start()
-    try:
-        status = solver.solve(m)
-    finally:
-        done.set()
-        watcher.join()
-    check_cancelled()
-    return status
 
 
 def _one_cut_path(m, sg: SurfaceGraph, arcs: list, par: dict) -> None:  # noqa: ANN001

@@ -19,7 +19,6 @@ import numpy.typing as npt
 
 from voxfab.errors import InvalidShapeError, NoNetExistsError, UnfoldError
 
-from ._exact import any_box
 from ._net import Net
 
 __all__ = ["HUNT_NET", "HUNT_ZIPPER", "HuntOutcome", "hunt_shape"]
@@ -133,8 +132,8 @@ def hunt_shape(grid: npt.ArrayLike, *, seed: int = 0, timeout: float = 10.0, exa
         found = ""
     seconds[0] = time.perf_counter() - t
     if not found:
-        found, one_piece, seconds[1] = _exact(lambda: unfold(g, rng=0, strategy="exact", fit=any_box(faces),
-                                                            timeout=limits[1]), "exact", why)
+        found, one_piece, seconds[1] = _exact(lambda: unfold(g, rng=0, strategy="exact", timeout=limits[1]),
+                                                "exact", why)
     zipped, zipper_net = "skipped", None
     if zipper:
         zipped, zipper_net, seconds[2] = _exact(lambda: unfold(g, rng=0, strategy="exact", zipper=True,

@@ -4,8 +4,8 @@ Two ways to cut compete: slabs across an axis (straight cuts along layers,
 :func:`_sheet_pieces`) and branches of one free net (:func:`_tree_pieces`);
 small pieces are then joined to neighbours (:func:`_merge_small`) and the size
 rule (none under a tenth of the largest) is kept by moving branches
-(:func:`_balance`).  The search machinery (boards, growth, annealing) is
-:mod:`._search`'s.
+(:func:`_balance`).  Pieces from flat patches (pieces="flat") are
+:mod:`._patches`'.
 """
 
 from __future__ import annotations
@@ -16,25 +16,16 @@ import time
 import numpy as np
 import numpy.typing as npt
 
-from voxfab._shared.progress import check_cancelled
 from voxfab.errors import UnfoldError
 from voxfab.shape import SurfaceGraph
 
+from ._growboard import Board, board_of
+from ._job import FIT_STEPS_PER_FACE, MIN_SHARE, Job, Strategy, growth_settings, orientations, surface_parts
 from ._net import Net
-from ._search import (
-    _FIT_STEPS_PER_FACE,
-    Strategy,
-    _Board,
-    _Job,
-    _one_piece,
-    _orientations,
-    _settings,
-    _surface_parts,
-)
+from ._onepiece import one_piece
+from ._patches import patch_pieces
 
-#: pieces="auto": the smallest piece as a share of the largest (by faces), and
-#: branches of a neighbour a too-small piece may try to take.
-_MIN_SHARE = 0.1
+#: pieces="auto": branches of a neighbour a too-small piece may try to take.
 _BRANCH_TRIES = 24
 #: pieces="auto": pairs of neighbouring pieces tried for a join (once the
 #: size rule holds).
@@ -43,19 +34,16 @@ _JOIN_TRIES = 24
 #: cells left free take the glue tabs (up to four each, one from every side),
 #: so a denser piece leaves seams without room.
 _PIECE_SHARE = 0.5
-#: pieces="auto" from flat patches: a piece stops growing at this share of the
-#: box's cells, so the box keeps room to take the small pieces left over.
-_PATCH_SHARE = 0.25
 #: Tries (each a fixed budget of growth steps) to lay one piece in its box
 #: before it is cut in two.
 _PIECE_TRIES = 3
 
 
-def split(job: _Job, faces: npt.NDArray[np.int64]) -> list[Net]:
+def split(job: Job, faces: npt.NDArray[np.int64]) -> list[Net]:
     """One surface part as few pieces as the budget allows."""
     if job.fit is None or job.fit[0] * job.fit[1] >= faces.size:  # else one piece cannot fit
         try:
-            return [_one_piece(job, faces)]
+            return [one_piece(job, faces)]
         except UnfoldError:
             pass
     boards = _partition(job, faces)
@@ -68,7 +56,7 @@ def split(job: _Job, faces: npt.NDArray[np.int64]) -> list[Net]:
     return nets
 
 
-def _partition(job: _Job, faces: npt.NDArray[np.int64]) -> list[tuple[_Board, npt.NDArray[np.int64]]]:
+def _partition(job: Job, faces: npt.NDArray[np.int64]) -> list[tuple[Board, npt.NDArray[np.int64]]]:
     """Cut the faces into pieces that each fit the box, then join pieces while they fit.
 
     Without constraints the pieces are branches of one free net, each cut off
@@ -78,14 +66,14 @@ def _partition(job: _Job, faces: npt.NDArray[np.int64]) -> list[tuple[_Board, np
     ruin-and-recreate packs into the box from the faces left over.
     """
     if job.constraints is None and job.fit is not None and job.flat:
-        patches = _patch_pieces(job, faces)
+        patches = patch_pieces(job, faces)
         try:
             return _balance(job, list(patches))
         except UnfoldError:
             pass
         try:
             # Branches did not mend the size rule: join the small pieces to neighbours first.
-            return _balance(job, _merge_small(job, _patch_pieces(job, faces), mend_only=True))
+            return _balance(job, _merge_small(job, patch_pieces(job, faces), mend_only=True))
         except UnfoldError:
             pass  # no split from patches keeps the size rule: cut as "auto" does
     if job.constraints is None and job.fit is not None:
@@ -117,11 +105,11 @@ def _fold_tree(faces: npt.NDArray[np.int64], par: npt.NDArray[np.int64]) -> tupl
     return root, children, walk
 
 
-def _tree_pieces(job: _Job, faces: npt.NDArray[np.int64]) -> list | None:
+def _tree_pieces(job: Job, faces: npt.NDArray[np.int64]) -> list | None:
     """Branches of a free net that fit the box, bottom up; None when no free net grows."""
     n = int(faces.size)
-    free = _Board(job.sg, faces, [job.seed, 1999], None, None, n)
-    if not free.grow(job.growth(n), math.inf, _FIT_STEPS_PER_FACE * n):
+    free = Board(job.sg, faces, [job.seed, 1999], None, None, n)
+    if not free.grow(job.growth(n), math.inf, FIT_STEPS_PER_FACE * n):
         return None
     w_box, h_box = job.fit
     x, y = free.pos % free.width, free.pos // free.width
@@ -151,43 +139,17 @@ def _tree_pieces(job: _Job, faces: npt.NDArray[np.int64]) -> list | None:
     return [_laid_out(job, free, np.array(sorted(m), dtype=np.int64), t) for t, m in enumerate(cut)]
 
 
-def _laid_out(job: _Job, free: _Board, piece: npt.NDArray[np.int64], t: int) -> tuple[_Board, npt.NDArray[np.int64]]:
+def _laid_out(job: Job, free: Board, piece: npt.NDArray[np.int64], t: int) -> tuple[Board, npt.NDArray[np.int64]]:
     """A board in the box holding ``piece`` as laid out on the free board ``free``."""
     cells = np.stack([free.pos % free.width, free.pos // free.width], axis=1)
-    return _board_of(job, piece, cells, free.rot, free.par, [job.seed, 2000 + t])
+    return board_of(job, piece, cells, free.rot, free.par, [job.seed, 2000 + t])
 
 
-def _board_of(job: _Job, piece: npt.NDArray[np.int64], cells: npt.NDArray[np.int64],
-              rot: npt.NDArray[np.int64], par: npt.NDArray[np.int64], seed: list[int]
-              ) -> tuple[_Board, npt.NDArray[np.int64]]:
-    """A board in the box (turned to fit) holding ``piece`` laid out on ``cells``."""
-    x, y = cells[piece, 0], cells[piece, 1]
-    w, h = int(np.ptp(x)) + 1, int(np.ptp(y)) + 1
-    if job.fit is None:
-        box = None
-    else:
-        box = job.fit if w <= job.fit[0] and h <= job.fit[1] else (job.fit[1], job.fit[0])
-    b = _Board(job.sg, piece, seed, box, None, job.sg.face_count)
-    saved = np.zeros((job.sg.face_count, 3), dtype=np.int64)
-    saved[:, 0] = -3  # faces of other pieces stay out
-    saved[:, 2] = -2
-    saved[piece, 0] = (y - y.min() + 1) * b.width + (x - x.min() + 1)  # inside the wall
-    saved[piece, 1] = rot[piece]
-    inside = np.zeros(job.sg.face_count, dtype=bool)
-    inside[piece] = True
-    up = par[piece]
-    saved[piece, 2] = np.where((up >= 0) & inside[np.maximum(up, 0)], up, -1)
-    b.k.restore(*b.b[:4], saved)
-    b.cnt[b.k.C_ROOT] = int(piece[saved[piece, 2] < 0][0])
-    b.faces = piece
-    return b, piece
-
-
-def _layout(b: _Board) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64], npt.NDArray[np.int64]]:
+def _layout(b: Board) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64], npt.NDArray[np.int64]]:
     return np.stack([b.pos % b.width, b.pos // b.width], axis=1), b.rot.copy(), b.par.copy()
 
 
-def _join_layouts(job: _Job, q: tuple, r: tuple, seed: list[int]) -> tuple | None:
+def _join_layouts(job: Job, q: tuple, r: tuple, seed: list[int]) -> tuple | None:
     """Pieces q and r as one, r turned and moved rigidly to fold onto q along a shared edge.
 
     No face is regrown: both keep their layouts, so the join works even when
@@ -233,22 +195,22 @@ def _join_layouts(job: _Job, q: tuple, r: tuple, seed: list[int]) -> tuple | Non
                 par[node] = above
                 above, node = node, nxt
             both = np.sort(np.concatenate([fq, fr]))
-            return _board_of(job, both, cells, rot, par, seed)
+            return board_of(job, both, cells, rot, par, seed)
     return None
 
 
-def _greedy_pieces(job: _Job, faces: npt.NDArray[np.int64]) -> list[tuple[_Board, npt.NDArray[np.int64]]]:
+def _greedy_pieces(job: Job, faces: npt.NDArray[np.int64]) -> list[tuple[Board, npt.NDArray[np.int64]]]:
     """Pieces grown one by one into the box from the faces left over, the largest first."""
     n = int(faces.size)
     p = job.growth(n)
-    pieces: list[tuple[_Board, npt.NDArray[np.int64]]] = []
+    pieces: list[tuple[Board, npt.NDArray[np.int64]]] = []
     left = np.zeros(job.sg.face_count, dtype=bool)
     left[faces] = True
     t = 0
     while left.any():
-        for part in _surface_parts(job.sg, np.flatnonzero(left)):
+        for part in surface_parts(job.sg, np.flatnonzero(left)):
             t += 1
-            b = _Board(job.sg, part, [job.seed, 2000 + t], job.fit, job.resolved(part), n)
+            b = Board(job.sg, part, [job.seed, 2000 + t], job.fit, job.resolved(part), n)
             if b.started:
                 b.grow(p, math.inf, _steps_left(job, part.size))
             placed = part[b.pos[part] >= 0]
@@ -261,13 +223,13 @@ def _greedy_pieces(job: _Job, faces: npt.NDArray[np.int64]) -> list[tuple[_Board
     return pieces
 
 
-def _steps_left(job: _Job, faces: int) -> int:
+def _steps_left(job: Job, faces: int) -> int:
     # Growth steps for one piece: a full budget while the clock allows, and a
     # short greedy one after it, so that pieces="auto" always returns pieces.
-    return (_FIT_STEPS_PER_FACE if time.monotonic() < job.deadline else 4) * int(faces)
+    return (FIT_STEPS_PER_FACE if time.monotonic() < job.deadline else 4) * int(faces)
 
 
-def _merge_small(job: _Job, pieces: list, mend_only: bool = False) -> list:
+def _merge_small(job: Job, pieces: list, mend_only: bool = False) -> list:
     """Join neighbouring pieces, the smallest first, while their union grows inside the box.
 
     A join is tried only when no piece would end under a tenth of the
@@ -295,20 +257,20 @@ def _merge_small(job: _Job, pieces: list, mend_only: bool = False) -> list:
                 if key in tried or sizes[q] + sizes[r] > area:
                     continue
                 rest = [z for t, z in enumerate(sizes) if t not in (q, r)] + [sizes[q] + sizes[r]]
-                mends = _too_small(sizes) and sizes[q] < _MIN_SHARE * max(sizes)  # q breaks the rule
+                mends = _too_small(sizes) and sizes[q] < MIN_SHARE * max(sizes)  # q breaks the rule
                 if _too_small(rest) and not mends:
                     continue
                 tried.add(key)
                 both = np.sort(np.concatenate([pieces[q][1], pieces[r][1]]))
-                box = None if job.fit is None else _orientations(job.fit)[len(tried) % len(_orientations(job.fit))]
+                box = None if job.fit is None else orientations(job.fit)[len(tried) % len(orientations(job.fit))]
                 seed = [job.seed, 3000 + len(tried)]
                 joinable = job.constraints is None
                 one = _join_layouts(job, pieces[q], pieces[r], seed) if joinable else None
                 if one is None:
-                    b = _Board(sg, both, seed, box, job.resolved(both), sg.face_count)
+                    b = Board(sg, both, seed, box, job.resolved(both), sg.face_count)
                     # Past the clock a join still gets a full budget while the split breaks the rule.
-                    steps = _FIT_STEPS_PER_FACE * int(both.size) if _too_small(sizes) else _steps_left(job, both.size)
-                    if b.started and b.grow(_settings(Strategy.DEFAULT, both.size), math.inf, steps):
+                    steps = FIT_STEPS_PER_FACE * int(both.size) if _too_small(sizes) else _steps_left(job, both.size)
+                    if b.started and b.grow(growth_settings(Strategy.DEFAULT, both.size), math.inf, steps):
                         one = (b, both)
                 if one is not None:
                     pieces = [bp for t, bp in enumerate(pieces) if t not in (q, r)] + [one]
@@ -322,10 +284,10 @@ def _merge_small(job: _Job, pieces: list, mend_only: bool = False) -> list:
 
 
 def _too_small(sizes: list[int]) -> bool:
-    return min(sizes) < _MIN_SHARE * max(sizes)
+    return min(sizes) < MIN_SHARE * max(sizes)
 
 
-def _balance(job: _Job, pieces: list) -> list:
+def _balance(job: Job, pieces: list) -> list:
     """Guarantee the size rule: no piece under a tenth of the largest.
 
     A piece still too small after merging (its neighbours fill their boxes)
@@ -348,12 +310,12 @@ def _balance(job: _Job, pieces: list) -> list:
         f"{sizes[:3]} ... {sizes[-3:]}); use a larger sheet or smaller faces")
 
 
-def _take_branch(job: _Job, pieces: list, q: int) -> bool:
+def _take_branch(job: Job, pieces: list, q: int) -> bool:
     """Grow piece ``q`` with a branch of a neighbouring piece; False when none fits."""
     sg = job.sg
     small = pieces[q][1]
     large = max(int(bp[1].size) for bp in pieces)
-    floor = math.ceil(_MIN_SHARE * large)  # every piece must keep at least this many faces
+    floor = math.ceil(MIN_SHARE * large)  # every piece must keep at least this many faces
     owner = np.full(sg.face_count, -1, dtype=np.int64)
     for r, (_, placed) in enumerate(pieces):
         owner[placed] = r
@@ -364,9 +326,9 @@ def _take_branch(job: _Job, pieces: list, q: int) -> bool:
         for u, branch in _branches(b, placed, small, floor - small.size, placed.size - floor):
             both = np.sort(np.concatenate([small, branch]))
             tries += 1
-            trial = _Board(sg, both, [job.seed, 4000 + tries], job.fit, job.resolved(both), sg.face_count)
-            if trial.started and trial.grow(_settings(Strategy.DEFAULT, both.size), math.inf,
-                                            _FIT_STEPS_PER_FACE * int(both.size)):
+            trial = Board(sg, both, [job.seed, 4000 + tries], job.fit, job.resolved(both), sg.face_count)
+            if trial.started and trial.grow(growth_settings(Strategy.DEFAULT, both.size), math.inf,
+                                            FIT_STEPS_PER_FACE * int(both.size)):
                 b.k.remove_subtree(*b.sf, *b.b[:4], u)
                 pieces[r] = (b, np.setdiff1d(placed, branch))
                 pieces[q] = (trial, both)
@@ -376,7 +338,7 @@ def _take_branch(job: _Job, pieces: list, q: int) -> bool:
     return False
 
 
-def _branches(b: _Board, placed: npt.NDArray[np.int64], small: npt.NDArray[np.int64], least: int,
+def _branches(b: Board, placed: npt.NDArray[np.int64], small: npt.NDArray[np.int64], least: int,
               most: int):
     """Branches of board ``b``'s fold tree of ``least`` to ``most`` faces that touch ``small``.
 
@@ -433,10 +395,10 @@ def _sweep_regions(sg: SurfaceGraph, faces: npt.NDArray[np.int64], k: int) -> li
         nb = owner[sg.neighbor[faces]]
         seams = int(np.count_nonzero((nb >= 0) & (nb != slab[:, None])))
         if best is None or seams < best[0]:
-            parts = [p for s in np.unique(slab).tolist() for p in _surface_parts(sg, faces[slab == s])]
+            parts = [p for s in np.unique(slab).tolist() for p in surface_parts(sg, faces[slab == s])]
             best = (seams, parts)
     if best is None:
-        return _surface_parts(sg, faces)
+        return surface_parts(sg, faces)
     return best[1]
 
 
@@ -461,19 +423,19 @@ def _merge_parts(sg: SurfaceGraph, parts: list[npt.NDArray[np.int64]], least: in
     return parts
 
 
-def _lay_in_box(job: _Job, faces: npt.NDArray[np.int64], tries: int) -> _Board | None:
+def _lay_in_box(job: Job, faces: npt.NDArray[np.int64], tries: int) -> Board | None:
     """A net of ``faces`` grown inside the fit box (either way round), or None within ``tries`` tries."""
     n = int(faces.size)
     p = job.growth(n)
-    boxes = _orientations(job.fit)
+    boxes = orientations(job.fit)
     for t in range(tries):
-        trial = _Board(job.sg, faces, [job.seed, 5000 + n, t], boxes[t % len(boxes)], None, job.sg.face_count)
-        if trial.grow(p, math.inf, _FIT_STEPS_PER_FACE * n):
+        trial = Board(job.sg, faces, [job.seed, 5000 + n, t], boxes[t % len(boxes)], None, job.sg.face_count)
+        if trial.grow(p, math.inf, FIT_STEPS_PER_FACE * n):
             return trial
     return None
 
 
-def _sheet_pieces(job: _Job, faces: npt.NDArray[np.int64]) -> list[tuple[_Board, npt.NDArray[np.int64]]]:
+def _sheet_pieces(job: Job, faces: npt.NDArray[np.int64]) -> list[tuple[Board, npt.NDArray[np.int64]]]:
     """Pieces of about :data:`_PIECE_SHARE` of the box each, cut along straight runs of seams.
 
     The surface is cut into slabs across its best axis (:func:`_sweep_regions`),
@@ -483,10 +445,10 @@ def _sheet_pieces(job: _Job, faces: npt.NDArray[np.int64]) -> list[tuple[_Board,
     """
     w, h = job.fit
     target = max(_PIECE_SHARE * w * h, 1.0)
-    least = max(1, int(_MIN_SHARE * target))
+    least = max(1, int(MIN_SHARE * target))
     k = max(1, math.ceil(faces.size / target))
     queue = _merge_parts(job.sg, _sweep_regions(job.sg, faces, k), least)
-    pieces: list[tuple[_Board, npt.NDArray[np.int64]]] = []
+    pieces: list[tuple[Board, npt.NDArray[np.int64]]] = []
     while queue:
         part = queue.pop(0)
         board = _lay_in_box(job, part, _PIECE_TRIES) if part.size <= w * h else None
@@ -516,332 +478,4 @@ def _split_in_two(sg: SurfaceGraph, faces: npt.NDArray[np.int64]) -> list[npt.ND
                 walk.append(g)
     half = len(walk) // 2
     first = np.sort(np.array(walk[:half], dtype=np.int64))
-    return [first] + _surface_parts(sg, np.setdiff1d(faces, first))
-
-
-#: Cell offset across each side (bottom, right, top, left), as :mod:`._layout` numbers them.
-_STEP = ((0, -1), (1, 0), (0, 1), (-1, 0))
-
-
-def _flat_patches(sg: SurfaceGraph, faces: npt.NDArray[np.int64]) -> list[npt.NDArray[np.int64]]:
-    """``faces`` grouped into flat patches: connected faces of one outward direction (so one plane).
-
-    Patches come in the order of their lowest face; a walk over the faces (not scipy's graph
-    components, whose import alone costs more than the walk on a 4000-face surface).
-    """
-    inside = np.zeros(sg.face_count, dtype=bool)
-    inside[faces] = True
-    inside_list = inside.tolist()
-    direction = sg.direction.tolist()
-    neighbor = sg.neighbor.tolist()
-    seen = [False] * sg.face_count
-    out = []
-    for f in sorted(faces.tolist()):
-        if seen[f]:
-            continue
-        seen[f] = True
-        patch = [f]
-        for a in patch:
-            for b in neighbor[a]:
-                if inside_list[b] and not seen[b] and direction[b] == direction[a]:
-                    seen[b] = True
-                    patch.append(b)
-        out.append(np.array(sorted(patch), dtype=np.int64))
-    return out
-
-
-def _lay_flat(sg: SurfaceGraph, root: int, in_patch: npt.NDArray[np.bool_], cell: npt.NDArray[np.int64],
-              rot: npt.NDArray[np.int64], par: npt.NDArray[np.int64]) -> None:
-    """Unfold the flat patch of ``root`` (``in_patch`` marks its faces) breadth first from ``root``.
-
-    Writes each face's cell, rotation and fold-tree parent into ``cell``,
-    ``rot`` and ``par``, ``root`` at cell (0, 0) turned 0 with no parent.  A flat
-    patch lies in a plane, so its unfolding is its own shape and never overlaps.
-    """
-    cell[root] = (0, 0)
-    rot[root] = 0
-    par[root] = -1
-    seen = {root}
-    walk = [root]
-    for a in walk:
-        for k in range(4):
-            c = int(sg.neighbor[a, k])
-            if not in_patch[c] or c in seen:
-                continue
-            seen.add(c)
-            s = (k + int(rot[a])) % 4
-            cell[c] = cell[a] + _STEP[s]
-            rot[c] = (s + 2 - int(sg.neighbor_edge[a, k])) % 4
-            par[c] = a
-            walk.append(c)
-
-
-def _tiles(sg: SurfaceGraph, patch: npt.NDArray[np.int64], cell: npt.NDArray[np.int64],
-           box: tuple[int, int]) -> list[npt.NDArray[np.int64]]:
-    """A flat patch laid out at ``cell`` cut into tiles of ``box`` cells, each tile's connected parts apart."""
-    x, y = cell[patch, 0], cell[patch, 1]
-    if np.ptp(x) < box[0] and np.ptp(y) < box[1]:
-        return [patch]
-    tile = ((x - x.min()) // box[0]) * 100003 + (y - y.min()) // box[1]
-    out = []
-    for t in np.unique(tile).tolist():
-        out += _surface_parts(sg, patch[tile == t])
-    return out
-
-
-def _patch_pieces(job: _Job, faces: npt.NDArray[np.int64]) -> list[tuple[_Board, npt.NDArray[np.int64]]]:
-    """Pieces grown from whole flat patches of the surface, each joined rigidly to the piece along a shared edge.
-
-    A flat patch unfolds to its own shape, so pieces made of patches are as
-    compact as the surface and pack densely on a sheet.  A piece starts from
-    the largest patch left (a patch larger than the box is cut into tiles of
-    the box) and takes, one at a time, the neighbouring patch whose rigid
-    placement shares the most edges with the piece in the plane (then keeps
-    its bounding box smallest), so strips of a band round the shape line up.
-    A placement must fit the box either way round, overlap no face, and lay no
-    face beside another across an edge they do not share on the surface: every
-    seam then keeps the cell beyond it free on both sides for its glue tab.
-    """
-    sg = job.sg
-    f_all = sg.face_count
-    box = job.fit
-    pcell = np.zeros((f_all, 2), dtype=np.int64)
-    prot = np.zeros(f_all, dtype=np.int64)
-    ppar = np.full(f_all, -1, dtype=np.int64)
-    in_patch = np.zeros(f_all, dtype=bool)
-    side = min(box)
-    patches: list[npt.NDArray[np.int64]] = []
-    for patch in _flat_patches(sg, faces):
-        in_patch[patch] = True
-        _lay_flat(sg, int(patch[0]), in_patch, pcell, prot, ppar)
-        in_patch[patch] = False
-        patches += _tiles(sg, patch, pcell, (side, side))
-    patch_of = np.full(f_all, -1, dtype=np.int64)
-    for t, p in enumerate(patches):
-        patch_of[p] = t
-    free = [True] * len(patches)
-    cell = np.zeros((f_all, 2), dtype=np.int64)
-    rot = np.zeros(f_all, dtype=np.int64)
-    par = np.full(f_all, -1, dtype=np.int64)
-    nb, ne = sg.neighbor, sg.neighbor_edge
-    blocked: set[tuple[int, int]] = set()  # edges with a face beside them that is not their partner
-    placed = np.zeros(f_all, dtype=bool)
-
-    def grow(members: list[int], limit: float) -> None:
-        """Add the best-placed free neighbouring patch to the piece ``members`` until none fits or it reaches ``limit``."""
-        occ = {(int(cell[f, 0]), int(cell[f, 1])): f for f in members}
-        lo = cell[members].min(axis=0)
-        hi = cell[members].max(axis=0)
-        while len(members) < limit:
-            check_cancelled()  # between patches: a cancelled studio job stops within one patch's placements
-            best = None
-            tried: set[tuple[int, int, int, int]] = set()
-            for a in members:
-                for k in range(4):
-                    c = int(nb[a, k])
-                    t = int(patch_of[c])
-                    if t < 0 or not free[t]:
-                        continue
-                    s = (k + int(rot[a])) % 4
-                    tx, ty = int(cell[a, 0]) + _STEP[s][0], int(cell[a, 1]) + _STEP[s][1]
-                    q = ((s + 2 - int(ne[a, k])) - int(prot[c])) % 4
-                    vx, vy = int(pcell[c, 0]), int(pcell[c, 1])
-                    for _ in range(q):
-                        vx, vy = -vy, vx
-                    key = (t, q, tx - vx, ty - vy)
-                    if key in tried:
-                        continue
-                    tried.add(key)
-                    found = _place_patch(sg, patches[t], pcell, prot, q, (tx - vx, ty - vy), occ, rot, lo, hi,
-                                         box, blocked, placed)
-                    if found is not None and _blocks_ok(found[2], sg):
-                        score = (-found[0], found[1], len(found[2]), t)
-                        if best is None or score < best[0]:
-                            best = (score, t, q, key[2:], a, c, found[2])
-            if best is None:
-                return
-            _, t, q, (ox, oy), a, c, new = best
-            blocked.update(new)
-            patch = patches[t]
-            v = pcell[patch].copy()
-            for _ in range(q):
-                v = np.stack([-v[:, 1], v[:, 0]], axis=1)
-            cell[patch] = v + (ox, oy)
-            rot[patch] = (prot[patch] + q) % 4
-            # The fold tree of the patch hangs from the shared edge the placement came from.
-            in_patch[patch] = True
-            keep_cell, keep_rot = cell[patch].copy(), rot[patch].copy()
-            _lay_flat(sg, c, in_patch, cell, rot, par)
-            cell[patch], rot[patch] = keep_cell, keep_rot
-            in_patch[patch] = False
-            par[c] = a
-            free[t] = False
-            placed[patch] = True
-            members += patch.tolist()
-            for f in patch.tolist():
-                occ[(int(cell[f, 0]), int(cell[f, 1]))] = f
-            lo = np.minimum(lo, cell[patch].min(axis=0))
-            hi = np.maximum(hi, cell[patch].max(axis=0))
-
-    def seed_pieces(groups: list[list[int]]) -> None:
-        """New pieces from the free patches left, each from the largest one left."""
-        for start in sorted(range(len(patches)), key=lambda t: (-patches[t].size, int(patches[t][0]))):
-            if not free[start]:
-                continue
-            free[start] = False
-            placed[patches[start]] = True
-            in_patch[patches[start]] = True
-            _lay_flat(sg, int(patches[start][0]), in_patch, cell, rot, par)
-            in_patch[patches[start]] = False
-            members = list(patches[start].tolist())
-            grow(members, _PATCH_SHARE * box[0] * box[1])
-            groups.append(members)
-
-    groups: list[list[int]] = []
-    seed_pieces(groups)
-    # Pieces under the size rule go back to single faces, which the other pieces (the smallest
-    # first) take where they have room; what is left starts new pieces.
-    least = _MIN_SHARE * max(len(m) for m in groups)
-    small = [m for m in groups if len(m) < least]
-    if small:
-        groups = [m for m in groups if len(m) >= least]
-        for f in sorted(f for m in small for f in m):
-            patch_of[f] = len(patches)
-            patches.append(np.array([f], dtype=np.int64))
-            free.append(True)
-            pcell[f] = (0, 0)
-            prot[f] = 0
-            placed[f] = False
-        blocked = {e for e in blocked if placed[e[0]]}
-        for m in sorted(groups, key=lambda m: (len(m), m[0])):
-            grow(m, math.inf)
-        seed_pieces(groups)
-    groups = _absorb(sg, groups, cell, rot, par, box, blocked)
-    return [_board_of(job, np.array(sorted(m), dtype=np.int64), cell, rot, par, [job.seed, 6000 + t])
-            for t, m in enumerate(groups)]
-
-
-def _absorb(sg: SurfaceGraph, groups: list[list[int]], cell: npt.NDArray[np.int64], rot: npt.NDArray[np.int64],
-            par: npt.NDArray[np.int64], box: tuple[int, int], blocked: set[tuple[int, int]]) -> list[list[int]]:
-    """Join each piece, the smallest first, rigidly to a neighbouring piece while one takes it.
-
-    The same rule as for patches: the union fits the box and lays no face
-    beside another across an edge they do not share.  The joined piece keeps
-    its layout turned and moved; its fold tree is re-rooted at the shared edge.
-    """
-    owner = np.full(sg.face_count, -1, dtype=np.int64)
-    for t, m in enumerate(groups):
-        owner[m] = t
-    nb, ne = sg.neighbor, sg.neighbor_edge
-    alive = [True] * len(groups)
-    changed = True
-    while changed:
-        changed = False
-        for q in sorted((t for t in range(len(groups)) if alive[t]), key=lambda t: (len(groups[t]), groups[t][0])):
-            small = np.array(groups[q], dtype=np.int64)
-            pcell, prot = cell.copy(), rot.copy()
-            near = owner[nb[small].ravel()]
-            counts = np.bincount(near[(near >= 0) & (near != q)], minlength=len(groups))
-            for r in sorted(np.flatnonzero(counts).tolist(), key=lambda r: (-counts[r], r)):
-                big = groups[r]
-                occ = {(int(cell[f, 0]), int(cell[f, 1])): f for f in big}
-                lo, hi = cell[big].min(axis=0), cell[big].max(axis=0)
-                tried: set[tuple[int, int, int]] = set()
-                done = None
-                for a in big:
-                    for k in range(4):
-                        c = int(nb[a, k])
-                        if owner[c] != q:
-                            continue
-                        s = (k + int(rot[a])) % 4
-                        qq = ((s + 2 - int(ne[a, k])) - int(prot[c])) % 4
-                        vx, vy = int(pcell[c, 0]), int(pcell[c, 1])
-                        for _ in range(qq):
-                            vx, vy = -vy, vx
-                        off = (int(cell[a, 0]) + _STEP[s][0] - vx, int(cell[a, 1]) + _STEP[s][1] - vy)
-                        if (qq,) + off in tried:
-                            continue
-                        tried.add((qq,) + off)
-                        found = _place_patch(sg, small, pcell, prot, qq, off, occ, rot, lo, hi, box, blocked,
-                                             np.ones(sg.face_count, dtype=bool))
-                        if found is not None and _blocks_ok(found[2], sg):
-                            done = (qq, off, a, c)
-                            blocked.update(found[2])
-                            break
-                    if done is not None:
-                        break
-                if done is None:
-                    continue
-                qq, off, a, c = done
-                v = pcell[small]
-                for _ in range(qq):
-                    v = np.stack([-v[:, 1], v[:, 0]], axis=1)
-                cell[small] = v + off
-                rot[small] = (prot[small] + qq) % 4
-                node, above = c, a  # re-root the small piece's tree at c, then hang c from a
-                while node >= 0:
-                    nxt = int(par[node])
-                    par[node] = above
-                    above, node = node, nxt
-                groups[r] = big + groups[q]
-                owner[small] = r
-                alive[q] = False
-                changed = True
-                break
-            if changed:
-                break
-    return [m for t, m in enumerate(groups) if alive[t]]
-
-
-def _place_patch(sg: SurfaceGraph, patch: npt.NDArray[np.int64], pcell: npt.NDArray[np.int64],
-                 prot: npt.NDArray[np.int64], q: int, offset: tuple[int, int], occ: dict,
-                 rot: npt.NDArray[np.int64], lo: npt.NDArray[np.int64], hi: npt.NDArray[np.int64],
-                 box: tuple[int, int], blocked: set[tuple[int, int]], placed: npt.NDArray[np.bool_]
-                 ) -> tuple[int, int, list] | None:
-    """A patch turned ``q`` quarter turns and moved by ``offset`` beside a piece: how well it sits.
-
-    Returns the edges it shares with the piece in the plane, the piece's
-    bounding box area after, and the edges it blocks (a face beside another
-    across an edge they do not share: no tab there); None when it overlaps,
-    leaves the box, or blocks an edge whose seam is blocked on its other side
-    already, which would leave that seam no room for a tab.
-    """
-    v = pcell[patch]
-    for _ in range(q):
-        v = np.stack([-v[:, 1], v[:, 0]], axis=1)
-    v = v + offset
-    nlo = np.minimum(lo, v.min(axis=0))
-    nhi = np.maximum(hi, v.max(axis=0))
-    w, h = int(nhi[0] - nlo[0]) + 1, int(nhi[1] - nlo[1]) + 1
-    if not ((w <= box[0] and h <= box[1]) or (w <= box[1] and h <= box[0])):
-        return None
-    r = (prot[patch] + q) % 4
-    joined = 0
-    new: list[tuple[int, int]] = []
-    nb, ne = sg.neighbor, sg.neighbor_edge
-    for g, (x, y), rg in zip(patch.tolist(), v.tolist(), r.tolist()):
-        if (x, y) in occ:
-            return None
-        for s in range(4):
-            h_ = occ.get((x + _STEP[s][0], y + _STEP[s][1]))
-            if h_ is None:
-                continue
-            kg = (s - rg) % 4
-            if int(nb[g, kg]) == h_ and (int(ne[g, kg]) + int(rot[h_])) % 4 == (s + 2) % 4:
-                joined += 1
-                continue
-            kh = (s + 2 - int(rot[h_])) % 4
-            for e in ((g, kg), (h_, kh)):
-                partner = (int(nb[e[0], e[1]]), int(ne[e[0], e[1]]))
-                # The seam's other side must be laid already (its cell beyond stays free), so no face
-                # left to place loses the edge it could hang from.
-                if partner in blocked or partner in new or not placed[partner[0]]:
-                    return None
-                new.append(e)
-    return joined, w * h, new
-
-
-def _blocks_ok(new: list[tuple[int, int]], sg: SurfaceGraph) -> bool:
-    """No seam blocked on both sides within one placement."""
-    mine = set(new)
-    return not any((int(sg.neighbor[f, k]), int(sg.neighbor_edge[f, k])) in mine for f, k in new)
+    return [first] + surface_parts(sg, np.setdiff1d(faces, first))

@@ -92,7 +92,7 @@ def search_nets(grid: Any, net: NetOptions, drawing: DrawingOptions | None, *, s
     box : (int, int), optional
         JSON nets only: the box in faces the nets must lie in.  The exact
         strategy without one (nor ``min_box``, ``zipper`` or ``compact``) searches
-        in :func:`voxfab.unfold._exact.any_box`, which holds every net.
+        in a box that holds every net (:func:`voxfab.unfold.unfold`).
 
     Returns
     -------
@@ -109,13 +109,6 @@ def search_nets(grid: Any, net: NetOptions, drawing: DrawingOptions | None, *, s
         return find_sheet_nets(grid, drawing, rng=seed, pieces=net.pieces, count=net.count, budget=net.budget,
                                progress=progress, **search)
     notes: list[str] = []
-    if net.strategy == "exact" and box is None and not (net.min_box or net.zipper or net.compact):
-        # The exact strategy asked for no box in particular: one that holds every net
-        # of the surface, so it finds a net (the same on every run) and proves nothing.
-        from voxfab.shape import surface_graph
-        from voxfab.unfold._exact import any_box
-
-        box = any_box(surface_graph(grid).face_count)
     if net.count > 1:
         found = unfold_many(grid, count=net.count, rng=seed, budget=net.budget, fit=box, progress=progress,
                             **search)

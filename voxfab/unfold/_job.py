@@ -1,0 +1,128 @@
+"""The search's shared terms: strategies, piece modes, the job every step reads, and small helpers on them."""
+
+from __future__ import annotations
+
+import dataclasses
+import enum
+from typing import TYPE_CHECKING
+
+import numpy as np
+import numpy.typing as npt
+
+from voxfab._shared.rng import as_rng
+from voxfab.errors import UnfoldError
+from voxfab.shape import SurfaceGraph
+
+from ._constraints import EdgeConstraints, Resolved, resolve
+from ._layout import count_without_tab_room
+from ._net import Net
+from ._params import MODE_PAPER, MODE_RUIN, Growth
+
+if TYPE_CHECKING:
+    from ._growboard import Board
+
+__all__ = ["NoFitError", "Pieces", "Strategy"]
+
+#: Growth steps per face one try to lay a net in a box may spend.
+FIT_STEPS_PER_FACE = 200
+#: pieces="auto": the smallest piece as a share of the largest (by faces).
+MIN_SHARE = 0.1
+
+
+class Strategy(enum.StrEnum):
+    """Search strategies."""
+
+    DEFAULT = "default"
+    PAPER = "paper"
+    EXACT = "exact"
+
+
+class Pieces(enum.StrEnum):
+    """How many pieces a result may have."""
+
+    ONE = "one"
+    AUTO = "auto"
+    FLAT = "flat"
+
+
+def growth_settings(strategy: Strategy, faces: int) -> Growth:
+    """How a strategy grows a net of this many faces."""
+    if strategy is Strategy.PAPER:
+        return Growth(MODE_PAPER, 1, 0, 0.0, max(50, faces // 4))
+    return Growth(MODE_RUIN, 3, 3, 0.05, 0)
+
+
+def orientations(fit: tuple[int, int]) -> list[tuple[int, int]]:
+    """The box, and the box turned a quarter turn unless it is square."""
+    w, h = fit
+    return [(w, h)] if w == h else [(w, h), (h, w)]
+
+
+def surface_parts(sg: SurfaceGraph, faces: npt.NDArray[np.int64] | None = None) -> list[npt.NDArray[np.int64]]:
+    """Face indices of each connected part of the surface (or of ``faces``), in order of first face."""
+    f = sg.face_count
+    inside = np.ones(f, dtype=bool)
+    if faces is not None:
+        inside[:] = False
+        inside[faces] = True
+    nb = sg.neighbor
+    joined = inside[:, None] & inside[nb]
+    # Each face takes the smallest label among itself and its neighbours, with
+    # pointer jumping; plain numpy keeps scipy.sparse out of the start-up time.
+    label = np.arange(f)
+    while True:
+        new = np.minimum(label, np.where(joined, label[nb], f).min(axis=1))
+        new = new[new]
+        if np.array_equal(new, label):
+            break
+        label = new
+    chosen = np.flatnonzero(inside)
+    return [chosen[label[chosen] == lab] for lab in dict.fromkeys(label[chosen].tolist())]
+
+
+def seed_of(rng: np.random.Generator | int) -> int:
+    if isinstance(rng, (int, np.integer)) and not isinstance(rng, bool):
+        as_rng(rng)  # validates the seed
+        return int(rng)
+    return int(as_rng(rng).integers(0, 2**31 - 1))
+
+
+class NoFitError(UnfoldError):
+    """No one-piece net fits the requested box within the budget.
+
+    Attributes
+    ----------
+    best_extent : (int, int)
+        Sides in cells of the most compact net layout found, the shorter first.
+    """
+
+    def __init__(self, message: str, best_extent: tuple[int, int]) -> None:
+        super().__init__(message)
+        self.best_extent = best_extent
+
+
+@dataclasses.dataclass(frozen=True)
+class Job:
+    """One search: the shape, its surface and the options every step reads."""
+
+    grid: npt.NDArray[np.bool_]
+    sg: SurfaceGraph
+    seed: int
+    strategy: Strategy
+    fit: tuple[int, int] | None
+    tab_aware: bool
+    compact: bool
+    deadline: float
+    timeout: float
+    constraints: EdgeConstraints | None
+    flat: bool = False
+
+    def growth(self, faces: int):
+        return growth_settings(self.strategy, faces)
+
+    def resolved(self, faces: npt.NDArray[np.int64]) -> Resolved | None:
+        return resolve(self.constraints, self.sg, faces)
+
+    def net(self, board: Board, faces: npt.NDArray[np.int64]) -> Net:
+        net = board.net(self.sg, faces=faces, seed=self.seed, strategy=self.strategy.value)
+        return dataclasses.replace(net, seams_without_tab_room=count_without_tab_room(self.grid, net))

@@ -1,0 +1,343 @@
+"""pieces="flat": pieces grown from whole flat patches of the surface, joined rigidly along shared edges."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import numpy.typing as npt
+
+from voxfab._shared.progress import check_cancelled
+from voxfab.shape import SurfaceGraph
+
+from ._constraints import _SIDE_STEP as _STEP
+from ._growboard import Board, board_of
+from ._job import MIN_SHARE, Job, surface_parts
+
+#: pieces="auto" from flat patches: a piece stops growing at this share of the
+#: box's cells, so the box keeps room to take the small pieces left over.
+_PATCH_SHARE = 0.25
+
+
+def _flat_patches(sg: SurfaceGraph, faces: npt.NDArray[np.int64]) -> list[npt.NDArray[np.int64]]:
+    """``faces`` grouped into flat patches: connected faces of one outward direction (so one plane).
+
+    Patches come in the order of their lowest face; a walk over the faces (not scipy's graph
+    components, whose import alone costs more than the walk on a 4000-face surface).
+    """
+    inside = np.zeros(sg.face_count, dtype=bool)
+    inside[faces] = True
+    inside_list = inside.tolist()
+    direction = sg.direction.tolist()
+    neighbor = sg.neighbor.tolist()
+    seen = [False] * sg.face_count
+    out = []
+    for f in sorted(faces.tolist()):
+        if seen[f]:
+            continue
+        seen[f] = True
+        patch = [f]
+        for a in patch:
+            for b in neighbor[a]:
+                if inside_list[b] and not seen[b] and direction[b] == direction[a]:
+                    seen[b] = True
+                    patch.append(b)
+        out.append(np.array(sorted(patch), dtype=np.int64))
+    return out
+
+
+def _lay_flat(sg: SurfaceGraph, root: int, in_patch: npt.NDArray[np.bool_], cell: npt.NDArray[np.int64],
+              rot: npt.NDArray[np.int64], par: npt.NDArray[np.int64]) -> None:
+    """Unfold the flat patch of ``root`` (``in_patch`` marks its faces) breadth first from ``root``.
+
+    Writes each face's cell, rotation and fold-tree parent into ``cell``,
+    ``rot`` and ``par``, ``root`` at cell (0, 0) turned 0 with no parent.  A flat
+    patch lies in a plane, so its unfolding is its own shape and never overlaps.
+    """
+    cell[root] = (0, 0)
+    rot[root] = 0
+    par[root] = -1
+    seen = {root}
+    walk = [root]
+    for a in walk:
+        for k in range(4):
+            c = int(sg.neighbor[a, k])
+            if not in_patch[c] or c in seen:
+                continue
+            seen.add(c)
+            s = (k + int(rot[a])) % 4
+            cell[c] = cell[a] + _STEP[s]
+            rot[c] = (s + 2 - int(sg.neighbor_edge[a, k])) % 4
+            par[c] = a
+            walk.append(c)
+
+
+def _tiles(sg: SurfaceGraph, patch: npt.NDArray[np.int64], cell: npt.NDArray[np.int64],
+           box: tuple[int, int]) -> list[npt.NDArray[np.int64]]:
+    """A flat patch laid out at ``cell`` cut into tiles of ``box`` cells, each tile's connected parts apart."""
+    x, y = cell[patch, 0], cell[patch, 1]
+    if np.ptp(x) < box[0] and np.ptp(y) < box[1]:
+        return [patch]
+    tile = ((x - x.min()) // box[0]) * 100003 + (y - y.min()) // box[1]
+    out = []
+    for t in np.unique(tile).tolist():
+        out += surface_parts(sg, patch[tile == t])
+    return out
+
+
+def patch_pieces(job: Job, faces: npt.NDArray[np.int64]) -> list[tuple[Board, npt.NDArray[np.int64]]]:
+    """Pieces grown from whole flat patches of the surface, each joined rigidly to the piece along a shared edge.
+
+    A flat patch unfolds to its own shape, so pieces made of patches are as
+    compact as the surface and pack densely on a sheet.  A piece starts from
+    the largest patch left (a patch larger than the box is cut into tiles of
+    the box) and takes, one at a time, the neighbouring patch whose rigid
+    placement shares the most edges with the piece in the plane (then keeps
+    its bounding box smallest), so strips of a band round the shape line up.
+    A placement must fit the box either way round, overlap no face, and lay no
+    face beside another across an edge they do not share on the surface: every
+    seam then keeps the cell beyond it free on both sides for its glue tab.
+    """
+    sg = job.sg
+    f_all = sg.face_count
+    box = job.fit
+    pcell = np.zeros((f_all, 2), dtype=np.int64)
+    prot = np.zeros(f_all, dtype=np.int64)
+    ppar = np.full(f_all, -1, dtype=np.int64)
+    in_patch = np.zeros(f_all, dtype=bool)
+    side = min(box)
+    patches: list[npt.NDArray[np.int64]] = []
+    for patch in _flat_patches(sg, faces):
+        in_patch[patch] = True
+        _lay_flat(sg, int(patch[0]), in_patch, pcell, prot, ppar)
+        in_patch[patch] = False
+        patches += _tiles(sg, patch, pcell, (side, side))
+    patch_of = np.full(f_all, -1, dtype=np.int64)
+    for t, p in enumerate(patches):
+        patch_of[p] = t
+    free = [True] * len(patches)
+    cell = np.zeros((f_all, 2), dtype=np.int64)
+    rot = np.zeros(f_all, dtype=np.int64)
+    par = np.full(f_all, -1, dtype=np.int64)
+    nb, ne = sg.neighbor, sg.neighbor_edge
+    blocked: set[tuple[int, int]] = set()  # edges with a face beside them that is not their partner
+    placed = np.zeros(f_all, dtype=bool)
+
+    def grow(members: list[int], limit: float) -> None:
+        """Add the best-placed free neighbouring patch to the piece ``members`` until none fits or it reaches ``limit``."""
+        occ = {(int(cell[f, 0]), int(cell[f, 1])): f for f in members}
+        lo = cell[members].min(axis=0)
+        hi = cell[members].max(axis=0)
+        while len(members) < limit:
+            check_cancelled()  # between patches: a cancelled studio job stops within one patch's placements
+            best = None
+            tried: set[tuple[int, int, int, int]] = set()
+            for a in members:
+                for k in range(4):
+                    c = int(nb[a, k])
+                    t = int(patch_of[c])
+                    if t < 0 or not free[t]:
+                        continue
+                    s = (k + int(rot[a])) % 4
+                    tx, ty = int(cell[a, 0]) + _STEP[s][0], int(cell[a, 1]) + _STEP[s][1]
+                    q = ((s + 2 - int(ne[a, k])) - int(prot[c])) % 4
+                    vx, vy = int(pcell[c, 0]), int(pcell[c, 1])
+                    for _ in range(q):
+                        vx, vy = -vy, vx
+                    key = (t, q, tx - vx, ty - vy)
+                    if key in tried:
+                        continue
+                    tried.add(key)
+                    found = _place_patch(sg, patches[t], pcell, prot, q, (tx - vx, ty - vy), occ, rot, lo, hi,
+                                         box, blocked, placed)
+                    if found is not None and _blocks_ok(found[2], sg):
+                        score = (-found[0], found[1], len(found[2]), t)
+                        if best is None or score < best[0]:
+                            best = (score, t, q, key[2:], a, c, found[2])
+            if best is None:
+                return
+            _, t, q, (ox, oy), a, c, new = best
+            blocked.update(new)
+            patch = patches[t]
+            v = pcell[patch].copy()
+            for _ in range(q):
+                v = np.stack([-v[:, 1], v[:, 0]], axis=1)
+            cell[patch] = v + (ox, oy)
+            rot[patch] = (prot[patch] + q) % 4
+            # The fold tree of the patch hangs from the shared edge the placement came from.
+            in_patch[patch] = True
+            keep_cell, keep_rot = cell[patch].copy(), rot[patch].copy()
+            _lay_flat(sg, c, in_patch, cell, rot, par)
+            cell[patch], rot[patch] = keep_cell, keep_rot
+            in_patch[patch] = False
+            par[c] = a
+            free[t] = False
+            placed[patch] = True
+            members += patch.tolist()
+            for f in patch.tolist():
+                occ[(int(cell[f, 0]), int(cell[f, 1]))] = f
+            lo = np.minimum(lo, cell[patch].min(axis=0))
+            hi = np.maximum(hi, cell[patch].max(axis=0))
+
+    def seed_pieces(groups: list[list[int]]) -> None:
+        """New pieces from the free patches left, each from the largest one left."""
+        for start in sorted(range(len(patches)), key=lambda t: (-patches[t].size, int(patches[t][0]))):
+            if not free[start]:
+                continue
+            free[start] = False
+            placed[patches[start]] = True
+            in_patch[patches[start]] = True
+            _lay_flat(sg, int(patches[start][0]), in_patch, cell, rot, par)
+            in_patch[patches[start]] = False
+            members = list(patches[start].tolist())
+            grow(members, _PATCH_SHARE * box[0] * box[1])
+            groups.append(members)
+
+    groups: list[list[int]] = []
+    seed_pieces(groups)
+    # Pieces under the size rule go back to single faces, which the other pieces (the smallest
+    # first) take where they have room; what is left starts new pieces.
+    least = MIN_SHARE * max(len(m) for m in groups)
+    small = [m for m in groups if len(m) < least]
+    if small:
+        groups = [m for m in groups if len(m) >= least]
+        for f in sorted(f for m in small for f in m):
+            patch_of[f] = len(patches)
+            patches.append(np.array([f], dtype=np.int64))
+            free.append(True)
+            pcell[f] = (0, 0)
+            prot[f] = 0
+            placed[f] = False
+        blocked = {e for e in blocked if placed[e[0]]}
+        for m in sorted(groups, key=lambda m: (len(m), m[0])):
+            grow(m, math.inf)
+        seed_pieces(groups)
+    groups = _absorb(sg, groups, cell, rot, par, box, blocked)
+    return [board_of(job, np.array(sorted(m), dtype=np.int64), cell, rot, par, [job.seed, 6000 + t])
+            for t, m in enumerate(groups)]
+
+
+def _absorb(sg: SurfaceGraph, groups: list[list[int]], cell: npt.NDArray[np.int64], rot: npt.NDArray[np.int64],
+            par: npt.NDArray[np.int64], box: tuple[int, int], blocked: set[tuple[int, int]]) -> list[list[int]]:
+    """Join each piece, the smallest first, rigidly to a neighbouring piece while one takes it.
+
+    The same rule as for patches: the union fits the box and lays no face
+    beside another across an edge they do not share.  The joined piece keeps
+    its layout turned and moved; its fold tree is re-rooted at the shared edge.
+    """
+    owner = np.full(sg.face_count, -1, dtype=np.int64)
+    for t, m in enumerate(groups):
+        owner[m] = t
+    nb, ne = sg.neighbor, sg.neighbor_edge
+    alive = [True] * len(groups)
+    changed = True
+    while changed:
+        changed = False
+        for q in sorted((t for t in range(len(groups)) if alive[t]), key=lambda t: (len(groups[t]), groups[t][0])):
+            small = np.array(groups[q], dtype=np.int64)
+            pcell, prot = cell.copy(), rot.copy()
+            near = owner[nb[small].ravel()]
+            counts = np.bincount(near[(near >= 0) & (near != q)], minlength=len(groups))
+            for r in sorted(np.flatnonzero(counts).tolist(), key=lambda r: (-counts[r], r)):
+                big = groups[r]
+                occ = {(int(cell[f, 0]), int(cell[f, 1])): f for f in big}
+                lo, hi = cell[big].min(axis=0), cell[big].max(axis=0)
+                tried: set[tuple[int, int, int]] = set()
+                done = None
+                for a in big:
+                    for k in range(4):
+                        c = int(nb[a, k])
+                        if owner[c] != q:
+                            continue
+                        s = (k + int(rot[a])) % 4
+                        qq = ((s + 2 - int(ne[a, k])) - int(prot[c])) % 4
+                        vx, vy = int(pcell[c, 0]), int(pcell[c, 1])
+                        for _ in range(qq):
+                            vx, vy = -vy, vx
+                        off = (int(cell[a, 0]) + _STEP[s][0] - vx, int(cell[a, 1]) + _STEP[s][1] - vy)
+                        if (qq,) + off in tried:
+                            continue
+                        tried.add((qq,) + off)
+                        found = _place_patch(sg, small, pcell, prot, qq, off, occ, rot, lo, hi, box, blocked,
+                                             np.ones(sg.face_count, dtype=bool))
+                        if found is not None and _blocks_ok(found[2], sg):
+                            done = (qq, off, a, c)
+                            blocked.update(found[2])
+                            break
+                    if done is not None:
+                        break
+                if done is None:
+                    continue
+                qq, off, a, c = done
+                v = pcell[small]
+                for _ in range(qq):
+                    v = np.stack([-v[:, 1], v[:, 0]], axis=1)
+                cell[small] = v + off
+                rot[small] = (prot[small] + qq) % 4
+                node, above = c, a  # re-root the small piece's tree at c, then hang c from a
+                while node >= 0:
+                    nxt = int(par[node])
+                    par[node] = above
+                    above, node = node, nxt
+                groups[r] = big + groups[q]
+                owner[small] = r
+                alive[q] = False
+                changed = True
+                break
+            if changed:
+                break
+    return [m for t, m in enumerate(groups) if alive[t]]
+
+
+def _place_patch(sg: SurfaceGraph, patch: npt.NDArray[np.int64], pcell: npt.NDArray[np.int64],
+                 prot: npt.NDArray[np.int64], q: int, offset: tuple[int, int], occ: dict,
+                 rot: npt.NDArray[np.int64], lo: npt.NDArray[np.int64], hi: npt.NDArray[np.int64],
+                 box: tuple[int, int], blocked: set[tuple[int, int]], placed: npt.NDArray[np.bool_]
+                 ) -> tuple[int, int, list] | None:
+    """A patch turned ``q`` quarter turns and moved by ``offset`` beside a piece: how well it sits.
+
+    Returns the edges it shares with the piece in the plane, the piece's
+    bounding box area after, and the edges it blocks (a face beside another
+    across an edge they do not share: no tab there); None when it overlaps,
+    leaves the box, or blocks an edge whose seam is blocked on its other side
+    already, which would leave that seam no room for a tab.
+    """
+    v = pcell[patch]
+    for _ in range(q):
+        v = np.stack([-v[:, 1], v[:, 0]], axis=1)
+    v = v + offset
+    nlo = np.minimum(lo, v.min(axis=0))
+    nhi = np.maximum(hi, v.max(axis=0))
+    w, h = int(nhi[0] - nlo[0]) + 1, int(nhi[1] - nlo[1]) + 1
+    if not ((w <= box[0] and h <= box[1]) or (w <= box[1] and h <= box[0])):
+        return None
+    r = (prot[patch] + q) % 4
+    joined = 0
+    new: list[tuple[int, int]] = []
+    nb, ne = sg.neighbor, sg.neighbor_edge
+    for g, (x, y), rg in zip(patch.tolist(), v.tolist(), r.tolist()):
+        if (x, y) in occ:
+            return None
+        for s in range(4):
+            h_ = occ.get((x + _STEP[s][0], y + _STEP[s][1]))
+            if h_ is None:
+                continue
+            kg = (s - rg) % 4
+            if int(nb[g, kg]) == h_ and (int(ne[g, kg]) + int(rot[h_])) % 4 == (s + 2) % 4:
+                joined += 1
+                continue
+            kh = (s + 2 - int(rot[h_])) % 4
+            for e in ((g, kg), (h_, kh)):
+                partner = (int(nb[e[0], e[1]]), int(ne[e[0], e[1]]))
+                # The seam's other side must be laid already (its cell beyond stays free), so no face
+                # left to place loses the edge it could hang from.
+                if partner in blocked or partner in new or not placed[partner[0]]:
+                    return None
+                new.append(e)
+    return joined, w * h, new
+
+
+def _blocks_ok(new: list[tuple[int, int]], sg: SurfaceGraph) -> bool:
+    """No seam blocked on both sides within one placement."""
+    mine = set(new)
+    return not any((int(sg.neighbor[f, k]), int(sg.neighbor_edge[f, k])) in mine for f, k in new)
