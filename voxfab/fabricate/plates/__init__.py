@@ -39,6 +39,7 @@ from ._nest import PlacedPart, PlateSheet, nest_plates
 from ._options import PlateOptions
 from ._order import construction_pdf, write_construction_pdf
 from ._outline import Axis, Piece, slice_layers
+from ._radial import make_radial
 from ._report import (
     ConstructionReport,
     PlatesReport,
@@ -47,7 +48,7 @@ from ._report import (
     make_report,
     plate_warnings,
 )
-from ._slotted import Construction, Slot, SlottedPlate, make_interlocked, make_radial
+from ._slotted import Construction, Slot, SlottedPlate, make_interlocked
 from ._stack import Plate, PlateStack, make_plates
 from ._step import stack_compound, step_bytes, write_step, write_stl
 from .dxf import sheet_dxf, write_dxf
