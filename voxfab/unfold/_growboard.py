@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import time
 from typing import TYPE_CHECKING
 
@@ -13,7 +14,7 @@ from voxfab.shape import SurfaceGraph
 
 from ._constraints import Resolved
 from ._job import FIT_STEPS_PER_FACE, Strategy, growth_settings
-from ._layout import build_net
+from ._layout import build_net, count_without_tab_room
 from ._net import Net
 from ._params import Annealing
 
@@ -271,11 +272,11 @@ class Board:
                 break
         return int(cnt[self.k.C_BESTBAD]), spent
 
-    def net(self, sg: SurfaceGraph, *, faces: npt.NDArray[np.int64] | None = None,
-            seed: int, strategy: str) -> Net:
+    def net(self, job: Job, faces: npt.NDArray[np.int64]) -> Net:
+        """The net of ``faces`` as laid on this board, its seams without tab room counted."""
         cell = np.stack([self.pos % self.width, self.pos // self.width], axis=1)
-        chosen = np.flatnonzero(self.pos >= 0) if faces is None else faces
-        return build_net(sg, chosen, cell, self.rot, self.par, seed=seed, strategy=strategy)
+        net = build_net(job.sg, faces, cell, self.rot, self.par, seed=job.seed, strategy=job.strategy.value)
+        return dataclasses.replace(net, seams_without_tab_room=count_without_tab_room(job.grid, net))
 
 
 def board_of(job: Job, piece: npt.NDArray[np.int64], cells: npt.NDArray[np.int64],

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import dataclasses
 import enum
-from typing import TYPE_CHECKING
 
 import numpy as np
 import numpy.typing as npt
@@ -14,12 +13,7 @@ from voxfab.errors import UnfoldError
 from voxfab.shape import SurfaceGraph
 
 from ._constraints import EdgeConstraints, Resolved, resolve
-from ._layout import count_without_tab_room
-from ._net import Net
 from ._params import MODE_PAPER, MODE_RUIN, Growth
-
-if TYPE_CHECKING:
-    from ._growboard import Board
 
 __all__ = ["NoFitError", "Pieces", "Strategy"]
 
@@ -122,7 +116,3 @@ class Job:
 
     def resolved(self, faces: npt.NDArray[np.int64]) -> Resolved | None:
         return resolve(self.constraints, self.sg, faces)
-
-    def net(self, board: Board, faces: npt.NDArray[np.int64]) -> Net:
-        net = board.net(self.sg, faces=faces, seed=self.seed, strategy=self.strategy.value)
-        return dataclasses.replace(net, seams_without_tab_room=count_without_tab_room(self.grid, net))

@@ -45,7 +45,7 @@ def one_piece(job: Job, faces: npt.NDArray[np.int64]) -> Net:
     if job.tab_aware and job.strategy is Strategy.DEFAULT:
         with meter(b.anneal_budget(), desc="net: tab room, moves (at most)") as bar:
             b.anneal(p, job.deadline, bar=bar)
-    return job.net(b, faces)
+    return b.net(job, faces)
 
 
 def _grow_to_fit(job: Job, faces: npt.NDArray[np.int64], resolved: Resolved | None) -> Board:

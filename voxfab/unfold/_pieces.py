@@ -52,7 +52,7 @@ def split(job: Job, faces: npt.NDArray[np.int64]) -> list[Net]:
         b.exclude_unplaced()
         if job.tab_aware and job.strategy is Strategy.DEFAULT:
             b.anneal(job.growth(placed.size), job.deadline)
-        nets.append(job.net(b, placed))
+        nets.append(b.net(job, placed))
     return nets
 
 

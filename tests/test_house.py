@@ -1,0 +1,127 @@
+"""House rules of the source tree: no module over 800 lines, no import circle between the modules of a package."""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).parents[1] / "voxfab"
+#: Longest module, in lines (issue #26: a module past it holds more than one thing).
+MAX_LINES = 800
+#: Packages whose modules must not import each other in a circle, however late the import.
+NO_CIRCLES = ("voxfab.unfold",)
+
+
+def module_name(path: Path, root: Path) -> str:
+    """The dotted name of a module file under ``root`` (the ``voxfab`` folder); a package's ``__init__`` is the package."""
+    parts = list(path.relative_to(root.parent).with_suffix("").parts)
+    if parts[-1] == "__init__":
+        parts.pop()
+    return ".".join(parts)
+
+
+def package_imports(path: Path, root: Path, package: str) -> set[str]:
+    """Modules of ``package`` that the file ``path`` imports anywhere (at the top or inside a function).
+
+    ``from . import _board`` names the module ``package._board``; ``from . import Net``
+    (a name, not a module) names the package itself, whose ``__init__`` it runs.
+    """
+    modules = {module_name(p, root) for p in (root.parent / package.replace(".", "/")).glob("*.py")}
+    me = module_name(path, root)
+    here = me if path.name == "__init__.py" else me.rpartition(".")[0]
+    found: set[str] = set()
+
+    def add(name: str) -> None:
+        # The module of ``package`` that importing ``name`` loads: ``package.x.y`` loads ``package.x``.
+        if name == package or name.startswith(package + "."):
+            parts = name.split(".")
+            found.add(".".join(parts[: len(package.split(".")) + 1]) if name != package else package)
+
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.Import):
+            for alias in node.names:
+                add(alias.name)
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = ".".join(here.split(".")[: len(here.split(".")) - node.level + 1])
+                base = f"{base}.{node.module}" if node.module else base
+            else:
+                base = node.module or ""
+            if base == package:
+                for alias in node.names:
+                    sub = f"{package}.{alias.name}"
+                    add(sub if sub in modules else package)
+            else:
+                add(base)
+    found.discard(me)
+    return found
+
+
+def import_circles(root: Path, package: str) -> list[list[str]]:
+    """Each group of modules of ``package`` that import one another in a circle (strongly connected, two or more)."""
+    folder = root.parent / package.replace(".", "/")
+    graph = {module_name(p, root): sorted(package_imports(p, root, package)) for p in sorted(folder.glob("*.py"))}
+    # Tarjan's strongly connected components.
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on: set[str] = set()
+    circles: list[list[str]] = []
+
+    def visit(v: str) -> None:
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on.add(v)
+        for w in graph.get(v, ()):
+            if w not in graph:
+                continue
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            group = []
+            while True:
+                w = stack.pop()
+                on.discard(w)
+                group.append(w)
+                if w == v:
+                    break
+            if len(group) > 1:
+                circles.append(sorted(group))
+
+    for v in graph:
+        if v not in index:
+            visit(v)
+    return circles
+
+
+def test_no_module_is_over_800_lines() -> None:
+    long = {str(p.relative_to(ROOT.parent)): n for p in sorted(ROOT.rglob("*.py"))
+            if (n := len(p.read_text(encoding="utf-8").splitlines())) > MAX_LINES}
+    assert not long, f"modules over {MAX_LINES} lines: {long}"
+
+
+@pytest.mark.parametrize("package", NO_CIRCLES)
+def test_no_import_circle_inside_the_package(package: str) -> None:
+    assert import_circles(ROOT, package) == []
+
+
+def test_the_circle_check_finds_a_late_import_and_a_package_import(tmp_path: Path) -> None:
+    """On a made-up package: a circle closed by an import inside a function, and one through ``__init__``."""
+    pkg = tmp_path / "voxfab" / "demo"
+    pkg.mkdir(parents=True)
+    (pkg / "__init__.py").write_text("from ._search import unfold\n")
+    (pkg / "_search.py").write_text("from ._job import Job\n\ndef unfold():\n    from ._pieces import split\n")
+    (pkg / "_pieces.py").write_text("from ._search import Board\n")
+    (pkg / "_job.py").write_text("import numpy\n")
+    (pkg / "_many.py").write_text("from voxfab.demo._job import Job\nfrom . import _job\n")
+    root = tmp_path / "voxfab"
+    assert import_circles(root, "voxfab.demo") == [["voxfab.demo._pieces", "voxfab.demo._search"]]
+    (pkg / "_job.py").write_text("from voxfab.demo import unfold\n")  # runs __init__, which imports _search
+    assert import_circles(root, "voxfab.demo") == [
+        ["voxfab.demo", "voxfab.demo._job", "voxfab.demo._pieces", "voxfab.demo._search"]]
+    assert package_imports(pkg / "_many.py", root, "voxfab.demo") == {"voxfab.demo._job"}
