@@ -23,12 +23,12 @@ from ._slotted import (
     band_span,
     connected_plates,
     finish_plate,
-    is_whole,
     largest_part,
     open_narrow,
     radial_box,
     slab_section,
     slot_box,
+    slot_end,
     still_joined,
 )
 
@@ -253,25 +253,10 @@ def _ring_radial(g: npt.NDArray[np.bool_], sections: list[object], centre: tuple
         lo, hi = max(p0, q0), min(p1, q1)
         if hi - lo <= 1e-9:
             continue
-        middle = (lo + hi) / 2
-        steps = np.arange(1, int((hi - lo) / pitch * 2) + 1) * pitch / 2
-        chosen = None
-        for m in [middle] + [middle + st * sg for st in steps for sg in (1, -1) if lo < middle + st * sg < hi]:
-            cut_p = shapely.difference(d.body, slot_box(1, zc, width, side * p0, side * m))
-            cut_r = shapely.difference(ring_draft.body, radial_box(centre, d.angle, width, side * m, side * q1))
-            if is_whole(cut_p) and is_whole(cut_r):
-                chosen = (m, cut_p, cut_r)
-                break
-        if chosen is None:
-            m = middle
-            cut_p, lost_p = largest_part(shapely.difference(d.body, slot_box(1, zc, width, side * p0, side * m)))
-            cut_r, lost_r = largest_part(shapely.difference(ring_draft.body,
-                                                       radial_box(centre, d.angle, width, side * m, side * q1)))
-            d.trimmed |= lost_p
-            ring_draft.trimmed |= lost_r
-            chosen = (m, cut_p, cut_r)
-        m, d.body, ring_draft.body = chosen
-        is_moved = bool(abs(m - middle) > 1e-9)
+        # The slots' boxes for a slot end (called by slot_end at once, so the loop's names hold).
+        piece_slot = lambda r: slot_box(1, zc, width, side * p0, side * r)  # noqa: B023, E731
+        ring_slot = lambda r: radial_box(centre, d.angle, width, side * r, side * q1)  # noqa: B023, E731
+        m, is_moved = slot_end(d, piece_slot, ring_draft, ring_slot, lo, hi, pitch)
         if is_moved:
             moved.append(f"H1/{d.text}")
         d.slots.append(Slot(zc, width, side * p0, side * m, m - p0, "inner", "H1", is_moved, "u"))

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Callable
 
 import numpy as np
 import numpy.typing as npt
@@ -404,28 +405,10 @@ def _join_interlocked(fam_a: list[Draft], fam_b: list[Draft], width: float, pitc
                         break
                 continue
             z0, z1 = held
-            middle = (z0 + z1) / 2
-            # slot ends tried: the middle, then half-voxel steps outwards inside the crossing
-            steps = np.arange(1, int((z1 - z0) / pitch * 2) + 1) * pitch / 2
-            tries = [middle] + [middle + s * d for s in steps for d in (1, -1) if z0 < middle + s * d < z1]
-            chosen = None
-            for zm in tries:
-                cut_l = shapely.difference(lower.body, slot_box(lo_along, upper.offset, width, zm, zl[1]))
-                cut_u = shapely.difference(upper.body, slot_box(up_along, lower.offset, width, zu[0], zm))
-                if is_whole(cut_l) and is_whole(cut_u):
-                    chosen = (zm, cut_l, cut_u)
-                    break
-            if chosen is None:
-                zm = middle
-                cut_l, lost_l = largest_part(shapely.difference(lower.body, slot_box(lo_along, upper.offset, width, zm,
-                                                                                 zl[1])))
-                cut_u, lost_u = largest_part(shapely.difference(upper.body, slot_box(up_along, lower.offset, width,
-                                                                                 zu[0], zm)))
-                lower.trimmed |= lost_l
-                upper.trimmed |= lost_u
-                chosen = (zm, cut_l, cut_u)
-            zm, lower.body, upper.body = chosen
-            is_moved = bool(abs(zm - middle) > 1e-9)
+            # The slots' boxes for a slot end (called by slot_end at once, so the loop's names hold).
+            lower_slot = lambda z: slot_box(lo_along, upper.offset, width, z, zl[1])  # noqa: B023, E731
+            upper_slot = lambda z: slot_box(up_along, lower.offset, width, zu[0], z)  # noqa: B023, E731
+            zm, is_moved = slot_end(lower, lower_slot, upper, upper_slot, z0, z1, pitch)
             if is_moved:
                 moved.append(f"{lower.text}/{upper.text}")
             # the slot runs along the crossing axis, the frame axis other than ``along``
@@ -435,6 +418,32 @@ def _join_interlocked(fam_a: list[Draft], fam_b: list[Draft], width: float, pitc
                                     "uv"[1 - up_along]))
             crossings.append((lower, upper, zm, upper.offset))
     return crossings, keys
+
+
+def slot_end(first: Draft, first_slot: Callable[[float], object], second: Draft,
+             second_slot: Callable[[float], object], lo: float, hi: float, pitch: float) -> tuple[float, bool]:
+    """Cut a half-lap's two slots, ending where the plates meet between ``lo`` and ``hi``; the end and whether it moved.
+
+    ``first_slot(end)`` and ``second_slot(end)`` are the slots' boxes for an end.
+    The end is the middle of the stretch, or else the nearest half-voxel step
+    outwards inside it that leaves both plates whole; when none does, the
+    middle, each plate keeping its largest part (and marked trimmed).
+    """
+    import shapely
+
+    middle = (lo + hi) / 2
+    steps = np.arange(1, int((hi - lo) / pitch * 2) + 1) * pitch / 2
+    for end in [middle] + [middle + s * d for s in steps for d in (1, -1) if lo < middle + s * d < hi]:
+        cut_first = shapely.difference(first.body, first_slot(end))
+        cut_second = shapely.difference(second.body, second_slot(end))
+        if is_whole(cut_first) and is_whole(cut_second):
+            first.body, second.body = cut_first, cut_second
+            return end, bool(abs(end - middle) > 1e-9)
+    first.body, lost_first = largest_part(shapely.difference(first.body, first_slot(middle)))
+    second.body, lost_second = largest_part(shapely.difference(second.body, second_slot(middle)))
+    first.trimmed |= lost_first
+    second.trimmed |= lost_second
+    return middle, False
 
 
 def _waves(order: list[str], crossings: list[tuple[str, str]]) -> list[list[str]]:
