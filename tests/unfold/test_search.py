@@ -234,11 +234,11 @@ def test_small_surfaces_skip_the_compiler_and_give_the_same_nets(monkeypatch):
     import subprocess
     import sys
 
-    from voxfab.unfold import _growboard
+    from voxfab.unfold import _searchboard
 
     grid = examples.ball(3)  # 174 faces: plain Python by default
     plain = [unfold(grid, rng=s).to_json() for s in range(3)]
-    monkeypatch.setattr(_growboard, "_PURE_FACES", 0)
+    monkeypatch.setattr(_searchboard, "_PURE_FACES", 0)
     compiled = [unfold(grid, rng=s).to_json() for s in range(3)]
     assert plain == compiled  # the same source, the same arithmetic
     code = ("import sys; from voxfab.shape import examples; from voxfab.unfold import unfold, validate; "

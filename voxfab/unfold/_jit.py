@@ -3,7 +3,7 @@
 Loading numba and its first compiled call costs about half a second, more than
 the whole search on a small surface takes in plain Python.  So the kernel
 modules are also loaded a second time, as the package ``voxfab.unfold._pure``
-(see :func:`voxfab.unfold._growboard._kernels`), where this decorator leaves the
+(see :func:`voxfab.unfold._searchboard._kernels`), where this decorator leaves the
 functions as they are.
 """
 

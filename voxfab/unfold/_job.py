@@ -75,6 +75,7 @@ def surface_parts(sg: SurfaceGraph, faces: npt.NDArray[np.int64] | None = None) 
 
 
 def seed_of(rng: np.random.Generator | int) -> int:
+    """The int seed of ``rng``: the seed itself, or one drawn from the generator."""
     if isinstance(rng, (int, np.integer)) and not isinstance(rng, bool):
         as_rng(rng)  # validates the seed
         return int(rng)

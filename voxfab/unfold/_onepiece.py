@@ -11,9 +11,9 @@ from voxfab._shared.progress import meter
 from voxfab.errors import UnfoldError
 
 from ._constraints import Resolved
-from ._growboard import Board
 from ._job import FIT_STEPS_PER_FACE, Job, NoFitError, Strategy, orientations
 from ._net import Net
+from ._searchboard import SearchBoard
 
 #: Fitting a box: tries, alternating the two orientations.
 _FIT_TRIES = 6
@@ -29,7 +29,7 @@ def one_piece(job: Job, faces: npt.NDArray[np.int64]) -> Net:
     if job.fit is not None:
         b = _grow_to_fit(job, faces, resolved)
     else:
-        b = Board(job.sg, faces, job.seed, None, resolved)
+        b = SearchBoard(job.sg, faces, job.seed, None, resolved)
         with meter(int(faces.size), desc="net: faces placed") as bar:
             grown = b.grow(p, job.deadline, bar=bar)
         if not grown:
@@ -48,7 +48,7 @@ def one_piece(job: Job, faces: npt.NDArray[np.int64]) -> Net:
     return b.net(job, faces)
 
 
-def _grow_to_fit(job: Job, faces: npt.NDArray[np.int64], resolved: Resolved | None) -> Board:
+def _grow_to_fit(job: Job, faces: npt.NDArray[np.int64], resolved: Resolved | None) -> SearchBoard:
     """Grow a net inside the fit box (either way round); NoFitError when none fits.
 
     The box's walls steer growth: ruin-and-recreate packs the faces into it.
@@ -62,7 +62,7 @@ def _grow_to_fit(job: Job, faces: npt.NDArray[np.int64], resolved: Resolved | No
         with meter(_FIT_TRIES, desc="net: tries to fit the box") as bar:
             for t in range(_FIT_TRIES):
                 box = orientations(fit)[t % len(orientations(fit))]
-                trial = Board(job.sg, faces, job.seed if t == 0 else [job.seed, 1000 + t], box, resolved)
+                trial = SearchBoard(job.sg, faces, job.seed if t == 0 else [job.seed, 1000 + t], box, resolved)
                 if trial.grow(p, job.deadline, FIT_STEPS_PER_FACE * n):
                     return trial
                 bar.update()
@@ -80,7 +80,7 @@ def _grow_to_fit(job: Job, faces: npt.NDArray[np.int64], resolved: Resolved | No
 
 def _best_extent(job: Job, faces: npt.NDArray[np.int64], resolved: Resolved | None) -> tuple[int, int]:
     """Sides (shorter first) of the most compact net found within the budget."""
-    free = Board(job.sg, faces, job.seed, None, resolved)
+    free = SearchBoard(job.sg, faces, job.seed, None, resolved)
     if not free.grow(job.growth(faces.size), job.deadline):
         raise UnfoldError(
             f"no one-piece net of the {faces.size}-face surface in {job.timeout:g} s, so none "
@@ -89,7 +89,7 @@ def _best_extent(job: Job, faces: npt.NDArray[np.int64], resolved: Resolved | No
     return (min(w, h), max(w, h))
 
 
-def _compact(job: Job, faces: npt.NDArray[np.int64], board: Board, resolved: Resolved | None) -> Board:
+def _compact(job: Job, faces: npt.NDArray[np.int64], board: SearchBoard, resolved: Resolved | None) -> SearchBoard:
     """Shrink the net's bounding box while a fixed growth budget still fits it.
 
     Each trial grows a new net inside the current box with its longer side cut
@@ -108,7 +108,7 @@ def _compact(job: Job, faces: npt.NDArray[np.int64], board: Board, resolved: Res
             h = min(h - 1, int(h * 0.9))
         if w < 1 or h < 1 or w * h < faces.size or time.monotonic() > job.deadline:
             break
-        trial = Board(job.sg, faces, [job.seed, t + 1], (w, h), resolved)
+        trial = SearchBoard(job.sg, faces, [job.seed, t + 1], (w, h), resolved)
         if trial.grow(p, job.deadline, _COMPACT_STEPS_PER_FACE * int(faces.size)):
             best, failures = trial, 0
         else:

@@ -11,8 +11,8 @@ from voxfab._shared.progress import check_cancelled
 from voxfab.shape import SurfaceGraph
 
 from ._constraints import _SIDE_STEP as _STEP
-from ._growboard import Board, board_of
 from ._job import MIN_SHARE, Job, surface_parts
+from ._searchboard import SearchBoard, board_of
 
 #: pieces="auto" from flat patches: a piece stops growing at this share of the
 #: box's cells, so the box keeps room to take the small pieces left over.
@@ -85,7 +85,7 @@ def _tiles(sg: SurfaceGraph, patch: npt.NDArray[np.int64], cell: npt.NDArray[np.
     return out
 
 
-def patch_pieces(job: Job, faces: npt.NDArray[np.int64]) -> list[tuple[Board, npt.NDArray[np.int64]]]:
+def patch_pieces(job: Job, faces: npt.NDArray[np.int64]) -> list[tuple[SearchBoard, npt.NDArray[np.int64]]]:
     """Pieces grown from whole flat patches of the surface, each joined rigidly to the piece along a shared edge.
 
     A flat patch unfolds to its own shape, so pieces made of patches are as

@@ -19,11 +19,11 @@ import numpy.typing as npt
 from voxfab.errors import UnfoldError
 from voxfab.shape import SurfaceGraph
 
-from ._growboard import Board, board_of
 from ._job import FIT_STEPS_PER_FACE, MIN_SHARE, Job, Strategy, growth_settings, orientations, surface_parts
 from ._net import Net
 from ._onepiece import one_piece
 from ._patches import patch_pieces
+from ._searchboard import SearchBoard, board_of
 
 #: pieces="auto": branches of a neighbour a too-small piece may try to take.
 _BRANCH_TRIES = 24
@@ -56,7 +56,7 @@ def split(job: Job, faces: npt.NDArray[np.int64]) -> list[Net]:
     return nets
 
 
-def _partition(job: Job, faces: npt.NDArray[np.int64]) -> list[tuple[Board, npt.NDArray[np.int64]]]:
+def _partition(job: Job, faces: npt.NDArray[np.int64]) -> list[tuple[SearchBoard, npt.NDArray[np.int64]]]:
     """Cut the faces into pieces that each fit the box, then join pieces while they fit.
 
     Without constraints the pieces are branches of one free net, each cut off
@@ -108,7 +108,7 @@ def _fold_tree(faces: npt.NDArray[np.int64], par: npt.NDArray[np.int64]) -> tupl
 def _tree_pieces(job: Job, faces: npt.NDArray[np.int64]) -> list | None:
     """Branches of a free net that fit the box, bottom up; None when no free net grows."""
     n = int(faces.size)
-    free = Board(job.sg, faces, [job.seed, 1999], None, None, n)
+    free = SearchBoard(job.sg, faces, [job.seed, 1999], None, None, n)
     if not free.grow(job.growth(n), math.inf, FIT_STEPS_PER_FACE * n):
         return None
     w_box, h_box = job.fit
@@ -139,13 +139,13 @@ def _tree_pieces(job: Job, faces: npt.NDArray[np.int64]) -> list | None:
     return [_laid_out(job, free, np.array(sorted(m), dtype=np.int64), t) for t, m in enumerate(cut)]
 
 
-def _laid_out(job: Job, free: Board, piece: npt.NDArray[np.int64], t: int) -> tuple[Board, npt.NDArray[np.int64]]:
+def _laid_out(job: Job, free: SearchBoard, piece: npt.NDArray[np.int64], t: int) -> tuple[SearchBoard, npt.NDArray[np.int64]]:
     """A board in the box holding ``piece`` as laid out on the free board ``free``."""
     cells = np.stack([free.pos % free.width, free.pos // free.width], axis=1)
     return board_of(job, piece, cells, free.rot, free.par, [job.seed, 2000 + t])
 
 
-def _layout(b: Board) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64], npt.NDArray[np.int64]]:
+def _layout(b: SearchBoard) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64], npt.NDArray[np.int64]]:
     return np.stack([b.pos % b.width, b.pos // b.width], axis=1), b.rot.copy(), b.par.copy()
 
 
@@ -199,18 +199,18 @@ def _join_layouts(job: Job, q: tuple, r: tuple, seed: list[int]) -> tuple | None
     return None
 
 
-def _greedy_pieces(job: Job, faces: npt.NDArray[np.int64]) -> list[tuple[Board, npt.NDArray[np.int64]]]:
+def _greedy_pieces(job: Job, faces: npt.NDArray[np.int64]) -> list[tuple[SearchBoard, npt.NDArray[np.int64]]]:
     """Pieces grown one by one into the box from the faces left over, the largest first."""
     n = int(faces.size)
     p = job.growth(n)
-    pieces: list[tuple[Board, npt.NDArray[np.int64]]] = []
+    pieces: list[tuple[SearchBoard, npt.NDArray[np.int64]]] = []
     left = np.zeros(job.sg.face_count, dtype=bool)
     left[faces] = True
     t = 0
     while left.any():
         for part in surface_parts(job.sg, np.flatnonzero(left)):
             t += 1
-            b = Board(job.sg, part, [job.seed, 2000 + t], job.fit, job.resolved(part), n)
+            b = SearchBoard(job.sg, part, [job.seed, 2000 + t], job.fit, job.resolved(part), n)
             if b.started:
                 b.grow(p, math.inf, _steps_left(job, part.size))
             placed = part[b.pos[part] >= 0]
@@ -267,7 +267,7 @@ def _merge_small(job: Job, pieces: list, mend_only: bool = False) -> list:
                 joinable = job.constraints is None
                 one = _join_layouts(job, pieces[q], pieces[r], seed) if joinable else None
                 if one is None:
-                    b = Board(sg, both, seed, box, job.resolved(both), sg.face_count)
+                    b = SearchBoard(sg, both, seed, box, job.resolved(both), sg.face_count)
                     # Past the clock a join still gets a full budget while the split breaks the rule.
                     steps = FIT_STEPS_PER_FACE * int(both.size) if _too_small(sizes) else _steps_left(job, both.size)
                     if b.started and b.grow(growth_settings(Strategy.DEFAULT, both.size), math.inf, steps):
@@ -326,7 +326,7 @@ def _take_branch(job: Job, pieces: list, q: int) -> bool:
         for u, branch in _branches(b, placed, small, floor - small.size, placed.size - floor):
             both = np.sort(np.concatenate([small, branch]))
             tries += 1
-            trial = Board(sg, both, [job.seed, 4000 + tries], job.fit, job.resolved(both), sg.face_count)
+            trial = SearchBoard(sg, both, [job.seed, 4000 + tries], job.fit, job.resolved(both), sg.face_count)
             if trial.started and trial.grow(growth_settings(Strategy.DEFAULT, both.size), math.inf,
                                             FIT_STEPS_PER_FACE * int(both.size)):
                 b.k.remove_subtree(*b.sf, *b.b[:4], u)
@@ -338,7 +338,7 @@ def _take_branch(job: Job, pieces: list, q: int) -> bool:
     return False
 
 
-def _branches(b: Board, placed: npt.NDArray[np.int64], small: npt.NDArray[np.int64], least: int,
+def _branches(b: SearchBoard, placed: npt.NDArray[np.int64], small: npt.NDArray[np.int64], least: int,
               most: int):
     """Branches of board ``b``'s fold tree of ``least`` to ``most`` faces that touch ``small``.
 
@@ -423,19 +423,19 @@ def _merge_parts(sg: SurfaceGraph, parts: list[npt.NDArray[np.int64]], least: in
     return parts
 
 
-def _lay_in_box(job: Job, faces: npt.NDArray[np.int64], tries: int) -> Board | None:
+def _lay_in_box(job: Job, faces: npt.NDArray[np.int64], tries: int) -> SearchBoard | None:
     """A net of ``faces`` grown inside the fit box (either way round), or None within ``tries`` tries."""
     n = int(faces.size)
     p = job.growth(n)
     boxes = orientations(job.fit)
     for t in range(tries):
-        trial = Board(job.sg, faces, [job.seed, 5000 + n, t], boxes[t % len(boxes)], None, job.sg.face_count)
+        trial = SearchBoard(job.sg, faces, [job.seed, 5000 + n, t], boxes[t % len(boxes)], None, job.sg.face_count)
         if trial.grow(p, math.inf, FIT_STEPS_PER_FACE * n):
             return trial
     return None
 
 
-def _sheet_pieces(job: Job, faces: npt.NDArray[np.int64]) -> list[tuple[Board, npt.NDArray[np.int64]]]:
+def _sheet_pieces(job: Job, faces: npt.NDArray[np.int64]) -> list[tuple[SearchBoard, npt.NDArray[np.int64]]]:
     """Pieces of about :data:`_PIECE_SHARE` of the box each, cut along straight runs of seams.
 
     The surface is cut into slabs across its best axis (:func:`_sweep_regions`),
@@ -448,7 +448,7 @@ def _sheet_pieces(job: Job, faces: npt.NDArray[np.int64]) -> list[tuple[Board, n
     least = max(1, int(MIN_SHARE * target))
     k = max(1, math.ceil(faces.size / target))
     queue = _merge_parts(job.sg, _sweep_regions(job.sg, faces, k), least)
-    pieces: list[tuple[Board, npt.NDArray[np.int64]]] = []
+    pieces: list[tuple[SearchBoard, npt.NDArray[np.int64]]] = []
     while queue:
         part = queue.pop(0)
         board = _lay_in_box(job, part, _PIECE_TRIES) if part.size <= w * h else None

@@ -16,7 +16,6 @@ from voxfab.shape import cavity_count, component_count, fill_cavities, surface_g
 
 from ._constraints import EdgeConstraints, Resolved, check_one_piece, resolve
 from ._exact import ExactLayout, any_box, exact_layout, min_box_layout
-from ._growboard import Board
 from ._job import (
     FIT_STEPS_PER_FACE,
     Job,
@@ -31,6 +30,7 @@ from ._layout import build_net, count_without_tab_room
 from ._net import Net
 from ._onepiece import one_piece
 from ._pieces import split
+from ._searchboard import SearchBoard
 
 __all__ = ["unfold"]
 
@@ -277,7 +277,7 @@ def _growth_hint(job: Job, faces: npt.NDArray[np.int64], resolved: Resolved | No
     if w * h < n:
         return None
     for t, box in enumerate(orientations((w, h))):
-        b = Board(job.sg, faces, [0, t], box, resolved)
+        b = SearchBoard(job.sg, faces, [0, t], box, resolved)
         # Bounded by steps, not by the clock: a slow run must not change the hint.
         if not b.grow(growth_settings(Strategy.DEFAULT, n), math.inf, FIT_STEPS_PER_FACE * n):
             continue

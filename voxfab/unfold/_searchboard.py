@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import dataclasses
 import time
-from typing import TYPE_CHECKING
 
 import numpy as np
 import numpy.typing as npt
@@ -13,13 +12,10 @@ from voxfab._shared.progress import Meter, check_cancelled
 from voxfab.shape import SurfaceGraph
 
 from ._constraints import Resolved
-from ._job import FIT_STEPS_PER_FACE, Strategy, growth_settings
+from ._job import FIT_STEPS_PER_FACE, Job, Strategy, growth_settings
 from ._layout import build_net, count_without_tab_room
 from ._net import Net
 from ._params import Annealing
-
-if TYPE_CHECKING:
-    from ._job import Job
 
 #: Surfaces up to this many faces are searched by the plain-Python kernels.
 _PURE_FACES = 150
@@ -87,7 +83,7 @@ def _quiet() -> np.errstate:
     return np.errstate(over="ignore")
 
 
-def count_seams(board: Board) -> int:
+def count_seams(board: SearchBoard) -> int:
     """Seams without tab room of a board's complete net (used after a fallback)."""
     k = board.k
     face, half, b, cnt, _ = board.b
@@ -96,7 +92,7 @@ def count_seams(board: Board) -> int:
     return n
 
 
-class Board:
+class SearchBoard:
     """Search state for the faces of one piece on one board."""
 
     def __init__(self, sg: SurfaceGraph, faces: npt.NDArray[np.int64], seed: int | list[int],
@@ -281,7 +277,7 @@ class Board:
 
 def board_of(job: Job, piece: npt.NDArray[np.int64], cells: npt.NDArray[np.int64],
               rot: npt.NDArray[np.int64], par: npt.NDArray[np.int64], seed: list[int]
-              ) -> tuple[Board, npt.NDArray[np.int64]]:
+              ) -> tuple[SearchBoard, npt.NDArray[np.int64]]:
     """A board in the box (turned to fit) holding ``piece`` laid out on ``cells``."""
     x, y = cells[piece, 0], cells[piece, 1]
     w, h = int(np.ptp(x)) + 1, int(np.ptp(y)) + 1
@@ -289,7 +285,7 @@ def board_of(job: Job, piece: npt.NDArray[np.int64], cells: npt.NDArray[np.int64
         box = None
     else:
         box = job.fit if w <= job.fit[0] and h <= job.fit[1] else (job.fit[1], job.fit[0])
-    b = Board(job.sg, piece, seed, box, None, job.sg.face_count)
+    b = SearchBoard(job.sg, piece, seed, box, None, job.sg.face_count)
     saved = np.zeros((job.sg.face_count, 3), dtype=np.int64)
     saved[:, 0] = -3  # faces of other pieces stay out
     saved[:, 2] = -2
