@@ -107,3 +107,17 @@ def test_cuts_that_are_not_one_path_are_caught() -> None:
 def test_a_surface_outside_the_model_is_refused() -> None:
     with pytest.raises(UnfoldError, match="2-manifold of genus 0"):
         unzip(grid_of([[0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 1, 0], [2, 1, 0], [0, 2, 0], [1, 2, 0], [2, 2, 0]]))
+
+
+def test_a_cancelled_job_stops_the_unzipping_search() -> None:
+    """The census's search runs through the cancel-aware solve: a cancelled studio or batch job stops it."""
+    import threading
+
+    from voxfab._shared.progress import cancel_scope
+    from voxfab.errors import CancelledError
+
+    event = threading.Event()
+    event.set()
+    with cancel_scope(event), pytest.raises(CancelledError):
+        unzip(grid_of(ZIPLESS_17), timeout=60)
+    assert unzip(grid_of(ZIPLESS_17), timeout=60).outcome == "none"  # outside the scope it runs to its proof
