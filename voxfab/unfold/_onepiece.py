@@ -23,7 +23,10 @@ _COMPACT_STEPS_PER_FACE = 100
 
 
 def one_piece(job: Job, faces: npt.NDArray[np.int64]) -> Net:
-    """A net of the faces of one surface part in one piece (in the job's box if it has one); UnfoldError when none is found."""
+    """A one-piece net of the faces of one surface part, in the job's box if it has one.
+
+    Raises UnfoldError (NoFitError for a box) when none is found within the budget.
+    """
     p = job.growth(faces.size)
     resolved = job.resolved(faces)
     if job.fit is not None:
