@@ -1,4 +1,4 @@
-"""House rules of the source tree: no module over 800 lines, no import circle between the modules of a package."""
+"""House rules of the source tree: no module over 800 lines, no import circle between the modules of a package, no import upward."""
 
 from __future__ import annotations
 
@@ -125,3 +125,60 @@ def test_the_circle_check_finds_a_late_import_and_a_package_import(tmp_path: Pat
     assert import_circles(root, "voxfab.demo") == [
         ["voxfab.demo", "voxfab.demo._job", "voxfab.demo._pieces", "voxfab.demo._search"]]
     assert package_imports(pkg / "_many.py", root, "voxfab.demo") == {"voxfab.demo._job"}
+
+
+#: The surfaces over the library (the CLI, the studio, batch runs, the census on Dask): the library never
+#: imports them.
+SURFACES = ("voxfab.cli", "voxfab.studio", "voxfab.batch", "voxfab.census")
+#: Packages and what stands above them in the library: outputs name the packages above by import path
+#: (``fabricate._table.resolve``), never by an import.
+BELOW = {"voxfab.fabricate": ("voxfab.render", "voxfab.recipe", "voxfab.generate", "voxfab.warmup")}
+
+
+def imported_names(path: Path, root: Path) -> set[str]:
+    """Every absolute module name that ``path`` imports, at the top or inside a function."""
+    me = module_name(path, root)
+    here = me if path.name == "__init__.py" else me.rpartition(".")[0]
+    found: set[str] = set()
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.Import):
+            found.update(alias.name for alias in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = ".".join(here.split(".")[: len(here.split(".")) - node.level + 1])
+                found.add(f"{base}.{node.module}" if node.module else base)
+            else:
+                found.add(node.module or "")
+    return found
+
+
+def upward_imports(root: Path) -> list[str]:
+    """``module -> name`` for each import of a surface by the library, or of a package above by one below it."""
+    out = []
+    for path in sorted(root.rglob("*.py")):
+        me = module_name(path, root)
+        if me == "voxfab.__main__" or any(me == s or me.startswith(s + ".") for s in SURFACES):
+            continue
+        banned = list(SURFACES)
+        for package, above in BELOW.items():
+            if me == package or me.startswith(package + "."):
+                banned += above
+        for name in sorted(imported_names(path, root)):
+            if any(name == b or name.startswith(b + ".") for b in banned):
+                out.append(f"{me} -> {name}")
+    return out
+
+
+def test_the_library_never_imports_what_stands_above_it() -> None:
+    assert upward_imports(ROOT) == []
+
+
+def test_the_upward_check_finds_a_late_import(tmp_path: Path) -> None:
+    pkg = tmp_path / "voxfab" / "fabricate"
+    pkg.mkdir(parents=True)
+    (pkg / "__init__.py").write_text("")
+    (pkg / "_table.py").write_text("def run():\n    from voxfab.render import render_pictures\n")
+    (pkg / "_ok.py").write_text("from voxfab.unfold import Net\nfrom . import _table\n")
+    (tmp_path / "voxfab" / "shape.py").write_text("from .studio import pack\n")
+    assert upward_imports(tmp_path / "voxfab") == ["voxfab.fabricate._table -> voxfab.render",
+                                                   "voxfab.shape -> voxfab.studio"]

@@ -228,7 +228,7 @@ def _slices_download(download: str, values: Mapping[str, Any]) -> dict[str, Any]
 
 def _run_pictures(shape: Any, options: Any, outdir: Path, *, name: str, seed: int,
                   context: BuildContext) -> Artefact:
-    from voxfab.render import render_pictures
+    render_pictures = resolve(outputs()["pictures"].pipeline)  # render sits above fabricate: named, not imported
 
     net = context.net
     if isinstance(net, (list, tuple)):
@@ -315,7 +315,7 @@ def _run_hunt(shape: Any, options: Any, outdir: Path, *, name: str, seed: int, c
 
 def _run_animation(shape: Any, options: Any, outdir: Path, *, name: str, seed: int,
                    context: BuildContext) -> Artefact:
-    from voxfab.render import render_animation
+    render_animation = resolve(outputs()["animation"].pipeline)  # as for the pictures
 
     del name, seed
     return render_animation(shape, options, outdir, maker=context.maker, params=context.params,

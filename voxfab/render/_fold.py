@@ -13,7 +13,6 @@ itself, never from a rule.
 from __future__ import annotations
 
 import math
-from collections import deque
 
 import numpy as np
 import numpy.typing as npt
@@ -21,11 +20,12 @@ import numpy.typing as npt
 from voxfab._shared.atomic import write_bytes
 from voxfab._shared.typing import PathLike
 from voxfab.errors import InvalidShapeError
+from voxfab.unfold import fold_tree
 
 from ._image import gif_bytes
 from ._views import View, camera_for, orbit_camera
 
-__all__ = ["fold_tree", "fold_angles", "fold_frames", "draw_fold", "save_fold_animation"]
+__all__ = ["fold_angles", "fold_frames", "draw_fold", "save_fold_animation"]
 
 #: Most frames of a fold animation.
 MAX_FOLD_FRAMES = 240
@@ -46,38 +46,6 @@ def _poses(net: object) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64
     flat0 = np.concatenate([c2[:, 0], np.zeros((f, 1))], axis=1)
     shift = c3[:, 0] - np.einsum("fij,fj->fi", rot, flat0)
     return rot, shift
-
-
-def fold_tree(net: object) -> tuple[int, npt.NDArray[np.int64], list[int]]:
-    """The fold tree from the face nearest the middle of the sheet: root, parent of each face, order.
-
-    The net's folds are a spanning tree plus edges that meet in the plane anyway;
-    a breadth-first walk keeps one parent per face, so the pieces hinge on the
-    faces nearer the middle (the sheet stays put around its centre).
-    """
-    c2 = np.asarray(net.corners2d, dtype=np.float64).mean(axis=1)  # type: ignore[attr-defined]
-    f = c2.shape[0]
-    root = int(np.argmin(((c2 - c2.mean(axis=0)) ** 2).sum(axis=1)))
-    neighbours: list[list[int]] = [[] for _ in range(f)]
-    for a, b in np.asarray(net.folds, dtype=np.int64).tolist():  # type: ignore[attr-defined]
-        neighbours[a].append(b)
-        neighbours[b].append(a)
-    parent = np.full(f, -1, dtype=np.int64)
-    seen = np.zeros(f, dtype=bool)
-    seen[root] = True
-    order = [root]
-    queue = deque([root])
-    while queue:
-        a = queue.popleft()
-        for b in sorted(neighbours[a]):
-            if not seen[b]:
-                seen[b] = True
-                parent[b] = a
-                order.append(b)
-                queue.append(b)
-    if not seen.all():
-        raise InvalidShapeError(f"net: its folds leave {int((~seen).sum())} faces unconnected; not a one-piece net")
-    return root, parent, order
 
 
 def _hinge(net: object, a: int, b: int) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:

@@ -19,12 +19,13 @@ from ._hunt import HUNT_NET, HUNT_ZIPPER, HuntOutcome, hunt_shape
 from ._job import NoFitError, Pieces, Strategy
 from ._layout import seam_pairs, tab_room
 from ._many import unfold_many
-from ._net import NET_FORMAT, Net
+from ._net import NET_FORMAT, Net, fold_tree
 from ._outline import outline_key
 from ._search import unfold
 from ._validate import ValidationReport, validate
 
 __all__ = [
+    "fold_tree",
     "NET_FORMAT",
     "EdgeConstraints",
     "EditResult",

@@ -4,12 +4,13 @@ from __future__ import annotations
 
 import dataclasses
 import json
+from collections import deque
 from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
-from voxfab.errors import FormatError
+from voxfab.errors import FormatError, InvalidShapeError
 
 NET_FORMAT = "voxfab-net/1"
 
@@ -150,3 +151,35 @@ class Net:
         from voxfab._shared.limits import parse_json
 
         return cls.from_dict(parse_json(text, name="net JSON"))
+
+
+def fold_tree(net: Net) -> tuple[int, npt.NDArray[np.int64], list[int]]:
+    """The fold tree from the face nearest the middle of the sheet: root, parent of each face, order.
+
+    The net's folds are a spanning tree plus edges that meet in the plane anyway;
+    a breadth-first walk keeps one parent per face, so the pieces hinge on the
+    faces nearer the middle (the sheet stays put around its centre).
+    """
+    c2 = np.asarray(net.corners2d, dtype=np.float64).mean(axis=1)
+    f = c2.shape[0]
+    root = int(np.argmin(((c2 - c2.mean(axis=0)) ** 2).sum(axis=1)))
+    neighbours: list[list[int]] = [[] for _ in range(f)]
+    for a, b in np.asarray(net.folds, dtype=np.int64).tolist():
+        neighbours[a].append(b)
+        neighbours[b].append(a)
+    parent = np.full(f, -1, dtype=np.int64)
+    seen = np.zeros(f, dtype=bool)
+    seen[root] = True
+    order = [root]
+    queue = deque([root])
+    while queue:
+        a = queue.popleft()
+        for b in sorted(neighbours[a]):
+            if not seen[b]:
+                seen[b] = True
+                parent[b] = a
+                order.append(b)
+                queue.append(b)
+    if not seen.all():
+        raise InvalidShapeError(f"net: its folds leave {int((~seen).sum())} faces unconnected; not a one-piece net")
+    return root, parent, order

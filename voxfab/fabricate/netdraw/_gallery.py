@@ -28,7 +28,7 @@ from typing import Any
 import numpy as np
 
 from voxfab.errors import InvalidShapeError
-from voxfab.unfold import EdgeConstraints, Net
+from voxfab.unfold import EdgeConstraints, Net, fold_tree
 
 from ._net_options import NetOptions
 from ._options import DrawingOptions
@@ -367,7 +367,7 @@ def net_layout(grid: Any, pieces: Net | list[Net], *, graph: Any = None) -> dict
     corners (same corner order); ``neighbor`` and ``fold_type`` give, per edge ``k``
     (corner ``k`` to ``k + 1``), the face across it and the fold there as seen from
     outside; ``piece`` and ``parent`` the piece of each face and the face it is hinged on
-    in the fold-up (:func:`voxfab.render.fold_tree`; -1 for each piece's root);
+    in the fold-up (:func:`voxfab.unfold.fold_tree`; -1 for each piece's root);
     ``labels`` the seam label of every cut edge, by face pair ``"i-j"`` (i < j), as
     printed on the drawings.
 
@@ -379,7 +379,6 @@ def net_layout(grid: Any, pieces: Net | list[Net], *, graph: Any = None) -> dict
     graph : SurfaceGraph, optional
         ``surface_graph(grid)`` when the caller has it already.
     """
-    from voxfab.render._fold import fold_tree
     from voxfab.shape import fill_cavities, surface_graph
 
     from ._geometry import face_map
