@@ -30,7 +30,6 @@ def package_imports(path: Path, root: Path, package: str) -> set[str]:
     """
     modules = {module_name(p, root) for p in (root.parent / package.replace(".", "/")).glob("*.py")}
     me = module_name(path, root)
-    here = me if path.name == "__init__.py" else me.rpartition(".")[0]
     found: set[str] = set()
 
     def add(name: str) -> None:
@@ -39,24 +38,33 @@ def package_imports(path: Path, root: Path, package: str) -> set[str]:
             parts = name.split(".")
             found.add(".".join(parts[: len(package.split(".")) + 1]) if name != package else package)
 
+    for base, names in import_statements(path, root):
+        if base == package and names:
+            for alias in names:
+                sub = f"{package}.{alias}"
+                add(sub if sub in modules else package)
+        else:
+            add(base)
+    found.discard(me)
+    return found
+
+
+def import_statements(path: Path, root: Path) -> list[tuple[str, list[str]]]:
+    """Each import of ``path`` as (absolute module, names taken from it); ``import a, b`` gives one row per module."""
+    me = module_name(path, root)
+    here = me if path.name == "__init__.py" else me.rpartition(".")[0]
+    rows: list[tuple[str, list[str]]] = []
     for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
         if isinstance(node, ast.Import):
-            for alias in node.names:
-                add(alias.name)
+            rows += [(alias.name, []) for alias in node.names]
         elif isinstance(node, ast.ImportFrom):
             if node.level:
                 base = ".".join(here.split(".")[: len(here.split(".")) - node.level + 1])
                 base = f"{base}.{node.module}" if node.module else base
             else:
                 base = node.module or ""
-            if base == package:
-                for alias in node.names:
-                    sub = f"{package}.{alias.name}"
-                    add(sub if sub in modules else package)
-            else:
-                add(base)
-    found.discard(me)
-    return found
+            rows.append((base, [alias.name for alias in node.names]))
+    return rows
 
 
 def import_circles(root: Path, package: str) -> list[list[str]]:
@@ -135,23 +143,6 @@ SURFACES = ("voxfab.cli", "voxfab.studio", "voxfab.batch", "voxfab.census")
 BELOW = {"voxfab.fabricate": ("voxfab.render", "voxfab.recipe", "voxfab.generate", "voxfab.warmup")}
 
 
-def imported_names(path: Path, root: Path) -> set[str]:
-    """Every absolute module name that ``path`` imports, at the top or inside a function."""
-    me = module_name(path, root)
-    here = me if path.name == "__init__.py" else me.rpartition(".")[0]
-    found: set[str] = set()
-    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
-        if isinstance(node, ast.Import):
-            found.update(alias.name for alias in node.names)
-        elif isinstance(node, ast.ImportFrom):
-            if node.level:
-                base = ".".join(here.split(".")[: len(here.split(".")) - node.level + 1])
-                found.add(f"{base}.{node.module}" if node.module else base)
-            else:
-                found.add(node.module or "")
-    return found
-
-
 def upward_imports(root: Path) -> list[str]:
     """``module -> name`` for each import of a surface by the library, or of a package above by one below it."""
     out = []
@@ -163,7 +154,7 @@ def upward_imports(root: Path) -> list[str]:
         for package, above in BELOW.items():
             if me == package or me.startswith(package + "."):
                 banned += above
-        for name in sorted(imported_names(path, root)):
+        for name in sorted({base for base, _ in import_statements(path, root)}):
             if any(name == b or name.startswith(b + ".") for b in banned):
                 out.append(f"{me} -> {name}")
     return out
