@@ -107,6 +107,14 @@ def import_circles(root: Path, package: str) -> list[list[str]]:
     return circles
 
 
+def write_tree(folder: Path, files: dict[str, str]) -> Path:
+    """A made-up package for the checks' own tests: ``files`` by name, in ``folder``."""
+    folder.mkdir(parents=True)
+    for name, text in files.items():
+        (folder / name).write_text(text)
+    return folder
+
+
 def test_no_module_is_over_800_lines() -> None:
     long = {str(p.relative_to(ROOT.parent)): n for p in sorted(ROOT.rglob("*.py"))
             if (n := len(p.read_text(encoding="utf-8").splitlines())) > MAX_LINES}
@@ -120,13 +128,13 @@ def test_no_import_circle_inside_the_package(package: str) -> None:
 
 def test_the_circle_check_finds_a_late_import_and_a_package_import(tmp_path: Path) -> None:
     """On a made-up package: a circle closed by an import inside a function, and one through ``__init__``."""
-    pkg = tmp_path / "voxfab" / "demo"
-    pkg.mkdir(parents=True)
-    (pkg / "__init__.py").write_text("from ._search import unfold\n")
-    (pkg / "_search.py").write_text("from ._job import Job\n\ndef unfold():\n    from ._pieces import split\n")
-    (pkg / "_pieces.py").write_text("from ._search import Board\n")
-    (pkg / "_job.py").write_text("import numpy\n")
-    (pkg / "_many.py").write_text("from voxfab.demo._job import Job\nfrom . import _job\n")
+    pkg = write_tree(tmp_path / "voxfab" / "demo", {
+        "__init__.py": "from ._search import unfold\n",
+        "_search.py": "from ._job import Job\n\ndef unfold():\n    from ._pieces import split\n",
+        "_pieces.py": "from ._search import Board\n",
+        "_job.py": "import numpy\n",
+        "_many.py": "from voxfab.demo._job import Job\nfrom . import _job\n",
+    })
     root = tmp_path / "voxfab"
     assert import_circles(root, "voxfab.demo") == [["voxfab.demo._pieces", "voxfab.demo._search"]]
     (pkg / "_job.py").write_text("from voxfab.demo import unfold\n")  # runs __init__, which imports _search
@@ -165,11 +173,11 @@ def test_the_library_never_imports_what_stands_above_it() -> None:
 
 
 def test_the_upward_check_finds_a_late_import(tmp_path: Path) -> None:
-    pkg = tmp_path / "voxfab" / "fabricate"
-    pkg.mkdir(parents=True)
-    (pkg / "__init__.py").write_text("")
-    (pkg / "_table.py").write_text("def run():\n    from voxfab.render import render_pictures\n")
-    (pkg / "_ok.py").write_text("from voxfab.unfold import Net\nfrom . import _table\n")
+    write_tree(tmp_path / "voxfab" / "fabricate", {
+        "__init__.py": "",
+        "_table.py": "def run():\n    from voxfab.render import render_pictures\n",
+        "_ok.py": "from voxfab.unfold import Net\nfrom . import _table\n",
+    })
     (tmp_path / "voxfab" / "shape.py").write_text("from .studio import pack\n")
     assert upward_imports(tmp_path / "voxfab") == ["voxfab.fabricate._table -> voxfab.render",
                                                    "voxfab.shape -> voxfab.studio"]
