@@ -220,10 +220,10 @@ def test_an_unknown_field_is_refused_on_every_endpoint(studio, path: str, key: s
 @FUZZ
 @given(st.text(string.ascii_lowercase + "_", min_size=1, max_size=14), JSON_VALUES)
 def test_an_unknown_shape_key_is_refused(studio, key: str, value: object) -> None:
-    from voxfab.studio._specs import SHAPE_KEYS, _scalar_names
+    from voxfab.studio._specs import SHAPE_KEYS, form_keys
 
     focal = {"maker": "focal", "foci": [[0, 0, 0]], "radius": 2}
-    if key in focal or key in SHAPE_KEYS["focal"] or key in _scalar_names("focal"):
+    if key in focal or key in SHAPE_KEYS["focal"] or key in form_keys("focal"):
         return
     _refused(studio.post("/api/preview", json={**focal, key: value}), repr(key)[:30])
 

@@ -67,6 +67,11 @@ class Param:
                 span = f"in {low:g}..{high:g}" if low is not None and high is not None else \
                     f">= {low:g}" if low is not None else f"<= {high:g}"
                 return f"expected {what} {span}, got {value!r}"
+        if isinstance(value, list):
+            for i, item in enumerate(value):
+                if isinstance(item, (int, float)) and not isinstance(item, bool) and finite_number(item) is None:
+                    # TOML's nan and inf, JSON's 10**400: no place in a list of coordinates or bounds
+                    return f"expected finite numbers, got {quote(item)} at [{i}]"
         return None
 
     def normal(self, value: Any) -> Any:
@@ -74,13 +79,48 @@ class Param:
         takes = self._alternatives
         if isinstance(value, int) and not isinstance(value, bool) and float in takes and int not in takes:
             return float(value)
+        if isinstance(value, list) and list[float] in takes:
+            return [float(v) if isinstance(v, int) and not isinstance(v, bool) else v for v in value]
         return value
+
+    @property
+    def kind(self) -> str | None:
+        """What a value of the key is, for a form that asks for it.
+
+        ``"flag"``, ``"integer"``, ``"number"``, ``"word"`` (one of :attr:`choices`) or
+        ``"numbers"`` (a list of numbers: a point, bounds, weights); None for a text, a file
+        name or nested lists, which a front end asks for in its own way (an expression, a drawing).
+        """
+        takes = [a for a in self._alternatives if a is not type(None)]
+        if not takes:
+            return None
+        if all(typing.get_origin(a) is typing.Literal for a in takes):
+            return "word"
+        if takes == [bool]:
+            return "flag"
+        if takes == [int]:
+            return "integer"
+        if set(takes) <= {int, float}:
+            return "number"
+        if all(a in (list[float], list[int]) for a in takes):
+            return "numbers"
+        return None
+
+    @property
+    def choices(self) -> tuple[Any, ...]:
+        """The words a ``"word"`` key takes (its Literal's values), in the signature's order."""
+        return tuple(c for a in self._alternatives if typing.get_origin(a) is typing.Literal
+                     for c in typing.get_args(a))
 
     @property
     def is_scalar(self) -> bool:
         """A number, a word or a flag (not a list, a file or an expression that may be a file)."""
-        return all(a in (int, float, bool) or typing.get_origin(a) is typing.Literal
-                   for a in self._alternatives if a is not type(None))
+        return self.kind in ("flag", "integer", "number", "word")
+
+    @property
+    def type_words(self) -> str:
+        """The key's type in words, as the README's tables and the studio show it: ``float``, ``"solid" or "surface"``."""
+        return type_name(self.hint).replace("'", '"').replace(" or none", "")
 
     @property
     def _alternatives(self) -> tuple[Any, ...]:
@@ -255,8 +295,7 @@ def maker_markdown(name: str) -> str:
         default = "required" if p.required else "-" if p.default is None else f"`{_toml(p.default)}`"
         bounds = " .. ".join("" if b is None else f"{b:g}" for b in (p.low, p.high)) \
             if (p.low, p.high) != (None, None) else ""
-        kind = type_name(p.hint).replace("'", '"').replace(" or none", "")
-        rows.append(f"| `{p.name}` | {kind} | {default} | {bounds} | {p.help} |")
+        rows.append(f"| `{p.name}` | {p.type_words} | {default} | {bounds} | {p.help} |")
     return "\n".join(rows)
 
 

@@ -33,17 +33,17 @@ from voxfab._shared.options import quote
 from voxfab._shared.validate import finite_number
 from voxfab.errors import InvalidShapeError, VoxfabError
 
-#: Makers the studio draws for, and the keys of the page's JSON each one takes.
-MAKERS = ("revolution", "tube", "focal", "implicit")
-
-#: Limits of a drawing: polylines, points in all, bytes of an uploaded bitmap, characters of an expression.
+#: Limits of a drawing: polylines, points in all, bytes of an uploaded bitmap, characters of an expression;
+#: and of a list of numbers in a maker's form (a point, bounds, weights).
 MAX_POLYLINES = 64
 MAX_POINTS = 20000
 MAX_BITMAP = 4 * 1024 * 1024
 MAX_TEXT = 2000
+MAX_NUMBERS = 64
 
-#: The keys of the page's JSON per maker that :func:`source_keys` reads itself; with them, the maker's
-#: numbers, words and flags (the makers table's scalars, :func:`_scalars`).  Any other key is refused.
+#: The drawn keys of the page's JSON (curves, profiles, foci, spine) of the makers the page draws for, which
+#: :func:`source_keys` reads itself.  Any maker of the table (``voxfab.digitize.MAKERS``) is made from its
+#: form too: its numbers, words, flags and lists of numbers (:func:`form_keys`).  Any other key is refused.
 SHAPE_KEYS = {
     "revolution": ("curve", "generatrix", "axis", "z_range", "arc"),
     "tube": ("profile", "arc", "spine"),
@@ -192,18 +192,21 @@ def _source(src: Any, role: str, files: dict[str, bytes]) -> str:
     raise SpecError(f"{where}.kind: expected 'expr', 'drawn' or 'bitmap', got {kind!r:.40}")
 
 
-def _scalars(spec: Mapping[str, Any], maker: str, keys: dict[str, Any], *, skip: tuple[str, ...] = ()) -> None:
-    """The maker's numbers, words and flags the page sent, checked by the makers table (type and range)."""
+def _form(spec: Mapping[str, Any], maker: str, keys: dict[str, Any]) -> None:
+    """The maker's form values the page sent, checked by the makers table (type and range)."""
     from voxfab.digitize import maker_params
 
-    for name, param in maker_params(maker).items():
-        if not param.is_scalar or name in skip or spec.get(name) is None:
+    params = maker_params(maker)
+    for name in form_keys(maker):
+        value = spec.get(name)
+        if value is None:
             continue
-        value = spec[name]
-        problem = param.problem(value)
+        if isinstance(value, list) and len(value) > MAX_NUMBERS:
+            raise SpecError(f"shape.{name}: at most {MAX_NUMBERS} numbers, got {len(value)}")
+        problem = params[name].problem(value)
         if problem:
             raise SpecError(f"shape.{name}: {problem}")
-        keys[name] = param.normal(value)
+        keys[name] = params[name].normal(value)
 
 
 def _arc(spec: Mapping[str, Any], keys: dict[str, Any]) -> None:
@@ -213,77 +216,120 @@ def _arc(spec: Mapping[str, Any], keys: dict[str, Any]) -> None:
         keys["arc"] = [_number(v, where="shape.arc") for v in _points([arc], 2, where="shape.arc")[0]]
 
 
-def _scalar_names(maker: str) -> tuple[str, ...]:
-    """The keys :func:`_scalars` takes from the shape for ``maker``."""
-    from voxfab.digitize import maker_params
-
-    skip = _PLACED.get(maker, ())
-    return tuple(n for n, p in maker_params(maker).items() if p.is_scalar and n not in skip)
-
-
-#: Keys a maker's branch of :func:`source_keys` reads from elsewhere, or only in one case, not from the shape.
+#: Keys a maker's drawing reader takes from elsewhere (the spine's), or only in one case, not from the form.
 _PLACED = {"revolution": ("axis",), "tube": ("t_min", "t_max", "closed"), "focal": ("radius",)}
 
 
+def drawn_keys(maker: str) -> tuple[str, ...]:
+    """The keys of ``maker`` that the page's drawing gives (none for a maker the page has no drawing for)."""
+    return (*SHAPE_KEYS.get(maker, ()), *(k for k in _PLACED.get(maker, ()) if k not in SHAPE_KEYS.get(maker, ())))
+
+
+def form_keys(maker: str) -> tuple[str, ...]:
+    """The keys of ``maker`` the page asks for in a form, in its row's order: numbers, words, flags, lists of numbers.
+
+    A text is not among them: it may name a file, and the studio's files are the ones it draws.
+    """
+    from voxfab.digitize import maker_params
+
+    drawn = drawn_keys(maker)
+    return tuple(n for n, p in maker_params(maker).items() if p.kind is not None and n not in drawn)
+
+
+def maker_table() -> list[dict[str, Any]]:
+    """The makers table as the page reads it (``/api/info``): per maker its name, summary and keys.
+
+    Each key has its name, help, type in words, range, default and requirement from the table,
+    its form ``kind`` and ``choices`` (:attr:`voxfab.digitize.Param.kind`), and ``input``: ``"drawn"``
+    when the page's drawing gives it, ``"form"`` when a form field does, None when the studio cannot.
+    """
+    from voxfab.digitize import MAKERS, maker_params
+
+    table = []
+    for name, row in MAKERS.items():
+        drawn, form = drawn_keys(name), form_keys(name)
+        table.append({"name": name, "help": row.help, "params": [
+            {"name": p.name, "help": p.help, "type": p.type_words, "low": p.low, "high": p.high,
+             "default": p.default, "required": p.required, "kind": p.kind, "choices": list(p.choices),
+             "input": "drawn" if p.name in drawn else "form" if p.name in form else None}
+            for p in maker_params(name).values()]})
+    return table
+
+
+def _revolution(spec: Mapping[str, Any], keys: dict[str, Any], files: dict[str, bytes]) -> None:
+    keys["curve"] = _source(spec.get("curve"), "curve", files)
+    keys["generatrix"] = _source(spec.get("generatrix"), "generatrix", files)
+    axis = _get(spec, "axis", (int, float), where="shape")
+    if axis is not None and spec["generatrix"].get("kind") == "drawn":
+        keys["axis"] = float(axis)
+    z_range = spec.get("z_range")
+    if z_range is not None and spec["generatrix"].get("kind") == "expr":
+        keys["z_range"] = [_number(v, where="shape.z_range") for v in _points([z_range], 2,
+                                                                              where="shape.z_range")[0]]
+    _arc(spec, keys)
+
+
+def _tube(spec: Mapping[str, Any], keys: dict[str, Any], files: dict[str, bytes]) -> None:
+    keys["profile"] = _source(spec.get("profile"), "profile", files)
+    _arc(spec, keys)
+    spine = spec.get("spine")
+    if not isinstance(spine, dict):
+        raise SpecError("shape.spine: expected an object with a 'kind'")
+    if isinstance(spine.get("kind"), str) and spine["kind"] in SPINE_KEYS:
+        _only(spine, SPINE_KEYS[spine["kind"]], where="spine")
+    if spine.get("kind") == "expr":
+        keys["spine"] = [_text(spine.get(c), where=f"spine.{c}") for c in "xyz"]
+        for key in ("t_min", "t_max"):
+            value = _get(spine, key, (int, float), where="spine")
+            if value is not None:
+                keys[key] = float(value)
+    elif spine.get("kind") == "drawn":
+        pts = _points(spine.get("points"), 3, where="spine.points")
+        if len(pts) > MAX_POINTS:
+            raise SpecError(f"spine: at most {MAX_POINTS} points, got {len(pts)}")
+        keys["spine"] = pts
+        closed = _get(spine, "closed", bool, where="spine")
+        if closed is not None:
+            keys["closed"] = closed
+    else:
+        raise SpecError(f"spine.kind: expected 'expr' or 'drawn', got {spine.get('kind')!r:.40}")
+
+
+def _focal(spec: Mapping[str, Any], keys: dict[str, Any], files: dict[str, bytes]) -> None:
+    keys["foci"] = _points(spec.get("foci"), 3, where="shape.foci")
+    if not keys["foci"]:
+        raise SpecError("shape.foci: place at least one focus")
+    weights = spec.get("weights")
+    if weights is not None:
+        if not isinstance(weights, list):
+            raise SpecError("shape.weights: expected a list of numbers")
+        keys["weights"] = [_number(w, where="shape.weights") for w in weights]
+    keys["radius"] = _number(spec.get("radius"), where="shape.radius")
+
+
+def _implicit(spec: Mapping[str, Any], keys: dict[str, Any], files: dict[str, bytes]) -> None:
+    keys["expression"] = _text(spec.get("expression"), where="shape.expression")
+
+
+#: The reader of each drawing of :data:`SHAPE_KEYS`: it sets the drawn keys and adds the drawn files.
+_DRAWINGS = {"revolution": _revolution, "tube": _tube, "focal": _focal, "implicit": _implicit}
+
+
 def source_keys(spec: Any) -> tuple[dict[str, Any], dict[str, bytes]]:
-    """The ``[source]`` table (maker first) and input files of a drawn shape."""
+    """The ``[source]`` table (maker first) and input files of a drawn shape, or of any maker's form."""
+    from voxfab.digitize import MAKERS
+
     if not isinstance(spec, dict):
         raise SpecError("shape: expected an object")
     maker = spec.get("maker")
-    if maker not in MAKERS:
+    if not isinstance(maker, str) or maker not in MAKERS:
         raise SpecError(f"shape.maker: expected one of {', '.join(MAKERS)}, got {maker!r:.40}")
-    _only(spec, ("maker", *SHAPE_KEYS[maker], *_scalar_names(maker)), where=f"shape ({maker})")
+    _only(spec, ("maker", *SHAPE_KEYS.get(maker, ()), *form_keys(maker)), where=f"shape ({maker})")
     files: dict[str, bytes] = {}
     keys: dict[str, Any] = {"maker": maker}
-    if maker == "revolution":
-        keys["curve"] = _source(spec.get("curve"), "curve", files)
-        keys["generatrix"] = _source(spec.get("generatrix"), "generatrix", files)
-        axis = _get(spec, "axis", (int, float), where="shape")
-        if axis is not None and spec["generatrix"].get("kind") == "drawn":
-            keys["axis"] = float(axis)
-        z_range = spec.get("z_range")
-        if z_range is not None and spec["generatrix"].get("kind") == "expr":
-            keys["z_range"] = [_number(v, where="shape.z_range") for v in _points([z_range], 2,
-                                                                                  where="shape.z_range")[0]]
-        _arc(spec, keys)
-    elif maker == "tube":
-        keys["profile"] = _source(spec.get("profile"), "profile", files)
-        _arc(spec, keys)
-        spine = spec.get("spine")
-        if not isinstance(spine, dict):
-            raise SpecError("shape.spine: expected an object with a 'kind'")
-        if isinstance(spine.get("kind"), str) and spine["kind"] in SPINE_KEYS:
-            _only(spine, SPINE_KEYS[spine["kind"]], where="spine")
-        if spine.get("kind") == "expr":
-            keys["spine"] = [_text(spine.get(c), where=f"spine.{c}") for c in "xyz"]
-            for key in ("t_min", "t_max"):
-                value = _get(spine, key, (int, float), where="spine")
-                if value is not None:
-                    keys[key] = float(value)
-        elif spine.get("kind") == "drawn":
-            pts = _points(spine.get("points"), 3, where="spine.points")
-            if len(pts) > MAX_POINTS:
-                raise SpecError(f"spine: at most {MAX_POINTS} points, got {len(pts)}")
-            keys["spine"] = pts
-            closed = _get(spine, "closed", bool, where="spine")
-            if closed is not None:
-                keys["closed"] = closed
-        else:
-            raise SpecError(f"spine.kind: expected 'expr' or 'drawn', got {spine.get('kind')!r:.40}")
-    elif maker == "focal":
-        keys["foci"] = _points(spec.get("foci"), 3, where="shape.foci")
-        if not keys["foci"]:
-            raise SpecError("shape.foci: place at least one focus")
-        weights = spec.get("weights")
-        if weights is not None:
-            if not isinstance(weights, list):
-                raise SpecError("shape.weights: expected a list of numbers")
-            keys["weights"] = [_number(w, where="shape.weights") for w in weights]
-        keys["radius"] = _number(spec.get("radius"), where="shape.radius")
-    else:
-        keys["expression"] = _text(spec.get("expression"), where="shape.expression")
-    # The keys each branch above reads from its own place (the spine's, the drawing's axis) are not the shape's.
-    _scalars(spec, maker, keys, skip=_PLACED.get(maker, ()))
+    if maker in _DRAWINGS:
+        _DRAWINGS[maker](spec, keys, files)
+    _form(spec, maker, keys)
     return keys, files
 
 

@@ -14,7 +14,7 @@ from starlette.requests import Request
 from starlette.responses import Response
 from starlette.routing import Route
 
-from .. import _grid, _work
+from .. import _grid, _specs, _work
 from .._guard import MAX_BODY
 from .._http import plain_response
 from .._session import Session
@@ -41,7 +41,7 @@ def static_table() -> dict[str, tuple[bytes, str]]:
 
 
 async def info(session: Session, request: Request) -> dict[str, Any]:
-    """What the page needs to know of the server: its limits, sheets and downloads."""
+    """What the page needs to know of the server: its limits, sheets, downloads and the makers table."""
     from voxfab._version import __version__
     from voxfab.fabricate.netdraw import SHEETS
 
@@ -53,7 +53,8 @@ async def info(session: Session, request: Request) -> dict[str, Any]:
         constraints = False
     return {"version": __version__, "repository": session.settings.repo.name, "side": _grid.SIDE,
             "max_body": MAX_BODY, "constraints": constraints, "artefacts": _work.artefacts(),
-            "max_nets": _work.MAX_NETS, "sheets": {k: list(v) for k, v in SHEETS.items()}}
+            "max_nets": _work.MAX_NETS, "sheets": {k: list(v) for k, v in SHEETS.items()},
+            "makers": _specs.maker_table()}
 
 
 async def initial(session: Session, request: Request) -> dict[str, Any]:
