@@ -73,6 +73,19 @@ def test_params_check_type_and_range():
     assert maker_params("tube")["radius"].is_scalar and not maker_params("tube")["spine"].is_scalar
 
 
+def test_params_say_what_kind_of_value_they_take():
+    tube = maker_params("tube")
+    kinds = {name: tube[name].kind for name in ("spine", "profile", "radius", "samples", "cap", "closed", "center")}
+    assert kinds == {"spine": None, "profile": None, "radius": "number", "samples": "integer", "cap": "word",
+                     "closed": "flag", "center": "numbers"}
+    assert tube["cap"].choices == ("flat", "round") and tube["radius"].choices == ()
+    assert tube["closed"].type_words == "bool" and tube["cap"].type_words == '"flat" or "round"'
+    bounds = maker_params("implicit")["bounds"]
+    assert bounds.problem([-1, 1, -1, 1, -1, 1]) is None and bounds.normal([-1, 1]) == [-1.0, 1.0]
+    assert bounds.problem([0, float("inf")]) == "expected finite numbers, got inf at [1]"
+    assert bounds.problem([0, 10**400]).startswith("expected finite numbers, got 1000")
+
+
 def test_random_makers_come_from_the_table():
     assert random_makers() == tuple(n for n, row in MAKERS.items() if row.random)
     assert "implicit" not in random_makers()

@@ -10,12 +10,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy import ndimage
 
-from voxfab.digitize import get_maker
+from voxfab.digitize import get_maker, random_makers
 from voxfab.errors import InvalidShapeError
 from voxfab.generate import (
-    GENERATORS,
-    MAKER_GENERATORS,
     candidate,
+    generators,
     growth,
     parse_volume_range,
     symmetric_key,
@@ -54,7 +53,7 @@ def test_growth_rejects_impossible_volumes() -> None:
             growth(1, v)
 
 
-@pytest.mark.parametrize("generator", GENERATORS)
+@pytest.mark.parametrize("generator", generators())
 def test_candidates_are_reproducible_by_seed_and_index(generator: str) -> None:
     a = [candidate(generator, 5, i) for i in range(4)]
     b = [candidate(generator, 5, i) for i in (3, 2, 1, 0)][::-1]  # any order: each depends on (seed, index)
@@ -64,7 +63,7 @@ def test_candidates_are_reproducible_by_seed_and_index(generator: str) -> None:
             assert np.array_equal(x.grid, y.grid) and x.params == y.params and x.generator == y.generator
 
 
-@pytest.mark.parametrize("generator", MAKER_GENERATORS)
+@pytest.mark.parametrize("generator", random_makers())
 def test_maker_candidates_are_remade_from_their_params(generator: str, tmp_path: Path) -> None:
     made = [c for c in (candidate(generator, 2, i) for i in range(6)) if c is not None]
     assert len(made) >= 4

@@ -13,11 +13,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--count", type=int, required=True, metavar="N", help="new shapes to store")
     from voxfab._shared.options import SeedOptions
     from voxfab.cli._options import add_option_arguments
-    from voxfab.generate import GENERATORS, MAKER_GENERATORS
+    from voxfab.digitize import random_makers
+    from voxfab.generate import generators
 
     add_option_arguments(parser, SeedOptions)  # the same seed on the same repository stores the same shapes
-    parser.add_argument("--generator", default="growth", choices=GENERATORS,
-                        help=f"growth: random face-connected growth spanning the grid; {', '.join(MAKER_GENERATORS)}: "
+    parser.add_argument("--generator", default="growth", choices=generators(),
+                        help=f"growth: random face-connected growth spanning the grid; {', '.join(random_makers())}: "
                              "random parameters for that maker; mix: a blend (default growth)")
     parser.add_argument("--volume", metavar="MIN:MAX",
                         help="keep volumes in MIN..MAX (inclusive); growth aims inside it (default: growth aims "

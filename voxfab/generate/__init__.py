@@ -8,16 +8,15 @@ makers of :mod:`voxfab.digitize`) and :func:`explore` stores the new ones.
 
 from ._explore import ExploreReport, check_explore, explore, parse_volume_range, volume_bins
 from ._keys import symmetric_key
-from ._makers import GENERATORS, MAKER_GENERATORS, Candidate, candidate, growth
+from ._makers import Candidate, candidate, generators, growth
 
 __all__ = [
-    "GENERATORS",
-    "MAKER_GENERATORS",
     "Candidate",
     "ExploreReport",
     "check_explore",
     "candidate",
     "explore",
+    "generators",
     "growth",
     "parse_volume_range",
     "symmetric_key",

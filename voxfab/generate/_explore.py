@@ -14,7 +14,7 @@ from voxfab.errors import InvalidShapeError, RepositoryError
 from voxfab.shape import GRID_SIDE, crop, well_formed_reasons
 
 from ._keys import symmetric_key
-from ._makers import GENERATORS, candidate
+from ._makers import candidate, generators
 
 __all__ = ["ExploreReport", "check_explore", "explore", "volume_bins", "parse_volume_range"]
 
@@ -100,8 +100,8 @@ def check_explore(
     LimitError
         For a count or a number of attempts over the limits table's.
     """
-    if generator not in GENERATORS:
-        raise InvalidShapeError(f"generator: expected one of {', '.join(GENERATORS)}, got {generator!r}")
+    if generator not in generators():
+        raise InvalidShapeError(f"generator: expected one of {', '.join(generators())}, got {generator!r}")
     for name, value in (("count", count), ("max_attempts", max_attempts)):
         if value is not None and (isinstance(value, bool) or int(value) != value or value < 1):
             raise InvalidShapeError(f"{name}: expected a whole number >= 1, got {value!r}")
@@ -143,7 +143,7 @@ def explore(
     seed : int
         Seed of the candidates (>= 0).
     generator : str
-        One of :data:`voxfab.generate.GENERATORS`.
+        One of :func:`voxfab.generate.generators`.
     volume : (int, int), optional
         Keep the volumes in ``[min, max]``; growth aims inside it (at least 25).
     max_attempts : int, optional

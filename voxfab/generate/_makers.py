@@ -18,17 +18,25 @@ from voxfab.digitize import random_makers, rounded_param
 from voxfab.errors import InvalidShapeError, VoxfabError
 from voxfab.shape import GRID_SIDE
 
-__all__ = ["GENERATORS", "MAKER_GENERATORS", "Candidate", "candidate", "growth"]
+__all__ = ["Candidate", "candidate", "generators", "growth"]
 
-#: The generators that give random parameters to a maker of :mod:`voxfab.digitize`: its table's makers
-#: with a random form.
-MAKER_GENERATORS = random_makers()
-#: The generators ``explore`` takes; ``mix`` draws one of the others per candidate.
-GENERATORS = ("growth", *MAKER_GENERATORS, "mix")
 #: Volumes the growth aims at when no range is given: a spine of 25 up to a quarter of the grid's side².
 DEFAULT_GROWTH_VOLUME = (GRID_SIDE, GRID_SIDE * GRID_SIDE)
-# Mix: growth is cheap and varied, the makers add smooth solids and share the rest equally.
-_MIX = (("growth", 0.55), *((name, 0.45 / len(MAKER_GENERATORS)) for name in MAKER_GENERATORS))
+
+
+def generators() -> tuple[str, ...]:
+    """The generators ``explore`` takes: growth, each maker of the table with a random form, and ``mix``.
+
+    ``mix`` draws one of the others per candidate.  Read from the makers table at each call, so a
+    row added to it is a generator at once.
+    """
+    return ("growth", *random_makers(), "mix")
+
+
+def _mix() -> tuple[tuple[str, float], ...]:
+    """Mix's odds: growth is cheap and varied, the makers add smooth solids and share the rest equally."""
+    makers = random_makers()
+    return (("growth", 0.55), *((name, 0.45 / len(makers)) for name in makers))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -97,7 +105,7 @@ def candidate(generator: str, seed: int, index: int, *, volume: tuple[int, int] 
     """
     rng = np.random.default_rng([int(seed), int(index)])
     if generator == "mix":
-        names, weights = zip(*_MIX)
+        names, weights = zip(*_mix())
         generator = str(rng.choice(names, p=weights))
     if generator == "growth":
         return _growth(rng, volume)

@@ -3,6 +3,7 @@
 import {Cancelled, cancelJob, fileUrl, get, post, saveBlob, waitJob, waitingJobs} from './api.js';
 import {CurveSource, FociInput, SpineDrawing} from './draw.js';
 import {LayerEditor} from './editor.js';
+import {MakerForms} from './makers.js';
 import {Grid} from './grid.js';
 import {drawNet} from './nets.js';
 import {NetView} from './netview.js';
@@ -164,7 +165,10 @@ function drawnEmpty(src) {
 
 function currentSpec() {
   const maker = $('#maker').value;
-  const spec = {maker, k: Number($('#k').value), mode: $('#mode').value};
+  const spec = {maker};
+  // the top row's walls and inside, for a maker that takes them
+  if (makers.takes('k')) spec.k = Number($('#k').value);
+  if (makers.takes('mode')) spec.mode = $('#mode').value;
   if (maker === 'revolution') {
     spec.curve = sources.curve.spec(); spec.generatrix = sources.generatrix.spec();
     if (spec.generatrix.kind === 'drawn') spec.axis = sources.generatrix.axisX();
@@ -179,13 +183,16 @@ function currentSpec() {
       spec.spine = spine.spec(Number($('#spine-rise').value), $('#spine-closed').checked);
     }
     spec.frame = $('#frame').value; spec.radius = Number($('#radius').value); spec.twist = Number($('#twist').value);
-  } else {
+  } else if (maker === 'focal') {
     Object.assign(spec, foci.spec(), {radius: Number($('#focal-radius').value)});
+  } else if (maker === 'implicit') {
+    spec.expression = $('#implicit-expression').value;
   }
-  if (maker !== 'focal' && $('#arc-open').checked) {
+  if (makers.drawn('arc') && $('#arc-open').checked) {
     spec.arc = [Number($('#arc-start').value), Number($('#arc-end').value)];
   }
-  return spec;
+  // the maker's other keys, from the form its row generates
+  return Object.assign(spec, makers.values());
 }
 
 function emptyDrawing(spec) {
@@ -237,12 +244,24 @@ const sources = {
 const spine = new SpineDrawing($('#spine-canvas'), {onChange: schedule});
 const foci = new FociInput($('#foci-canvas'), $('#foci-list'), {onChange: schedule});
 
-$('#maker').addEventListener('change', () => {
-  for (const m of ['revolution', 'tube', 'focal']) $(`#maker-${m}`).classList.toggle('hidden', m !== $('#maker').value);
-  schedule(true);
-});
+// The keys of a maker that the page has controls of its own for, beside its drawing's: the top row's walls
+// and inside, the tube's frames, radius and twist. Its other keys get fields from the makers table.
+const OWN_CONTROLS = {tube: ['frame', 'radius', 'twist']};
+const makers = new MakerForms($('#maker'), $('#maker-form'), {
+  own: (maker) => ['k', 'mode', ...(OWN_CONTROLS[maker] || [])], onChange: () => schedule(true)});
+
+// The chosen maker's drawing (none for a maker the page has no drawing for), its top-row controls and its form.
+function showMaker() {
+  const maker = $('#maker').value;
+  for (const d of $$('#pane-draw .maker')) d.classList.toggle('hidden', d.id !== `maker-${maker}`);
+  $('label:has(#k)').classList.toggle('hidden', !makers.takes('k'));
+  $('label:has(#mode)').classList.toggle('hidden', !makers.takes('mode'));
+  for (const l of $$('label:has(#arc-open), label:has(#arc-end)')) l.classList.toggle('hidden', !makers.drawn('arc'));
+  makers.show();
+}
+$('#maker').addEventListener('change', () => { showMaker(); schedule(true); });
 for (const id of ['#k', '#mode', '#arc-open', '#arc-start', '#arc-end', '#z-lo', '#z-hi', '#frame', '#radius', '#twist', '#spine-x', '#spine-y', '#spine-z',
-  '#focal-radius', '#spine-rise', '#spine-closed']) {
+  '#focal-radius', '#spine-rise', '#spine-closed', '#implicit-expression']) {
   $(id).addEventListener('change', () => schedule(true));
 }
 $$('input[name=spine-kind]').forEach((r) => r.addEventListener('change', () => {
@@ -716,8 +735,7 @@ function makeLabel(name) {
   const [stem, ext] = name.split('.');
   return MAKE_LABELS[name] || `${stem[0].toUpperCase()}${stem.slice(1)} ${ext.toUpperCase()}`;
 }
-async function makeButtons() {
-  const info = await get('/api/info');
+function makeButtons(info) {
   fillSheets(info.sheets);
   const box = $('#make-buttons');
   for (const name of info.artefacts) {
@@ -755,5 +773,7 @@ async function start() {
 }
 
 recipeNote(); netNote();
-start().catch((e) => say(e));
-makeButtons().then(() => { document.body.dataset.ready = 'true'; }, (e) => say(e));
+// The makers table comes with the server's info: the first preview waits for it.
+const info = get('/api/info');
+info.then((i) => { makers.setTable(i.makers); showMaker(); return start(); }).catch((e) => say(e));
+info.then((i) => { makeButtons(i); document.body.dataset.ready = 'true'; }, (e) => say(e));
