@@ -47,7 +47,7 @@ class Candidate:
     ----------
     grid : (25, 25, 25) bool ndarray
     generator : str
-        ``growth``, ``revolution``, ``tube`` or ``focal``.
+        ``growth``, or a maker of the makers table with a random form (``revolution``, ``tube``, ``focal``, ...).
     params : dict
         JSON-compatible: the growth's target volume and wander, or the maker's
         keyword arguments (``voxfab.digitize.get_maker(generator)(**params)``).
