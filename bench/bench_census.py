@@ -56,6 +56,10 @@ def _plain(n: int, out: Path, processes: int) -> float:
     out.mkdir()
     (out / "nets").mkdir()
     chunks = [CensusTask(tuple(todo[i:i + 24]), str(out), CensusSettings()) for i in range(0, len(todo), 24)]
+    # One BLAS thread per process, as Dask's nanny gives its workers: a spare OpenBLAS thread spinning
+    # after a call takes the core from the other process.
+    for name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ[name] = "1"
     ctx = multiprocessing.get_context("spawn")
     results = ctx.Queue()
     procs = [ctx.Process(target=_timed_tasks, args=(chunks[k::processes], results)) for k in range(processes)]
