@@ -141,10 +141,11 @@ def fit_scale(fld: Field, *, k: int, mode: Mode | str, size: int, at: float | No
     shape's centre when that is off by more than a voxel (loose bounds).
     Returns the placement and the digitized (uncropped) grid.
     """
-    span = float(np.max((fld.hi - fld.lo)[: 3 if at is not None else None]))
+    with np.errstate(over="ignore"):  # bounds near the float limit give an infinite span, refused next
+        span = float(np.max((fld.hi - fld.lo)[: 3 if at is not None else None]))
     if not np.isfinite(span) or span <= 0:
         raise InvalidShapeError(f"{fld.name}: degenerate shape (bounding box {fld.lo} .. {fld.hi})")
-    centre = (fld.lo + fld.hi) / 2.0
+    centre = fld.lo + (fld.hi - fld.lo) / 2.0  # lo + hi would overflow for bounds near the float limit
     hi_s = None
     s0 = max(size - 1, 1) / span
     if size > _PREVIEW:
