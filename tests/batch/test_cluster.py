@@ -123,3 +123,29 @@ def test_real_scheduler_with_two_worker_processes(tmp_path: Path) -> None:
     assert sorted(n for n, e in record.items() if e["status"] == "built") == [
         "00025.001", "00026.001", "00026.002", "00026.003"]
     _check_index(tmp_path / "out", sorted(n for n, e in record.items() if e["status"] == "built"), ["00028.001"])
+
+
+def test_a_local_cluster_sends_tasks_to_its_workers_ahead() -> None:
+    """The local scheduler shares the workers' cores: it queues no task of its own, each worker holds its next.
+
+    With the default saturation a finished worker waits for the scheduler's process to get a core; here
+    four slow tasks on one worker are all on that worker at once, and none waits on the scheduler.
+    """
+    import math
+
+    from voxfab.batch._cluster import connect
+
+    cl = connect(None, 1, None, 60.0)
+    try:
+        assert cl.client.run_on_scheduler(lambda dask_scheduler: dask_scheduler.WORKER_SATURATION) == math.inf
+        futures = [cl.client.submit(time.sleep, 1.0, key=f"sleep-{i}", pure=False) for i in range(4)]
+        deadline = time.monotonic() + 30
+        held = 0
+        while time.monotonic() < deadline and held < 4:
+            held = sum(len(v) for v in cl.client.processing().values())
+            time.sleep(0.05)
+        assert held == 4
+        assert cl.client.run_on_scheduler(lambda dask_scheduler: len(dask_scheduler.queued)) == 0
+        cl.client.gather(futures)
+    finally:
+        cl.close()
