@@ -363,7 +363,8 @@ class Repository:
         if after is not None and after.startswith(f"{range_name}:"):
             after = after[len(range_name) + 1:]
         with sqlite_errors(self._path):
-            if not any(r.name == range_name for r in range_infos(self._db)):
+            held = self._db.execute("SELECT 1 FROM range_members WHERE range = ? LIMIT 1", (range_name,)).fetchone()
+            if held is None:  # one index probe, not a count of every range
                 raise RepositoryError(f"{range_name}: no such range in {self._path}")
             rows = member_rows(self._db, range_name, after, None if limit is None else min(int(limit), 2**62))
         return [Entry(f"{range_name}:{m}", v, (nx, ny, nz), bool(d)) for m, v, nx, ny, nz, d in rows]
