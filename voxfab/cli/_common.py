@@ -123,6 +123,14 @@ def load_command_shape(args: argparse.Namespace, *, pitch: float | None = None) 
     return shape, name or Path(args.shape).stem, scaled
 
 
+def print_scale_note(args: argparse.Namespace, scaled: bool) -> None:
+    """After an object whose size comes from the pitch (a print, plates) was made from a shape
+    with no scale, say so in one line, and how to give it one."""
+    if not scaled:
+        print_notes([f"{args.shape} holds no scale: made at 1 mm per voxel (give --pitch MM, or the shape.npz "
+                     "a build wrote, which keeps its pitch)"])
+
+
 def print_warnings(warnings: Sequence[str], *, strict: bool = False) -> int:
     """End a command with the warnings a maker must read, one line each.
 

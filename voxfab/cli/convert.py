@@ -51,7 +51,7 @@ def run(args: argparse.Namespace) -> int:
         options["threshold"] = args.threshold
     result = io.read(args.input, **options)
     print_notes(list(result.notes))
-    io.write(result.grid, args.output)
+    io.write(result.shape(), args.output)
     shape = "x".join(str(s) for s in result.grid.shape)
     print(f"{args.output}: {shape} grid, {int(result.grid.sum())} voxels")
     return 0

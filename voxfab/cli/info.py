@@ -26,6 +26,7 @@ def shape_info(shape: Any) -> dict[str, Any]:
         "components": shape.components,
         "cavities": cavity_count(shape.grid),
         "surface_faces": shape.exposed_faces,
+        "colours": 0 if shape.colours is None else shape.colours.count,
         "well_formed": shape.well_formed,
         "reasons": shape.reasons,
     }

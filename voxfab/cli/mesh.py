@@ -11,6 +11,7 @@ from ._common import (
     add_strict_option,
     load_command_shape,
     print_json,
+    print_scale_note,
     print_warnings,
     shape_pitch,
 )
@@ -50,7 +51,7 @@ def run(args: argparse.Namespace) -> int:
         from voxfab._shared.deps import require_extra
 
         require_extra("cad", "--label (an engraved label)")
-    shape, name, _ = load_command_shape(args, pitch=shape_pitch(args))
+    shape, name, scaled = load_command_shape(args, pitch=shape_pitch(args))
     made = fabricate_mesh(shape, options, args.output, name=name)
     info = made.report
     if args.json:
@@ -62,4 +63,5 @@ def run(args: argparse.Namespace) -> int:
             f"{size} mm, {info['volume_mm3']:g} mm³, {info['bridges']} bridge(s)"
         )
         print(f"  print: {estimate_line(info)}")
+    print_scale_note(args, scaled or options.size is not None)
     return print_warnings(made.warnings, strict=args.strict)

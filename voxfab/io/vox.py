@@ -12,10 +12,14 @@ Layout (ephtracy/voxel-model, ``MagicaVoxel-file-format-vox.txt``)::
 Axes: MagicaVoxel is right-handed with z up, as voxfab is, so ``x, y, z`` in the
 file are ``x, y, z`` of the grid ``[x, y, z]`` without any swap.
 
-Reading keeps every voxel of the first model whatever its colour; a file with
-several models or a scene graph is read by taking the first model, with a note.
-Writing gives one model (``SIZE`` + ``XYZI``) in colour index 1, plus a palette,
-as version 150, which every MagicaVoxel since 0.98 opens.
+Reading keeps every voxel of the first model with its colour: the index of each
+voxel and the palette (the file's ``RGBA``, else MagicaVoxel's default palette),
+so that writing it back gives the same RGBA everywhere.  A voxel stored with colour
+index 0, which MagicaVoxel never writes, is kept in palette colour 255's place. A
+file with several models or a scene graph is read by taking the first model, with
+a note.  Writing gives one model (``SIZE`` + ``XYZI``) with each voxel's colour
+index and the shape's palette (an uncoloured shape: index 1, a light grey), as
+version 150, which every MagicaVoxel since 0.98 opens.
 """
 
 from __future__ import annotations
@@ -28,6 +32,7 @@ from voxfab._shared.atomic import write_bytes
 from voxfab._shared.typing import BoolGrid, PathLike
 from voxfab._shared.validate import as_grid
 from voxfab.errors import FormatError, InvalidShapeError
+from voxfab.shape._colour import VoxelColours, default_palette
 
 from ._registry import ReadResult, register
 
@@ -61,13 +66,15 @@ def _chunk(chunk_id: bytes, content: bytes, children: bytes = b"") -> bytes:
     return _HEADER.pack(chunk_id, len(content), len(children)) + content + children
 
 
-def vox_bytes(grid: BoolGrid) -> bytes:
+def vox_bytes(grid: BoolGrid, colours: VoxelColours | None = None) -> bytes:
     """Return the ``.vox`` file content of a grid (deterministic).
 
     Parameters
     ----------
     grid : (X, Y, Z) bool ndarray
         At most 256 voxels per side.
+    colours : VoxelColours, optional
+        Each voxel's colour index and the palette; default index 1, a light grey.
 
     Returns
     -------
@@ -78,17 +85,19 @@ def vox_bytes(grid: BoolGrid) -> bytes:
     xyz = np.argwhere(g)  # C order: sorted by x, then y, then z
     xyzi = np.empty((len(xyz), 4), dtype=np.uint8)
     xyzi[:, :3] = xyz
-    xyzi[:, 3] = 1
+    xyzi[:, 3] = 1 if colours is None else colours.index[g]
     size = _chunk(b"SIZE", struct.pack("<3i", *g.shape))
     voxels = _chunk(b"XYZI", struct.pack("<i", len(xyz)) + xyzi.tobytes())
-    rgba = _chunk(b"RGBA", _PALETTE)
+    # The file's RGBA entry i is colour index i + 1.
+    palette = _PALETTE if colours is None else np.roll(colours.palette, -1, axis=0).tobytes()
+    rgba = _chunk(b"RGBA", palette)
     main = _chunk(b"MAIN", b"", size + voxels + rgba)
     return _MAGIC + struct.pack("<i", VOX_VERSION) + main
 
 
-def write_vox(grid: BoolGrid, path: PathLike) -> None:
-    """Write a grid as a one-model MagicaVoxel file, atomically."""
-    write_bytes(path, vox_bytes(grid))
+def write_vox(grid: BoolGrid, path: PathLike, *, colours: VoxelColours | None = None) -> None:
+    """Write a grid, in its colours when given, as a one-model MagicaVoxel file, atomically."""
+    write_bytes(path, vox_bytes(grid, colours))
 
 
 def _chunks(data: bytes, start: int, end: int, path: PathLike, where: str) -> list[tuple[bytes, int, int]]:
@@ -120,8 +129,8 @@ def _chunks(data: bytes, start: int, end: int, path: PathLike, where: str) -> li
 
 def _model(
     data: bytes, size: tuple[int, int], xyzi: tuple[int, int], path: PathLike, *, build: bool = True
-) -> BoolGrid | None:
-    """Check one model's SIZE and XYZI chunks; return its grid when ``build``."""
+) -> np.ndarray | None:
+    """Check one model's SIZE and XYZI chunks; return its colour index grid (0 = empty) when ``build``."""
     s0, s1 = size
     if s1 - s0 < 12:
         raise FormatError(f"{path}: SIZE chunk holds {s1 - s0} bytes, expected 12")
@@ -141,16 +150,19 @@ def _model(
             f"{path}: XYZI chunk is truncated: {count} voxels need {4 + 4 * count} bytes, "
             f"it holds {x1 - x0}"
         )
-    xyz = np.frombuffer(data, dtype=np.uint8, count=4 * count, offset=x0 + 4).reshape(count, 4)[:, :3]
+    xyzi = np.frombuffer(data, dtype=np.uint8, count=4 * count, offset=x0 + 4).reshape(count, 4)
+    xyz = xyzi[:, :3]
     outside = (xyz >= np.array(dims)).any(axis=1)
     if outside.any():
         bad = tuple(int(v) for v in xyz[np.argmax(outside)])
         raise FormatError(f"{path}: voxel {bad} lies outside the model size {dims}")
     if not build:
         return None
-    grid = np.zeros(dims, dtype=bool)
-    grid[xyz[:, 0], xyz[:, 1], xyz[:, 2]] = True
-    return grid
+    index = np.zeros(dims, dtype=np.uint8)
+    # Index 0 is no colour in MagicaVoxel; such a voxel keeps the place of index 255,
+    # the palette's last, unused, entry.
+    index[xyz[:, 0], xyz[:, 1], xyz[:, 2]] = np.where(xyzi[:, 3] == 0, 255, xyzi[:, 3])
+    return index
 
 
 class _Cursor:
@@ -253,6 +265,7 @@ def read_vox(path: PathLike) -> ReadResult:
 
     sizes: list[tuple[int, int]] = []
     xyzis: list[tuple[int, int]] = []
+    rgba: int | None = None
     scene = sorted({c.decode() for c, _, _ in children if c in _SCENE_CHUNKS})
     for cid, start, stop in children:
         if cid == b"SIZE":
@@ -263,13 +276,21 @@ def read_vox(path: PathLike) -> ReadResult:
             if len(xyzis) != len(sizes) - 1:
                 raise FormatError(f"{path}: XYZI chunk without a SIZE chunk before it")
             xyzis.append((start, stop))
-        elif cid == b"RGBA" and stop - start < 1024:
-            raise FormatError(f"{path}: RGBA chunk holds {stop - start} bytes, expected 1024")
+        elif cid == b"RGBA":
+            if stop - start < 1024:
+                raise FormatError(f"{path}: RGBA chunk holds {stop - start} bytes, expected 1024")
+            rgba = start
     if not sizes:
         raise FormatError(f"{path}: no model (SIZE and XYZI chunks) in the file")
     if len(xyzis) != len(sizes):
         raise FormatError(f"{path}: the last SIZE chunk has no XYZI chunk")
-    grid = _model(data, sizes[0], xyzis[0], path)
+    index = _model(data, sizes[0], xyzis[0], path)
+    assert index is not None
+    if rgba is None:
+        palette = default_palette()
+    else:
+        # The file's entry i is colour index i + 1; entry 255 (index 256) does not exist.
+        palette = np.roll(np.frombuffer(data, dtype=np.uint8, count=1024, offset=rgba).reshape(256, 4), 1, axis=0)
     # The other models are checked too, so that corruption anywhere is reported.
     for s, x in zip(sizes[1:], xyzis[1:]):
         _model(data, s, x, path, build=False)
@@ -283,7 +304,7 @@ def read_vox(path: PathLike) -> ReadResult:
         )
         if _rotations(data, children, path):
             notes.append("the scene graph rotates a model; the rotation was not applied")
-    return ReadResult(grid, None, tuple(notes))
+    return ReadResult(index != 0, None, tuple(notes), VoxelColours(index, palette))
 
 
 register(".vox", reader=read_vox, writer=write_vox)

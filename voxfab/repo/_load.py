@@ -63,4 +63,4 @@ def load_shape(source: str, repository: PathLike | None = None, *, pitch: float 
         return LoadedShape(VoxelShape(grid, pitch or 1.0), source, [], pitch is not None)
     result = io.read(source, **options)
     own = pitch if pitch is not None else result.pitch
-    return LoadedShape(VoxelShape(result.grid, own or 1.0), None, list(result.notes), own is not None)
+    return LoadedShape(result.shape(own), None, list(result.notes), own is not None)
