@@ -32,7 +32,19 @@ def path_argument(text: str) -> Path:
 def add_shape_argument(parser: argparse.ArgumentParser) -> None:
     """Add the SHAPE positional (a file or a repository name) and ``--repo``."""
     parser.add_argument("shape", metavar="SHAPE", help="a shape file, or a repository name such as 00797.001")
+    add_frame_option(parser)
     add_repository_option(parser)
+
+
+def add_frame_option(parser: argparse.ArgumentParser) -> None:
+    """Add ``--frame K``: the animation frame of a ``.vox`` to read."""
+    parser.add_argument("--frame", type=int, default=None, metavar="K",
+                        help="for an animated .vox: the frame to read, from 1 (default the first)")
+
+
+def reader_options(args: argparse.Namespace) -> dict[str, Any]:
+    """The reader options the command line gave (only those given, so other formats are not refused)."""
+    return {} if getattr(args, "frame", None) is None else {"frame": args.frame}
 
 
 def add_repository_option(parser: argparse.ArgumentParser) -> None:
@@ -118,7 +130,7 @@ def load_command_shape(args: argparse.Namespace, *, pitch: float | None = None) 
     """
     from voxfab.repo import load_shape
 
-    shape, name, notes, scaled = load_shape(args.shape, args.repo, pitch=pitch)
+    shape, name, notes, scaled = load_shape(args.shape, args.repo, pitch=pitch, **reader_options(args))
     print_notes(notes)
     return shape, name or Path(args.shape).stem, scaled
 

@@ -6,7 +6,7 @@ import argparse
 from pathlib import Path
 from typing import Any
 
-from voxfab.cli._common import print_notes
+from voxfab.cli._common import add_frame_option, print_notes, reader_options
 
 HELP = "convert a shape between formats (meshes and PNG slice folders are read only)"
 
@@ -24,6 +24,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--resolution", type=int, default=None, metavar="N",
         help="for a mesh: voxels along its longest side (default 25)",
     )
+    add_frame_option(parser)
     parser.add_argument(
         "--threshold", type=int, default=None, metavar="T",
         help="for PNG slices: grey level below which a pixel is filled (default 128)",
@@ -44,7 +45,7 @@ def run(args: argparse.Namespace) -> int:
             f"writable: {', '.join(io.writable_formats())}"
         )
     check_output(args.output)  # an existing folder, before the reading
-    options: dict[str, Any] = {}
+    options: dict[str, Any] = reader_options(args)
     if args.resolution is not None:
         options["resolution"] = args.resolution
     if args.threshold is not None:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from ._common import add_shape_argument, print_json, print_notes
+from ._common import add_shape_argument, print_json, print_notes, reader_options
 
 HELP = "show volume, extents, components, well-formedness and repository name of a shape"
 
@@ -44,7 +44,7 @@ def _repository_name(args: argparse.Namespace, shape: Any) -> str | None:
 def run(args: argparse.Namespace) -> int:
     from voxfab.repo import load_shape
 
-    shape, name, notes, _ = load_shape(args.shape, args.repo)
+    shape, name, notes, _ = load_shape(args.shape, args.repo, **reader_options(args))
     print_notes(notes)
     info = shape_info(shape)
     info["name"] = name or (_repository_name(args, shape) if shape.well_formed else None)

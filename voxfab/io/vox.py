@@ -12,13 +12,15 @@ Layout (ephtracy/voxel-model, ``MagicaVoxel-file-format-vox.txt``)::
 Axes: MagicaVoxel is right-handed with z up, as voxfab is, so ``x, y, z`` in the
 file are ``x, y, z`` of the grid ``[x, y, z]`` without any swap.
 
-Reading keeps every voxel of the first model with its colour: the index of each
-voxel and the palette (the file's ``RGBA``, else MagicaVoxel's default palette),
-so that writing it back gives the same RGBA everywhere.  A voxel stored with colour
-index 0, which MagicaVoxel never writes, is kept in palette colour 255's place. A
-file with several models or a scene graph is read by taking the first model, with
-a note.  Writing gives one model (``SIZE`` + ``XYZI``) with each voxel's colour
-index and the shape's palette (an uncoloured shape: index 1, a light grey), as
+Reading keeps every voxel with its colour: the index of each voxel and the palette
+(the file's ``RGBA``, else MagicaVoxel's default palette), so that writing it back
+gives the same RGBA everywhere.  A voxel stored with colour index 0, which
+MagicaVoxel never writes, takes index 255.  A version 200 file's scene graph is
+read as the editor shows it: every visible model placed by its transforms
+(:mod:`voxfab.io._voxscene`).  An animation (a ``PACK`` of models, or shape nodes
+with a model per frame) gives its first frame, with a note, or the ``frame`` asked.
+Writing gives one model (``SIZE`` + ``XYZI``) with each voxel's colour index and the
+shape's palette (an uncoloured shape: index 1, a light grey), as
 version 150, which every MagicaVoxel since 0.98 opens.
 """
 
@@ -127,10 +129,8 @@ def _chunks(data: bytes, start: int, end: int, path: PathLike, where: str) -> li
     return out
 
 
-def _model(
-    data: bytes, size: tuple[int, int], xyzi: tuple[int, int], path: PathLike, *, build: bool = True
-) -> np.ndarray | None:
-    """Check one model's SIZE and XYZI chunks; return its colour index grid (0 = empty) when ``build``."""
+def _model(data: bytes, size: tuple[int, int], xyzi: tuple[int, int], path: PathLike) -> np.ndarray:
+    """Check one model's SIZE and XYZI chunks; return its colour index grid (0 = empty)."""
     s0, s1 = size
     if s1 - s0 < 12:
         raise FormatError(f"{path}: SIZE chunk holds {s1 - s0} bytes, expected 12")
@@ -156,8 +156,6 @@ def _model(
     if outside.any():
         bad = tuple(int(v) for v in xyz[np.argmax(outside)])
         raise FormatError(f"{path}: voxel {bad} lies outside the model size {dims}")
-    if not build:
-        return None
     index = np.zeros(dims, dtype=np.uint8)
     # Index 0 is no colour in MagicaVoxel; such a voxel keeps the place of index 255,
     # the palette's last, unused, entry.
@@ -194,52 +192,31 @@ class _Cursor:
         return {self.string(): self.string() for _ in range(n)}
 
 
-#: ``_r`` of a transform without rotation (rows pick x, y, z with + signs).
-_IDENTITY_ROTATION = 4
+def read_vox(path: PathLike, *, frame: int | None = None) -> ReadResult:
+    """Read a MagicaVoxel ``.vox`` file in its colours, as the editor shows it.
 
-
-def _rotations(data: bytes, chunks: list[tuple[bytes, int, int]], path: PathLike) -> list[int]:
-    """The ``_r`` rotation codes of every nTRN frame other than the identity."""
-    found = []
-    for cid, start, stop in chunks:
-        if cid != b"nTRN":
-            continue
-        cur = _Cursor(data, start, stop, path, "nTRN")
-        cur.int32()  # node id
-        cur.dict()  # node attributes
-        cur.int32()  # child node id
-        cur.int32()  # reserved
-        cur.int32()  # layer id
-        frames = cur.int32()
-        if frames < 0 or cur.pos + 4 * frames > stop:
-            raise FormatError(f"{path}: nTRN chunk holds a corrupt frame count {frames}")
-        for _ in range(frames):
-            r = cur.dict().get("_r")
-            if r is not None:
-                try:
-                    code = int(r)
-                except ValueError:
-                    raise FormatError(f"{path}: nTRN chunk holds a corrupt rotation {r!r}") from None
-                if code != _IDENTITY_ROTATION:
-                    found.append(code)
-    return found
-
-
-def read_vox(path: PathLike) -> ReadResult:
-    """Read the first model of a MagicaVoxel ``.vox`` file.
+    Parameters
+    ----------
+    path : path
+    frame : int, optional
+        The animation frame to read, from 1 (default the first, with a note when
+        the file holds several): a ``PACK`` file's models, or a scene's shape nodes'.
 
     Returns
     -------
     ReadResult
-        ``grid`` (X, Y, Z) bool with the model's ``SIZE``; ``notes`` tell when
-        the file held several models or a scene graph.
+        ``grid`` (X, Y, Z) bool and ``colours``: a file without a scene graph gives
+        its model with its ``SIZE``; a scene graph (version 200) gives every visible
+        model placed by its transforms, cut to the scene's bounding box.
 
     Raises
     ------
     FormatError
-        On a wrong magic, a truncated or corrupt chunk, a voxel outside its model.
+        On a wrong magic, a truncated or corrupt chunk, a voxel outside its model,
+        a corrupt scene graph.
     InvalidShapeError
-        For a model over 256 voxels on a side.
+        For a model over 256 voxels on a side, a scene that does not fit the
+        25-voxel grid (naming its models and their sizes), a frame that does not exist.
     """
     with open(path, "rb") as fh:
         data = fh.read()
@@ -284,27 +261,67 @@ def read_vox(path: PathLike) -> ReadResult:
         raise FormatError(f"{path}: no model (SIZE and XYZI chunks) in the file")
     if len(xyzis) != len(sizes):
         raise FormatError(f"{path}: the last SIZE chunk has no XYZI chunk")
-    index = _model(data, sizes[0], xyzis[0], path)
-    assert index is not None
     if rgba is None:
         palette = default_palette()
     else:
         # The file's entry i is colour index i + 1; entry 255 (index 256) does not exist.
         palette = np.roll(np.frombuffer(data, dtype=np.uint8, count=1024, offset=rgba).reshape(256, 4), 1, axis=0)
-    # The other models are checked too, so that corruption anywhere is reported.
-    for s, x in zip(sizes[1:], xyzis[1:]):
-        _model(data, s, x, path, build=False)
+    # Every model is checked, so that corruption anywhere is reported.
+    models = [_model(data, s, x, path) for s, x in zip(sizes, xyzis)]
+    if frame is not None and frame < 1:
+        raise InvalidShapeError(f"{path}: frame {frame}: frames count from 1")
     notes: list[str] = []
-    if len(sizes) > 1:
-        notes.append(f"file has {len(sizes)} models; read the first")
     if scene:
-        notes.append(
-            f"file has a scene graph ({'/'.join(scene)}); read the first model's voxels "
-            "as stored, without the scene's translations and rotations"
-        )
-        if _rotations(data, children, path):
-            notes.append("the scene graph rotates a model; the rotation was not applied")
+        index, frames = _scene(data, children, models, path, frame=(frame or 1) - 1)
+    else:
+        frames = len(models) if any(c == b"PACK" for c, _, _ in children) else 1
+        index = models[min((frame or 1) - 1, len(models) - 1)]
+        if frames == 1 and len(models) > 1:
+            notes.append(f"file has {len(models)} models and no scene graph; read the first")
+    if frame is not None and frame > frames:
+        raise InvalidShapeError(f"{path}: frame {frame}: the file holds {frames} frame{'s' * (frames > 1)}")
+    if frame is None and frames > 1:
+        notes.append(f"file holds {frames} animation frames; read the first (--frame K reads frame K)")
     return ReadResult(index != 0, None, tuple(notes), VoxelColours(index, palette))
+
+
+def _scene(data: bytes, children: list[tuple[bytes, int, int]], models: list[np.ndarray], path: PathLike,
+           *, frame: int) -> tuple[np.ndarray, int]:
+    """The colour index grid of the scene as the editor shows it, and its number of frames."""
+    from voxfab.shape import GRID_SIDE
+
+    from ._voxscene import place_voxels, scene_placements
+
+    placements, frames = scene_placements(
+        children, lambda start, stop, name: _Cursor(data, start, stop, path, name), frame=frame, path=path)
+    coords, colours, boxes = [], [], []
+    for p in placements:
+        if not 0 <= p.model < len(models):
+            raise FormatError(f"{path}: the scene places model {p.model}; the file holds {len(models)}")
+        model = models[p.model]
+        xyz = np.argwhere(model)
+        world = place_voxels(xyz, model.shape, p)
+        coords.append(world)
+        colours.append(model[tuple(xyz.T)])
+        if len(world):
+            # The model's own box as the scene turns it, and where its voxels land.
+            boxes.append((p.name, np.abs(p.rotation) @ np.array(model.shape), world.min(axis=0)))
+    if not boxes:
+        raise InvalidShapeError(f"{path}: the scene shows no voxel (every model is hidden or empty)")
+    every = np.concatenate(coords)
+    lo, hi = every.min(axis=0), every.max(axis=0)
+    size = hi - lo + 1
+    if size.max() > GRID_SIDE:
+        parts = "; ".join(f"{name} ({'x'.join(map(str, box))}) at ({', '.join(map(str, at))})"
+                          for name, box, at in boxes)
+        raise InvalidShapeError(f"{path}: the scene is {'x'.join(map(str, size))} voxels, over the "
+                                f"{GRID_SIDE}-voxel grid: {parts}")
+    index = np.zeros(tuple(size), dtype=np.uint8)
+    # Models later in the scene cover earlier ones where they overlap.
+    for world, colour in zip(coords, colours):
+        local = world - lo
+        index[local[:, 0], local[:, 1], local[:, 2]] = colour
+    return index, frames
 
 
 register(".vox", reader=read_vox, writer=write_vox)
