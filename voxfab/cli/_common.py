@@ -33,6 +33,9 @@ def add_shape_argument(parser: argparse.ArgumentParser) -> None:
     """Add the SHAPE positional (a file or a repository name) and ``--repo``."""
     parser.add_argument("shape", metavar="SHAPE", help="a shape file, or a repository name such as 00797.001")
     add_frame_option(parser)
+    parser.add_argument("--join", action="store_true",
+                        help="join parts that touch only by edges or corners (voxel art) into one piece, adding "
+                             "the fewest voxels found, each in a neighbour's colour; says where")
     add_repository_option(parser)
 
 
@@ -131,8 +134,18 @@ def load_command_shape(args: argparse.Namespace, *, pitch: float | None = None) 
     from voxfab.repo import load_shape
 
     shape, name, notes, scaled = load_shape(args.shape, args.repo, pitch=pitch, **reader_options(args))
+    shape = joined_if_asked(args, shape, notes)
     print_notes(notes)
     return shape, name or Path(args.shape).stem, scaled
+
+
+def joined_if_asked(args: argparse.Namespace, shape: VoxelShape, notes: list[str]) -> VoxelShape:
+    """The shape joined into one piece when ``--join`` was given, with a note per join added to ``notes``."""
+    if not getattr(args, "join", False):
+        return shape
+    joined, joins = shape.joined()
+    notes += [join.describe() for join in joins] or ["--join: the shape is one piece already"]
+    return joined
 
 
 def print_scale_note(args: argparse.Namespace, scaled: bool) -> None:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from ._common import add_shape_argument, print_json, print_notes, reader_options
+from ._common import add_shape_argument, joined_if_asked, print_json, print_notes, reader_options
 
 HELP = "show volume, extents, components, well-formedness and repository name of a shape"
 
@@ -45,6 +45,7 @@ def run(args: argparse.Namespace) -> int:
     from voxfab.repo import load_shape
 
     shape, name, notes, _ = load_shape(args.shape, args.repo, **reader_options(args))
+    shape = joined_if_asked(args, shape, notes)
     print_notes(notes)
     info = shape_info(shape)
     info["name"] = name or (_repository_name(args, shape) if shape.well_formed else None)

@@ -67,6 +67,8 @@ def apply_operation(shape: VoxelShape, op: OperationSpec, base_dir: Path) -> Vox
         return shape.rotate(params.get("axis", "z"), params.get("turns", 1))
     if op.op == "mirror":
         return shape.mirror(params.get("axis", "x"))
+    if op.op == "join":
+        return shape.joined()[0]
     if op.op == "paint":
         from voxfab.shape import parse_colour
 

@@ -29,6 +29,7 @@ _OPERATIONS: dict[str, dict[str, type | tuple]] = {
     "mirror": {"axis": str},
     "shift": {"by": tuple[int, int, int]},
     "paint": {"colour": str, "where": str},
+    "join": {},
     "union": {"source": dict},
     "intersection": {"source": dict},
     "difference": {"source": dict},

@@ -10,6 +10,7 @@ from ._colour import (
     parse_colour,
     srgb_to_lab,
 )
+from ._join import Join, describe_parts, join_parts
 from ._model import VoxelShape
 from ._ops import (
     GRID_SIDE,
@@ -50,6 +51,9 @@ __all__ = [
     "ShapeOptions",
     "VoxelShape",
     "VoxelColours",
+    "Join",
+    "join_parts",
+    "describe_parts",
     "PALETTE_SIZE",
     "default_palette",
     "hex_colour",

@@ -16,6 +16,7 @@ from voxfab.errors import InvalidShapeError
 from . import _ops
 from ._canonical import canonical_key
 from ._colour import VoxelColours
+from ._join import Join, join_parts
 
 
 @dataclasses.dataclass(frozen=True, eq=False, init=False)
@@ -87,6 +88,12 @@ class VoxelShape:
         colours = None if self.colours is None else self.colours.with_index(move(self.colours.index))
         return VoxelShape(move(self.grid), self.pitch, colours)
 
+    def joined(self) -> tuple[VoxelShape, list[Join]]:
+        """The shape made one 6-connected piece with the fewest voxels found, each in a neighbour's
+        colour, and where they were added (:func:`voxfab.shape.join_parts`)."""
+        grid, joins = join_parts(self.grid)
+        return self._new(grid), joins
+
     def with_colours(self, colours: VoxelColours | None) -> VoxelShape:
         """The same voxels with other colours (None: uncoloured)."""
         return VoxelShape(self.grid, self.pitch, colours)
@@ -133,7 +140,7 @@ class VoxelShape:
 
     def key(self, *, symmetric: bool = False) -> str:
         """Canonical hash, see :func:`voxfab.shape.canonical_key`."""
-        return canonical_key(self.grid, symmetric=symmetric)
+        return canonical_key(self.grid, symmetric=symmetric, colours=self.colours)
 
     def crop(self) -> VoxelShape:
         """The shape cut to its bounding box."""

@@ -23,6 +23,7 @@ from typing import Any, TypeVar
 import numpy as np
 
 from voxfab.errors import InvalidShapeError, UnfoldError
+from voxfab.shape import component_count, describe_parts
 from voxfab.unfold import Net
 
 from ._labels import label_length
@@ -169,7 +170,13 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     faces = _surface_faces(grid, bool(search.get("fill", False)))
     chars = label_chars(faces, pieces)
     notes: list[str] = []
-    if options.pitch is None:
+    if options.pitch is None and pieces == "auto" and component_count(grid) > 1:
+        # Parts joined only by edges or corners (voxel art) have no one-piece net to size the faces by.
+        need = smallest_face_size(options, chars)
+        options = dataclasses.replace(options, pitch=need)
+        notes.append(f"face size {need:g} mm: the smallest with legible marks; one net per part, as the "
+                     f"shape is in {describe_parts(grid)} (--join makes it one piece)")
+    elif options.pitch is None:
         options, auto_notes = _auto_face_size(grid, options, rng=rng, pieces=pieces, chars=chars, search=search)
         notes += auto_notes
     fit = sheet_room(options, faces, pieces)
