@@ -15,7 +15,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add ``IN``, ``OUT``, ``--resolution`` and ``--threshold``."""
     parser.add_argument(
         "input", metavar="IN", type=Path,
-        help="a shape file (.npy .npz .txt .vox .binvox .png .stl .obj .ply .3mf) or a folder of PNG slices",
+        help="a shape file (.npy .npz .txt .vox .binvox .png .stl .obj .ply .3mf .glb) or a folder of PNG slices",
     )
     parser.add_argument(
         "output", metavar="OUT", type=Path, help="the file to write (.npy .npz .txt .vox .binvox)"
