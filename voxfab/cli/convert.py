@@ -18,7 +18,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="a shape file (.npy .npz .txt .vox .binvox .png .stl .obj .ply .3mf .glb) or a folder of PNG slices",
     )
     parser.add_argument(
-        "output", metavar="OUT", type=Path, help="the file to write (.npy .npz .txt .vox .binvox)"
+        "output", metavar="OUT", help="the file to write (.npy .npz .txt .vox .binvox), or a folder/ of PNG slices "
+        "(a path ending in /)"
     )
     parser.add_argument(
         "--resolution", type=int, default=None, metavar="N",
@@ -35,16 +36,10 @@ def run(args: argparse.Namespace) -> int:
     """Convert ``args.input`` to ``args.output``; print the reader's notes; return 0."""
     from voxfab import io
     from voxfab._shared.atomic import check_output
-    from voxfab.errors import UnknownFormatError
 
-    out_ext = args.output.suffix.lower()
-    if out_ext not in io.writable_formats():
-        # Checked before reading, so a slow mesh voxelization is not wasted.
-        raise UnknownFormatError(
-            f"{args.output}: cannot write {out_ext or '(no extension)'!r}; "
-            f"writable: {', '.join(io.writable_formats())}"
-        )
-    check_output(args.output)  # an existing folder, before the reading
+    # Checked before reading, so a slow mesh voxelization is not wasted.
+    folder = io.writer_for(args.output) == "/"
+    check_output(Path(args.output), folder=folder)  # an existing folder, before the reading
     options: dict[str, Any] = reader_options(args)
     if args.resolution is not None:
         options["resolution"] = args.resolution

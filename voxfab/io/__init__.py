@@ -13,6 +13,7 @@ from ._registry import (
     register,
     writable_formats,
     write,
+    writer_for,
 )
 
-__all__ = ["ReadResult", "carries", "read", "write", "register", "readable_formats", "writable_formats"]
+__all__ = ["ReadResult", "carries", "read", "write", "register", "readable_formats", "writable_formats", "writer_for"]

@@ -178,18 +178,33 @@ def carries(extension: str) -> frozenset[str]:
     return frozenset(k for k in ("pitch", "colours") if k in params)
 
 
+def writer_for(path: PathLike) -> str:
+    """The format ``path`` is written in: its extension, or ``"/"`` for a folder of PNG slices (an existing
+    folder, or a path ending in a separator).
+
+    Raises
+    ------
+    UnknownFormatError
+        For an extension no module writes, listing those that are written.
+    """
+    _load_all()
+    folder = str(path).endswith(("/", "\\")) or Path(path).is_dir()
+    ext = "/" if folder else Path(path).suffix.lower()
+    if ext not in _WRITERS:
+        raise UnknownFormatError(
+            f"{path}: cannot write {ext or '(no extension)'!r}; writable: "
+            + ", ".join("a folder/ of PNG slices" if e == "/" else e for e in writable_formats())
+        )
+    return ext
+
+
 def write(shape: VoxelShape | np.ndarray, path: PathLike) -> None:
     """Write a shape (or a bare grid), choosing the format by extension. Written atomically.
 
     A format that keeps the pitch or the colours (``.npz``, ``.vox``, PNG slices) gets
     them from a :class:`~voxfab.shape.VoxelShape`; :func:`carries` tells which.
     """
-    _load_all()
-    ext = Path(path).suffix.lower()
-    if ext not in _WRITERS:
-        raise UnknownFormatError(
-            f"{path}: cannot write {ext or '(no extension)'!r}; writable: {', '.join(writable_formats())}"
-        )
+    ext = writer_for(path)
     grid = getattr(shape, "grid", shape)
     kept = {k: getattr(shape, k) for k in carries(ext) if hasattr(shape, k)}
     _WRITERS[ext](as_grid(grid, name="shape"), path, **kept)
