@@ -12,7 +12,7 @@ from voxfab._shared.typing import PathLike
 from voxfab._shared.validate import as_grid
 from voxfab.drawing.png import png_bytes
 from voxfab.errors import InvalidShapeError
-from voxfab.shape import VoxelShape, bounding_box, crop
+from voxfab.shape import VoxelColours, VoxelShape, bounding_box, crop
 
 from ._raster import DEFAULT_COLOR, Frame, Raster, fit_frame, parse_color, rasterize, to_rgb
 from ._views import Camera, View, camera_for
@@ -29,6 +29,13 @@ def shape_grid(shape: VoxelShape | npt.ArrayLike, *, name: str = "shape") -> npt
     """The bool grid of a VoxelShape or an array (checked, non-empty)."""
     grid = shape.grid if isinstance(shape, VoxelShape) else shape
     return as_grid(grid, name=name)
+
+
+def shape_colours(shape: VoxelShape | npt.ArrayLike) -> VoxelColours | None:
+    """The colours of a coloured shape, cropped as :func:`render_raster` crops its grid (None when uncoloured)."""
+    if isinstance(shape, VoxelShape) and shape.colours is not None:
+        return shape.crop().colours
+    return None
 
 
 def check_size(size: int, *, name: str = "size", minimum: int = 16, maximum: int = 8192) -> int:
@@ -57,7 +64,8 @@ def render_raster(
     With ``supersample`` k the raster is k times larger in each direction, with
     the same framing (voxel edges stay on the same final pixel boundaries).
     """
-    # Cropping first makes the picture independent of where the shape sits in its grid.
+    # Cropping first makes the picture independent of where the shape sits in its grid
+    # (and the raster's voxels index the cropped grid, which shape_colours crops alike).
     grid = crop(shape_grid(shape))
     n = check_size(size)
     camera = view if isinstance(view, Camera) else camera_for(view)
@@ -106,7 +114,8 @@ def render(
     size : int
         Width and height of the picture in pixels.
     background, color : str or (r, g, b)
-        Background and cube colours (names or ``#rrggbb``).
+        Background and cube colours (names or ``#rrggbb``); a coloured shape's
+        voxels are drawn in their own colours instead of ``color``.
     scale : float or None
         Pixels per voxel; default: as large as fits.
     antialias : int or None
@@ -129,7 +138,7 @@ def render(
     else:
         k = int(antialias)
     raster = render_raster(shape, view=view, size=size, scale=scale, supersample=k)
-    image = Image.fromarray(to_rgb(raster, fg, bg))
+    image = Image.fromarray(to_rgb(raster, fg, bg, shape_colours(shape)))
     return image.reduce(k) if k > 1 else image
 
 
