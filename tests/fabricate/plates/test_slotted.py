@@ -199,8 +199,8 @@ def test_knight_crossings_engage_half_the_shorter_plate_and_hold_every_plate(tmp
     assert pairs == 2 * len(report["crossings"]) > 0
 
 
-def test_clipped_partner_labels_are_counted_in_plates_json(tmp_path) -> None:
-    """The queen at 2 mm: a slot's partner label that does not fit is counted and warned about."""
+def test_partner_labels_without_room_are_listed_in_plates_json(tmp_path) -> None:
+    """The queen at 2 mm: a slot's partner label that has no room whole is left off, listed and warned about."""
     import json
 
     from voxfab.recipe import load_recipe, make_shape
@@ -210,6 +210,6 @@ def test_clipped_partner_labels_are_counted_in_plates_json(tmp_path) -> None:
     made = fabricate_plates(queen, PlateOptions(style="interlocked"), tmp_path / "s", name="queen")
     report = json.loads((tmp_path / "s" / "plates.json").read_text())
     construction = make_interlocked(queen.grid, pitch=2.0)
-    clipped = sum(p.marks_clipped + (not p.label.complete) for p in construction.plates)
-    assert report["labels_clipped"] == clipped >= 1
-    assert any(f"{clipped} plate label(s) clipped" in w for w in made.warnings)
+    left_off = [f"{p.text}/{m}" for p in construction.plates for m in p.marks_left_off]
+    assert report["marks_left_off"] == left_off and len(left_off) >= 1
+    assert any(f"{len(left_off)} slot(s) without their partner's label" in w for w in made.warnings)

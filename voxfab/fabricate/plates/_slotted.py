@@ -101,8 +101,8 @@ class SlottedPlate(Plate):
     v_dir: tuple[float, float, float] = (0.0, 0.0, 1.0)
     slots: tuple[Slot, ...] = ()
     text: str = ""
-    #: Partner labels beside slots that had to be clipped (or found no room at all).
-    marks_clipped: int = 0
+    #: Partners whose labels found no room for a whole label beside their slots (none is clipped).
+    marks_left_off: tuple[str, ...] = ()
 
     @property
     def id(self) -> str:
@@ -536,7 +536,7 @@ def finish_plate(d: Draft, number: int, style: str, thickness: float, pitch: flo
     strokes = list(label.strokes)
     taken = shapely.union_all([shapely.box(*shapely.LineString(s).bounds).buffer(clearance) for s in strokes
                                if len(s) > 1]) if strokes else shapely.Polygon()
-    clipped = 0
+    left_off = []
     full = (full_height(pitch),)
     for s in slots:
         # The partner's label, in parentheses so it never reads as this plate's own: beside the slot, at
@@ -551,11 +551,11 @@ def finish_plate(d: Draft, number: int, style: str, thickness: float, pitch: flo
                 mark = place_label(text, where, shapely.Polygon(), pitch=pitch, clearance=clearance,
                                    sizes=full, upright=True, fallback=False)
         if mark is None and not region.is_empty and region.area > 0:
-            mark = place_label(text, largest_part(region)[0], shapely.Polygon(), pitch=pitch, clearance=clearance)
+            mark = place_label(text, largest_part(region)[0], shapely.Polygon(), pitch=pitch, clearance=clearance,
+                               fallback=False)
         if mark is None:
-            clipped += 1  # no room at all: the slot goes unlabelled, and the report says so
+            left_off.append(s.partner)  # no room for it whole: the slot goes unlabelled, and the report says so
             continue
-        clipped += not mark.complete
         strokes.extend(mark.strokes)
         if mark.strokes:
             taken = shapely.union(taken, shapely.box(*shapely.MultiLineString(
@@ -566,7 +566,7 @@ def finish_plate(d: Draft, number: int, style: str, thickness: float, pitch: flo
         outline=shapely.orient_polygons(d.body), holes=np.zeros((0, 2)), hole_diameter=0.0, z=0.0,
         thickness=thickness, label=label, score=(), cells=d.cells, style=style, family=d.family,
         axis=_AXES[d.axis], offset=d.offset, angle=d.angle, origin=d.origin, u_dir=d.u_dir, v_dir=d.v_dir,
-        slots=slots, text=d.text, marks_clipped=clipped,
+        slots=slots, text=d.text, marks_left_off=tuple(left_off),
     )
 
 
