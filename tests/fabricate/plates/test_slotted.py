@@ -19,8 +19,10 @@ def shapes():
     return construction_shapes()
 
 
+# Four radial plates of 6 mm need a 14.6 mm hub slot, wider than the queen's neck: no two of them hold
+# (tests/cli/test_slices_cli.py checks the refusal and its ways out).
 CASES = [(name, style, t) for name in ("ball", "torus", "overhang", "queen", "vase")
-         for style in ("interlocked", "radial") for t in (3.0, 6.0)]
+         for style in ("interlocked", "radial") for t in (3.0, 6.0) if (name, style, t) != ("queen", "radial", 6.0)]
 
 
 @pytest.mark.parametrize(("name", "style", "thickness"), CASES)

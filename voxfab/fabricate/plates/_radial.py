@@ -22,7 +22,10 @@ from ._slotted import (
     Slot,
     band_span,
     connected_plates,
+    engagement,
     finish_plate,
+    give_way,
+    holds,
     largest_part,
     open_narrow,
     radial_box,
@@ -129,23 +132,32 @@ def make_radial(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.0, co
     spans = [band_span(d.body, 0, -half, half) for d in drafts]
     if any(s is None for s in spans):
         raise FabricationError("radial: the axis through the middle of the footprint runs through no solid")
+    width = 2 * half
     z0, z1 = max(s[0] for s in spans), min(s[1] for s in spans)
     if z1 - z0 <= 1e-9:
         raise FabricationError("radial: the plates share no stretch of the axis to join at")
-    tiers = np.linspace(z0, z1, count + 1)
-    width = 2 * half
     advice = _hub_advice(drafts, z0, z1, pitch, thickness, clearance, min_width, count, width)
-    for k, (d, (lo, hi)) in enumerate(zip(drafts, spans)):
-        if k < count - 1:
+    weak: list[str] = []
+    hub = _holding(drafts, spans, width, min_width, weak)
+    if len(hub) < 2:
+        raise FabricationError("radial: no two plates hold each other at the hub (they engage over less than half "
+                               f"their height); {advice[0] if advice else 'use fewer or thinner plates'}")
+    spans = [band_span(d.body, 0, -half, half) for d in hub]
+    z0, z1 = max(s[0] for s in spans), min(s[1] for s in spans)
+    n = len(hub)
+    tiers = np.linspace(z0, z1, n + 1)
+    for k, (d, (lo, hi)) in enumerate(zip(hub, spans)):
+        if k < n - 1:
             d.body = shapely.difference(d.body, slot_box(0, 0.0, width, float(tiers[k + 1]), hi))
             d.slots.append(Slot(0.0, width, hi, float(tiers[k + 1]), hi - float(tiers[k + 1]), "top",
-                                drafts[k + 1].text))
+                                hub[k + 1].text))
         if k > 0:
             d.body = shapely.difference(d.body, slot_box(0, 0.0, width, lo, float(tiers[k])))
             d.slots.append(Slot(0.0, width, lo, float(tiers[k]), float(tiers[k]) - lo, "bottom",
-                                drafts[k - 1].text))
-        d.body, d.trimmed = largest_part(d.body)
-    joints = [(drafts[k], drafts[k + 1], float(tiers[k + 1]), 0.0) for k in range(count - 1)]
+                                hub[k - 1].text))
+        d.body, lost = largest_part(d.body)
+        d.trimmed |= lost
+    joints = [(hub[k], hub[k + 1], float(tiers[k + 1]), 0.0) for k in range(n - 1)]
     held = still_joined(drafts, joints, width, min_width)
     keep, dropped = connected_plates(drafts, held)
     if len(keep) < 2:
@@ -160,7 +172,29 @@ def make_radial(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.0, co
     crossings = tuple((a, b) for a, b in held if a in kept and b in kept)
     return Construction("radial", pitch, thickness, clearance, plates, crossings, (), tuple(left_out),
                         tuple(d.text for d in keep if d.trimmed), tuple(float(s * pitch) for s in g.shape), steps,
-                        advice=advice)
+                        weak=tuple(weak), advice=advice)
+
+
+def _holding(drafts: list[Draft], spans: list[tuple[float, float]], width: float, margin: float,
+             weak: list[str]) -> list[Draft]:
+    """The plates that join at the hub: every two of them engage over half the shorter one's height.
+
+    Every two plates cross in the hub, each through the other's slot, so the interlocked
+    rule holds for every pair: where a pair engages less, the plate with less material in
+    the hub gives way (its hub column is cut out: it joins nothing, and is left out) and
+    the pair is listed in ``weak``.
+    """
+    column = slot_box(0, 0.0, width, -1e9, 1e9)
+    out = set()
+    for i, (a, sa) in enumerate(zip(drafts, spans)):
+        for b, sb in zip(drafts[i + 1:], spans[i + 1:]):
+            if a.text in out or b.text in out:
+                continue
+            if not holds(engagement(a, 0, 0.0, b, 0, 0.0, width, margin), sa, sb):
+                weak.append(f"{a.text}/{b.text}")
+                cut = give_way([(a, column), (b, column)])
+                out.add(cut.text if cut is not None else b.text)
+    return [d for d in drafts if d.text not in out]
 
 
 def hub_slot_width(count: int, thickness: float, clearance: float) -> float:
