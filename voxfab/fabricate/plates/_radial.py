@@ -10,9 +10,8 @@ import math
 import numpy as np
 import numpy.typing as npt
 
-from voxfab._shared.validate import as_grid, check_positive
+from voxfab._shared.validate import check_positive
 from voxfab.errors import FabricationError, InvalidShapeError
-from voxfab.shape import crop
 
 from ._outline import cells_outline, label_layer, scaled
 from ._slotted import (
@@ -32,6 +31,7 @@ from ._slotted import (
     slab_section,
     slot_box,
     slot_end,
+    solid_grid,
     still_joined,
 )
 
@@ -100,7 +100,7 @@ def make_radial(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.0, co
     thickness = check_positive(thickness, name="thickness")
     if int(count) != count or not 2 <= count <= MAX_RADIAL_PLATES:
         raise InvalidShapeError(f"radial_plates: expected an integer from 2 to {MAX_RADIAL_PLATES}, got {count!r}")
-    g = crop(as_grid(grid, name="shape"))
+    g, filled = solid_grid(grid)
     nx, ny, nz = g.shape
     centre = (nx * pitch / 2, ny * pitch / 2)
     reach = math.hypot(nx, ny) * pitch / 2 + pitch
@@ -113,7 +113,7 @@ def make_radial(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.0, co
     hub_box = shapely.box(-half, -1.0, half, nz * pitch + 1.0)
     if not any(p.intersects(hub_box) for sec in sections for p in getattr(sec, "geoms", [sec]) if not p.is_empty):
         # the axis runs through no solid (a ring, a torus): a flat ring plate locks the radial pieces
-        return _ring_radial(g, sections, centre, reach, pitch=pitch, thickness=thickness, clearance=clearance,
+        return _ring_radial(g, filled, sections, centre, reach, pitch=pitch, thickness=thickness, clearance=clearance,
                             min_width=min_width)
     for k, section in enumerate(sections):
         angle = 180.0 * k / count
@@ -172,7 +172,7 @@ def make_radial(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.0, co
     crossings = tuple((a, b) for a, b in held if a in kept and b in kept)
     return Construction("radial", pitch, thickness, clearance, plates, crossings, (), tuple(left_out),
                         tuple(d.text for d in keep if d.trimmed), tuple(float(s * pitch) for s in g.shape), steps,
-                        weak=tuple(weak), advice=advice)
+                        weak=tuple(weak), advice=advice, filled=filled)
 
 
 def _holding(drafts: list[Draft], spans: list[tuple[float, float]], width: float, margin: float,
@@ -236,7 +236,7 @@ def _hub_advice(drafts: list[Draft], z0: float, z1: float, pitch: float, thickne
             f"are left out; use {', or '.join(ways)}",)
 
 
-def _ring_radial(g: npt.NDArray[np.bool_], sections: list[object], centre: tuple[float, float], reach: float, *,
+def _ring_radial(g: npt.NDArray[np.bool_], filled: int, sections: list[object], centre: tuple[float, float], reach: float, *,
                  pitch: float, thickness: float, clearance: float, min_width: float) -> Construction:
     """Radial pieces locked by a flat ring, for a shape with no solid on its axis.
 
@@ -323,4 +323,5 @@ def _ring_radial(g: npt.NDArray[np.bool_], sections: list[object], centre: tuple
              f"slide {' '.join(labels)} onto H1 towards the axis: the slot of each piece over the ring "
              "at the ring slot engraved with its label")
     return Construction("radial", pitch, thickness, clearance, plates, tuple(held), tuple(moved), tuple(left_out),
-                        tuple(d.text for d in keep if d.trimmed), tuple(float(v * pitch) for v in g.shape), steps)
+                        tuple(d.text for d in keep if d.trimmed), tuple(float(v * pitch) for v in g.shape), steps,
+                        filled=filled)

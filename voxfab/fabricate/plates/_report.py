@@ -218,6 +218,9 @@ class ConstructionReport:
         ``"plate/partner"`` slots without the partner's label, for want of room for it whole.
     steps : tuple of str
         The assembly order.
+    filled_voxels : int
+        Voxels of the shape's closed cavities that the plates run through, so that no plate
+        has a hole whose scrap is cut but not assembled.
     """
 
     style: str
@@ -245,6 +248,7 @@ class ConstructionReport:
     steps: tuple[str, ...]
     weak: tuple[str, ...] = ()
     advice: tuple[str, ...] = ()
+    filled_voxels: int = 0
 
     def to_json(self) -> dict[str, Any]:
         """The report as a JSON-ready dict (with a ``format`` key)."""
@@ -296,6 +300,7 @@ def make_construction_report(construction: Any, sheets: tuple[PlateSheet, ...], 
         steps=construction.steps,
         weak=construction.weak,
         advice=construction.advice,
+        filled_voxels=construction.filled,
     )
 
 

@@ -26,7 +26,7 @@ import numpy.typing as npt
 
 from voxfab._shared.validate import as_grid, check_positive
 from voxfab.errors import FabricationError, InvalidShapeError
-from voxfab.shape import crop
+from voxfab.shape import crop, fill_cavities
 
 from ._labels import full_height, place_label
 from ._outline import cells_outline, label_layer, scaled
@@ -150,6 +150,8 @@ class Construction:
     advice : tuple of str
         What went wrong with the options asked for, and the ways out (a radial hub
         slot wider than the solid's neck: fewer or thinner plates).
+    filled : int
+        Voxels of the shape's closed cavities, which the plates run through (see :func:`solid_grid`).
     """
 
     style: str
@@ -165,6 +167,19 @@ class Construction:
     steps: tuple[str, ...]
     weak: tuple[str, ...] = ()
     advice: tuple[str, ...] = ()
+    filled: int = 0
+
+
+def solid_grid(grid: npt.ArrayLike) -> tuple[npt.NDArray[np.bool_], int]:
+    """The shape cropped with its closed cavities filled, and how many voxels that filled.
+
+    A section through a closed cavity (a hollow vase) would be a plate with a hole, whose
+    scrap the laser cuts out: a loose piece the assembly does not use.  The cavity is out of
+    sight inside the shell, so the plates run through it whole: what is cut is what is assembled.
+    """
+    g = as_grid(grid, name="shape")
+    full = fill_cavities(g)
+    return crop(full), int(full.sum() - g.sum())
 
 
 def _unit(axis: int) -> tuple[float, float, float]:
@@ -632,7 +647,7 @@ def make_interlocked(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.
     thickness = check_positive(thickness, name="thickness")
     if len(axes) != 2 or axes[0] == axes[1] or any(a not in _AXES for a in axes):
         raise InvalidShapeError(f"axes: expected two different axes of x, y, z such as 'xy', got {axes!r}")
-    g = crop(as_grid(grid, name="shape"))
+    g, filled = solid_grid(grid)
     fam_a, fam_b = _interlocked_drafts(g, axes, pitch, thickness, count, interval)
     if len(fam_a) + len(fam_b) > MAX_SLOTTED_PLATES:
         raise InvalidShapeError(f"count: {len(fam_a) + len(fam_b)} plates, over the limit of {MAX_SLOTTED_PLATES}; "
@@ -658,4 +673,4 @@ def make_interlocked(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.
     return Construction("interlocked", pitch, thickness, clearance, plates, kept_crossings,
                         tuple(m for m in moved if set(m.split("/")) <= kept), tuple(left_out),
                         tuple(d.text for d in keep if d.trimmed), tuple(float(s * pitch) for s in g.shape), steps,
-                        tuple(weak))
+                        tuple(weak), filled=filled)
