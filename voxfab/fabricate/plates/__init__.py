@@ -358,6 +358,12 @@ def fabricate_plates(shape: VoxelShape, options: PlateOptions, folder: PathLike,
         style=options.style, axes=options.axes, count=options.count, interval=options.interval,
         radial_plates=options.radial_plates, clearance=options.clearance,
     )
+    if result.construction is not None and result.construction.left_out:
+        from ._ways import ways_to_keep
+
+        ways, tried = ways_to_keep(shape.grid, shape.pitch, options)
+        result = dataclasses.replace(result, report=dataclasses.replace(
+            result.report, ways_to_keep=tuple(str(w) for w in ways), ways_tried=tried))
     with atomic_dir(folder, marker="plates.json") as tmp:
         files = write_slices(result, tmp, name=name, step=options.step, dxf_version=options.dxf_version)
     warnings = plate_warnings(result.report) if result.stack is not None else construction_warnings(result.report)

@@ -221,6 +221,11 @@ class ConstructionReport:
     filled_voxels : int
         Voxels of the shape's closed cavities that the plates run through, so that no plate
         has a hole whose scrap is cut but not assembled.
+    ways_to_keep : tuple of str
+        When sections are left out: other options (a finer pitch, thinner plates) that keep
+        them all, each checked by making the construction with them.
+    ways_tried : tuple of str
+        The options tried for that, as ``voxfab slices`` options.
     """
 
     style: str
@@ -249,12 +254,14 @@ class ConstructionReport:
     weak: tuple[str, ...] = ()
     advice: tuple[str, ...] = ()
     filled_voxels: int = 0
+    ways_to_keep: tuple[str, ...] = ()
+    ways_tried: tuple[str, ...] = ()
 
     def to_json(self) -> dict[str, Any]:
         """The report as a JSON-ready dict (with a ``format`` key)."""
         data = dataclasses.asdict(self)
         for key in ("size", "moved", "left_out", "trimmed", "thin", "labels_on_plan", "marks_left_off", "steps",
-                    "weak", "advice"):
+                    "weak", "advice", "ways_to_keep", "ways_tried"):
             data[key] = list(data[key])
         return {"format": FORMAT, **data}
 
@@ -316,7 +323,10 @@ def construction_warnings(report: ConstructionReport) -> list[str]:
         out.append(f"{len(report.weak)} crossing(s) dropped, the plates would engage over less than half their "
                    f"height there: {_ids(report.weak)}")
     if report.left_out:
-        out.append(f"{len(report.left_out)} section(s) left out, they cross no other plate: {_ids(report.left_out)}")
+        ways = (f"; to keep them: {', or '.join(report.ways_to_keep)}" if report.ways_to_keep else
+                f"; no finer pitch or thinner plates tried keeps them ({'; '.join(report.ways_tried)})")
+        out.append(f"{len(report.left_out)} section(s) left out, they cross no other plate: {_ids(report.left_out)}"
+                   + ways)
     if report.thin:
         out.append(f"{len(report.thin)} plate(s) narrower than {report.min_width:g} mm somewhere: {_ids(report.thin)}")
     out += _label_warnings(report.labels_on_plan, report.marks_left_off)
