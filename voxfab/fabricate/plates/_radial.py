@@ -185,15 +185,15 @@ def _holding(drafts: list[Draft], spans: list[tuple[float, float]], width: float
     the pair is listed in ``weak``.
     """
     column = slot_box(0, 0.0, width, -1e9, 1e9)
+    # every pair is judged on the plates as sectioned, before any gives way
+    failing = [(a, b) for i, (a, sa) in enumerate(zip(drafts, spans)) for b, sb in zip(drafts[i + 1:], spans[i + 1:])
+               if not holds(engagement(a, 0, 0.0, b, 0, 0.0, width, margin), sa, sb)]
     out = set()
-    for i, (a, sa) in enumerate(zip(drafts, spans)):
-        for b, sb in zip(drafts[i + 1:], spans[i + 1:]):
-            if a.text in out or b.text in out:
-                continue
-            if not holds(engagement(a, 0, 0.0, b, 0, 0.0, width, margin), sa, sb):
-                weak.append(f"{a.text}/{b.text}")
-                cut = give_way([(a, column), (b, column)])
-                out.add(cut.text if cut is not None else b.text)
+    for a, b in failing:
+        weak.append(f"{a.text}/{b.text}")
+        if a.text not in out and b.text not in out:
+            cut = give_way([(a, column), (b, column)])
+            out.add(cut.text if cut is not None else b.text)
     return [d for d in drafts if d.text not in out]
 
 
