@@ -7,6 +7,8 @@ import numpy as np
 import shapely
 from _dxf_read import polylines
 from _plate_checks import bunny, repeated_vertices, svg_polylines
+from hypothesis import given
+from hypothesis import strategies as st
 
 from voxfab.drawing import Page, Polylines, write_drawing
 from voxfab.drawing._model import Drawing
@@ -56,3 +58,23 @@ def test_no_written_outline_of_plates_or_nets_repeats_a_vertex(tmp_path) -> None
     assert len(lines) > 100
     # as re-read (ezdxf gives the 4 decimals written, the SVG 3)
     assert [repeated_vertices(pts, closed) for pts, closed in lines if repeated_vertices(pts, closed)] == []
+
+
+@given(st.lists(st.tuples(st.lists(st.tuples(st.integers(0, 3), st.integers(0, 3)), max_size=8), st.booleans()),
+                max_size=6))
+def test_without_repeats_keeps_every_other_vertex_in_order(lines) -> None:
+    """Any polylines, empty and one-point ones among them: no two consecutive vertices (nor a closed polyline's
+    last and first) are equal afterwards, and the distinct runs of vertices are kept, in order."""
+    arrays = [np.array(pts, float).reshape(-1, 2) / 1000.0 for pts, _ in lines]  # 1 µm steps: some print alike
+    before = Polylines.from_list(arrays, [c for _, c in lines]) if lines else Polylines.empty()
+    after = before.without_repeats()
+    expected = []
+    for a, (_, closed) in zip(arrays, lines):
+        q = np.round(a, 3)
+        runs = [p for i, p in enumerate(q.tolist()) if i == 0 or p != q[i - 1].tolist()]
+        if closed and len(runs) > 1 and runs[-1] == runs[0]:
+            runs.pop()
+        if len(runs) >= 2:
+            expected.append((runs, closed))
+    got = [(np.round(x, 3).tolist(), bool(c)) for x, c in zip(after.lines(), after.closed)]
+    assert got == expected

@@ -103,6 +103,8 @@ class Polylines:
         """
         if not len(self):
             return self
+        if not self.points.shape[0]:
+            return Polylines.empty()
         q = np.round(self.points, decimals)
         counts = np.diff(self.offsets)
         owner = np.repeat(np.arange(len(self)), counts)
@@ -112,7 +114,8 @@ class Polylines:
         kept_idx = np.flatnonzero(keep)
         last = kept_idx[np.searchsorted(kept_idx, self.offsets[1:], side="left") - 1]
         first = self.offsets[:-1]
-        wrap = self.closed & (counts > 1) & (last != first) & np.all(q[last] == q[first], axis=1)
+        wrap = self.closed & (counts > 1) & (last != first)
+        wrap[wrap] = np.all(q[last[wrap]] == q[first[wrap]], axis=1)
         keep[last[wrap]] = False
         kept = np.bincount(owner[keep], minlength=len(self))
         if keep.all() and np.all(kept >= 2):
