@@ -81,26 +81,18 @@ def ways_to_keep(grid: npt.ArrayLike, pitch: float, options: PlateOptions) -> tu
     A finer pitch alone (the fewest plates that keeps them), thinner plates alone, and when
     neither does, both.
     """
-    import numpy as np
+    from . import make_construction
 
-    from ._radial import make_radial
-    from ._slotted import make_interlocked
-
-    g = np.asarray(grid)
     tried: list[str] = []
 
     def made(words: str, changes: dict) -> int | None:
         """Plates of the construction with ``changes``, or None when it leaves a section out (or fails)."""
         tried.append(words)
         o = dataclasses.replace(options, **changes)
-        width = max(o.min_width, 2.0 * o.kerf)
         try:
-            if o.style == "interlocked":
-                c = make_interlocked(g, pitch=pitch, thickness=o.thickness, axes=o.axes, count=o.count,
-                                     interval=o.interval, clearance=o.clearance, min_width=width)
-            else:
-                c = make_radial(g, pitch=pitch, thickness=o.thickness, count=o.radial_plates,
-                                clearance=o.clearance, min_width=width)
+            c = make_construction(grid, pitch=pitch, style=o.style, thickness=o.thickness, axes=o.axes,
+                                  count=o.count, interval=o.interval, radial_plates=o.radial_plates,
+                                  clearance=o.clearance, min_width=o.min_width, kerf=o.kerf)
         except VoxfabError:
             return None
         return None if c.left_out else len(c.plates)
