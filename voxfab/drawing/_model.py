@@ -115,6 +115,8 @@ class Page:
         for name in list(self.layers) + list(self.circles):
             if name not in LAYERS:
                 raise InvalidShapeError(f"drawing: unknown layer {name!r}; expected one of {', '.join(LAYERS)}")
+        # Every writer draws a page's lines: a zero-length segment dropped here is dropped from every file.
+        object.__setattr__(self, "layers", {k: v.without_repeats() for k, v in self.layers.items()})
 
     def lines(self, layer: str) -> Polylines:
         """The polylines of ``layer`` (empty when it has none)."""

@@ -65,6 +65,7 @@ __all__ = [
     "construction_pdf",
     "construction_warnings",
     "make_construction_report",
+    "make_construction",
     "make_interlocked",
     "make_radial",
     "write_assembly_3mf",
@@ -180,13 +181,9 @@ def make_slices(
         grid, default_pitch = np.asarray(shape), 1.0
     pitch = default_pitch if pitch is None else pitch
     if style in ("interlocked", "radial"):
-        if style == "interlocked":
-            construction = make_interlocked(grid, pitch=pitch, thickness=thickness, axes=axes, count=count,
-                                            interval=interval, clearance=clearance,
-                                            min_width=max(min_width, 2.0 * kerf))
-        else:
-            construction = make_radial(grid, pitch=pitch, thickness=thickness, count=radial_plates,
-                                       clearance=clearance, min_width=max(min_width, 2.0 * kerf))
+        construction = make_construction(grid, pitch=pitch, style=style, thickness=thickness, axes=axes, count=count,
+                                         interval=interval, radial_plates=radial_plates, clearance=clearance,
+                                         min_width=min_width, kerf=kerf)
         sheets = nest_plates(construction.plates, sheet=sheet, margin=margin, spacing=spacing, kerf=kerf)
         report = make_construction_report(construction, sheets, kerf=kerf, min_width=min_width)
         return Slices(None, sheets, report, construction)
@@ -208,6 +205,18 @@ def make_slices(
     )
     sheets = nest_plates(stack.plates, sheet=sheet, margin=margin, spacing=spacing, kerf=kerf)
     return Slices(stack, sheets, make_report(stack, sheets, kerf=kerf))
+
+
+def make_construction(grid: npt.ArrayLike, *, pitch: float, style: str, thickness: float, axes: str, count: int,
+                      interval: float, radial_plates: int, clearance: float, min_width: float,
+                      kerf: float) -> Construction:
+    """The interlocked or radial construction of :func:`make_slices` (strips under ``min_width`` or two kerfs go)."""
+    width = max(min_width, 2.0 * kerf)
+    if style == "interlocked":
+        return make_interlocked(grid, pitch=pitch, thickness=thickness, axes=axes, count=count, interval=interval,
+                                clearance=clearance, min_width=width)
+    return make_radial(grid, pitch=pitch, thickness=thickness, count=radial_plates, clearance=clearance,
+                       min_width=width)
 
 
 def _r(v: float) -> float:
@@ -358,6 +367,12 @@ def fabricate_plates(shape: VoxelShape, options: PlateOptions, folder: PathLike,
         style=options.style, axes=options.axes, count=options.count, interval=options.interval,
         radial_plates=options.radial_plates, clearance=options.clearance,
     )
+    if result.construction is not None and result.construction.left_out:
+        from ._ways import ways_to_keep
+
+        ways, tried = ways_to_keep(shape.grid, shape.pitch, options)
+        result = dataclasses.replace(result, report=dataclasses.replace(
+            result.report, ways_to_keep=tuple(str(w) for w in ways), ways_tried=tried))
     with atomic_dir(folder, marker="plates.json") as tmp:
         files = write_slices(result, tmp, name=name, step=options.step, dxf_version=options.dxf_version)
     warnings = plate_warnings(result.report) if result.stack is not None else construction_warnings(result.report)
