@@ -1,10 +1,10 @@
 // voxfab studio: wiring of the tabs, the shape being worked on, and the server calls.
 
 import {Cancelled, cancelJob, fileUrl, get, post, saveBlob, waitJob, waitingJobs} from './api.js';
-import {CurveSource, FociInput, SpineDrawing} from './draw.js';
+import {CurveSource, FociInput, SPINES, SpineDrawing} from './draw.js';
 import {LayerEditor} from './editor.js';
 import {MakerForms} from './makers.js';
-import {Grid} from './grid.js';
+import {carryEdits, Grid} from './grid.js';
 import {drawThumb} from './nets.js';
 import {NetView} from './netview.js';
 import {placedLayout, SheetBoard} from './sheets.js';
@@ -12,13 +12,6 @@ import {Viewer} from './viewer.js';
 
 const $ = (sel) => document.querySelector(sel);
 const $$ = (sel) => [...document.querySelectorAll(sel)];
-
-const SPINES = {
-  circle: ['cos(2*pi*t)', 'sin(2*pi*t)', '0'],
-  trefoil: ['sin(2*pi*t) + 2*sin(4*pi*t)', 'cos(2*pi*t) - 2*cos(4*pi*t)', '-sin(6*pi*t)'],
-  helix: ['cos(6*pi*t)', 'sin(6*pi*t)', '2*t'],
-  wave: ['4*t', '0', '0.6*sin(4*pi*t)'],
-};
 
 const state = {
   shape: new Grid(), // the current 25³ shape
@@ -111,22 +104,6 @@ function shapeTag() {
     heading: $('#shape-name').textContent};
 }
 
-// The label of a maker of the Maker menu ("focal" -> its option's words).
-function makerWords(maker) {
-  const o = [...$('#maker').options].find((x) => x.value === maker);
-  return o ? o.textContent : maker;
-}
-
-// The hand edits (voxels where `shape` differs from `base`) laid on `fresh`; returns [grid, count].
-function carryEdits(base, shape, fresh) {
-  const out = fresh.clone();
-  let n = 0;
-  for (let i = 0; i < out.data.length; i++) {
-    if (shape.data[i] !== base.data[i]) { out.data[i] = shape.data[i]; n++; }
-  }
-  return [out, n];
-}
-
 // A new preview of the drawing: hand edits are kept on it, and a shape it replaces stays one Undo away.
 // `remember`: false for the previews of a stroke after its first, so that one stroke is one undo step.
 function drawingChanged(fresh, facts, spec, remember = true) {
@@ -141,8 +118,8 @@ function drawingChanged(fresh, facts, spec, remember = true) {
     state.base = fresh.clone(); state.baseMaker = spec.maker; state.opened = false;
     if (remember) editor.remember(before, was);
     setShape(fresh, facts, {drawn: spec, keepHistory: true});
-    say(`A new maker (${makerWords(spec.maker)}): its shape starts clean; your ${n} hand-edited voxel${n === 1 ? ' stays' : 's stay'} `
-      + `on the ${makerWords(carry.maker)} shape (Undo in Edit brings it back).`, true);
+    say(`A new maker (${makers.label(spec.maker)}): its shape starts clean; your ${n} hand-edited voxel${n === 1 ? ' stays' : 's stay'} `
+      + `on the ${makers.label(carry.maker)} shape (Undo in Edit brings it back).`, true);
     return;
   }
   if (carry) {
