@@ -276,7 +276,7 @@ def test_plate_options_take_effect_on_the_download(studio, queen) -> None:
         assert r.status_code == 200, r.text
         assert _wait(studio, r.json()["job"])["state"] == "done"
         archive = zipfile.ZipFile(io.BytesIO(studio.get(f"/api/files/{r.json()['job']}/0").content))
-        report = json.loads(archive.read("slices/plates.json"))
+        report = json.loads(archive.read("studio-plates-plates.json"))  # no title: the files are the studio's
         assert report["style"] == "radial" and report["thickness"] == 1.0
         counts[n] = report["plates"]
     assert counts[3] < counts[5] and counts[3] <= 3

@@ -374,7 +374,8 @@ def test_interlocked_plates_from_the_make_tab_show_their_assembly(server, browse
     time.sleep(0.3)
     import json
 
-    report = json.loads(zipfile.ZipFile(archive).read("slices/plates.json"))
+    # named after the shape inside the zip too: NAME-plates.zip holds NAME-plates-plates.json
+    report = json.loads(zipfile.ZipFile(archive).read(f"{archive.stem}-plates.json"))
     assert report["style"] == "interlocked" and report["plates"] == plates >= 2
     # Back to the shape: the viewer draws voxels again.
     browser.find_element("id", "show-shape").click()

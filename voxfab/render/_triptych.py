@@ -12,12 +12,14 @@ from voxfab.errors import UnfoldError
 from voxfab.shape import VoxelShape
 
 from ._image import font
-from ._net import net_picture
+from ._net import as_pieces, net_picture
 from ._raster import DEFAULT_COLOR, parse_color
 from ._render import Color, check_size, render, shape_grid
 from ._slices import slice_sheet
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     from PIL import Image
 
     from voxfab.unfold import Net
@@ -86,7 +88,7 @@ def triptych(
     *,
     name: str,
     rng: np.random.Generator | int = 0,
-    net: Net | None = None,
+    net: Net | Sequence[Net] | None = None,
     panel: int = 800,
     background: Color = "white",
     color: Color = DEFAULT_COLOR,
@@ -101,9 +103,10 @@ def triptych(
         Title of the picture (the shape's name).
     rng : numpy Generator or int
         Seed of the net when ``net`` is not given (``voxfab.unfold.unfold(grid, rng=rng)``).
-    net : Net or None
+    net : Net, sequence of Net, or None
         A net of the shape (of its outer surface when ``net.filled``) to draw
-        instead of a new one.
+        instead of a new one, or the pieces of one (a net split to fit a
+        sheet): each piece is drawn with its own cut outline.
     panel : int
         Side of each square panel in pixels.
     background, color : str or (r, g, b)
@@ -124,7 +127,7 @@ def triptych(
     bg = parse_color(background, name="background")
     fg = parse_color(color, name="color")
     lay = triptych_layout(side)
-    net_grid = fill_cavities(grid) if net is not None and net.filled else grid
+    net_grid = fill_cavities(grid) if net is not None and as_pieces(net)[0].filled else grid
     try:
         the_net = net if net is not None else make_net(grid, rng=rng)
         net_img = net_picture(the_net, net_grid, size=side, background=bg, color=fg)
