@@ -30,7 +30,7 @@ class RangeInfo:
 
 def split_member(name: str) -> tuple[str, str] | None:
     """``(range, member)`` of a ``RANGE:MEMBER`` name, or None for any other name."""
-    m = MEMBER_PATTERN.match(name)
+    m = MEMBER_PATTERN.fullmatch(name)
     return None if m is None else (m.group(1), m.group(2))
 
 
