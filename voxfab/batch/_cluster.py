@@ -19,6 +19,7 @@ import time
 from typing import Any
 
 from voxfab._shared.limits import MAX_BATCH_WORKERS, MAX_WAIT_SECONDS, check_count
+from voxfab._shared.numbers import is_digits
 from voxfab.errors import MissingDependencyError, RepositoryError
 
 __all__ = ["Cluster", "check_wait", "check_workers", "check_dashboard", "probe_scheduler", "connect"]
@@ -67,7 +68,7 @@ def _host_port(address: str) -> tuple[str, int] | None:
         if protocol != "tcp":
             return None
     host, sep, port = rest.rpartition(":")
-    if not sep or not port.isdigit() or not 0 < int(port) <= 65535 or not host:
+    if not sep or not is_digits(port) or len(port) > 5 or not 0 < int(port) <= 65535 or not host:
         raise RepositoryError(f"--scheduler: expected tcp://HOST:PORT, got {address[:80]!r}")
     return host.strip("[]"), int(port)
 

@@ -7,6 +7,7 @@ from pathlib import Path
 from typing import Any
 
 from voxfab.cli._common import print_notes
+from voxfab.cli._options import integer_argument
 
 HELP = "convert a shape between formats (meshes and PNG slice folders are read only)"
 
@@ -21,11 +22,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "output", metavar="OUT", type=Path, help="the file to write (.npy .npz .txt .vox .binvox)"
     )
     parser.add_argument(
-        "--resolution", type=int, default=None, metavar="N",
+        "--resolution", type=integer_argument, default=None, metavar="N",
         help="for a mesh: voxels along its longest side (default 25)",
     )
     parser.add_argument(
-        "--threshold", type=int, default=None, metavar="T",
+        "--threshold", type=integer_argument, default=None, metavar="T",
         help="for PNG slices: grey level below which a pixel is filled (default 128)",
     )
 

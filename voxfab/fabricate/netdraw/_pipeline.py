@@ -24,14 +24,14 @@ from ._fit import SheetNets
 from ._net_options import NetOptions
 from ._options import DrawingOptions
 
-_BOX = re.compile(r"^\s*(\d+(?:\.\d*)?)\s*[xX×]\s*(\d+(?:\.\d*)?)\s*$")
+_BOX = re.compile(r"\s*([0-9]+(?:\.[0-9]*)?)\s*[xX×]\s*([0-9]+(?:\.[0-9]*)?)\s*")  # ASCII digits, matched whole
 
 
 def parse_box(text: str | None, face_size: float | None) -> tuple[int, int] | None:
     """A ``WxH`` box for JSON nets in faces: voxels, or mm when the face size is known (``--fit``/``--box``)."""
     if text is None:
         return None
-    m = _BOX.match(text)
+    m = _BOX.fullmatch(text)
     if not m:
         raise InvalidShapeError(f"--fit: expected WxH such as 40x30, got {text!r}")
     w, h = float(m.group(1)), float(m.group(2))
