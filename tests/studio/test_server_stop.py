@@ -15,6 +15,8 @@ import time
 import urllib.request
 from pathlib import Path
 
+import pytest
+
 from voxfab.shape import examples
 from voxfab.studio._grid import centred, pack
 
@@ -41,9 +43,9 @@ def _studio(folder: Path, tmp: Path) -> tuple[subprocess.Popen, str]:
             time.sleep(0.05)
 
 
-def _interrupt(proc: subprocess.Popen) -> tuple[str, str]:
-    """Ctrl-C, and what the studio printed; it must end within 20 s."""
-    proc.send_signal(signal.SIGINT)
+def _interrupt(proc: subprocess.Popen, sig: int = signal.SIGINT) -> tuple[str, str]:
+    """Ctrl-C (or another signal), and what the studio printed; it must end within 20 s."""
+    proc.send_signal(sig)
     try:
         out, err = proc.communicate(timeout=20)
     except subprocess.TimeoutExpired:
@@ -79,7 +81,8 @@ def test_ctrl_c_after_a_finished_fits_job_stops_and_cleans_up(tmp_path):
     assert list(tmp.iterdir()) == []
 
 
-def test_ctrl_c_during_the_warm_up_leaves_no_folder(tmp_path):
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_stopping_during_the_warm_up_leaves_no_folder(tmp_path, sig):
     tmp = tmp_path / "tmp"
     tmp.mkdir()
     proc, _ = _studio(tmp_path, tmp)
@@ -91,7 +94,7 @@ def test_ctrl_c_during_the_warm_up_leaves_no_folder(tmp_path):
             time.sleep(0.02)
         assert list(tmp.rglob("voxfab-warmup-*")), sorted(p.name for p in tmp.rglob("*"))
     finally:
-        out, err = _interrupt(proc)
+        out, err = _interrupt(proc, sig)
     assert proc.returncode == 0 and "voxfab studio: stopped" in out, (proc.returncode, out, err[-2000:])
     assert list(tmp.iterdir()) == []
 

@@ -253,7 +253,7 @@ class Repository:
             db = self._db
             with sqlite_errors(self._path), immediate(db):
                 self._insert_pending(db, results, pending, symmetric=symmetric)
-                claim_drafts(db, [r.name for r in results if r is not None and r.draft])
+                claim_drafts(db, found_drafts)
         return [r for r in results if r is not None]
 
     def _prepare_many(
