@@ -180,9 +180,7 @@ def run_census(
 
     n_max = check_census_size(n_max)
     if store is not None:
-        from voxfab.repo._records import check_range_name
-
-        check_range_name(store)
+        _check_store(store, repository)
     settings = settings if settings is not None else CensusSettings()
     connect_timeout = check_wait(connect_timeout)
     if scheduler is None and workers != 0:
@@ -190,8 +188,6 @@ def run_census(
     out = Path(outdir)
     path = out / "census.json"
     check_output(path, parents=True)
-    out.mkdir(exist_ok=True)
-    (out / "nets").mkdir(exist_ok=True)
     records = {k: v for k, v in _read_previous(path, settings.to_dict(), out).items() if int(k[:2]) <= n_max}
     kept = len(records)
     counts: dict[int, tuple[int, int]] = {}
@@ -212,6 +208,9 @@ def run_census(
         with Repository(repository or DEFAULT_PATH, create=True) as repo:
             repo.add_range(store, members, meta={"source": f"polycube census of 1..{n_max} cubes"})
         members.clear()
+    # Made once the range is stored: a refused range leaves no folder behind.
+    out.mkdir(exist_ok=True)
+    (out / "nets").mkdir(exist_ok=True)
     wall: dict[int, float] = {}  # search seconds per n, this run's, added over the shapes
     cpu: dict[int, float] = {}
     start = time.perf_counter()
@@ -258,6 +257,22 @@ def run_census(
     page = write_page(out, json.loads(path.read_text()))
     rows = tuple(_rows(n_max, counts, records, wall, cpu))
     return CensusReport(rows, done, kept, time.perf_counter() - start, used[0], path, page)
+
+
+def _check_store(store: str, repository: str | Path | None) -> None:
+    """Refuse a bad range name, or a repository whose range tables are damaged, before anything is made."""
+    from voxfab.repo import DEFAULT_PATH, Repository
+    from voxfab.repo._records import check_range_name
+
+    check_range_name(store)
+    where = Path(repository or DEFAULT_PATH)
+    if not where.exists():
+        return  # made when the range is stored
+    with Repository(where, create=False) as repo:
+        problems = repo.check(rows=False)
+    if problems:
+        more = f" (and {len(problems) - 1} more)" if len(problems) > 1 else ""
+        raise RepositoryError(f"{where}: {problems[0]}{more}; 'voxfab repo check' lists every problem")
 
 
 @contextlib.contextmanager

@@ -41,7 +41,9 @@ def add_shape_argument(parser: argparse.ArgumentParser) -> None:
 
 def add_frame_option(parser: argparse.ArgumentParser) -> None:
     """Add ``--frame K``: the animation frame of a ``.vox`` to read."""
-    parser.add_argument("--frame", type=int, default=None, metavar="K",
+    from voxfab.cli._options import integer_argument
+
+    parser.add_argument("--frame", type=integer_argument, default=None, metavar="K",
                         help="for an animated .vox: the frame to read, from 1 (default the first)")
 
 

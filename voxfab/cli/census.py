@@ -6,26 +6,26 @@ import argparse
 
 from voxfab.census._task import CensusSettings
 from voxfab.cli._common import add_repository_option, check_repository_path, path_argument
-from voxfab.cli._options import add_option_arguments, options_from_args
+from voxfab.cli._options import add_option_arguments, integer_argument, number_argument, options_from_args
 
 HELP = ("census every polycube of 1..N cubes: an edge unfolding and an edge-unzipping of each "
         "(DIR/census.json, DIR/census.html, DIR/nets/)")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("n", type=int, metavar="N", help="the largest number of cubes (1 to 11)")
+    parser.add_argument("n", type=integer_argument, metavar="N", help="the largest number of cubes (1 to 11)")
     parser.add_argument("-o", "--output", type=path_argument, required=True, metavar="DIR",
                         help="output folder; an earlier census there with the same settings is resumed")
     add_option_arguments(parser, CensusSettings)
     parser.add_argument("--scheduler", metavar="ADDRESS",
                         help="a running Dask scheduler (tcp://HOST:PORT); default: --workers local processes")
-    parser.add_argument("--workers", type=int, default=2, metavar="K",
+    parser.add_argument("--workers", type=integer_argument, default=2, metavar="K",
                         help="local Dask worker processes; 0 runs in this process (default 2)")
     parser.add_argument("--store", metavar="RANGE",
                         help="also store every polycube in the repository (--repo) as the named range RANGE, "
                              "members named by census id (RANGE:08-000001)")
     add_repository_option(parser)
-    parser.add_argument("--connect-timeout", type=float, default=30.0, metavar="S",
+    parser.add_argument("--connect-timeout", type=number_argument, default=30.0, metavar="S",
                         help="seconds to wait for the scheduler and a first worker (default 30)")
 
 

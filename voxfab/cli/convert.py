@@ -7,6 +7,7 @@ from pathlib import Path
 from typing import Any
 
 from voxfab.cli._common import add_frame_option, print_notes, reader_options
+from voxfab.cli._options import integer_argument
 
 HELP = "convert a shape between formats (meshes and PNG slice folders are read only)"
 
@@ -22,12 +23,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "(a path ending in /)"
     )
     parser.add_argument(
-        "--resolution", type=int, default=None, metavar="N",
+        "--resolution", type=integer_argument, default=None, metavar="N",
         help="for a mesh: voxels along its longest side (default 25)",
     )
     add_frame_option(parser)
     parser.add_argument(
-        "--threshold", type=int, default=None, metavar="T",
+        "--threshold", type=integer_argument, default=None, metavar="T",
         help="for PNG slices: grey level below which a pixel is filled (default 128)",
     )
 

@@ -7,6 +7,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from voxfab.cli._common import add_repository_option, load_command_shape, print_json
+from voxfab.cli._options import integer_argument
 from voxfab.errors import InvalidShapeError, UnknownFormatError
 
 if TYPE_CHECKING:
@@ -36,7 +37,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                       help="every shape of the repository (--repo) by volume, with names")
     mode.add_argument("--fold", type=Path, metavar="NET.json",
                       help="a GIF of this net folding up from the flat sheet to the shape (no SHAPE needed)")
-    parser.add_argument("--steps", type=int, default=36, metavar="N",
+    parser.add_argument("--steps", type=integer_argument, default=36, metavar="N",
                         help="frames of the --fold animation, 2 to 240 (default 36)")
     parser.add_argument("--net", type=Path, metavar="NET.json",
                         help="a voxfab-net/1 file: draw it (or use it in --triptych) instead of unfolding")

@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from voxfab._shared.numbers import is_digits
 from voxfab._shared.typing import BoolGrid, PathLike
 from voxfab._shared.validate import MAX_SIDE
 from voxfab.errors import FormatError, InvalidShapeError, VoxfabError
@@ -46,7 +47,7 @@ _IEND = b"\x00\x00\x00\x00IEND\xaeB`\x82"
 def natural_key(name: str) -> tuple[tuple[int, int | str], ...]:
     """Sort key putting ``z2`` before ``z10``: digit runs compare as numbers."""
     return tuple(
-        (1, int(part)) if part.isdigit() else (0, part.lower())
+        (1, int(part)) if is_digits(part) else (0, part.lower())
         for part in _DIGITS.split(name)
         if part
     )

@@ -277,7 +277,7 @@ def load_recipe(path: PathLike, *, allow_outside: bool = False) -> Recipe:
         if key not in _TOP_KEYS:
             raise err(key, f"unknown key; a recipe accepts: {', '.join(sorted(_TOP_KEYS))}")
     name = data.get("name", p.stem)
-    if not isinstance(name, str) or not _NAME.match(name):
+    if not isinstance(name, str) or not _NAME.fullmatch(name):
         raise err("name", f"expected a folder-safe name (letters, digits, _ . -), got {name!r}")
     try:
         seed = SeedOptions(seed=data.get("seed", 0)).seed

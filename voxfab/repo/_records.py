@@ -41,14 +41,19 @@ __all__ = [
 
 #: Ranks run 001..999 per volume.
 MAX_RANK = 999
+# The patterns are matched whole (``fullmatch``): ``$`` would also match before a final newline,
+# and ASCII digits only (``\d`` takes any script's digits).
 #: A repository name: 5-digit zero-padded volume, a dot, 3-digit rank.
-NAME_PATTERN = re.compile(r"^(\d{5})\.(\d{3})$")
+NAME_PATTERN = re.compile(r"([0-9]{5})\.([0-9]{3})")
 #: The id of a draft (a stored shape that is not well formed).
-DRAFT_PATTERN = re.compile(r"^draft-(\d+)$")
+DRAFT_PATTERN = re.compile(r"draft-([0-9]+)")
 #: The name of a range: lowercase letters, digits, ``-`` and ``_``, starting with a letter.
-RANGE_PATTERN = re.compile(r"^[a-z][a-z0-9_-]{0,39}$")
+RANGE_PATTERN = re.compile(r"[a-z][a-z0-9_-]{0,39}")
 #: A member of a range: ``RANGE:MEMBER`` (``polycubes-9:08-000001``).
-MEMBER_PATTERN = re.compile(r"^([a-z][a-z0-9_-]{0,39}):([0-9a-z][0-9a-z_-]{0,39})$")
+MEMBER_PATTERN = re.compile(r"([a-z][a-z0-9_-]{0,39}):([0-9a-z][0-9a-z_-]{0,39})")
+#: What a user writing a repository name writes: text a file name would not be mistaken for
+#: (checked as a name, never tried as a path).
+NAME_LIKE = re.compile(r"[0-9]{5}\.[0-9]+|draft-[^./]*|[a-z][a-z0-9_-]*:[^./]*", re.DOTALL)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -245,7 +250,7 @@ def draft_name(row_id: int) -> str:
 
 def is_shape_name(text: str) -> bool:
     """Whether ``text`` has the form of a stored shape's name: ``VVVVV.NNN``, ``draft-N`` or ``RANGE:MEMBER``."""
-    return bool(NAME_PATTERN.match(text) or DRAFT_PATTERN.match(text) or MEMBER_PATTERN.match(text))
+    return isinstance(text, str) and any(p.fullmatch(text) for p in (NAME_PATTERN, DRAFT_PATTERN, MEMBER_PATTERN))
 
 
 def check_name(name: object) -> str:
@@ -260,7 +265,7 @@ def check_name(name: object) -> str:
 
 def check_range_name(name: object) -> str:
     """Return ``name`` if it can name a range, else raise RepositoryError."""
-    if not isinstance(name, str) or not RANGE_PATTERN.match(name):
+    if not isinstance(name, str) or not RANGE_PATTERN.fullmatch(name):
         raise RepositoryError(
             f"{name!r}: not a range name (expected lowercase letters, digits, '-' and '_', starting with a "
             "letter, at most 40 characters, such as polycubes-8)"

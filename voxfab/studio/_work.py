@@ -102,20 +102,26 @@ def net_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, net: Any, 
     job.result = netdraw.gallery_json(gallery, grid, nets=list(job.items))
 
 
-def warm_kernels_here() -> None:
+def warm_kernels_here(scratch: Path) -> None:
     """Compile (or load from numba's cache) every kernel group in this process, so the first real request is not slowed.
 
     numba compiles on the first call in each process, and that time would otherwise
-    count against the artist's first preview or the first net's budget.
+    count against the artist's first preview or the first net's budget.  The
+    pipelines write into ``scratch`` (the session's work folder): a studio stopped
+    meanwhile removes their files with its own.
     """
     from voxfab.errors import VoxfabError
     from voxfab.warmup import warm_up
 
     try:
-        warm_up(processes=1)  # here, not in child processes: this process serves the requests
+        warm_up(processes=1, scratch=scratch)  # here, not in child processes: this process serves the requests
         warm_gallery_here()
     except VoxfabError:  # pragma: no cover - the warm-up jobs are fixed and valid
         pass
+    except OSError:
+        if scratch.is_dir():
+            raise
+        # the studio stopped and removed its work folder under the warm-up: nothing to warm up for
 
 
 def warm_gallery_here() -> None:

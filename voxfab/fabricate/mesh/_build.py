@@ -346,6 +346,7 @@ def _check_inputs(
 def _solid_grid(g: npt.NDArray[np.bool_], inputs: _Inputs, *, fill: bool, warnings: list[str]) -> npt.NDArray[np.bool_]:
     """The voxels to print: hollowed, or with enclosed cavities filled; warn about thin walls."""
     if inputs.hollow:
+        _check_wall(g, inputs)
         hollowed = hollow_out(g, inputs.hollow)
         g = crop(hollowed)
         if g.shape != hollowed.shape:
@@ -357,6 +358,24 @@ def _solid_grid(g: npt.NDArray[np.bool_], inputs: _Inputs, *, fill: bool, warnin
     if w:
         warnings.append(w)
     return g
+
+
+def _check_wall(g: npt.NDArray[np.bool_], inputs: _Inputs) -> None:
+    """Refuse a hollowing that would leave no cavity: the print would be solid, the option without effect.
+
+    :func:`hollow_out` keeps every voxel within ``hollow`` (Chebyshev distance) of
+    the outside, so a cavity is left only when some voxel lies deeper than that.
+    """
+    from scipy import ndimage
+
+    depth = int(ndimage.distance_transform_cdt(np.pad(fill_cavities(g), 1), metric="chessboard").max())
+    if inputs.hollow < depth:
+        return
+    if depth <= 1:
+        raise InvalidShapeError(f"hollow: {inputs.name} is nowhere thicker than 2 voxels; a wall of "
+                                f"{inputs.hollow} leaves no cavity (the print would be solid; use 0)")
+    raise InvalidShapeError(f"hollow: walls of {inputs.hollow} voxels leave no cavity in {inputs.name} (the print "
+                            f"would be solid); at most {depth - 1} leaves one")
 
 
 def _checked_contacts(g: npt.NDArray[np.bool_], inputs: _Inputs) -> Contacts:

@@ -24,14 +24,14 @@ from ._fit import SheetNets
 from ._net_options import NetOptions
 from ._options import DrawingOptions
 
-_BOX = re.compile(r"^\s*(\d+(?:\.\d*)?)\s*[xX×]\s*(\d+(?:\.\d*)?)\s*$")
+_BOX = re.compile(r"\s*([0-9]+(?:\.[0-9]*)?)\s*[xX×]\s*([0-9]+(?:\.[0-9]*)?)\s*")  # ASCII digits, matched whole
 
 
 def parse_box(text: str | None, face_size: float | None) -> tuple[int, int] | None:
     """A ``WxH`` box for JSON nets in faces: voxels, or mm when the face size is known (``--fit``/``--box``)."""
     if text is None:
         return None
-    m = _BOX.match(text)
+    m = _BOX.fullmatch(text)
     if not m:
         raise InvalidShapeError(f"--fit: expected WxH such as 40x30, got {text!r}")
     w, h = float(m.group(1)), float(m.group(2))
@@ -46,11 +46,19 @@ def parse_box(text: str | None, face_size: float | None) -> tuple[int, int] | No
     return int(w), int(h)
 
 
-def check_request(net: NetOptions, outputs: Sequence[str | Path], *, box: bool) -> list[Path]:
+#: Drawing options that only some formats read, by the suffixes of those formats.
+FORMAT_OPTIONS: dict[str, tuple[str, ...]] = {"dxf_version": (".dxf",), "svg_lines": (".svg",)}
+
+
+def check_request(net: NetOptions, outputs: Sequence[str | Path], *, box: bool,
+                  drawing_given: Sequence[str] = ()) -> list[Path]:
     """Refuse bad outputs and option combinations before any search (the CLI's words); the drawings named.
 
     Every output's folder must exist, a drawing must have a known extension, and
     ``zipper``, ``min_box``, ``count`` and a box must make sense together.
+    ``drawing_given`` names the :class:`DrawingOptions` the user set: each must be
+    read by an output (a DXF version needs a .dxf, any of them a drawing), or it
+    is refused by its flag rather than ignored.
     """
     from voxfab._shared.atomic import check_output
     from voxfab.drawing import FORMATS
@@ -71,6 +79,18 @@ def check_request(net: NetOptions, outputs: Sequence[str | Path], *, box: bool) 
         raise InvalidShapeError("--count: several nets need --pieces one")
     if drawings and box:
         raise InvalidShapeError("--fit: drawings fit their sheet (--sheet); --fit is for JSON nets only")
+    from voxfab._shared.options import option_specs
+
+    suffixes = {p.suffix.lower() for p in drawings}
+    flags = {s.name: s.flag for s in option_specs(DrawingOptions)}
+    for name in drawing_given:
+        flag = flags[name]
+        if not drawings:
+            raise InvalidShapeError(f"{flag}: for drawings (-o with .svg, .dxf, .pdf or .png); a JSON net has none")
+        wanted = FORMAT_OPTIONS.get(name)
+        if wanted is not None and not suffixes & set(wanted):
+            raise InvalidShapeError(f"{flag}: for {' and '.join(wanted)} drawings; none of -o is one "
+                                    f"({', '.join(sorted(suffixes))})")
     return drawings
 
 

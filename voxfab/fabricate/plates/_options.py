@@ -8,6 +8,13 @@ from voxfab._shared.options import Options, option
 from voxfab.drawing import sheet_problem
 from voxfab.drawing.dxf import dxf_version_option
 
+#: The options only some styles read (every other one is read by all three).
+STYLE_OPTIONS: dict[str, tuple[str, ...]] = {
+    "axis": ("stacked",), "dowel": ("stacked",), "dowel_margin": ("stacked",), "dowels_per_joint": ("stacked",),
+    "score": ("stacked",), "axes": ("interlocked",), "count": ("interlocked",), "interval": ("interlocked",),
+    "radial_plates": ("radial",), "clearance": ("interlocked", "radial"),
+}
+
 
 @dataclasses.dataclass(frozen=True)
 class PlateOptions(Options):
@@ -48,10 +55,17 @@ class PlateOptions(Options):
     step: bool = option(False, help="also write the plate stack as STEP and STL (needs voxfab[cad])")
 
     def check(self) -> None:
-        """The margins must leave room on the sheet; STEP is for the stacked style."""
+        """The margins must leave room on the sheet; an option of another style than the chosen one
+        (``radial_plates`` of a stacked construction) is refused, not ignored; STEP is for the stacked style."""
         from voxfab._shared.options import OptionError
         from voxfab.drawing import parse_sheet
 
+        defaults = PlateOptions.__dataclass_fields__
+        for name, styles in STYLE_OPTIONS.items():
+            value = getattr(self, name)
+            if self.style not in styles and value != defaults[name].default:
+                raise OptionError(name, f"for the {' and '.join(styles)} style{'s' if len(styles) > 1 else ''}, "
+                                        f"not {self.style}; it would change nothing (got {value!r})")
         if self.step and self.style != "stacked":
             raise OptionError("step", f"STEP and STL are written for the stacked style only, not {self.style}; "
                                       "assembly.3mf holds the plates of every style")
