@@ -56,9 +56,9 @@ def test_a_schema_3_file_counts_its_range_drafts_as_the_ranges(tmp_path: Path) -
     with Repository(path) as repo:
         repo.add_range("pc3", _members(3))
     raw = sqlite3.connect(path)
-    raw.executescript("DROP TABLE range_made; PRAGMA user_version = 3;")
+    raw.executescript("DROP TABLE range_made; ALTER TABLE shapes DROP COLUMN colours; PRAGMA user_version = 3;")
     raw.close()
-    with Repository(path, create=False) as repo:  # migrated to 4
+    with Repository(path, create=False) as repo:  # migrated to 4, then 5
         assert repo.check() == [] and repo.list() == []
         assert repo.remove_range("pc3") == 4 and len(repo) == 0
 

@@ -38,7 +38,7 @@ def _repository_name(args: argparse.Namespace, shape: Any) -> str | None:
     from voxfab.repo import Repository
 
     with Repository(args.repo, create=False) as repo:
-        return repo.find(shape.grid)
+        return repo.find(shape)
 
 
 def run(args: argparse.Namespace) -> int:

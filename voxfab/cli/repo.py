@@ -120,7 +120,7 @@ def _add(args: argparse.Namespace) -> int:
                     raise RepositoryError(
                         f"{path}: not well formed: {'; '.join(reasons)} (use --draft to store it as a draft)"
                     )
-            added = repo.add(result.grid, symmetric=args.symmetric, draft=args.draft, meta=meta)
+            added = repo.add(result.shape(), symmetric=args.symmetric, draft=args.draft, meta=meta)
             print(f"{added.name} {'created' if added.created else 'exists'}", flush=True)
             if added.reasons:
                 print_notes([f"{path}: stored as a draft: {'; '.join(added.reasons)}"])

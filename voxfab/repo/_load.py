@@ -62,8 +62,8 @@ def load_shape(source: str, repository: PathLike | None = None, *, pitch: float 
         from ._repository import Repository
 
         with Repository(repository or DEFAULT_PATH, create=False) as repo:
-            grid = repo.get(source)
-        return LoadedShape(VoxelShape(grid, pitch or 1.0), source, [], pitch is not None)
+            shape = repo.shape(source, pitch or 1.0)
+        return LoadedShape(shape, source, [], pitch is not None)
     _exists(source)  # a path no system call can look up is one line, not an OSError
     result = io.read(source, **options)
     own = pitch if pitch is not None else result.pitch

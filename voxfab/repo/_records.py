@@ -15,7 +15,7 @@ from voxfab._shared.limits import parse_json
 from voxfab._shared.typing import BoolGrid
 from voxfab._shared.validate import MAX_SIDE, as_grid
 from voxfab.errors import RepositoryError, VoxfabError
-from voxfab.shape import canonical_key, crop, well_formed_reasons
+from voxfab.shape import VoxelColours, VoxelShape, canonical_key, crop, well_formed_reasons
 
 __all__ = [
     "MAX_RANK",
@@ -30,6 +30,7 @@ __all__ = [
     "encode_bits",
     "decode_bits",
     "decode_row",
+    "decode_colours",
     "decode_reasons",
     "decode_meta",
     "format_name",
@@ -74,6 +75,8 @@ class Record:
         Why the shape is not well formed (empty when it is).
     meta : str or None
         The metadata as JSON text with sorted keys.
+    colours : bytes or None
+        The RGBA of each voxel of the cropped grid in C order (None: uncoloured).
     """
 
     volume: int
@@ -83,6 +86,7 @@ class Record:
     symmetric_key: str
     reasons: tuple[str, ...]
     meta: str | None
+    colours: bytes | None = None
 
 
 def encode_bits(cropped: BoolGrid) -> bytes:
@@ -123,6 +127,7 @@ def decode_row(
     volume: object,
     key: object = None,
     symmetric_key: object = None,
+    colours: object = None,
 ) -> BoolGrid:
     """Decode a stored row's grid after checking it against what the row says of it.
 
@@ -152,7 +157,7 @@ def decode_row(
             continue
         if not isinstance(stored, bytes) or len(stored) != 32:
             raise _corrupt(name, f"{label} is not a 32-byte blob")
-        if canonical_key(grid, symmetric=symmetric) != stored.hex():
+        if canonical_key(grid, symmetric=symmetric, colours=decode_colours(name, colours, grid)) != stored.hex():
             raise _corrupt(name, f"{label} does not match the stored voxels")
     return grid
 
@@ -219,23 +224,41 @@ def prepare(
     key: str | None = None,
     symmetric_key: str | None = None,
     reasons: tuple[str, ...] | None = None,
+    colours: VoxelColours | None = None,
 ) -> Record:
-    """Compute everything stored for a grid checked by :func:`check_grid`.
+    """Compute everything stored for a grid checked by :func:`check_grid`, and its ``colours``.
 
     ``meta`` is JSON text from :func:`encode_meta`; ``key``, ``symmetric_key`` and
     ``reasons`` (from :func:`voxfab.shape.well_formed_reasons`) may be passed when
-    already computed.
+    already computed.  A coloured shape's keys cover its colours: the same voxels in
+    other colours are another shape.
     """
-    c = crop(grid)
+    shape = VoxelShape(grid, 1.0, colours).crop()
+    c, cc = shape.grid, shape.colours
     return Record(
         volume=int(np.count_nonzero(c)),
         extents=(int(c.shape[0]), int(c.shape[1]), int(c.shape[2])),
         bits=encode_bits(c),
-        key=key or canonical_key(c),
-        symmetric_key=symmetric_key or canonical_key(c, symmetric=True),
+        key=key or canonical_key(c, colours=cc),
+        symmetric_key=symmetric_key or canonical_key(c, symmetric=True, colours=cc),
         reasons=tuple(well_formed_reasons(c)) if reasons is None else tuple(reasons),
         meta=meta,
+        colours=None if cc is None else cc.rgba[c].tobytes(),
     )
+
+
+def decode_colours(name: str, blob: object, grid: BoolGrid) -> VoxelColours | None:
+    """The colours stored for ``grid`` (the RGBA of each voxel in C order), or None; a bad blob is a corrupt row."""
+    if blob is None:
+        return None
+    if not isinstance(blob, (bytes, bytearray)) or len(blob) != 4 * int(np.count_nonzero(grid)):
+        raise _corrupt(name, "colours is not 4 bytes of RGBA per voxel")
+    rgba = np.zeros((*grid.shape, 4), dtype=np.uint8)
+    rgba[grid] = np.frombuffer(bytes(blob), dtype=np.uint8).reshape(-1, 4)
+    try:
+        return VoxelColours.from_rgba(grid, rgba)
+    except VoxfabError as exc:
+        raise _corrupt(name, str(exc)) from None
 
 
 def format_name(volume: int, rank: int) -> str:

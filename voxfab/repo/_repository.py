@@ -14,7 +14,7 @@ import numpy.typing as npt
 
 from voxfab._shared.typing import BoolGrid, PathLike
 from voxfab.errors import RepositoryError
-from voxfab.shape import canonical_key, well_formed_reasons
+from voxfab.shape import VoxelShape, canonical_key, well_formed_reasons
 
 from ._ranges import (
     RangeInfo,
@@ -33,6 +33,7 @@ from ._records import (
     check_grid,
     check_name,
     check_range_name,
+    decode_colours,
     decode_meta,
     decode_reasons,
     decode_row,
@@ -184,8 +185,8 @@ class Repository:
 
         Parameters
         ----------
-        grid : (X, Y, Z) bool array_like
-            The shape; only its cropped content is stored.
+        grid : (X, Y, Z) bool array_like or VoxelShape
+            The shape; only its cropped content is stored, with its colours when it has them.
         symmetric : bool
             Also treat rotated and mirrored copies (48 cube symmetries) as equal.
         draft : bool
@@ -284,9 +285,10 @@ class Repository:
         pending: list[tuple[int, Record]] = []
         for i, (grid, m) in enumerate(zip(grids, metas)):
             label = "shape" if len(grids) == 1 else f"shape {i}"
-            g = check_grid(grid, name=label)
+            colours = getattr(grid, "colours", None)
+            g = check_grid(getattr(grid, "grid", grid), name=label)
             meta = encode_meta(m)
-            key = keys[i] if keys is not None else canonical_key(g, symmetric=symmetric)
+            key = keys[i] if keys is not None else canonical_key(g, symmetric=symmetric, colours=colours)
             found = self._lookup(key, symmetric=symmetric)
             if found is not None:
                 name, stored_reasons = found
@@ -296,9 +298,9 @@ class Repository:
                 continue
             known = None if reasons is None else tuple(reasons[i])
             if symmetric:
-                record = prepare(g, meta=meta, symmetric_key=key, reasons=known)
+                record = prepare(g, meta=meta, symmetric_key=key, reasons=known, colours=colours)
             else:
-                record = prepare(g, meta=meta, key=key, reasons=known)
+                record = prepare(g, meta=meta, key=key, reasons=known, colours=colours)
             if record.reasons and not draft:
                 raise _not_well_formed(label, record.reasons)
             results.append(None)
@@ -419,10 +421,10 @@ class Repository:
         if row is not None:
             return AddResult(row[0], False, r.reasons)
         values = (r.volume, *r.extents, r.bits, bytes.fromhex(r.key), bytes.fromhex(r.symmetric_key),
-                  json.dumps(list(r.reasons)), r.meta)
+                  json.dumps(list(r.reasons)), r.meta, r.colours)
         insert = (
-            "INSERT INTO shapes (name, rank, draft, volume, nx, ny, nz, bits, key, symmetric_key, reasons, meta)"
-            " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)"
+            "INSERT INTO shapes (name, rank, draft, volume, nx, ny, nz, bits, key, symmetric_key, reasons, meta,"
+            " colours) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)"
         )
         if r.reasons:
             row_id = db.execute(insert, (None, None, 1, *values)).lastrowid
@@ -475,9 +477,16 @@ class Repository:
         """
         return decode_row(name, *self._grid_columns(name))
 
+    def shape(self, name: str, pitch: float = 1.0) -> VoxelShape:
+        """The stored shape ``name`` (cropped) in its colours, at ``pitch`` mm per voxel."""
+        bits, extents, volume, key, skey, colours = self._grid_columns(name)
+        grid = decode_row(name, bits, extents, volume, key, skey, colours)
+        return VoxelShape(grid, pitch, decode_colours(name, colours, grid))
+
     def _grid_columns(self, name: str) -> tuple[Any, ...]:
-        bits, nx, ny, nz, volume, key, skey = self._row(name, f"{_BITS}, nx, ny, nz, volume, key, symmetric_key")
-        return bits, (nx, ny, nz), volume, key, skey
+        bits, nx, ny, nz, volume, key, skey, colours = self._row(
+            name, f"{_BITS}, nx, ny, nz, volume, key, symmetric_key, colours")
+        return bits, (nx, ny, nz), volume, key, skey, colours
 
     def packed(self, name: str) -> tuple[bytes, tuple[int, int, int]]:
         """Return the stored packed bits of ``name`` and its extents, without unpacking.
@@ -486,8 +495,8 @@ class Repository:
         a batch sends these few bytes to its workers.  The row is checked as by
         :meth:`get` first, so a worker never receives a corrupt shape.
         """
-        bits, extents, volume, key, skey = self._grid_columns(name)
-        decode_row(name, bits, extents, volume, key, skey)
+        bits, extents, volume, key, skey, colours = self._grid_columns(name)
+        decode_row(name, bits, extents, volume, key, skey, colours)
         return bytes(bits), extents
 
     def find(self, grid: npt.ArrayLike, *, symmetric: bool = False) -> str | None:
@@ -496,7 +505,8 @@ class Repository:
         Equal means the same voxels up to translation, and with ``symmetric`` up to
         the 48 cube symmetries.  Drafts are found too (their ``draft-N`` id).
         """
-        found = self._lookup(canonical_key(grid, symmetric=symmetric), symmetric=symmetric)
+        key = canonical_key(getattr(grid, "grid", grid), symmetric=symmetric, colours=getattr(grid, "colours", None))
+        found = self._lookup(key, symmetric=symmetric)
         return None if found is None else found[0]
 
     def list(
@@ -617,12 +627,14 @@ class Repository:
 
         Keys: ``name``, ``volume``, ``rank`` (None for drafts), ``extents``,
         ``draft``, ``reasons`` (why a draft is not well formed), ``key`` and
-        ``symmetric_key`` (canonical sha256 keys), ``meta`` (None if none stored).
+        ``symmetric_key`` (canonical sha256 keys), ``meta`` (None if none stored),
+        ``colours`` (distinct colours, 0 when uncoloured).
         """
-        volume, rank, nx, ny, nz, d, reasons, key, skey, meta, bits = self._row(
-            name, f"volume, rank, nx, ny, nz, draft, reasons, key, symmetric_key, meta, {_BITS}"
+        volume, rank, nx, ny, nz, d, reasons, key, skey, meta, bits, colours = self._row(
+            name, f"volume, rank, nx, ny, nz, draft, reasons, key, symmetric_key, meta, {_BITS}, colours"
         )
-        decode_row(name, bits, (nx, ny, nz), volume, key, skey)
+        grid = decode_row(name, bits, (nx, ny, nz), volume, key, skey, colours)
+        stored = decode_colours(name, colours, grid)
         return {
             "name": name,
             "volume": volume,
@@ -633,6 +645,7 @@ class Repository:
             "key": key.hex(),
             "symmetric_key": skey.hex(),
             "meta": decode_meta(name, meta),
+            "colours": 0 if stored is None else stored.count,
         }
 
     def export(self, name: str, path: PathLike) -> Path:
@@ -645,8 +658,7 @@ class Repository:
         """
         from voxfab import io
 
-        grid = self.get(name)
-        io.write(grid, path)
+        io.write(self.shape(name), path)
         return Path(path)
 
     # -- removing ---------------------------------------------------------------
@@ -717,13 +729,13 @@ class Repository:
         with sqlite_errors(self._path):
             rows = self._db.execute(
                 f"SELECT s.id, s.name, s.volume, s.rank, s.draft, s.nx, s.ny, s.nz, {_BITS}, s.key,"
-                " s.symmetric_key, s.reasons, s.meta, c.last_rank"
+                " s.symmetric_key, s.reasons, s.meta, c.last_rank, s.colours"
                 " FROM shapes s LEFT JOIN rank_counters c ON c.volume = s.volume ORDER BY s.id"
             ).fetchall()
-        for row_id, name, volume, rank, d, nx, ny, nz, bits, key, skey, reasons, meta, last in rows:
+        for row_id, name, volume, rank, d, nx, ny, nz, bits, key, skey, reasons, meta, last, colours in rows:
             label = f"row {row_id} ({name})" if isinstance(name, str) else f"row {row_id}"
             try:
-                grid = decode_row(label, bits, (nx, ny, nz), volume, key, skey)
+                grid = decode_row(label, bits, (nx, ny, nz), volume, key, skey, colours)
                 why = decode_reasons(label, reasons)
                 decode_meta(label, meta)
             except RepositoryError as exc:

@@ -37,7 +37,7 @@ from voxfab.errors import RepositoryError
 __all__ = ["SCHEMA_VERSION", "SCHEMA_OBJECTS", "APPLICATION_ID", "BUSY_TIMEOUT_S", "connect", "immediate", "sqlite_errors"]
 
 #: Version of the schema written by this code (``PRAGMA user_version``).
-SCHEMA_VERSION = 4
+SCHEMA_VERSION = 5
 #: ``PRAGMA application_id`` of a voxfab repository: the bytes "VXFB".
 APPLICATION_ID = 0x56584642
 #: How long a writer waits for another process's write lock before giving up.
@@ -132,6 +132,11 @@ _MIGRATIONS: tuple[tuple[str, ...], ...] = (
         "CREATE TABLE range_made (shape INTEGER PRIMARY KEY REFERENCES shapes (id))",
         "INSERT INTO range_made (shape) SELECT DISTINCT m.shape FROM range_members m JOIN shapes s ON s.id = m.shape"
         " WHERE s.draft = 1",
+    ),
+    # 4 -> 5: colours.  The RGBA of each voxel of the stored (cropped) grid, in C order; NULL for an
+    # uncoloured shape, so every shape stored before reads as it did.
+    (
+        "ALTER TABLE shapes ADD COLUMN colours BLOB CHECK (colours IS NULL OR length(colours) = 4 * volume)",
     ),
 )
 #: The tables and indexes of the current schema: a file missing one is damaged (``Repository.check``).
