@@ -1,10 +1,13 @@
 """Check a census folder afterwards: every net refolds, every unzipping cuts one path, every proof holds.
 
 This reads only ``census.json`` and the net files.  Nets are refolded by the
-project's independent validator (:func:`voxfab.unfold.validate`); an unzipping's
-cut edges (the surface edges not in its folds) are rebuilt from the net's 3D
-corners and must form one simple path through every corner vertex, counted from
-the cubes; each "none" certificate goes to :func:`.check_certificate`.
+project's independent validator (:func:`voxfab.unfold.validate`), and each net
+file's ``tree`` must be a spanning tree of its folds (F - 1 of them, connected,
+no cycle); an unzipping's cut edges (the surface edges not in its folds) are
+rebuilt from the net's 3D corners and must form one simple path through every
+corner vertex, counted from the cubes; each "none" certificate goes to
+:func:`.check_certificate`.  A resumed census keeps a record only when
+:func:`record_problems` finds none.
 """
 
 from __future__ import annotations
@@ -12,10 +15,11 @@ from __future__ import annotations
 import dataclasses
 import itertools
 import json
+import re
 from pathlib import Path
 from typing import Any
 
-__all__ = ["CensusCheck", "cut_path_problem", "verify_census"]
+__all__ = ["CensusCheck", "cut_path_problem", "record_problems", "tree_problem", "verify_census"]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -75,45 +79,129 @@ def cut_path_problem(cells: list[list[int]], net: Any) -> str | None:
     return None
 
 
-def verify_census(outdir: str | Path) -> CensusCheck:
-    """Check every net and certificate a census wrote into ``outdir``."""
+def tree_problem(net: Any, tree: object) -> str | None:
+    """Why ``tree`` is not a spanning tree of the net's folds (F - 1 folds, connected, no cycle), or None."""
+    f = net.face_count
+    if not isinstance(tree, list) or not all(isinstance(p, list) and len(p) == 2 for p in tree):
+        return "no fold tree (tree: a list of face pairs)"
+    if len(tree) != f - 1:
+        return f"its fold tree has {len(tree)} folds for {f} squares, not {f - 1}"
+    folds = {tuple(sorted(p)) for p in net.folds.tolist()}
+    root = list(range(f))
+
+    def find(a: int) -> int:
+        while root[a] != a:
+            root[a] = root[root[a]]
+            a = root[a]
+        return a
+
+    for a, b in tree:
+        if not (isinstance(a, int) and isinstance(b, int) and 0 <= a < f and 0 <= b < f):
+            return f"its fold tree names a square {[a, b]!r} that is not one of its {f}"
+        if (min(a, b), max(a, b)) not in folds:
+            return f"its fold tree joins squares {a} and {b}, which no fold joins"
+        ra, rb = find(a), find(b)
+        if ra == rb:
+            return f"its fold tree has a cycle through squares {a} and {b}"
+        root[ra] = rb
+    return None  # F - 1 edges without a cycle on F squares: connected
+
+
+#: A census id: two digits of n, six of the index from 1.
+SHAPE_ID = re.compile(r"^\d{2}-\d{6}$")
+_OUTCOMES = ("found", "none", "undecided")
+
+
+def record_problems(out: Path, rec: dict[str, Any], cells: list[list[int]] | None = None,
+                    square_zipper: bool | None = None) -> tuple[list[str], tuple[int, int, int]]:
+    """The problems of one census record and its files, and the nets, unzippings and certificates it checked.
+
+    ``cells``, when given, are the polycube the record's id names (from the enumeration); ``square_zipper``
+    whether the census searched that zipper.
+    """
     from voxfab.errors import VoxfabError
     from voxfab.unfold import Net, validate
+    from voxfab.unfold._hunt import HUNT_ZIPPER
 
     from ._certificate import check_certificate
-    from ._topology import grid_of
+    from ._task import net_paths
+    from ._topology import SURFACE_KINDS, grid_of
 
+    sid = rec.get("id")
+    if not isinstance(sid, str) or not SHAPE_ID.match(sid):
+        return [f"{str(sid)[:40]!r}: not a census id (NN-NNNNNN)"], (0, 0, 0)
+    if "error" in rec:
+        return [f"{sid}: an error, not an answer"], (0, 0, 0)
+    got = rec.get("cells")
+    if cells is not None and got != cells:
+        return [f"{sid}: its cells are not those of polycube {sid}"], (0, 0, 0)
+    try:
+        g = grid_of(got)
+    except (VoxfabError, TypeError, ValueError):
+        return [f"{sid}: its cells are not a polycube"], (0, 0, 0)
+    problems: list[str] = []
+    if rec.get("n") != int(sid[:2]) or len(got) != int(sid[:2]):
+        problems.append(f"{sid}: n is {rec.get('n')!r} for {len(got)} cubes")
+    surface = rec.get("surface")
+    if surface not in SURFACE_KINDS:
+        problems.append(f"{sid}: surface {str(surface)[:40]!r} is no surface kind")
+    if rec.get("unfold") not in _OUTCOMES:
+        problems.append(f"{sid}: unfold {str(rec.get('unfold'))[:40]!r} is not one of {', '.join(_OUTCOMES)}")
+    unzips = _OUTCOMES if surface == "manifold" else (None,)
+    if rec.get("unzip") not in unzips:
+        problems.append(f"{sid}: unzip {str(rec.get('unzip'))[:40]!r} for a surface {str(surface)[:40]!r}")
+    if square_zipper is not None:
+        zipped = HUNT_ZIPPER[:3] if square_zipper else ("skipped",)
+        if rec.get("square_zipper") not in zipped:
+            problems.append(f"{sid}: square_zipper {str(rec.get('square_zipper'))[:40]!r}")
+    nets = unzippings = certificates = 0
+    for key, outcome, expected in (("net", rec.get("unfold"), net_paths(sid)[0]),
+                                   ("unzip_net", rec.get("unzip"), net_paths(sid)[1])):
+        path = rec.get(key)
+        if (outcome == "found") != (path is not None):
+            problems.append(f"{sid}: {key} is {str(path)[:80]!r} for an outcome {str(outcome)[:40]!r}")
+            continue
+        if path is None:
+            continue
+        if path != expected:  # never a file outside DIR/nets, nor another shape's
+            problems.append(f"{sid}: {key} is {str(path)[:80]!r}, not {expected}")
+            continue
+        try:
+            text = (out / path).read_text()
+            data = json.loads(text)
+            net = Net.from_dict(data)
+            validate(g, net)
+        except (OSError, ValueError, RecursionError, VoxfabError) as exc:
+            problems.append(f"{sid}: {path}: {type(exc).__name__ if isinstance(exc, RecursionError) else ''}"
+                            f"{' '.join(str(exc).split())[:200]}")
+            continue
+        why = tree_problem(net, data.get("tree"))
+        if why is None and key == "unzip_net":
+            why = cut_path_problem(got, net)
+        if why:
+            problems.append(f"{sid}: {path}: {why}")
+            continue
+        if key == "net":
+            nets += 1
+        else:
+            unzippings += 1
+    if rec.get("unzip") == "none":
+        certificates += 1
+        try:
+            check_certificate(got, rec.get("certificate") or {})
+        except (ValueError, KeyError, TypeError, IndexError) as exc:
+            problems.append(f"{sid}: certificate: {' '.join(str(exc).split())[:200]}")
+    return problems, (nets, unzippings, certificates)
+
+
+def verify_census(outdir: str | Path) -> CensusCheck:
+    """Check every net and certificate a census wrote into ``outdir``."""
     out = Path(outdir)
     data = json.loads((out / "census.json").read_text())
     problems: list[str] = []
     nets = unzippings = certificates = 0
     for rec in data["shapes"]:
-        sid, cells = rec["id"], rec["cells"]
-        g = grid_of(cells)
-        for key, outcome in (("net", rec.get("unfold")), ("unzip_net", rec.get("unzip"))):
-            path = rec.get(key)
-            if (outcome == "found") != (path is not None):
-                problems.append(f"{sid}: {key} is {path!r} for an outcome {outcome!r}")
-                continue
-            if path is None:
-                continue
-            try:
-                net = Net.from_json((out / path).read_text())
-                validate(g, net)
-            except (OSError, VoxfabError) as exc:
-                problems.append(f"{sid}: {path}: {' '.join(str(exc).split())}")
-                continue
-            if key == "net":
-                nets += 1
-                continue
-            unzippings += 1
-            why = cut_path_problem(cells, net)
-            if why:
-                problems.append(f"{sid}: {path}: {why}")
-        if rec.get("unzip") == "none":
-            certificates += 1
-            try:
-                check_certificate(cells, rec.get("certificate") or {})
-            except (ValueError, KeyError, TypeError) as exc:
-                problems.append(f"{sid}: certificate: {exc}")
+        found, (a, b, c) = record_problems(out, rec)
+        problems += found
+        nets, unzippings, certificates = nets + a, unzippings + b, certificates + c
     return CensusCheck(nets, unzippings, certificates, tuple(problems))

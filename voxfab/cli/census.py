@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import sys
 
 from voxfab.census._task import CensusSettings
 from voxfab.cli._common import add_repository_option, check_repository_path, path_argument
@@ -45,18 +46,24 @@ def run(args: argparse.Namespace) -> int:
             bar.total = total
             bar.update(done - bar.done)
 
-        report = run_census(args.n, args.output, settings=settings, scheduler=args.scheduler,
-                            workers=args.workers, connect_timeout=args.connect_timeout, on_progress=progress,
-                            store=args.store, repository=args.repo)
+        try:
+            report = run_census(args.n, args.output, settings=settings, scheduler=args.scheduler,
+                                workers=args.workers, connect_timeout=args.connect_timeout, on_progress=progress,
+                                store=args.store, repository=args.repo)
+        except KeyboardInterrupt:
+            print(f"voxfab: census: stopped; what was done is saved in {args.output / 'census.json'}, and the "
+                  "same command resumes it", file=sys.stderr)
+            raise
     print(f"{report.censused} polycubes censused, {report.kept} kept from an earlier run, in "
           f"{report.seconds:.1f} s on {report.workers} worker(s)")
-    print(f"{'n':>3} {'free':>7} {'mirror':>7} {'unfold':>16} {'unzip':>16} {'outside':>8}")
+    print(f"{'n':>3} {'1-sided':>7} {'free':>7} {'unfold':>16} {'unzip':>16} {'outside':>8}")
     for r in report.rows:
         outside = r["edge_touching"] + r["vertex_touching"] + r["handle"]
-        print(f"{r['n']:>3} {r['free']:>7} {r['free_mirror']:>7} "
+        print(f"{r['n']:>3} {r['one_sided']:>7} {r['free']:>7} "
               f"{r['unfold_found']:>6}/{r['unfold_none']}/{r['unfold_undecided']:<6} "
               f"{r['unzip_found']:>6}/{r['unzip_none']}/{r['unzip_undecided']:<6} {outside:>8}")
-    print("(unfold and unzip: found/none/undecided; outside: touchings and handles, not unzipped)")
+    print("(1-sided: up to rotation, the polycubes censused; free: mirror images as one; unfold and unzip: "
+          "found/none/undecided; outside: touchings and handles, not unzipped)")
     print(f"wrote {report.path} and {report.page}")
     if args.store:
         print(f"stored as the range {args.store} in {args.repo} (voxfab repo list --range {args.store})")

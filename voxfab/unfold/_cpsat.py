@@ -50,6 +50,9 @@ def solve(solver: Any, model: Any) -> int:
     if event is None:
         return solver.solve(model)
     check_cancelled()
+    # CP-SAT catches SIGINT itself by default and ends as if out of time: work with a cancel event hears
+    # SIGINT through the event instead, so an interrupt is never taken for a time-out.
+    solver.parameters.catch_sigint_signal = False
     done = threading.Event()
 
     def watch() -> None:
