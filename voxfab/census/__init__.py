@@ -12,7 +12,7 @@ every net and proof a census wrote.
 
 from ._certificate import check_certificate
 from ._enumerate import MAX_CUBES, canonical_cells, count_free, count_polycubes, polycube_levels, polycubes
-from ._report import cubes_svg, net_svg, write_page
+from ._report import cubes_page, cubes_svg, net_page, net_svg, write_page
 from ._run import CENSUS_FORMAT, CensusReport, check_census_size, check_scheduler, run_census, shape_id
 from ._task import CensusSettings, CensusTask, census_shape, census_task, fold_tree_pairs, net_paths
 from ._topology import SURFACE_KINDS, Topology, grid_of, topology
@@ -35,7 +35,9 @@ __all__ = [
     "fold_tree_pairs",
     "record_problems",
     "tree_problem",
+    "cubes_page",
     "cubes_svg",
+    "net_page",
     "net_paths",
     "net_svg",
     "run_census",

@@ -129,6 +129,7 @@ def kept_records(earlier: Earlier | None, cells: dict[str, list[list[int]]], out
         problems, _ = record_problems(out, rec, cells[sid], square_zipper)
         if problems:
             dropped.append(problems[0])
+            _clear_net_paths(out, sid)
         else:
             kept[sid] = rec
     if dropped:
@@ -136,6 +137,27 @@ def kept_records(earlier: Earlier | None, cells: dict[str, list[list[int]]], out
         warnings.warn(f"{len(dropped)} earlier record(s) in {out} are censused again: "
                       f"{'; '.join(dropped[:_NAMED])}{more}", VoxfabWarning, stacklevel=3)
     return kept
+
+
+def _clear_net_paths(out: Path, sid: str) -> None:
+    """Make room for a recomputed record's nets: an empty folder where a net file goes is removed.
+
+    Raises
+    ------
+    OutputError
+        A folder with files in it stands there: it is no census's, so it is left to its owner.
+    """
+    from voxfab.errors import OutputError
+
+    from ._task import net_paths
+
+    for name in net_paths(sid):
+        path = out / name
+        if path.is_dir() and not path.is_symlink():
+            try:
+                path.rmdir()
+            except OSError:
+                raise OutputError(f"{path}: a folder with files where the census writes a net; remove it") from None
 
 
 def _add_missing_trees(out: Path, rec: dict[str, Any]) -> None:

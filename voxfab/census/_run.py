@@ -330,7 +330,8 @@ def run_census(
     page = write_page(out, json.loads(path.read_text()))
     rows = tuple(_rows(n_max, counts, records, wall, cpu))
     if failed:
-        first = f"{failed[0]['id']}: {failed[0]['error']}"
+        one = min(failed, key=lambda r: r["id"])  # the first in the file, whichever finished first
+        first = f"{one['id']}: {one['error']}"
         if len(failed) == done:
             raise UnfoldError(f"every search of the census failed ({done} polycubes; {first}); see {path}")
         import warnings
@@ -349,8 +350,9 @@ def _interrupts() -> Iterator[threading.Event]:
     Python runs a signal handler only between bytecodes of the main thread, which a
     solver in native code holds for seconds; so the signal's byte also goes to a
     wakeup pipe that a thread watches.  The event stops every search of the block
-    (:func:`voxfab._shared.progress.check_cancelled`, CP-SAT's cancel watcher).  A
-    second SIGINT raises KeyboardInterrupt at once.
+    (:func:`voxfab._shared.progress.check_cancelled`, CP-SAT's cancel watcher), and
+    the handler raises KeyboardInterrupt as soon as Python runs it.  (CP-SAT's own
+    SIGINT handler, which ends a search as if out of time, is off in a cancel scope.)
     """
     event = threading.Event()
     if threading.current_thread() is not threading.main_thread():
@@ -361,9 +363,8 @@ def _interrupts() -> Iterator[threading.Event]:
     stop = threading.Event()
 
     def on_sigint(signum: int, frame: object) -> None:
-        if event.is_set():
-            raise KeyboardInterrupt
-        event.set()
+        event.set()  # for a solver in native code, were this handler late
+        raise KeyboardInterrupt  # at once in Python code (an import of seconds, a search's own loop)
 
     def watch() -> None:
         while not stop.is_set():
@@ -393,10 +394,11 @@ def _serial(tasks: Iterator[CensusTask]) -> Iterator[tuple[list[dict[str, Any]],
     """Run tasks in this process; Ctrl-C stops the search under way and raises KeyboardInterrupt, recording nothing."""
     from voxfab._shared.progress import cancel_scope
 
-    with _interrupts() as event, cancel_scope(event):
+    with _interrupts() as event:
         for t in tasks:
             try:
-                result = census_task(t)
+                with cancel_scope(event):  # the searches only: the caller's meter, between them, runs outside it
+                    result = census_task(t)
             except CancelledError:
                 if event.is_set():
                     raise KeyboardInterrupt from None

@@ -167,13 +167,17 @@ def record_problems(out: Path, rec: dict[str, Any], cells: list[list[int]] | Non
             problems.append(f"{sid}: {key} is {str(path)[:80]!r}, not {expected}")
             continue
         try:
-            text = (out / path).read_text()
-            data = json.loads(text)
+            data = json.loads((out / path).read_text())
             net = Net.from_dict(data)
             validate(g, net)
-        except (OSError, ValueError, RecursionError, VoxfabError) as exc:
-            problems.append(f"{sid}: {path}: {type(exc).__name__ if isinstance(exc, RecursionError) else ''}"
-                            f"{' '.join(str(exc).split())[:200]}")
+        except OSError as exc:  # missing, a folder, unreadable
+            problems.append(f"{sid}: {path}: {exc.strerror or exc}")
+            continue
+        except RecursionError:
+            problems.append(f"{sid}: {path}: nested too deep for a net")
+            continue
+        except (ValueError, VoxfabError) as exc:  # not JSON, not a net, not a net of this polycube
+            problems.append(f"{sid}: {path}: {' '.join(str(exc).split())[:200]}")
             continue
         why = tree_problem(net, data.get("tree"))
         if why is None and key == "unzip_net":
