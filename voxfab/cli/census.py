@@ -16,7 +16,8 @@ HELP = ("census every polycube of 1..N cubes: an edge unfolding and an edge-unzi
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("n", type=int, metavar="N", help="the largest number of cubes (1 to 11)")
     parser.add_argument("-o", "--output", type=path_argument, required=True, metavar="DIR",
-                        help="output folder; an earlier census there with the same settings is resumed")
+                        help="output folder; an earlier census there with the same settings is resumed (its records "
+                             "checked, a larger N kept whole); one with other settings is said and censused again")
     add_option_arguments(parser, CensusSettings)
     parser.add_argument("--scheduler", metavar="ADDRESS",
                         help="a running Dask scheduler (tcp://HOST:PORT); default: --workers local processes")
