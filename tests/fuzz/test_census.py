@@ -49,16 +49,19 @@ def census4(tmp_path_factory: pytest.TempPathFactory) -> Path:
 # ---- folders that cannot hold a census ---------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("where", ["/proc/voxfab-census", "/proc/self/voxfab-census", "/sys/voxfab-census"])
-def test_a_folder_on_a_virtual_file_system_is_refused_in_one_line(where: str) -> None:
-    _refused(_census("2", "-o", where, "--workers", "0"), "voxfab-census")
+@pytest.mark.parametrize("where, why", [("/proc/voxfab-census", "No such file or directory"),
+                                        ("/proc/self/voxfab-census", "No such file or directory"),
+                                        ("/sys/voxfab-census", "Operation not permitted")])
+def test_a_folder_on_a_virtual_file_system_is_refused_in_one_line(where: str, why: str) -> None:
+    """mkdir there raised FileNotFoundError (/proc) or PermissionError (/sys, as root too): both are one line."""
+    _refused(_census("2", "-o", where, "--workers", "0"), f"{where}: cannot write in {Path(where).parent}: {why}")
     assert not Path(where).exists()
 
 
-def test_a_read_only_folder_is_refused_in_one_line(tmp_path: Path) -> None:
-    """A folder the census may not write in (a read-only mount, as /proc is to everyone) is refused up front."""
-    run = _census("2", "-o", "/proc/sys/voxfab-census", "--workers", "0")
-    _refused(run, "voxfab-census")
+def test_the_folder_is_tried_before_the_scheduler_is_reached() -> None:
+    """A folder that cannot hold the census is refused first, not after a cluster started or a scheduler answered."""
+    run = _census("2", "-o", "/proc/voxfab-census", "--scheduler", f"tcp://127.0.0.1:{_closed_port()}")
+    _refused(run, "/proc/voxfab-census: cannot write in /proc")
 
 
 def test_nets_that_is_a_file_is_refused_before_anything_is_made(tmp_path: Path) -> None:

@@ -34,6 +34,7 @@ import os
 import re
 import select
 import signal
+import tempfile
 import threading
 import time
 import uuid
@@ -119,10 +120,13 @@ def _check_folder(out: Path, path: Path) -> None:
     nets = out / NETS
     if nets.exists() and not nets.is_dir():
         raise OutputError(f"{nets}: exists and is not a folder; the census keeps its nets there")
-    if out.exists() and not os.access(out, os.W_OK | os.X_OK):
-        raise OutputError(f"{out}: cannot write there")
-    if not out.exists() and not os.access(out.parent, os.W_OK | os.X_OK):
-        raise OutputError(f"{out}: cannot create it in {out.parent}")
+    # A folder is tried by making and removing a hidden one in it: permissions alone do not tell a read-only
+    # mount or a virtual file system (/proc), nor anything to root; the scheduler is reached only after.
+    where = out if out.is_dir() else out.parent
+    try:
+        os.rmdir(tempfile.mkdtemp(prefix=f".{out.name}.{os.getpid()}-", suffix=".tmp", dir=where))
+    except OSError as exc:
+        raise OutputError(f"{out}: cannot write in {where}: {exc.strerror or exc}") from None
 
 
 def _make_folder(out: Path) -> None:
