@@ -32,18 +32,22 @@ class CensusCheck:
     problems: tuple[str, ...]
 
 
+#: The 8 cells round a lattice point, as offsets down from it, and the 12 pairs of them that share a face.
+_OCTANTS = list(itertools.product((0, 1), repeat=3))
+_FACE_PAIRS = [(i, j) for i, j in itertools.combinations(range(8), 2)
+               if sum(abs(u - v) for u, v in zip(_OCTANTS[i], _OCTANTS[j])) == 1]
+
+
 def _corners(cells: list[list[int]]) -> set[tuple[int, int, int]]:
     """Lattice points where 3, 5 or 6 squares of the surface meet, from the cubes alone."""
     filled = {tuple(c) for c in cells}
+    points = {(x + a, y + b, z + c) for x, y, z in filled for a, b, c in _OCTANTS}
     out = set()
-    for x, y, z in filled:
-        for p in itertools.product((x, x + 1), (y, y + 1), (z, z + 1)):
-            octs = [(p[0] - a, p[1] - b, p[2] - c) for a, b, c in itertools.product((0, 1), repeat=3)]
-            inside = [o in filled for o in octs]
-            squares = sum(inside[i] != inside[j] for i, j in itertools.combinations(range(8), 2)
-                          if sum(abs(u - v) for u, v in zip(octs[i], octs[j])) == 1)
-            if squares not in (0, 4):
-                out.add(p)
+    for p in points:
+        inside = [(p[0] - a, p[1] - b, p[2] - c) in filled for a, b, c in _OCTANTS]
+        squares = sum(inside[i] != inside[j] for i, j in _FACE_PAIRS)
+        if squares not in (0, 4):
+            out.add(p)
     return out
 
 
