@@ -13,6 +13,7 @@ import signal
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 _SCRIPT = """
 import random
@@ -37,8 +38,10 @@ except KeyboardInterrupt:
 """
 
 
-def test_sigint_stops_a_solver_search_and_gives_no_outcome() -> None:
-    proc = subprocess.Popen([sys.executable, "-c", _SCRIPT], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+def test_sigint_stops_a_solver_search_and_gives_no_outcome(tmp_path: Path) -> None:
+    script = tmp_path / "solve.py"  # a file, as the CLI's code is: source text run by -c is exec'd text
+    script.write_text(_SCRIPT)
+    proc = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             text=True)
     try:
         assert proc.stdout.readline().strip() == "START", proc.communicate(timeout=60)

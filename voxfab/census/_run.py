@@ -366,14 +366,22 @@ def _interrupts() -> Iterator[threading.Event]:
     os.set_blocking(w, False)
     stop = threading.Event()
 
-    def on_sigint(signum: int, frame: object) -> None:
+    again = threading.Event()
+
+    def on_sigint(signum: int, frame: Any) -> None:
         event.set()  # for a solver in native code, were this handler late
+        if _in_exec_of_text(frame):
+            again.set()  # not here: the watcher sends SIGINT again in a moment
+            return
         raise KeyboardInterrupt  # at once in Python code (an import of seconds, a search's own loop)
 
     def watch() -> None:
         while not stop.is_set():
             if select.select([r], [], [], 0.1)[0] and signal.SIGINT in os.read(r, 256):
                 event.set()
+            if again.is_set() and not stop.is_set():
+                again.clear()
+                os.kill(os.getpid(), signal.SIGINT)
 
     previous = signal.signal(signal.SIGINT, on_sigint)
     try:
@@ -392,6 +400,20 @@ def _interrupts() -> Iterator[threading.Event]:
         signal.signal(signal.SIGINT, previous)
         os.close(r)
         os.close(w)
+
+
+def _in_exec_of_text(frame: Any) -> bool:
+    """Whether Python runs source text given to ``exec`` or ``eval`` (a dataclass's methods being made, at import).
+
+    A KeyboardInterrupt that leaves such source marks the interpreter, which then ends by
+    SIGINT whatever the program does with the exception (exit status -2, not 130); there the
+    handler waits for the signal sent again a moment later.
+    """
+    while frame is not None:
+        if frame.f_code.co_filename == "<string>" and frame.f_code.co_name == "<module>":
+            return True
+        frame = frame.f_back
+    return False
 
 
 def _serial(tasks: Iterator[CensusTask]) -> Iterator[tuple[list[dict[str, Any]], str]]:
