@@ -57,6 +57,7 @@ def test_ctrl_c_stops_a_serial_census_at_once_and_saves_what_is_done(tmp_path: P
             proc.communicate()
     assert proc.returncode == 130, err
     assert first.startswith("voxfab: census: stopped; what was done is saved in"), err
+    assert f"({len(json.loads((out / 'census.json').read_text())['shapes'])} polycubes)" in first, first
     assert stopped < _STOPS_WITHIN, stopped
     assert "voxfab: interrupted" in err and "Traceback" not in err, err
     data = json.loads((out / "census.json").read_text())

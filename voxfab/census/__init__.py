@@ -13,7 +13,15 @@ every net and proof a census wrote.
 from ._certificate import check_certificate
 from ._enumerate import MAX_CUBES, canonical_cells, count_free, count_polycubes, polycube_levels, polycubes
 from ._report import cubes_page, cubes_svg, net_page, net_svg, write_page
-from ._run import CENSUS_FORMAT, CensusReport, check_census_size, check_scheduler, run_census, shape_id
+from ._run import (
+    CENSUS_FORMAT,
+    CensusInterrupted,
+    CensusReport,
+    check_census_size,
+    check_scheduler,
+    run_census,
+    shape_id,
+)
 from ._task import CensusSettings, CensusTask, census_shape, census_task, fold_tree_pairs, net_paths
 from ._topology import SURFACE_KINDS, Topology, grid_of, topology
 from ._unzip import UNZIP_OUTCOMES, Unzipping, unzip
@@ -22,6 +30,7 @@ from ._verify import CensusCheck, cut_path_problem, record_problems, tree_proble
 __all__ = [
     "CENSUS_FORMAT",
     "CensusCheck",
+    "CensusInterrupted",
     "CensusReport",
     "CensusSettings",
     "CensusTask",

@@ -47,7 +47,7 @@ from voxfab.errors import CancelledError, InvalidShapeError, OutputError, Reposi
 from ._resume import CENSUS_FORMAT
 from ._task import NETS, CensusSettings, CensusTask, census_task
 
-__all__ = ["CENSUS_FORMAT", "CensusReport", "check_census_size", "check_scheduler", "run_census", "shape_id"]
+__all__ = ["CENSUS_FORMAT", "CensusInterrupted", "CensusReport", "check_census_size", "check_scheduler", "run_census", "shape_id"]
 #: Shapes sent to a worker at once: a polycube takes tens of milliseconds, a Dask task a few.
 _CHUNK = 24
 #: Shapes listed per n as the first without an unzipping (or undecided), with their proofs.
@@ -136,6 +136,15 @@ def _make_folder(out: Path) -> None:
             folder.mkdir(exist_ok=True)
         except OSError as exc:
             raise OutputError(f"{folder}: cannot create the folder: {exc.strerror or exc}") from None
+
+
+class CensusInterrupted(KeyboardInterrupt):
+    """A census stopped by Ctrl-C after it saved the records done (``path``, ``saved`` of them)."""
+
+    def __init__(self, path: Path, saved: int) -> None:
+        super().__init__(f"stopped; {saved} polycubes saved in {path}")
+        self.path = path
+        self.saved = saved
 
 
 @dataclasses.dataclass(frozen=True)
@@ -325,8 +334,10 @@ def run_census(
                         save(False)
                         last = time.monotonic()
                         wait = max(_SAVE_EVERY, _SAVE_SHARE * (time.thread_time() - began))
-        except BaseException:
+        except BaseException as exc:
             save(False)  # what is done is kept for the next run, whatever stopped this one
+            if type(exc) is KeyboardInterrupt:  # not a subclass the caller gave its own meaning (SIGTERM)
+                raise CensusInterrupted(path, len(records)) from None
             raise
     save(True)
     from ._report import write_page

@@ -33,7 +33,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from voxfab._shared.progress import meter
-    from voxfab.census import check_census_size, run_census
+    from voxfab.census import CensusInterrupted, check_census_size, run_census
 
     check_census_size(args.n)
     if args.store is not None:
@@ -51,9 +51,9 @@ def run(args: argparse.Namespace) -> int:
             report = run_census(args.n, args.output, settings=settings, scheduler=args.scheduler,
                                 workers=args.workers, connect_timeout=args.connect_timeout, on_progress=progress,
                                 store=args.store, repository=args.repo)
-        except KeyboardInterrupt:
-            print(f"voxfab: census: stopped; what was done is saved in {args.output / 'census.json'}, and the "
-                  "same command resumes it", file=sys.stderr)
+        except CensusInterrupted as stop:
+            print(f"voxfab: census: stopped; what was done is saved in {stop.path} ({stop.saved} polycubes), "
+                  "and the same command resumes it", file=sys.stderr)
             raise
     print(f"{report.censused} polycubes censused, {report.kept} kept from an earlier run, in "
           f"{report.seconds:.1f} s on {report.workers} worker(s)")
