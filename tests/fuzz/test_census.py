@@ -76,6 +76,8 @@ def test_nets_that_is_a_file_is_refused_before_anything_is_made(tmp_path: Path) 
     ("[" * 100_000 + "]" * 100_000, "nested too deep"),
     ('{"format": "voxfab-census/2", "n": 4, "settings": {}, "shapes": [{"id": "4-1"}]}', "not a census id"),
     ('{"format": "voxfab-census/2", "n": 4, "settings": {}, "shapes": [{"id": 7}]}', "not a census id"),
+    ('{"format": "voxfab-census/2", "n": 4, "settings": {}, "shapes": [{"id": "04-000001\\n"}]}',
+     "not a census id"),
     ('{"format": "voxfab-census/2", "n": 4, "settings": {}, "shapes": ["04-000001"]}', "not a census id"),
     ('{"format": "something else"}', "not a census file"),
     ("not json", "not a census file"),
@@ -237,8 +239,14 @@ def _no_tree(out: Path, data: dict) -> str:
     return rec["id"]
 
 
+def _no_proof(out: Path, data: dict) -> str:
+    rec = data["shapes"][3]
+    rec["unzip"], rec["unzip_net"], rec["certificate"] = "none", None, "trust me"
+    return rec["id"]
+
+
 @pytest.mark.parametrize("tamper", [_truncate, _empty_unzip, _forged, _maybe, _outside, _folder, _other_shape,
-                                    _no_tree])
+                                    _no_tree, _no_proof])
 def test_a_resume_recomputes_every_record_that_does_not_check_out(census4: Path, tmp_path: Path, tamper) -> None:
     out = tmp_path / "c"
     shutil.copytree(census4, out)

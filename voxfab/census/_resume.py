@@ -82,7 +82,7 @@ def read_earlier(path: Path) -> Earlier | None:
     records: dict[str, dict[str, Any]] = {}
     for i, rec in enumerate(shapes):
         sid = rec.get("id") if isinstance(rec, dict) else None
-        if not isinstance(sid, str) or not SHAPE_ID.match(sid):
+        if not isinstance(sid, str) or not SHAPE_ID.fullmatch(sid):
             raise FormatError(f"{path}: record {i + 1} has the id {str(sid)[:40]!r}, not a census id (NN-NNNNNN); "
                               "remove the file or choose another folder")
         records[sid] = rec

@@ -100,8 +100,8 @@ def tree_problem(net: Any, tree: object) -> str | None:
         return a
 
     for a, b in tree:
-        if not (isinstance(a, int) and isinstance(b, int) and 0 <= a < f and 0 <= b < f):
-            return f"its fold tree names a square {[a, b]!r} that is not one of its {f}"
+        if not all(type(v) is int and 0 <= v < f for v in (a, b)):
+            return f"its fold tree names a square {str([a, b])[:40]} that is not one of its {f}"
         if (min(a, b), max(a, b)) not in folds:
             return f"its fold tree joins squares {a} and {b}, which no fold joins"
         ra, rb = find(a), find(b)
@@ -112,7 +112,7 @@ def tree_problem(net: Any, tree: object) -> str | None:
 
 
 #: A census id: two digits of n, six of the index from 1.
-SHAPE_ID = re.compile(r"^\d{2}-\d{6}$")
+SHAPE_ID = re.compile(r"[0-9]{2}-[0-9]{6}")  # fullmatch: no other digits, no line end
 _OUTCOMES = ("found", "none", "undecided")
 
 
@@ -132,7 +132,7 @@ def record_problems(out: Path, rec: dict[str, Any], cells: list[list[int]] | Non
     from ._topology import SURFACE_KINDS, grid_of
 
     sid = rec.get("id")
-    if not isinstance(sid, str) or not SHAPE_ID.match(sid):
+    if not isinstance(sid, str) or not SHAPE_ID.fullmatch(sid):
         return [f"{str(sid)[:40]!r}: not a census id (NN-NNNNNN)"], (0, 0, 0)
     if "error" in rec:
         return [f"{sid}: an error, not an answer"], (0, 0, 0)
@@ -195,8 +195,11 @@ def record_problems(out: Path, rec: dict[str, Any], cells: list[list[int]] | Non
             unzippings += 1
     if rec.get("unzip") == "none":
         certificates += 1
+        cert = rec.get("certificate")
         try:
-            check_certificate(got, rec.get("certificate") or {})
+            if not isinstance(cert, dict):
+                raise TypeError(f"expected an object, got {str(cert)[:40]!r}")
+            check_certificate(got, cert)
         except (ValueError, KeyError, TypeError, IndexError) as exc:
             problems.append(f"{sid}: certificate: {' '.join(str(exc).split())[:200]}")
     return problems, (nets, unzippings, certificates)
