@@ -21,7 +21,7 @@ from voxfab._shared.atomic import write_bytes
 from ._format import numbers, polyline_text
 from ._layers import DASH_PATTERNS, LAYERS, LayerStyle, Lines
 from ._legend import Legend, legend_layers
-from ._model import Drawing, Page, PlacedImage
+from ._model import HALO, Drawing, Page, PlacedImage
 from ._polylines import Polylines
 
 __all__ = ["MM", "pdf_document", "page_content", "write_pdf"]
@@ -67,17 +67,26 @@ def page_content(page: Page, *, styles: Mapping[str, LayerStyle] | None = None, 
         out.append(f"q {w} 0 0 {h} {x} {y} cm /Im{i} Do Q\n")
     for fill in page.fills:
         if len(fill.rings):
-            out.append(f"{_rgb(fill.rgb)} rg\n{_path_ops(fill.rings)}f*\n")
+            out.append(f"{_rgb(fill.rgb)} rg\n{_path_ops(fill.rings)}{'f' if fill.nonzero else 'f*'}\n")
     for name in LAYERS:
-        lines = Polylines.concat([page.lines(name), extra.get(name, Polylines.empty())])
+        st = st_map[name]
+        dash = " ".join(numbers(DASH_PATTERNS[st.style]))
+        inks = page.inks_of(name)
+        w = st.line_width(Lines.PREVIEW)
+        # Every halo first, so no halo covers another ink's line where two meet.
+        strokes = [(i.halo_rgb, w + 2 * HALO, i.lines) for i in inks or () if i.halo]
+        for rgb, width, ink_lines in strokes + [(i.rgb, w, i.lines) for i in inks or ()]:
+            out.append(f"{_rgb(rgb)} RG {numbers([width])[0]} w [{dash}] 0 d\n{_path_ops(ink_lines)}S\n")
+        own = Polylines.empty() if inks else page.lines(name)
+        lines = Polylines.concat([own, extra.get(name, Polylines.empty())])
         circles = page.circles_of(name)
         if not len(lines) and not circles.shape[0]:
             continue
-        st = st_map[name]
-        dash = " ".join(numbers(DASH_PATTERNS[st.style]))
         width = numbers([st.line_width(Lines.PREVIEW)])[0]
         out.append(f"{_rgb(st.rgb)} RG {width} w [{dash}] 0 d\n")
         out.append(_path_ops(lines) + _circle_ops(circles) + "S\n")
+    if len(page.marks):
+        out.append(f"0 0 0 rg\n{_path_ops(page.marks)}f*\n")
     out.append("Q\n")
     return "".join(out).encode("ascii")
 
