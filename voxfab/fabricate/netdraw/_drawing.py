@@ -195,6 +195,11 @@ class NetDrawing:
         return assembly_page(maps, list(self.joins), list(self.order), size, margin, self.title)
 
     @property
+    def coloured(self) -> bool:
+        """The faces are printed in their voxels' colours."""
+        return any(s.colour_fills for s in self.sheets)
+
+    @property
     def seam_labels(self) -> list[str]:
         """The label printed on both edges of each seam."""
         return seam_labels(self.seam_numbers.tolist(), self.label_chars)

@@ -125,17 +125,17 @@ def grown_polygons(poly: npt.NDArray[np.float64], by: float) -> npt.NDArray[np.f
     return poly + by * (a + b) / (1.0 + (a * b).sum(axis=2, keepdims=True))
 
 
-def _by_colour(rings: npt.NDArray[np.float64], rgb: npt.NDArray[np.uint8]) -> tuple[Fill, ...]:
-    """One nonzero fill per colour of ``rings`` (n, m, 2), colours in first-seen order."""
+def _by_colour(rings: npt.NDArray[np.float64], rgb: npt.NDArray[np.uint8], name: str) -> tuple[Fill, ...]:
+    """One nonzero fill per colour of ``rings`` (n, m, 2), colours in first-seen order, named ``name-N``."""
     if not rings.shape[0]:
         return ()
     key = rgb.astype(np.int64) @ np.array([65536, 256, 1])
     _, first, inverse = np.unique(key, return_index=True, return_inverse=True)
     out = []
-    for group in np.argsort(first, kind="stable").tolist():
+    for n, group in enumerate(np.argsort(first, kind="stable").tolist()):
         sel = inverse.ravel() == group
         out.append(Fill(Polylines.from_list(list(rings[sel]), [True] * int(sel.sum())),
-                        hex_colour(rgb[sel][0]), nonzero=True))
+                        hex_colour(rgb[sel][0]), nonzero=True, name=f"{name}-{n + 1}"))
     return tuple(out)
 
 
@@ -162,9 +162,9 @@ def sheet_fills(faces: npt.NDArray[np.float64], face_rgb: npt.NDArray[np.uint8],
     """
     under: tuple[Fill, ...] = ()
     if bleed > 0:
-        under = _by_colour(grown_squares(faces, np.where(outline, bleed, 0.0)), face_rgb)
-        under += _by_colour(grown_polygons(tabs, bleed), tab_rgb)
-    tab_fills = _by_colour(tabs, tab_rgb)
+        under = _by_colour(grown_squares(faces, np.where(outline, bleed, 0.0)), face_rgb, "bleed")
+        under += _by_colour(grown_polygons(tabs, bleed), tab_rgb, "tab-bleed")
+    tab_fills = _by_colour(tabs, tab_rgb, "tabs")
     face_fills = tuple(Fill(Polylines.from_list([f], [True]), hex_colour(c), name=n)
                        for f, c, n in zip(faces, face_rgb, names))
     return under + tab_fills + face_fills

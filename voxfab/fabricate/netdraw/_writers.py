@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
 from voxfab.drawing import FORMATS, Cutter, Legend, Lines, WriteOptions, write_drawing
@@ -24,9 +25,14 @@ def write(drawing: NetDrawing, path: Path, options: DrawingOptions) -> list[str]
     filled in SVG, PDF and PNG.  With a ``cutter``, SVG, PDF and PNG are the
     print (registration marks, no cut lines) and ``NAME.cut.svg`` the cut.
     """
-    opts = WriteOptions(styles=options.styles, lines=Lines(options.svg_lines), dxf_version=options.dxf_version,
-                        legend=Legend(y=options.edge + 1.0), creator="voxfab net")
     ext = path.suffix.lower()
+    styles = options.styles
+    if ext in (".pdf", ".png") and drawing.coloured:
+        # The folds print in black or white over the colours: the legend shows them black.
+        styles = {k: dataclasses.replace(v, color="#000000") if k in ("MOUNTAIN", "VALLEY") else v
+                  for k, v in styles.items()}
+    opts = WriteOptions(styles=styles, lines=Lines(options.svg_lines), dxf_version=options.dxf_version,
+                        legend=Legend(y=options.edge + 1.0), creator="voxfab net")
     # A printed net of several pieces opens with its assembly page; laser files hold sheets only.
     assembly = ext == ".pdf"
     if Cutter(options.cutter) is Cutter.NONE or ext == ".dxf":
