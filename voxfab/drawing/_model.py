@@ -31,12 +31,17 @@ class Fill:
         make one area) instead of even-odd.
     name : str
         An id for the area (SVG ``id``), or ``""``.
+    colors, names : tuple of str
+        When given, one per ring: each ring is an area of its own in its own colour,
+        with its own id (the faces of a coloured net, written in one pass).
     """
 
     rings: Polylines
     color: str
     nonzero: bool = False
     name: str = ""
+    colors: tuple[str, ...] = ()
+    names: tuple[str, ...] = ()
 
     @property
     def rgb(self) -> tuple[int, int, int]:

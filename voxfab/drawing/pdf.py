@@ -53,6 +53,10 @@ def _circle_ops(circles: np.ndarray) -> str:
     return "".join(out)
 
 
+def _hex_rgb(c: str) -> tuple[int, int, int]:
+    return int(c[1:3], 16), int(c[3:5], 16), int(c[5:7], 16)
+
+
 def _rgb(rgb: tuple[int, int, int]) -> str:
     return " ".join(numbers([c / 255.0 for c in rgb], decimals=3))
 
@@ -66,7 +70,12 @@ def page_content(page: Page, *, styles: Mapping[str, LayerStyle] | None = None, 
         w, h, x, y = numbers([image.width, image.height, image.x, image.y])
         out.append(f"q {w} 0 0 {h} {x} {y} cm /Im{i} Do Q\n")
     for fill in page.fills:
-        if len(fill.rings):
+        if len(fill.rings) and fill.colors:  # each ring in its own colour: one path per colour
+            colors = np.array(fill.colors)
+            for c in dict.fromkeys(fill.colors):
+                rings = fill.rings.select(colors == c)
+                out.append(f"{_rgb(_hex_rgb(c))} rg\n{_path_ops(rings)}{'f' if fill.nonzero else 'f*'}\n")
+        elif len(fill.rings):
             out.append(f"{_rgb(fill.rgb)} rg\n{_path_ops(fill.rings)}{'f' if fill.nonzero else 'f*'}\n")
     for name in LAYERS:
         st = st_map[name]
@@ -74,9 +83,10 @@ def page_content(page: Page, *, styles: Mapping[str, LayerStyle] | None = None, 
         inks = page.inks_of(name)
         w = st.line_width(Lines.PREVIEW)
         # Every halo first, so no halo covers another ink's line where two meet.
-        strokes = [(i.halo_rgb, w + 2 * HALO, i.lines) for i in inks or () if i.halo]
-        for rgb, width, ink_lines in strokes + [(i.rgb, w, i.lines) for i in inks or ()]:
-            out.append(f"{_rgb(rgb)} RG {numbers([width])[0]} w [{dash}] 0 d\n{_path_ops(ink_lines)}S\n")
+        ops = [_path_ops(i.lines) for i in inks or ()]  # each ink's path, stroked twice with a halo
+        strokes = [(i.halo_rgb, w + 2 * HALO, o) for i, o in zip(inks or (), ops) if i.halo]
+        for rgb, width, path in strokes + [(i.rgb, w, o) for i, o in zip(inks or (), ops)]:
+            out.append(f"{_rgb(rgb)} RG {numbers([width])[0]} w [{dash}] 0 d\n{path}S\n")
         own = Polylines.empty() if inks else page.lines(name)
         lines = Polylines.concat([own, extra.get(name, Polylines.empty())])
         circles = page.circles_of(name)

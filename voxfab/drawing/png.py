@@ -185,7 +185,11 @@ def page_image(page: Page, *, scale: float, styles: Mapping[str, LayerStyle] | N
     for placed in page.images:
         _paste(pixels, placed, page.height, scale)
     for fill in page.fills:
-        _fill(pixels, fill, to_px)
+        if fill.colors:  # each ring in its own colour
+            for ring, color in zip(fill.rings.lines(), fill.colors):
+                _fill(pixels, Fill(Polylines.from_list([ring], [True]), color, fill.nonzero), to_px)
+        else:
+            _fill(pixels, fill, to_px)
     image = Image.fromarray(pixels, "RGB")
     draw = ImageDraw.Draw(image)
     extra = legend_layers(page, legend) if legend else {}

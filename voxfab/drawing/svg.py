@@ -40,6 +40,11 @@ def _fills(page: Page) -> list[str]:
             continue
         pts = rings.points.copy()
         pts[:, 1] = page.height - pts[:, 1]
+        if fill.colors:  # a path per ring, each in its colour
+            first = [f'<path id="{escape(n)}" fill="{c}" d="M%s,%s' if n else f'<path fill="{c}" d="M%s,%s'
+                     for c, n in zip(fill.colors, fill.names or ("",) * len(fill.colors))]
+            out.append(polyline_text(pts, rings.offsets, first, " L%s,%s", ' Z"/>\n'))
+            continue
         d = polyline_text(pts, rings.offsets, "M%s,%s", " L%s,%s", " Z ")
         name = f' id="{escape(fill.name)}"' if fill.name else ""
         rule = ' fill-rule="nonzero"' if fill.nonzero else ""
@@ -102,6 +107,7 @@ def page_svg(page: Page, *, styles: Mapping[str, LayerStyle] | None = None, line
         if inks:
             # Printed art: visible widths whatever the file's lines, a halo under each ink.
             w = st.line_width(Lines.PREVIEW)
+            paths = [_paths(ink.lines, page.height) for ink in inks]  # each stroked twice with a halo
             for part, width in (("halo", w + 2 * HALO), ("ink", w)):
                 for i, ink in enumerate(inks):
                     color = ink.halo if part == "halo" else ink.color
@@ -110,7 +116,7 @@ def page_svg(page: Page, *, styles: Mapping[str, LayerStyle] | None = None, line
                     out.append(f'<g id="{name}-{part}{i + 1}" fill="none" stroke="{color}" '
                                f'stroke-width="{numbers([width])[0]}"{dash_attr} stroke-linecap="butt" '
                                'stroke-linejoin="miter">\n')
-                    out.append(_paths(ink.lines, page.height))
+                    out.append(paths[i])
                     out.append("</g>\n")
             continue
         width = numbers([st.line_width(lines)])[0]

@@ -291,3 +291,43 @@ def test_cricut_art_keeps_inside_its_print_then_cut_area(tmp_path) -> None:
         assert np.allclose(m.max(axis=0) - m.min(axis=0), 25.4)
         inside = (m[:, 0] > x0) & (m[:, 0] < 210 - x0) & (m[:, 1] > y0) & (m[:, 1] < 297 - y0)
         assert not inside.any()
+
+
+def _cli(*args, cwd):
+    import sys
+
+    return subprocess.run([sys.executable, "-m", "voxfab", "net", *map(str, args)], capture_output=True, text=True,
+                          cwd=cwd, timeout=300)
+
+
+def test_the_cli_reads_a_coloured_vox_and_writes_print_then_cut_files(tmp_path) -> None:
+    from voxfab.io import write
+
+    shape = hero()
+    write(shape, tmp_path / "hero.vox")
+    r = _cli("hero.vox", "-o", "n.svg", "-o", "n.json", "--face-size", "8", "--cutter", "cricut", "--bleed", "2",
+             "--seed", "1", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert json.loads(r.stdout)["written"] == ["n.svg", "n.cut.svg", "n.json"]
+    net = json.loads((tmp_path / "n.json").read_text())
+    faces = faces_of_svg(tmp_path / "n.svg")
+    assert all(faces[i] == voxel_hex(shape, f["voxel"]) == f["colour"] for i, f in enumerate(net["faces"]))
+    # The bleed asked for: a face's bleed ring reaches 2 mm past its square.
+    bleed = [r for name, _, rings in filled_paths(tmp_path / "n.svg") if name.startswith("bleed-") for r in rings]
+    squares = [r for r in bleed if len(np.unique(r[:, 0])) == 2 and len(np.unique(r[:, 1])) == 2]
+    sizes = {round(float(s), 3) for r in squares for s in r.max(axis=0) - r.min(axis=0)}
+    assert sizes == {8.0, 10.0, 12.0}  # faces grown by 2 mm across none, one or two opposite edges
+
+
+def faces_of_svg(svg: Path) -> dict[int, str]:
+    return {int(name[5:]): fill for name, fill, _ in filled_paths(svg) if name.startswith("face-")}
+
+
+@pytest.mark.parametrize(("flag", "value"), [("--cutter", "brother"), ("--bleed", "-1"), ("--bleed", "nan"),
+                                             ("--bleed", "11")])
+def test_bad_cutter_or_bleed_is_one_line(tmp_path, flag, value) -> None:
+    np.save(tmp_path / "g.npy", np.ones((2, 2, 2), bool))
+    r = _cli("g.npy", "-o", "n.svg", flag, value, cwd=tmp_path)
+    assert r.returncode != 0
+    assert "Traceback" not in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
+    assert flag.lstrip("-") in r.stderr

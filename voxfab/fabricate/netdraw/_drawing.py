@@ -614,7 +614,7 @@ def _draw_sheet(
     folds = joined & canon & on_e
     ink_values = np.unique(edge_ink[folds]).tolist() or [0]
     lines_by_type = {(t, i): runs(folds & (edges.fold_type == t) & (edge_ink == i))
-                     for t in (1, -1, 0) for i in ink_values}
+                     for t in ((1, -1, 0) if opts.grid_lines else (1, -1)) for i in ink_values}
     # Tab folds on this sheet, typed like the seam they close (coplanar: a full fold, mountain).
     seam_face = sides[np.arange(sides.shape[0]), np.maximum(tabs.side, 0), 0]
     tab_here = tabs.placed & (fs[seam_face] == s)

@@ -59,6 +59,8 @@ class Paint:
         RGB of each net face (its voxel's colour).
     across : (F, 4, 3) uint8 ndarray
         RGB of the face across each edge on the shape (what a tab on that edge glues under).
+    light : (F,) float ndarray
+        CIELAB L* of each face's colour.
     ink : (F,) int ndarray
         :data:`BLACK` or :data:`WHITE`, the marks' ink on each face.
     bleed : float
@@ -67,13 +69,14 @@ class Paint:
 
     face: npt.NDArray[np.uint8]
     across: npt.NDArray[np.uint8]
+    light: npt.NDArray[np.float64]
     ink: npt.NDArray[np.int64]
     bleed: float
 
     def edge_ink(self, partner: npt.NDArray[np.int64]) -> npt.NDArray[np.int64]:
         """``(F, 4)`` ink of the line on each edge: by the mean lightness of the face and ``partner``
         (the face across it in the net, -1 for none)."""
-        light = lightness(self.face)
+        light = self.light
         other = np.where(partner >= 0, light[np.maximum(partner, 0)], light[:, None])
         return ink_of_lightness((light[:, None] + other) / 2)
 
@@ -93,7 +96,8 @@ def net_paint(graph: SurfaceGraph, net: Net, colours: VoxelColours, bleed: float
     face = colours.at(net.voxel)[:, :3]
     across_face = graph.neighbor[face_map(graph, net)]
     across = colours.at(graph.voxel[across_face.ravel()])[:, :3].reshape(-1, 4, 3)
-    return Paint(face, across, ink_of_lightness(lightness(face)), float(bleed))
+    light = lightness(face)
+    return Paint(face, across, light, ink_of_lightness(light), float(bleed))
 
 
 def tint(rgb: npt.ArrayLike) -> npt.NDArray[np.uint8]:
@@ -110,8 +114,9 @@ def grown_squares(pos: npt.NDArray[np.float64], grow: npt.NDArray[np.float64]) -
     return pos + out + out[:, _PREV]
 
 
-def grown_polygons(poly: npt.NDArray[np.float64], by: float) -> npt.NDArray[np.float64]:
-    """Convex polygons ``(n, m, 2)`` (either orientation) with every edge moved out by ``by`` mm, mitred."""
+def grown_polygons(poly: npt.NDArray[np.float64], by: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+    """Convex polygons ``(n, m, 2)`` (either orientation) with edge ``k`` (corner ``k`` to ``k + 1``)
+    moved out by ``by[:, k]`` mm, the corners where the moved edges meet."""
     if not poly.shape[0]:
         return poly
     m = poly.shape[1]
@@ -121,22 +126,28 @@ def grown_polygons(poly: npt.NDArray[np.float64], by: float) -> npt.NDArray[np.f
     d = poly[:, nxt] - poly
     d = d / np.maximum(np.linalg.norm(d, axis=2, keepdims=True), 1e-12)
     n = np.stack([d[..., 1], -d[..., 0]], axis=2) * ccw
-    a, b = n[:, prv], n
-    return poly + by * (a + b) / (1.0 + (a * b).sum(axis=2, keepdims=True))
+    # Corner k moves by the v with n[k-1]·v = by[k-1] and n[k]·v = by[k].
+    rows = np.stack([n[:, prv], n], axis=2)
+    return poly + np.linalg.solve(rows, np.stack([by[:, prv], by], axis=2)[..., None])[..., 0]
 
 
-def _by_colour(rings: npt.NDArray[np.float64], rgb: npt.NDArray[np.uint8], name: str) -> tuple[Fill, ...]:
-    """One nonzero fill per colour of ``rings`` (n, m, 2), colours in first-seen order, named ``name-N``."""
-    if not rings.shape[0]:
+def _hex(rgb: npt.NDArray[np.uint8]) -> tuple[str, ...]:
+    """``#rrggbb`` of each colour ``(n, 3)``, formatted once per distinct colour."""
+    if not rgb.shape[0]:
         return ()
-    key = rgb.astype(np.int64) @ np.array([65536, 256, 1])
-    _, first, inverse = np.unique(key, return_index=True, return_inverse=True)
-    out = []
-    for n, group in enumerate(np.argsort(first, kind="stable").tolist()):
-        sel = inverse.ravel() == group
-        out.append(Fill(Polylines.from_list(list(rings[sel]), [True] * int(sel.sum())),
-                        hex_colour(rgb[sel][0]), nonzero=True, name=f"{name}-{n + 1}"))
-    return tuple(out)
+    used, inverse = np.unique(rgb, axis=0, return_inverse=True)
+    text = [hex_colour(c) for c in used]
+    return tuple(text[i] for i in inverse.ravel().tolist())
+
+
+def _rings(rings: npt.NDArray[np.float64], rgb: npt.NDArray[np.uint8], names: list[str],
+           nonzero: bool = True) -> tuple[Fill, ...]:
+    """``rings`` (n, m, 2), each an area of its own in its colour ``rgb`` (n, 3) with its id, as one fill."""
+    n, m = rings.shape[:2]
+    if not n:
+        return ()
+    lines = Polylines(rings.reshape(-1, 2), np.arange(0, m * n + 1, m), np.ones(n, dtype=bool))
+    return (Fill(lines, "#000000", nonzero=nonzero, colors=_hex(rgb), names=tuple(names)),)
 
 
 def sheet_fills(faces: npt.NDArray[np.float64], face_rgb: npt.NDArray[np.uint8], names: list[str],
@@ -162,9 +173,12 @@ def sheet_fills(faces: npt.NDArray[np.float64], face_rgb: npt.NDArray[np.uint8],
     """
     under: tuple[Fill, ...] = ()
     if bleed > 0:
-        under = _by_colour(grown_squares(faces, np.where(outline, bleed, 0.0)), face_rgb, "bleed")
-        under += _by_colour(grown_polygons(tabs, bleed), tab_rgb, "tab-bleed")
-    tab_fills = _by_colour(tabs, tab_rgb, "tabs")
-    face_fills = tuple(Fill(Polylines.from_list([f], [True]), hex_colour(c), name=n)
-                       for f, c, n in zip(faces, face_rgb, names))
-    return under + tab_fills + face_fills
+        out = outline.any(axis=1)  # faces on the outline: the others need no bleed
+        grown = [grown_squares(faces[out], np.where(outline[out], bleed, 0.0))]
+        # A tab's fold stays put (the face covers it); its three cut sides bleed.
+        grow = np.where(np.arange(4) == 0, 0.0, bleed)[None, :].repeat(tabs.shape[0], axis=0)
+        grown.append(grown_polygons(tabs, grow))
+        under = _rings(np.concatenate(grown), np.concatenate([face_rgb[out], tab_rgb]),
+                       [f"bleed-{i}" for i in range(int(out.sum()) + tabs.shape[0])])
+    tab_names = [f"tabs-{i}" for i in range(tabs.shape[0])]
+    return under + _rings(tabs, tab_rgb, tab_names) + _rings(faces, face_rgb, names, nonzero=False)
