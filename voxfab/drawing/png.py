@@ -185,9 +185,10 @@ def page_image(page: Page, *, scale: float, styles: Mapping[str, LayerStyle] | N
     for placed in page.images:
         _paste(pixels, placed, page.height, scale)
     for fill in page.fills:
-        if fill.colors:  # each ring in its own colour
-            for ring, color in zip(fill.rings.lines(), fill.colors):
-                _fill(pixels, Fill(Polylines.from_list([ring], [True]), color, fill.nonzero), to_px)
+        if fill.colors:  # each ring in its own colour: a mask per colour
+            colors = np.array(fill.colors)
+            for color in dict.fromkeys(fill.colors):
+                _fill(pixels, Fill(fill.rings.select(colors == color), color, fill.nonzero), to_px)
         else:
             _fill(pixels, fill, to_px)
     image = Image.fromarray(pixels, "RGB")

@@ -331,3 +331,31 @@ def test_bad_cutter_or_bleed_is_one_line(tmp_path, flag, value) -> None:
     assert r.returncode != 0
     assert "Traceback" not in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
     assert flag.lstrip("-") in r.stderr
+
+
+def test_a_recipe_paints_and_asks_for_print_then_cut_files(tmp_path) -> None:
+    from voxfab.recipe import build, load_recipe
+
+    (tmp_path / "ball.toml").write_text('''
+name = "ball"
+pitch = 3.0
+[source]
+maker = "implicit"
+expression = "x^2 + y^2 + z^2 - 1"
+size = 6
+[[operations]]
+op = "paint"
+colour = "#c03020"
+where = "3 - z"
+[outputs.net]
+face_size = 9
+formats = ["svg", "pdf"]
+cutter = "silhouette"
+bleed = 1.5
+''')
+    folder = build(load_recipe(tmp_path / "ball.toml"), tmp_path / "out")
+    assert {"net.json", "net.svg", "net.cut.svg", "net.pdf"} <= {p.name for p in folder.iterdir()}
+    colours = {f["colour"] for f in json.loads((folder / "net.json").read_text())["faces"]}
+    assert colours == {"#c03020", "#ffffff"}  # painted where z > 3, the rest white
+    manifest = (folder / "manifest.json").read_text()
+    assert "net.cut.svg" in manifest and "register" in manifest
