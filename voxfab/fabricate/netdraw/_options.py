@@ -82,8 +82,8 @@ class DrawingOptions(Options):
     heading: bool = option(True, help="print the title line", cli=False, recipe=False)
     bleed: float = option(1.0, help="coloured nets: the face colours run this far past the cut lines, so a print "
                           "cut a little off shows no white edge", unit="mm", low=0.0, high=10.0)
-    cutter: str = option("none", help="coloured nets: print-then-cut files for this cutter: its registration marks "
-                         "on the print, the cut lines in a file of their own (NAME.cut.svg) in register",
+    cutter: str = option("none", help="print-then-cut files for this cutter: its registration marks on the print, which "
+                         "has no cut lines; the cut lines alone in NAME.cut.svg, in register",
                          choices=tuple(c.value for c in Cutter))
 
     def check(self) -> None:
