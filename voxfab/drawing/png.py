@@ -89,6 +89,44 @@ def even_odd_mask(rings: Polylines, width: int, height: int, to_px, *,  # noqa: 
     return (np.cumsum(toggles, axis=1)[:, :width] % 2).astype(bool)
 
 
+def _paint_convex(pixels: npt.NDArray[np.uint8], rings: Polylines, colors: tuple[str, ...], to_px) -> None:  # noqa: ANN001
+    """Paint convex ``rings``, each in its colour, later rings over earlier ones.
+
+    A row crosses a convex ring at two points at most, so the ring covers the pixels between
+    them: one span per ring and row, found for all rings at once (a net has thousands of faces).
+    The pixels are those :func:`even_odd_mask` gives each ring alone.
+    """
+    h, w = pixels.shape[:2]
+    a, b = rings.segments()
+    if not a.shape[0]:
+        return
+    owner = np.repeat(np.arange(len(rings)), np.diff(rings.offsets))  # closed rings: one edge per vertex
+    p, q = to_px(a), to_px(b)
+    y0, y1 = np.minimum(p[:, 1], q[:, 1]), np.maximum(p[:, 1], q[:, 1])
+    r0 = np.clip(np.ceil(y0 - 0.5), 0, h).astype(np.int64)
+    r1 = np.clip(np.ceil(y1 - 0.5), 0, h).astype(np.int64)
+    n = r1 - r0
+    e = np.repeat(np.arange(a.shape[0]), n)
+    if not e.size:
+        return
+    row = np.arange(e.size) - np.repeat(np.cumsum(n) - n, n) + r0[e]
+    t = (row + 0.5 - p[e, 1]) / (q[e, 1] - p[e, 1])
+    col = np.clip(np.ceil(p[e, 0] + t * (q[e, 0] - p[e, 0]) - 0.5), 0, w).astype(np.int64)
+    ring = owner[e]
+    order = np.lexsort((col, row, ring))
+    ring, row, col = ring[order], row[order], col[order]
+    first = np.flatnonzero(np.r_[True, (ring[1:] != ring[:-1]) | (row[1:] != row[:-1])])
+    last = np.r_[first[1:], ring.size] - 1
+    span_ring, span_row, c0, c1 = ring[first], row[first], col[first], col[last]
+    length = c1 - c0
+    keep = length > 0
+    span_ring, span_row, c0, length = span_ring[keep], span_row[keep], c0[keep], length[keep]
+    pix_row = np.repeat(span_row, length)
+    pix_col = np.arange(pix_row.size) - np.repeat(np.cumsum(length) - length, length) + np.repeat(c0, length)
+    rgb = np.array([[int(c[i:i + 2], 16) for i in (1, 3, 5)] for c in colors], dtype=np.uint8)
+    pixels[pix_row, pix_col] = rgb[np.repeat(span_ring, length)]
+
+
 def _fill(pixels: npt.NDArray[np.uint8], fill: Fill, to_px) -> None:  # noqa: ANN001
     """Paint ``fill`` on ``pixels``, working only in the box round its rings (a net has a fill per face)."""
     h, w = pixels.shape[:2]
@@ -185,10 +223,8 @@ def page_image(page: Page, *, scale: float, styles: Mapping[str, LayerStyle] | N
     for placed in page.images:
         _paste(pixels, placed, page.height, scale)
     for fill in page.fills:
-        if fill.colors:  # each ring in its own colour: a mask per colour
-            colors = np.array(fill.colors)
-            for color in dict.fromkeys(fill.colors):
-                _fill(pixels, Fill(fill.rings.select(colors == color), color, fill.nonzero), to_px)
+        if fill.colors:  # each (convex) ring in its own colour, painted row span by row span
+            _paint_convex(pixels, fill.rings, fill.colors, to_px)
         else:
             _fill(pixels, fill, to_px)
     image = Image.fromarray(pixels, "RGB")

@@ -272,6 +272,14 @@ _PURPOSES = {
 }
 
 
+#: What a coloured net's print files are for (DXF stays lines).
+_COLOURED = {
+    "svg": "coloured net (mm): each face in its voxel's colour with a bleed past the cut, folds dashed "
+           "(mountain) and dash-dot (valley) and seam labels in black or white, whichever reads on the face",
+    "pdf": "coloured net to print at 100 % (no fit to page) and cut along the outline: each face in its voxel's "
+           "colour, running a little past the cut; glue each tinted tab under the face of its colour",
+    "png": "preview of the coloured net sheets",
+}
 _CUT_PURPOSE = ("the cut lines alone, for the print-then-cut cutter: in register with the print, the same "
                 "registration marks at the same place")
 
@@ -339,8 +347,9 @@ def fabricate_net(shape: VoxelShape, net: NetOptions, drawing: DrawingOptions, o
     drawing = _draw_any(grid, nets, fitted, name, placement, colours)
     for f in net.formats:
         written = write(drawing, outdir / f"net.{f}", fitted)
+        purpose = _COLOURED.get(f, _PURPOSES[f]) if drawing.coloured else _PURPOSES[f]
         files += [OutputFile(Path(p).relative_to(outdir).as_posix(),
-                             _CUT_PURPOSE if ".cut." in Path(p).name else _PURPOSES[f]) for p in written]
+                             _CUT_PURPOSE if ".cut." in Path(p).name else purpose) for p in written]
     result = _result(drawing, [])
     report = {"face_size_mm": result.face_size, "faces": sum(n.face_count for n in nets), "pieces": len(nets),
               "sheets": len(result.fill),
