@@ -116,3 +116,28 @@ def test_select_keeps_polylines_in_order() -> None:
     picked = lines.select([True, False, True])
     assert len(picked) == 2 and picked.closed.tolist() == [True, True]
     assert np.array_equal(picked.lines()[1], square(2, 2, 1))
+
+
+def test_rings_in_their_colours_rasterise_as_each_ring_alone() -> None:
+    from voxfab.drawing.png import even_odd_mask
+
+    rng = np.random.default_rng(5)
+    rings, colors = [], []
+    for i in range(60):  # squares and tab-like trapezoids, some overlapping, at awkward positions
+        x, y, s = rng.uniform(0, 40), rng.uniform(0, 30), rng.uniform(0.3, 9)
+        ring = square(x, y, s) if i % 2 else np.array([(x, y), (x + s, y), (x + 0.7 * s, y - 0.4 * s),
+                                                         (x + 0.3 * s, y - 0.4 * s)])
+        rings.append(ring)
+        colors.append(f"#{i:02x}{(7 * i) % 256:02x}80")
+    page = Page(50, 40, {}, fills=(Fill(Polylines.from_list(rings, [True] * 60), "#000000", colors=tuple(colors)),),
+                artwork=True)
+    got = np.asarray(page_image(page, scale=3.3))
+    want = np.full_like(got, 255)
+
+    def to_px(xy: np.ndarray) -> np.ndarray:
+        return np.stack([xy[:, 0] * 3.3, (40 - xy[:, 1]) * 3.3], axis=1)
+
+    for ring, c in zip(rings, colors):
+        mask = even_odd_mask(Polylines.from_list([ring], [True]), want.shape[1], want.shape[0], to_px)
+        want[mask] = [int(c[i:i + 2], 16) for i in (1, 3, 5)]
+    assert np.array_equal(got, want)
