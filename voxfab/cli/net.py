@@ -85,7 +85,7 @@ def run(args: argparse.Namespace) -> int:
     if face_size is None and scaled:
         face_size = shape.pitch
         drawing = drawing.replace(pitch=face_size)
-    made = netdraw.net_files(shape.grid, search, drawing, args.output, title=title,
+    made = netdraw.net_files(shape, search, drawing, args.output, title=title,
                              seed=seed, constraints=_constraints(args.constraints),
                              box=netdraw.parse_box(args.fit, face_size))
     print_notes(made.notes)

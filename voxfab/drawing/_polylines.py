@@ -69,6 +69,13 @@ class Polylines:
         offs = np.concatenate([[0]] + [p.offsets[1:] + s for p, s in zip(parts, shift)])
         return cls(pts, offs, np.concatenate([p.closed for p in parts]))
 
+    def select(self, keep: npt.ArrayLike) -> Polylines:
+        """The polylines where ``keep`` (S,) bool is True, in order."""
+        keep = np.asarray(keep, dtype=bool)
+        counts = np.diff(self.offsets)
+        return Polylines(self.points[np.repeat(keep, counts)], np.concatenate([[0], np.cumsum(counts[keep])]),
+                         self.closed[keep])
+
     def __len__(self) -> int:
         return int(self.closed.shape[0])
 

@@ -182,7 +182,7 @@ def _named(path: Path, *tags: str) -> Path:
     return path.with_name(f"{path.stem}-{'-'.join(tags)}{path.suffix}")
 
 
-def net_files(grid: Any, net: NetOptions, drawing: DrawingOptions, outputs: Sequence[str | Path], *, title: str,
+def net_files(shape: Any, net: NetOptions, drawing: DrawingOptions, outputs: Sequence[str | Path], *, title: str,
               seed: int, constraints: EdgeConstraints | None = None,
               box: tuple[int, int] | None = None) -> NetFiles:
     """Search, validate and write the nets of ``grid`` to ``outputs`` (``voxfab net``).
@@ -194,7 +194,8 @@ def net_files(grid: Any, net: NetOptions, drawing: DrawingOptions, outputs: Sequ
 
     Parameters
     ----------
-    grid : (X, Y, Z) bool array_like
+    shape : VoxelShape or (X, Y, Z) bool array_like
+        A coloured shape prints each face in its voxel's colour and writes it in the JSON.
     net, drawing : NetOptions, DrawingOptions
         ``drawing.pitch`` is the face size (None: the largest at which the net fits).
     outputs : sequence of path
@@ -210,17 +211,21 @@ def net_files(grid: Any, net: NetOptions, drawing: DrawingOptions, outputs: Sequ
     NetFiles
     """
     from voxfab._shared.atomic import atomic_files, write_text
-    from voxfab.shape import fill_cavities
 
-    from . import write_net_drawing
+    from . import shape_colours, write_net_drawing
 
+    grid, colours = shape_colours(shape)
     paths = [Path(p) for p in outputs]
     drawings = check_request(net, paths, box=box is not None)
     found = search_nets(grid, net, drawing if drawings else None, seed=seed, constraints=constraints, box=box)
     results, notes = found.nets, list(found.notes)
     if drawings:
         drawing = found.options  # the face size settled
-    g = fill_cavities(grid) if results[0][0].filled else grid
+    g, gc = shape_colours(shape, results[0][0].filled)
+    if gc is not None:
+        from voxfab.shape import VoxelShape
+
+        g = VoxelShape(g, shape.pitch, gc)
     summary, warnings, report = [], [], []
     with atomic_files(*paths) as fileset:
         for t, pieces in enumerate(results):
@@ -243,6 +248,6 @@ def net_files(grid: Any, net: NetOptions, drawing: DrawingOptions, outputs: Sequ
                                  if w not in warnings]
                     continue
                 for q, piece in enumerate(pieces):
-                    write_text(_named(target, f"piece{q + 1}" if len(pieces) > 1 else ""), piece.to_json())
+                    write_text(_named(target, f"piece{q + 1}" if len(pieces) > 1 else ""), piece.to_json(colours))
             summary.append(record)
     return NetFiles([str(p) for p in fileset.written], summary, warnings, notes, report)
