@@ -13,7 +13,7 @@ import pytest
 
 from voxfab.fabricate import Artefact, BuildContext, build_order, outputs
 from voxfab.fabricate._table import resolve
-from voxfab.recipe import build, load_recipe, make_shape
+from voxfab.recipe import SHAPE_FILES, build, load_recipe, make_shape
 
 RECIPES = Path(__file__).resolve().parents[2] / "recipes"
 
@@ -59,7 +59,7 @@ def test_a_build_writes_only_the_files_its_rows_declare(tmp_path, recipe):
     built = build(load_recipe(path), tmp_path / "out")
     manifest = json.loads((built / "manifest.json").read_text())
     assert set(manifest["outputs"]) == set(outputs())
-    patterns = [p for row in outputs().values() for p in row.files] + ["shape.npy", "shape.vox"]
+    patterns = [p for row in outputs().values() for p in row.files] + list(SHAPE_FILES)
     for entry in manifest["files"]:
         assert any(fnmatch.fnmatch(entry["path"], p) for p in patterns), entry["path"]
         assert (built / entry["path"]).is_file()

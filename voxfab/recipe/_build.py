@@ -25,6 +25,13 @@ if TYPE_CHECKING:
 
 MANIFEST_FORMAT = "voxfab-manifest/1"
 
+#: The shape files every build writes beside its outputs, and what each is for.
+SHAPE_FILES = {
+    "shape.npz": "the voxel shape with its pitch and colours: what every voxfab command reads at the recipe's scale",
+    "shape.npy": "the voxel shape as a NumPy bool array [x, y, z], z up",
+    "shape.vox": "the voxel shape in its colours for MagicaVoxel and other voxel editors",
+}
+
 
 def make_source(source: SourceSpec, base_dir: Path, pitch: float = 1.0) -> VoxelShape:
     """Return the shape a source describes (a maker's output, or a file's content with its colours)."""
@@ -167,15 +174,10 @@ def _build_into(recipe: Recipe, target: Path, aside: Aside) -> dict[str, Any]:
     # pictures draw), so the order is the table's, not the recipe's.
     order = build_order(specs)
     with atomic_dir(target, marker="manifest.json") as tmp:
-        io.write(shape, tmp / "shape.npz")
-        io.write(shape, tmp / "shape.npy")
-        io.write(shape, tmp / "shape.vox")
-        files = [
-            OutputFile("shape.npz", "the voxel shape with its pitch and colours: what every voxfab command reads "
-                       "at the recipe's scale"),
-            OutputFile("shape.npy", "the voxel shape as a NumPy bool array [x, y, z], z up"),
-            OutputFile("shape.vox", "the voxel shape in its colours for MagicaVoxel and other voxel editors"),
-        ]
+        files = []
+        for file_name, purpose in SHAPE_FILES.items():
+            io.write(shape, tmp / file_name)
+            files.append(OutputFile(file_name, purpose))
         warnings: list[str] = []
         gives: dict[str, Any] = {}
         for spec in progress([specs[name] for name in order], desc="outputs"):
