@@ -367,3 +367,48 @@ def test_uncoloured_shapes_keep_their_files(tmp_path):
     text = zipfile.ZipFile(tmp_path / "mesh.3mf").read("3D/3dmodel.model").decode()
     assert "basematerials" not in text and "mmu_segmentation" not in text and "colours" not in report
     assert report["notes"] == ["colours = 3: the shape has no colours, so there is nothing to merge"]
+
+
+RECIPE = """
+name = "capped"
+pitch = 3.0
+[source]
+maker = "implicit"
+expression = "x^2 + y^2 + z^2 - 1"
+size = 9
+[[operations]]
+op = "paint"
+colour = "#3060d0"
+[[operations]]
+op = "paint"
+colour = "#c03020"
+where = "5 - z"
+[[operations]]
+op = "paint"
+colour = "#d04030"
+where = "(x - 4)^2 + (y - 4)^2 - 2"
+[outputs.mesh]
+colours = COLOURS
+"""
+
+
+def test_recipe_key_and_studio_options_are_the_same_declaration(tmp_path):
+    from voxfab.errors import RecipeError
+    from voxfab.fabricate import outputs
+    from voxfab.recipe import build, load_recipe
+
+    path = tmp_path / "capped.toml"
+    path.write_text(RECIPE.replace("COLOURS", "0"))
+    with pytest.raises(RecipeError, match=r"outputs\.mesh\.colours"):
+        load_recipe(path)
+    path.write_text(RECIPE.replace("COLOURS", "2"))
+    folder = build(load_recipe(path), tmp_path / "out")
+    report = json.loads((folder / "mesh.json").read_text())
+    assert _groups(report) == [["#3060d0"], ["#c03020", "#d04030"]]  # the two reds print as one
+    (_, _, colour, _, _), = read_3mf(folder / "mesh.3mf")
+    assert set(colour) == {"#3060d0", "#c03020"}
+    # The studio reads a download's options through the same table.
+    row = outputs()["mesh"]
+    assert row.settings(row.download_table("mesh.3mf", {"colours": 4})).colours == 4
+    with pytest.raises(Exception, match="colours: expected an integer number of filaments from 1 to 16"):
+        row.settings(row.download_table("mesh.3mf", {"colours": 17}))
