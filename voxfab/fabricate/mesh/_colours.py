@@ -170,19 +170,24 @@ def ward_groups(lab: npt.NDArray[np.float64], weight: npt.NDArray[np.float64], n
     group = np.arange(k)
     centre = np.array(lab, dtype=np.float64)
     w = np.array(weight, dtype=np.float64)
-    alive = np.ones(k, dtype=bool)
+
+    def costs(i: int) -> npt.NDArray[np.float64]:
+        """The cost of merging group ``i`` with each group (Ward: the weighted squared colour difference added)."""
+        return w[i] * w / (w[i] + w) * ((centre - centre[i]) ** 2).sum(axis=1)
+
+    cost = np.stack([costs(i) for i in range(k)]) if k else np.zeros((0, 0))
+    np.fill_diagonal(cost, np.inf)
     for _ in range(max(k - n, 0)):
-        ids = np.flatnonzero(alive)
-        c, ww = centre[ids], w[ids]
-        d2 = ((c[:, None, :] - c[None, :, :]) ** 2).sum(axis=2)
-        cost = ww[:, None] * ww[None, :] / (ww[:, None] + ww[None, :]) * d2
-        cost[np.tril_indices(len(ids))] = np.inf
-        i, j = np.unravel_index(int(np.argmin(cost)), cost.shape)  # first minimum: lowest indices
-        a, b = ids[i], ids[j]
+        # The first minimum in row order has the lower index first: ties go to the lowest pair.
+        a, b = np.unravel_index(int(np.argmin(cost)), cost.shape)
         centre[a] = (w[a] * centre[a] + w[b] * centre[b]) / (w[a] + w[b])
         w[a] += w[b]
-        alive[b] = False
         group[group == b] = a
+        cost[b, :] = cost[:, b] = np.inf
+        row = costs(a)
+        alive = np.isfinite(cost[a]) | (np.arange(k) == b)
+        alive[a] = alive[b] = False
+        cost[a, alive] = cost[alive, a] = row[alive]
     return group
 
 

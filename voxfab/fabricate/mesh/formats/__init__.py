@@ -16,7 +16,7 @@ from types import ModuleType
 
 from voxfab._shared.atomic import write_bytes
 from voxfab._shared.typing import PathLike
-from voxfab.errors import UnknownFormatError
+from voxfab.errors import FormatError, UnknownFormatError
 
 from .._data import MeshData
 
@@ -68,5 +68,32 @@ def write_mesh(path: PathLike, mesh: MeshData, *, name: str) -> list[Path]:
 
 
 def read_mesh(path: PathLike) -> MeshData:
-    """Read a mesh written by :func:`write_mesh`."""
-    return format_for(path).read(path)
+    """Read a mesh written by :func:`write_mesh`.
+
+    Raises
+    ------
+    FormatError
+        When the file is not one, or names vertices or colours it does not hold.
+    """
+    import struct
+
+    import numpy as np
+
+    module = format_for(path)
+    try:
+        mesh = module.read(path)
+    except FormatError:
+        raise
+    except (KeyError, IndexError, TypeError, ValueError, struct.error) as exc:
+        # A file of the right kind with missing or malformed pieces (an attribute, an accessor).
+        raise FormatError(f"{path}: not a readable {module.EXTENSION} mesh ({type(exc).__name__}: {exc})") from None
+    n = len(mesh.vertices)
+    if mesh.triangles.ndim != 2 or mesh.triangles.shape[1:] != (3,) or mesh.triangles.size and (
+            mesh.triangles.min() < 0 or mesh.triangles.max() >= n):
+        raise FormatError(f"{path}: a triangle names a vertex the file does not hold ({n} vertices)")
+    if not np.isfinite(mesh.vertices).all():
+        raise FormatError(f"{path}: a vertex is not a finite number")
+    if mesh.coloured and (len(mesh.colour) != len(mesh.triangles) or mesh.colour.size and (  # type: ignore[arg-type]
+            mesh.colour.min() < 0 or mesh.colour.max() >= len(mesh.palette))):  # type: ignore[union-attr,arg-type]
+        raise FormatError(f"{path}: a triangle names a colour the file does not hold")
+    return mesh

@@ -98,30 +98,35 @@ def read(path: PathLike) -> MeshData:
     library = None
     part = -1
     current = -1
-    with open(path, encoding="utf-8") as fh:
-        for lineno, line in enumerate(fh, 1):
-            f = line.split()
-            if not f or f[0].startswith("#"):
-                continue
-            try:
-                if f[0] == "v":
-                    verts.append([float(x) for x in f[1:4]])
-                elif f[0] == "f":
-                    if len(f) != 4:
-                        raise FormatError(f"{path}:{lineno}: only triangles are supported")
-                    tris.append([int(x.split("/")[0]) - 1 for x in f[1:4]])
-                    parts.append(max(part, 0))
-                    colour.append(current)
-                elif f[0] == "o":
-                    part += 1
-                elif f[0] == "mtllib" and len(f) == 2:
-                    library = Path(path).parent / f[1]
-                elif f[0] == "usemtl" and len(f) == 2:
-                    if f[1] not in used:
-                        used.append(f[1])
-                    current = used.index(f[1])
-            except ValueError as exc:
-                raise FormatError(f"{path}:{lineno}: bad number ({exc})") from exc
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except UnicodeDecodeError as exc:
+        raise FormatError(f"{path}: not a text OBJ file ({exc.reason} at byte {exc.start})") from None
+    for lineno, line in enumerate(text.splitlines(), 1):
+        f = line.split()
+        if not f or f[0].startswith("#"):
+            continue
+        try:
+            if f[0] == "v":
+                if len(f) < 4:
+                    raise FormatError(f"{path}:{lineno}: a vertex needs three coordinates")
+                verts.append([float(x) for x in f[1:4]])
+            elif f[0] == "f":
+                if len(f) != 4:
+                    raise FormatError(f"{path}:{lineno}: only triangles are supported")
+                tris.append([int(x.split("/")[0]) - 1 for x in f[1:4]])
+                parts.append(max(part, 0))
+                colour.append(current)
+            elif f[0] == "o":
+                part += 1
+            elif f[0] == "mtllib" and len(f) == 2:
+                library = Path(path).parent / f[1]
+            elif f[0] == "usemtl" and len(f) == 2:
+                if f[1] not in used:
+                    used.append(f[1])
+                current = used.index(f[1])
+        except ValueError as exc:
+            raise FormatError(f"{path}:{lineno}: bad number ({exc})") from exc
     if not tris:
         raise FormatError(f"{path}: no faces")
     mesh = MeshData(vertices=np.array(verts), triangles=np.array(tris), part=np.array(parts))
@@ -129,7 +134,7 @@ def read(path: PathLike) -> MeshData:
         return mesh
     try:
         known = _read_materials(library)
-    except (OSError, ValueError) as exc:
+    except (OSError, ValueError) as exc:  # UnicodeDecodeError is a ValueError
         raise FormatError(f"{path}: its material library {library.name} is not readable ({exc})") from None
     missing = [m for m in used if m not in known]
     if missing or min(colour) < 0:
