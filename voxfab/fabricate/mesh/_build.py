@@ -376,7 +376,7 @@ def _solid_grid(
         hollowed = hollow_out(g, inputs.hollow)
         lo, hi = bounding_box(hollowed)
         box = tuple(slice(a, b) for a, b in zip(lo, hi))
-        g = hollowed[box]
+        g = hollowed[box].copy()
         if g.shape != hollowed.shape:
             # Only a drain through a one-voxel foot empties the bottom layer (see hollow_out).
             warnings.append("a drain hole goes through the voxel the print stood on; it stands one voxel higher")

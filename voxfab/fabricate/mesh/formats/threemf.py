@@ -96,7 +96,9 @@ def objects_xml(
         out.extend(f'<base name={quoteattr(n)} displaycolor="{c.upper()}"/>\n' for n, c in materials)
         out.append("</basematerials>\n")
         first = 2
-        codes = [paint_code(k + 1) for k in range(len(materials))]
+        # What follows the vertices of a triangle of filament k: its material, and its painting twice.
+        tails = [f' pid="1" p1="{k}" slic3rpe:mmu_segmentation="{code}" paint_color="{code}"/>\n'
+                 for k, code in enumerate(paint_code(k + 1) for k in range(len(materials)))]
     count = 0
     for count, (obj_name, v, t, *rest) in enumerate(objects, start=first):
         if coloured:
@@ -109,8 +111,7 @@ def objects_xml(
         out.append(format_rows(v, '<vertex x="%.9g" y="%.9g" z="%.9g"/>\n'))
         out.append("</vertices>\n<triangles>\n")
         if coloured:
-            row = '<triangle v1="%d" v2="%d" v3="%d" pid="1" p1="%d" slic3rpe:mmu_segmentation="%s" paint_color="%s"/>\n'
-            out.extend(row % (a, b, c, k, codes[k], codes[k]) for (a, b, c), k in zip(t.tolist(), colour.tolist()))
+            out.extend([f'<triangle v1="{a}" v2="{b}" v3="{c}"{tails[k]}' for (a, b, c), k in zip(t.tolist(), colour.tolist())])
         else:
             out.append(format_rows(t, '<triangle v1="%d" v2="%d" v3="%d"/>\n'))
         out.append("</triangles>\n</mesh>\n</object>\n")
@@ -173,12 +174,12 @@ def read(path: PathLike) -> MeshData:
     # Base materials: (group id, index) -> a row of the palette.
     rows: dict[tuple[str, int], int] = {}
     palette: list[tuple[int, int, int, int]] = []
+    from voxfab.shape import parse_colour
+
     for group in root.findall("m:resources/m:basematerials", ns):
         for i, base in enumerate(group.findall("m:base", ns)):
             rows[(group.get("id", ""), i)] = len(palette)
             try:
-                from voxfab.shape import parse_colour
-
                 palette.append(parse_colour(base.get("displaycolor", "")))
             except VoxfabError as exc:
                 raise FormatError(f"{path}: bad displaycolor ({exc})") from None
