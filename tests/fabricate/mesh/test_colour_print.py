@@ -299,7 +299,7 @@ colours = COLOURS
 """
 
 
-def test_recipe_key_and_studio_options_are_the_same_declaration(tmp_path):
+def test_recipe_key_and_studio_options_are_the_same_declaration(tmp_path, capsys):
     from voxfab.errors import RecipeError
     from voxfab.fabricate import outputs
     from voxfab.recipe import build, load_recipe
@@ -314,6 +314,12 @@ def test_recipe_key_and_studio_options_are_the_same_declaration(tmp_path):
     assert _groups(report) == [["#3060d0"], ["#c03020", "#d04030"]]  # the two reds print as one
     (_, _, colour, _, _), = read_3mf(folder / "mesh.3mf")
     assert set(colour) == {"#3060d0", "#c03020"}
+    # voxfab build says which filament goes in which extruder.
+    from voxfab.cli import main
+
+    assert main(["build", str(path), "-o", str(tmp_path / "cli")]) == 0
+    line = next(ln for ln in capsys.readouterr().out.splitlines() if ln.strip().startswith("colours:"))
+    assert "3 colours merged into 2 filament(s), by extruder: 1 #" in line and "(with #d04030)" in line
     # The studio reads a download's options through the same table.
     row = outputs()["mesh"]
     assert row.settings(row.download_table("mesh.3mf", {"colours": 4})).colours == 4
