@@ -196,6 +196,8 @@ def test_prusa_slicer_prints_a_coloured_character_with_three_tools(tmp_path):
 
     coloured = fabricate_mesh(character(), MeshOptions(colours=3), tmp_path / "c.3mf", name="c")
     assert len(coloured.report["colours"]["filaments"]) == 3
+    info = _info(tmp_path / "c.3mf")
+    assert info["manifold"] == "yes" and int(info["number_of_facets"]) == coloured.report["triangles"]
     text = _slice_with_extruders(tmp_path / "c.3mf", tmp_path / "c.gcode", 3)
     assert set(re.findall(r"^T(\d+)\s*$", text, re.M)) == {"0", "1", "2"}
     fabricate_mesh(character().with_colours(None), MeshOptions(), tmp_path / "p.3mf", name="p")
