@@ -325,3 +325,14 @@ def test_recipe_key_and_studio_options_are_the_same_declaration(tmp_path, capsys
     assert row.settings(row.download_table("mesh.3mf", {"colours": 4})).colours == 4
     with pytest.raises(Exception, match="colours: expected an integer number of filaments from 1 to 16"):
         row.settings(row.download_table("mesh.3mf", {"colours": 17}))
+
+
+def test_a_colour_only_inside_takes_the_nearest_filament(tmp_path):
+    g = np.ones((3, 3, 3), bool)
+    rgba = np.zeros((3, 3, 3, 4), np.uint8)
+    rgba[...] = (200, 30, 30, 255)
+    rgba[1, 1, 1] = (30, 60, 200, 255)  # hidden: no face of it shows
+    _, report = _print(tmp_path, VoxelShape(g, 2.0, VoxelColours.from_rgba(g, rgba)))
+    (only,) = report["colours"]["filaments"]
+    assert only["colour"] == "#c81e1e" and only["merged"] == ["#1e3cc8"] and only["voxels"] == 27
+    assert report["colours"]["shape_colours"] == 2 and report["colours"]["visible_colours"] == 1
