@@ -269,7 +269,7 @@ def _box_cells(box_v: npt.NDArray[np.float64], coords: list[npt.NDArray[np.float
 def bridged_colours(
     index: npt.NDArray[np.integer], boxes: npt.NDArray[np.float64], coords: tuple[npt.NDArray[np.float64], ...], *,
     pitch: float,
-) -> npt.NDArray[np.int64]:
+) -> npt.NDArray[np.uint8]:
     """The colour index of every cell of :func:`bridged_grid`'s refined grid.
 
     A cell inside a voxel takes the voxel's colour; the cells a bridge box adds
@@ -281,4 +281,4 @@ def bridged_colours(
     colour = _refine(index.astype(np.int64), coords)
     lo, hi = _box_cells(boxes / pitch, coords)
     paint_boxes(colour, lo, hi)
-    return colour
+    return colour.astype(np.uint8)  # the voxels' own type: one compiled mesher for both
