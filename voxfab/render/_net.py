@@ -71,17 +71,38 @@ def _fold_styles(styles: dict[str, str] | None) -> dict[str, str]:
 
 
 def _face_fills(net: Net, faces: npt.NDArray[np.float64], index: npt.NDArray[np.int64],
-                fg: npt.NDArray[np.float64]) -> list[Fill]:
+                fg: npt.NDArray[np.float64], face_rgb: npt.NDArray[np.uint8] | None = None) -> list[Fill]:
+    """One fill per face direction, or with ``face_rgb`` (the colour of each net face) per direction and colour."""
     normal = net.normal[index]
     direction = np.argmax(np.abs(normal), axis=1) * 2 + (normal.sum(axis=1) < 0)
+    if face_rgb is None:
+        colour = np.zeros(len(index), dtype=np.int64)
+        bases = fg[None, :]
+    else:
+        bases, colour = np.unique(np.asarray(face_rgb, dtype=np.float64)[index], axis=0, return_inverse=True)
+        colour = colour.reshape(-1)
     fills = []
     for d in range(6):
-        sel = direction == d
-        if sel.any():
-            rgb = np.rint(fg * (0.55 + 0.45 * _TINT[d])).astype(int)
-            rings = Polylines.from_list(list(faces[sel]), [True] * int(sel.sum()))
-            fills.append(Fill(rings, "#{:02x}{:02x}{:02x}".format(*rgb.tolist())))
+        for c, base in enumerate(bases):
+            sel = (direction == d) & (colour == c)
+            if sel.any():
+                rgb = np.rint(base * (0.55 + 0.45 * _TINT[d])).astype(int)
+                rings = Polylines.from_list(list(faces[sel]), [True] * int(sel.sum()))
+                fills.append(Fill(rings, "#{:02x}{:02x}{:02x}".format(*rgb.tolist())))
     return fills
+
+
+def unfolded_shape(shape: VoxelShape | npt.ArrayLike, net: Net) -> VoxelShape | npt.ArrayLike:
+    """The shape ``net`` unfolds: ``shape``, or with its cavities filled for a net of the outer surface
+    (the filled voxels taking their nearest voxel's colour)."""
+    if not net.filled:
+        return shape
+    from voxfab.shape import fill_cavities
+
+    full = fill_cavities(shape_grid(shape))
+    if isinstance(shape, VoxelShape):
+        return VoxelShape(full, shape.pitch, None if shape.colours is None else shape.colours.fitted(full))
+    return full
 
 
 def net_picture(
@@ -110,7 +131,7 @@ def net_picture(
     height : int or None
         Picture height in pixels; default ``size``.
     background, color : str or (r, g, b)
-        Paper and face colours.
+        Paper and face colours; a coloured shape's faces take their voxels' colours.
     styles : dict or None
         Line style per fold kind (``"mountain"``, ``"valley"``, ``"flat"``), each one of
         ``"solid"``, ``"dashed"``, ``"dashdot"``, ``"dotted"``, ``"none"``.
@@ -157,7 +178,11 @@ def net_picture(
     drawing = draw_net(grid, net, options=options)
     sheet = drawing.sheets[0]
     page = sheet.page()
-    page = dataclasses.replace(page, fills=(*_face_fills(net, sheet.faces, sheet.face_index, fg), *page.fills))
+    colours = shape.colours if isinstance(shape, VoxelShape) else None
+    # net.voxel indexes the grid the net unfolds: the shape's own, uncropped
+    face_rgb = None if colours is None else colours.at(net.voxel)[:, :3]
+    page = dataclasses.replace(page, fills=(*_face_fills(net, sheet.faces, sheet.face_index, fg, face_rgb),
+                                            *page.fills))
     # The legend goes in a strip below the net.
     page = page.shifted((0.0, strip / scale), width=width / scale, height=h_total / scale)
     hidden = frozenset(FOLD_LAYERS[k] for k, v in style.items() if v == HIDDEN)
