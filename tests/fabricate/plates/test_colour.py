@@ -212,3 +212,19 @@ def test_by_colour_needs_no_more_sheets_than_colours_ask() -> None:
     assert len(together.sheets) == 1
     assert len(apart.sheets) == len({c.hex for c in apart.colours}) >= 3
     assert [len(s.parts) for s in apart.sheets] and sum(len(s.parts) for s in apart.sheets) == len(apart.plates)
+
+
+def test_a_recipe_asks_for_sheets_by_colour(tmp_path) -> None:
+    from voxfab.io import write
+    from voxfab.recipe import build_recipe
+
+    write(joined_character(), tmp_path / "hero.vox")
+    (tmp_path / "hero.toml").write_text('name = "hero"\npitch = 2.0\n\n[source]\nfile = "hero.vox"\n\n'
+                                        '[outputs.slices]\nby_colour = true\nthickness = 2.0\nsheet = "200x150"\n')
+    built = build_recipe(load_recipe(tmp_path / "hero.toml"), tmp_path / "out")
+    report = json.loads((built.folder / "slices" / "plates.json").read_text())
+    assert report["by_colour"] and len(report["colours"]) >= 4
+    colour_of = {p["number"]: p["colour"]["hex"] for p in report["plates_list"]}
+    for sheet in report["sheets_list"]:
+        assert {colour_of[n] for n in sheet["plates"]} == {sheet["colour"]}
+        assert (built.folder / "slices" / sheet["file"]).is_file()
