@@ -175,3 +175,25 @@ def test_contact_sheet_and_thumbnails_draw_a_coloured_shape_in_colour(tmp_path) 
     buf = io.BytesIO()
     Image.fromarray(render.astype(np.uint8)).save(buf, format="PNG")
     assert buf.tell() > 0
+
+
+def test_a_turntable_of_255_colours_keeps_its_frames_on_one_palette(tmp_path) -> None:
+    from voxfab.shape import VoxelColours
+
+    g = examples.box(15, 17, 1)[:, :, :1].repeat(3, axis=2)
+    rng = np.random.default_rng(5)
+    palette = rng.integers(0, 256, size=(256, 4))
+    palette[:, 3] = 255
+    index = np.where(g, (np.arange(g.size).reshape(g.shape) % 255) + 1, 0)
+    shape = VoxelShape(g, 1.0, VoxelColours(index, palette))
+    assert shape.colours.count > 200
+    save_turntable(shape, tmp_path / "a.gif", frames=4, size=120)
+    save_turntable(shape, tmp_path / "b.gif", frames=4, size=120)
+    assert (tmp_path / "a.gif").read_bytes() == (tmp_path / "b.gif").read_bytes()
+    frames, palettes = _gif_frames(tmp_path / "a.gif")
+    assert all(p is None or p == palettes[0] for p in palettes[1:])
+    pixels = np.concatenate([f.reshape(-1, 3) for f in frames])
+    assert len(np.unique(pixels, axis=0)) <= 256
+    # the many colours stay many hues: not one card colour in shades
+    lit = pixels[(pixels.max(axis=1) > 60) & (pixels != 255).any(axis=1)]
+    assert len(np.unique(np.rint(_chroma(lit) * 10), axis=0)) > 30
