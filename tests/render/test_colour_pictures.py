@@ -197,3 +197,25 @@ def test_a_turntable_of_255_colours_keeps_its_frames_on_one_palette(tmp_path) ->
     # the many colours stay many hues: not one card colour in shades
     lit = pixels[(pixels.max(axis=1) > 60) & (pixels != 255).any(axis=1)]
     assert len(np.unique(np.rint(_chroma(lit) * 10), axis=0)) > 30
+
+
+def test_cli_fold_takes_the_shape_for_its_colours(tmp_path, capsys) -> None:
+    from voxfab.cli import main
+    from voxfab.io import write
+    from voxfab.repo import load_shape
+
+    write(painted_box(), tmp_path / "box.vox")
+    shape = load_shape(str(tmp_path / "box.vox"), None)[0]
+    (tmp_path / "net.json").write_text(make_net(shape, rng=0).to_json())
+    out = tmp_path / "fold.gif"
+    assert main(["render", str(tmp_path / "box.vox"), "--fold", str(tmp_path / "net.json"), "-o", str(out),
+                 "--steps", "4", "--size", "200"]) == 0
+    frames, _ = _gif_frames(out)
+    assert _near(frames[-1], RED).sum() > 200 and _near(frames[-1], BLUE).sum() > 20
+    # another shape's colours do not fit the net's faces: one line, no picture
+    write(VoxelShape(examples.box(2, 2, 2), 10.0).painted(RED), tmp_path / "small.vox")
+    assert main(["render", str(tmp_path / "small.vox"), "--fold", str(tmp_path / "net.json"), "-o",
+                 str(tmp_path / "other.gif")]) != 0
+    err = capsys.readouterr().err
+    assert "voxfab: error: colours: the net's faces" in err and "Traceback" not in err
+    assert not (tmp_path / "other.gif").exists()

@@ -162,6 +162,16 @@ def draw_fold(corners: npt.NDArray[np.float64], *, view: str = "iso", size: int 
     return image
 
 
+def _face_colours(net: object, colours: VoxelColours) -> npt.NDArray[np.uint8]:
+    """The RGB of each face's voxel; refused when a face's voxel is not a coloured voxel (another shape's net)."""
+    v = np.asarray(net.voxel, dtype=np.int64).reshape(-1, 3)  # type: ignore[attr-defined]
+    inside = np.all((v >= 0) & (v < colours.index.shape), axis=1)
+    if not inside.all() or not colours.index[v[:, 0], v[:, 1], v[:, 2]].all():
+        raise InvalidShapeError("colours: the net's faces do not lie on the shape's voxels; give the shape "
+                                "the net was made of")
+    return colours.at(v)[:, :3]
+
+
 def save_fold_animation(net: object, path: PathLike, *, steps: int = 36, view: str = "iso", size: int = 400,
                         duration_ms: int = 80, hold: int = 8, colours: VoxelColours | None = None) -> int:
     """Write a GIF of ``net`` folding up from flat to the shape; return its frame count (``steps``).
@@ -177,7 +187,7 @@ def save_fold_animation(net: object, path: PathLike, *, steps: int = 36, view: s
     centre = (every.min(axis=0) + every.max(axis=0)) / 2
     # One framing for the whole animation: the widest moment sets it.
     half = float(np.linalg.norm(every - centre, axis=1).max())
-    face_rgb = None if colours is None else colours.at(net.voxel)[:, :3]  # type: ignore[attr-defined]
+    face_rgb = None if colours is None else _face_colours(net, colours)
     pictures = [draw_fold(f, view=view, size=size, scale=(centre, half), face_rgb=face_rgb) for f in frames]
     if face_rgb is not None:
         pictures = shared_palette(pictures, face_rgb)
