@@ -139,3 +139,23 @@ def test_weak_radial_joints_warn_and_fail_strict(tmp_path) -> None:
     assert weak and all(pair.startswith("R") for pair in weak)
     (line,) = [x for x in proc.stderr.splitlines() if "crossing(s) dropped" in x]
     assert all(pair in line for pair in weak)
+
+
+def test_cli_by_colour_cuts_each_colour_on_sheets_of_its_own(tmp_path) -> None:
+    from _voxart import character
+
+    from voxfab.io import write
+
+    write(character().joined()[0], tmp_path / "hero.vox")
+    proc = _run("hero.vox", "-o", "out", "--thickness", "2", "--sheet", "200x150", "--by-colour", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    report = json.loads((tmp_path / "out" / "plates.json").read_text())
+    assert report["by_colour"] and len(report["colours"]) >= 4
+    colour_of = {p["number"]: p["colour"]["hex"] for p in report["plates_list"]}
+    for sheet in report["sheets_list"]:
+        assert {colour_of[n] for n in sheet["plates"]} == {sheet["colour"]}
+        assert sheet["file"] == f"sheet-{sheet['index']:02d}-{sheet['colour'][1:]}.dxf"
+        doc = ezdxf.readfile(tmp_path / "out" / sheet["file"])
+        assert len([r for r in closed_rings(doc) if shapely.Polygon(r).area > 0]) >= len(sheet["plates"])
+        svg = (tmp_path / "out" / sheet["file"]).with_suffix(".svg").read_text()
+        assert f"<title>sheet {sheet['index']}, {sheet['colour']}</title>" in svg

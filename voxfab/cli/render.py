@@ -36,7 +36,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     mode.add_argument("--contact-sheet", action="store_true",
                       help="every shape of the repository (--repo) by volume, with names")
     mode.add_argument("--fold", type=Path, metavar="NET.json",
-                      help="a GIF of this net folding up from the flat sheet to the shape (no SHAPE needed)")
+                      help="a GIF of this net folding up from the flat sheet to the shape (SHAPE, when given, "
+                           "colours its faces)")
     parser.add_argument("--steps", type=integer_argument, default=36, metavar="N",
                         help="frames of the --fold animation, 2 to 240 (default 36)")
     parser.add_argument("--net", type=Path, metavar="NET.json",
@@ -92,13 +93,15 @@ def _read_net(path: Path) -> Net:
 
 def _fold(args: argparse.Namespace, out: Path, size: int | None) -> int:
     from voxfab.render import save_fold_animation
+    from voxfab.render._net import unfolded_shape
 
-    if args.shape is not None:
-        raise InvalidShapeError("render --fold: takes no SHAPE, only the net file")
     if out.suffix.lower() != ".gif":
         raise UnknownFormatError(f"{out}: a fold animation is written as .gif, not {out.suffix.lower() or 'no extension'!r}")
     net = _read_net(args.fold)
-    frames = save_fold_animation(net, out, steps=args.steps, view=args.view, size=size or 400)
+    colours = None
+    if args.shape is not None:  # the shape the net unfolds: its faces take their voxels' colours
+        colours = unfolded_shape(load_command_shape(args)[0], net).colours
+    frames = save_fold_animation(net, out, steps=args.steps, view=args.view, size=size or 400, colours=colours)
     print_json({"output": str(out), "kind": "fold", "faces": net.face_count, "frames": frames, "view": args.view})
     return 0
 

@@ -122,17 +122,38 @@ def _pieces_sheet(pieces: list[Net], width: int, height: int) -> tuple[float, Pl
 
 
 def _face_fills(normal: npt.NDArray[np.int64], faces: npt.NDArray[np.float64], index: npt.NDArray[np.int64],
-                fg: npt.NDArray[np.float64]) -> list[Fill]:
+                fg: npt.NDArray[np.float64], face_rgb: npt.NDArray[np.uint8] | None = None) -> list[Fill]:
+    """One fill per face direction, or with ``face_rgb`` (the colour of each net face) per direction and colour."""
     normal = normal[index]
     direction = np.argmax(np.abs(normal), axis=1) * 2 + (normal.sum(axis=1) < 0)
+    if face_rgb is None:
+        colour = np.zeros(len(index), dtype=np.int64)
+        bases = fg[None, :]
+    else:
+        bases, colour = np.unique(np.asarray(face_rgb, dtype=np.float64)[index], axis=0, return_inverse=True)
+        colour = colour.reshape(-1)
     fills = []
     for d in range(6):
-        sel = direction == d
-        if sel.any():
-            rgb = np.rint(fg * (0.55 + 0.45 * _TINT[d])).astype(int)
-            rings = Polylines.from_list(list(faces[sel]), [True] * int(sel.sum()))
-            fills.append(Fill(rings, "#{:02x}{:02x}{:02x}".format(*rgb.tolist())))
+        for c, base in enumerate(bases):
+            sel = (direction == d) & (colour == c)
+            if sel.any():
+                rgb = np.rint(base * (0.55 + 0.45 * _TINT[d])).astype(int)
+                rings = Polylines.from_list(list(faces[sel]), [True] * int(sel.sum()))
+                fills.append(Fill(rings, "#{:02x}{:02x}{:02x}".format(*rgb.tolist())))
     return fills
+
+
+def unfolded_shape(shape: VoxelShape | npt.ArrayLike, net: Net | Sequence[Net]) -> VoxelShape | npt.ArrayLike:
+    """The shape ``net`` (or its pieces) unfolds: ``shape``, or with its cavities filled for a net of the
+    outer surface (the filled voxels taking their nearest voxel's colour)."""
+    if not as_pieces(net)[0].filled:
+        return shape
+    from voxfab.shape import fill_cavities
+
+    full = fill_cavities(shape_grid(shape))
+    if isinstance(shape, VoxelShape):
+        return VoxelShape(full, shape.pitch, None if shape.colours is None else shape.colours.fitted(full))
+    return full
 
 
 def net_picture(
@@ -162,7 +183,7 @@ def net_picture(
     height : int or None
         Picture height in pixels; default ``size``.
     background, color : str or (r, g, b)
-        Paper and face colours.
+        Paper and face colours; a coloured shape's faces take their voxels' colours.
     styles : dict or None
         Line style per fold kind (``"mountain"``, ``"valley"``, ``"flat"``), each one of
         ``"solid"``, ``"dashed"``, ``"dashdot"``, ``"dotted"``, ``"none"``.
@@ -224,7 +245,11 @@ def net_picture(
     sheet = drawing.sheets[0]
     page = sheet.page()
     normal = np.concatenate([piece.normal for piece in pieces])
-    page = dataclasses.replace(page, fills=(*_face_fills(normal, sheet.faces, sheet.face_index, fg), *page.fills))
+    colours = shape.colours if isinstance(shape, VoxelShape) else None
+    # the pieces' voxels index the grid the net unfolds: the shape's own, uncropped
+    face_rgb = None if colours is None else colours.at(np.concatenate([piece.voxel for piece in pieces]))[:, :3]
+    page = dataclasses.replace(page, fills=(*_face_fills(normal, sheet.faces, sheet.face_index, fg, face_rgb),
+                                            *page.fills))
     # The legend goes in a strip below the net; pieces on a sheet of their own are centred in the room left.
     centring = ((room[0] - sheet_mm[0]) / 2, (room[1] - sheet_mm[1]) / 2) if placement is not None else (0.0, 0.0)
     page = page.shifted((centring[0], strip / scale + centring[1]), width=width / scale, height=h_total / scale)

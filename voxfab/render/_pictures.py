@@ -160,16 +160,12 @@ def _draw(p: Picture, shape: VoxelShape, o: PictureOptions, *, side: int, name: 
 
         return triptych(shape, name=name, rng=seed, net=net, panel=side, background=o.background, color=o.color)
     if p.kind is PictureKind.NET:
-        from voxfab.shape import fill_cavities
-
-        from ._net import as_pieces, net_picture
-        from ._render import shape_grid
+        from ._net import net_picture, unfolded_shape
         from ._triptych import make_net
 
         the_net = net if net is not None else make_net(shape, rng=seed)
         # A net of the outer surface unfolds the shape with its cavities filled (as in the triptych).
-        grid = fill_cavities(shape_grid(shape)) if as_pieces(the_net)[0].filled else shape
-        return net_picture(the_net, grid, size=side, background=o.background)
+        return net_picture(the_net, unfolded_shape(shape, the_net), size=side, background=o.background)
     from ._animate import turntable_frames
 
     return turntable_frames(shape, frames=o.frames, size=side, background=o.background, color=o.color)

@@ -12,7 +12,7 @@ from voxfab.errors import UnfoldError
 from voxfab.shape import VoxelShape
 
 from ._image import font
-from ._net import as_pieces, net_picture
+from ._net import net_picture, unfolded_shape
 from ._raster import DEFAULT_COLOR, parse_color
 from ._render import Color, check_size, render, shape_grid
 from ._slices import slice_sheet
@@ -120,23 +120,22 @@ def triptych(
     """
     from PIL import Image, ImageDraw
 
-    from voxfab.shape import fill_cavities
-
     side = check_size(panel, name="panel", minimum=64)
     grid = shape_grid(shape)
     bg = parse_color(background, name="background")
     fg = parse_color(color, name="color")
     lay = triptych_layout(side)
-    net_grid = fill_cavities(grid) if net is not None and as_pieces(net)[0].filled else grid
     try:
         the_net = net if net is not None else make_net(grid, rng=rng)
-        net_img = net_picture(the_net, net_grid, size=side, background=bg, color=fg)
+        # the shape, not its grid: a coloured shape's panels are drawn in its colours
+        net_img = net_picture(the_net, unfolded_shape(shape, net) if net is not None else shape, size=side,
+                              background=bg, color=fg)
     except UnfoldError as exc:
         net_img = _message_panel(f"no net drawn: {exc}", side, bg)
     pictures = [
         net_img,
-        slice_sheet(grid, size=side, height=side, background=bg, color=fg),
-        render(grid, view="iso", size=side, background=bg, color=fg),
+        slice_sheet(shape, size=side, height=side, background=bg, color=fg),
+        render(shape, view="iso", size=side, background=bg, color=fg),
     ]
     image = Image.new("RGB", (lay.width, lay.height), bg)
     for pic, box in zip(pictures, lay.panels):

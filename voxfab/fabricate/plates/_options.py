@@ -42,6 +42,8 @@ class PlateOptions(Options):
                         check=sheet_problem, metavar="WxH")
     margin: float = option(5.0, help="empty border of the sheet", unit="mm", low=0.0, high=1000.0)
     spacing: float = option(2.0, help="gap between parts on a sheet", unit="mm", low=0.0, high=1000.0)
+    by_colour: bool = option(False, help="nest the plates of each main colour on sheets of their own, one colour "
+                             "of material per sheet (a coloured shape)")
     kerf: float = option(0.0, help="laser kerf; outlines grow and holes shrink by half of it", unit="mm",
                          low=0.0, high=5.0)
     dowel: float = option(3.0, help="dowel hole diameter (0: no dowels)", unit="mm", low=0.0, high=100.0)
