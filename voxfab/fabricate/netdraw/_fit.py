@@ -170,6 +170,8 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     chars = label_chars(faces, pieces)
     notes: list[str] = []
     if options.pitch is None:
+        if pieces == "auto":
+            _check_pieces_sheet_at_smallest(faces, options, chars)
         options, auto_notes = _auto_face_size(grid, options, rng=rng, pieces=pieces, chars=chars, search=search)
         notes += auto_notes
     fit = sheet_room(options, faces, pieces)
@@ -202,6 +204,21 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     if count > 1 and len(found) < count:
         notes.append(f"{len(found)} distinct nets found of the {count} asked for")
     return SheetNets([[n] for n in found], options, notes)
+
+
+def _check_pieces_sheet_at_smallest(faces: int, options: DrawingOptions, chars: int) -> None:
+    """Refuse a hopeless sheet for pieces before the search that chooses the face size.
+
+    The smallest face size with legible marks needs the fewest sheets: a sheet hopeless there is hopeless
+    at every face size that search could choose (a one-piece net that fits at a larger one fits one sheet),
+    and the face size it ends with, when only pieces fit, is that smallest one; so the refusal is the one
+    after the search, in the same words, with no search run and no compiled kernel loaded.
+    """
+    need = smallest_face_size(options, chars)
+    smallest = dataclasses.replace(options, pitch=need)
+    fit = sheet_room(smallest, faces, "auto")
+    if faces > fit[0] * fit[1]:
+        check_pieces_sheet(faces, smallest, need, need)
 
 
 def sheet_room(options: DrawingOptions, faces: int, pieces: str) -> tuple[int, int]:
