@@ -53,7 +53,7 @@ class _Parser(argparse.ArgumentParser):
 def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     """Return the argument parser with every available subcommand.
 
-    With ``only`` (a command name), only that command's module is imported and its
+    With ``only`` (a command name, or ``""`` for none), only that command's module is imported and its
     arguments added; the others are bare names, so a command loads what it runs and
     no other command's options (their classes pull in the plates, the pictures, the census).
     """
@@ -80,13 +80,15 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
 
 
 def _command_named(argv: Sequence[str]) -> str | None:
-    """The command ``argv`` runs, or None (no command, or ``voxfab --help``: every command is listed).
+    """The command ``argv`` runs: None for every command (``voxfab --help`` lists them), ``""`` for none.
 
     voxfab's own options (``--debug``, ``--version``) take no value, so the first word
     that is not an option is the command.
     """
     for arg in argv:
-        if arg in ("-h", "--help", "--version"):
+        if arg == "--version":
+            return ""
+        if arg in ("-h", "--help"):
             return None
         if not arg.startswith("-"):
             return arg if arg in COMMANDS else None
