@@ -3,7 +3,7 @@
 // `voxfab net --constraints` name it. The chosen net is edited in the linked view of netview.js.
 
 const FOLD_STYLE = {
-  1: {color: '#0000ff', dash: [5, 3]}, // mountain
+  1: {color: '#ff00ff', dash: [5, 3]}, // mountain
   '-1': {color: '#00a000', dash: [6, 2, 1.5, 2]}, // valley
   0: {color: '#d0d0d0', dash: []}, // flat
 };
