@@ -133,7 +133,7 @@ def triptych(
     pictures = [
         net_img,
         slice_sheet(grid, size=side, height=side, background=bg, color=fg),
-        render(grid, view="iso", size=side, background=bg, color=fg),
+        render(grid, view="profile", size=side, background=bg, color=fg),
     ]
     image = Image.new("RGB", (lay.width, lay.height), bg)
     for pic, box in zip(pictures, lay.panels):
