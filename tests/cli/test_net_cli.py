@@ -212,9 +212,11 @@ def test_printed_figures_agree_with_the_json_on_the_pawn(tmp_path):
 
 
 #: What ``voxfab net`` never runs on a small shape: the pictures, the plates, the census, the other makers,
-#: and the heavy libraries of other commands (and numba: a small surface runs the plain-Python kernels).
+#: the net editor and hunter, the repository's database (the shape is a file), and the heavy libraries of
+#: other commands (and numba: a small surface runs the plain-Python kernels).
 NOT_RUN_BY_NET = ("voxfab.render", "voxfab.fabricate.plates", "voxfab.census", "voxfab.digitize",
-                  "voxfab.studio", "voxfab.batch", "voxfab.generate", "dask", "distributed", "ortools",
+                  "voxfab.studio", "voxfab.batch", "voxfab.generate", "voxfab.unfold._edit", "voxfab.unfold._hunt",
+                  "voxfab.unfold._many", "voxfab.repo._repository", "sqlite3", "dask", "distributed", "ortools",
                   "build123d", "OCP", "numba", "trimesh", "matplotlib", "PIL")
 
 

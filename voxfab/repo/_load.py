@@ -9,7 +9,6 @@ from voxfab._shared.typing import PathLike
 from voxfab.shape import VoxelShape
 
 from ._records import is_shape_name
-from ._repository import DEFAULT_PATH
 
 
 class LoadedShape(NamedTuple):
@@ -56,7 +55,7 @@ def load_shape(source: str, repository: PathLike | None = None, *, pitch: float 
 
     ShapeOptions(pitch=pitch)  # checked before reading
     if is_shape_name(source) and not Path(source).exists():
-        from ._repository import Repository
+        from ._repository import DEFAULT_PATH, Repository
 
         with Repository(repository or DEFAULT_PATH, create=False) as repo:
             grid = repo.get(source)

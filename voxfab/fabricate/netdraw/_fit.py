@@ -238,9 +238,11 @@ def sheet_room(options: DrawingOptions, faces: int, pieces: str) -> tuple[int, i
 def _nets(grid: Any, count: int, rng: int, budget: float, progress: Callable[[int, int], None] | None,
           search: dict[str, Any]) -> list[Net]:
     """One-piece nets: the net of seed ``rng`` (``voxfab net``), or ``count`` distinct ones (``--count``)."""
-    from voxfab.unfold import unfold, unfold_many
+    from voxfab.unfold import unfold
 
     if count > 1:
+        from voxfab.unfold import unfold_many
+
         return unfold_many(grid, count=count, rng=rng, budget=budget, progress=progress, **search)
     found = [unfold(grid, rng=rng, **search)]
     if progress is not None:
