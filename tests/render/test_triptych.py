@@ -31,7 +31,7 @@ def test_triptych_holds_net_slices_and_3d_under_the_title():
     lay = triptych_layout(300)
     assert img.size == (lay.width, lay.height)
     a = np.asarray(img)
-    expected = [net_picture(net, BOX, size=300), slice_sheet(BOX, size=300, height=300), render(BOX, size=300)]
+    expected = [net_picture(net, BOX, size=300), slice_sheet(BOX, size=300, height=300), render(BOX, view="profile", size=300)]
     for pic, (left, top, right, bottom) in zip(expected, lay.panels):
         assert np.array_equal(a[top:bottom, left:right], np.asarray(pic))
     title = a[: lay.title_height]

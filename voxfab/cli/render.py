@@ -16,7 +16,7 @@ if TYPE_CHECKING:
 
 HELP = "draw a shape: 3D view, turntable GIF, slice sheet, net, triptych, or a repository contact sheet"
 
-_VIEWS = ("iso", "x", "-x", "y", "-y", "z", "-z")
+_VIEWS = ("iso", "x", "-x", "y", "-y", "z", "-z", "profile")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -42,7 +42,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="frames of the --fold animation, 2 to 240 (default 36)")
     parser.add_argument("--net", type=Path, metavar="NET.json",
                         help="a voxfab-net/1 file: draw it (or use it in --triptych) instead of unfolding")
-    parser.add_argument("--view", choices=_VIEWS, default="iso", help="3D view (default iso)")
+    parser.add_argument("--view", choices=_VIEWS, default="iso", help="3D view (default iso; profile: turned towards the side whose silhouette says the most)")
     add_option_arguments(parser, SeedOptions)  # the triptych's net
     add_option_arguments(parser, PictureOptions)
 

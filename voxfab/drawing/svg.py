@@ -10,8 +10,8 @@ SVG's y axis points down, so pages are flipped on output.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from html import escape
 from pathlib import Path
-from xml.sax.saxutils import escape
 
 import numpy as np
 
@@ -94,7 +94,7 @@ def page_svg(page: Page, *, styles: Mapping[str, LayerStyle] | None = None, line
         f'width="{w}mm" height="{h}mm" viewBox="0 0 {w} {h}">\n',
     ]
     if page.title:
-        out.append(f"<title>{escape(page.title)}</title>\n")
+        out.append(f"<title>{escape(page.title, quote=False)}</title>\n")
     if lines is Lines.PREVIEW or page.artwork:
         out += _images(page)
         if page.fills:

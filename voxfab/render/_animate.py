@@ -163,7 +163,7 @@ def animation_frames(
     if not items:
         raise InvalidShapeError("grids: an animation needs at least one shape")
     px = check_size(size)
-    camera: Camera = camera_for(view)
+    camera: Camera = camera_for(view, np.logical_or.reduce(items) if view == View.PROFILE else None)
     boxes = [bounding_box(g) for g in items if g.any()]
     if not boxes:
         raise InvalidShapeError("grids: every shape is empty")

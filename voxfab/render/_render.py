@@ -68,7 +68,7 @@ def render_raster(
     # (and the raster's voxels index the cropped grid, which shape_colours crops alike).
     grid = crop(shape_grid(shape))
     n = check_size(size)
-    camera = view if isinstance(view, Camera) else camera_for(view)
+    camera = view if isinstance(view, Camera) else camera_for(view, grid)
     lo, hi = bounding_box(grid)
     frame = fit_frame(np.asarray(lo), np.asarray(hi), camera, width=n, height=n, margin=margin, scale=scale)
     k = int(supersample)
@@ -86,7 +86,7 @@ def supersampling(shape: VoxelShape | npt.ArrayLike, *, view: str | View | Camer
                   scale: float | None = None) -> int:
     """The automatic anti-aliasing factor: 1 at 10+ pixels per voxel, up to 4 below."""
     grid = shape_grid(shape)
-    camera = view if isinstance(view, Camera) else camera_for(view)
+    camera = view if isinstance(view, Camera) else camera_for(view, grid)
     lo, hi = bounding_box(grid)
     n = check_size(size)
     s = fit_frame(np.asarray(lo), np.asarray(hi), camera, width=n, height=n, scale=scale).scale
@@ -109,8 +109,9 @@ def render(
     ----------
     shape : VoxelShape or (X, Y, Z) bool array_like
         The shape, indexed ``[x, y, z]`` with z up.
-    view : {"iso", "x", "-x", "y", "-y", "z", "-z"}
-        Isometric, or the orthographic view from the named side (``"z"``: from above).
+    view : {"iso", "x", "-x", "y", "-y", "z", "-z", "profile"}
+        Isometric, the orthographic view from the named side (``"z"``: from above), or the
+        view that shows the shape's profile (:func:`voxfab.render.profile_camera`).
     size : int
         Width and height of the picture in pixels.
     background, color : str or (r, g, b)

@@ -135,7 +135,7 @@ def triptych(
     pictures = [
         net_img,
         slice_sheet(shape, size=side, height=side, background=bg, color=fg),
-        render(shape, view="iso", size=side, background=bg, color=fg),
+        render(shape, view="profile", size=side, background=bg, color=fg),
     ]
     image = Image.new("RGB", (lay.width, lay.height), bg)
     for pic, box in zip(pictures, lay.panels):

@@ -9,7 +9,6 @@ from voxfab._shared.typing import PathLike
 from voxfab.shape import VoxelShape
 
 from ._records import NAME_LIKE, check_name
-from ._repository import DEFAULT_PATH
 
 
 class LoadedShape(NamedTuple):
@@ -55,11 +54,7 @@ def load_shape(source: str, repository: PathLike | None = None, *, pitch: float 
     from voxfab.shape import ShapeOptions
 
     ShapeOptions(pitch=pitch)  # checked before reading
-    # A name is checked as a name (one line for a malformed one) before it is tried as a path;
-    # an existing file of that name still wins.
-    if NAME_LIKE.fullmatch(source) and not _exists(source, quiet=True):
-        check_name(source)
-        from ._repository import Repository
+from ._records import NAME_LIKE, check_name
 
         with Repository(repository or DEFAULT_PATH, create=False) as repo:
             shape = repo.shape(source, pitch or 1.0)

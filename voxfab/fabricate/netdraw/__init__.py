@@ -262,11 +262,11 @@ def _result(drawing: NetDrawing, files: list[str]) -> DrawingResult:
 
 
 _PURPOSES = {
-    "svg": "net for laser cutters and Inkscape (mm): cut red, mountain folds blue dashed, valley folds "
+    "svg": "net for laser cutters and Inkscape (mm): cut red, mountain folds magenta dashed, valley folds "
            "green dash-dot, seam labels black; one layer per line type",
     "dxf": "net for CAD and laser shops (mm): layers CUT, MOUNTAIN, VALLEY, GRID, LABEL, straight lines only",
     "pdf": "net to print at 100 % (no fit to page) on card and cut by hand: cut along the red lines, "
-           "fold blue dashed lines away from you and green dash-dot lines towards you, glue each tab under "
+           "fold magenta dashed lines away from you and green dash-dot lines towards you, glue each tab under "
            "the other edge of the same label (each label stands on its edge)",
     "png": "preview of the net sheets to look at: visible lines, shaded tabs, a legend",
 }

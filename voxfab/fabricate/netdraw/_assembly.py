@@ -14,6 +14,8 @@ import numpy.typing as npt
 
 from voxfab.drawing import Page, Polylines, text_polylines, text_width
 
+from ._legible import NUMBER_INSET
+
 #: Height of the text lines of the assembly page, mm.
 ASSEMBLY_TEXT = 3.5
 
@@ -73,7 +75,7 @@ def number_text(names: list[str], centres: npt.NDArray[np.float64], pitch: float
     clear = np.zeros(len(names), dtype=bool) if free is None else np.asarray(free, dtype=bool)
     heights = []
     for t, whole in zip(names, clear.tolist()):
-        room = pitch * (1 - 2 * 0.06) - (0.0 if whole else 2 * label_h) - 0.1 * pitch
+        room = pitch * (1 - 2 * NUMBER_INSET) - (0.0 if whole else 2 * label_h) - 0.1 * pitch
         fit = min(2 * label_h, 0.9 * room / max(text_width(t, 1.0), 1e-9), 0.8 * room)
         heights.append(max(label_h, fit))
     heights = np.array(heights)

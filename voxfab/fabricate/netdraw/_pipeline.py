@@ -119,7 +119,7 @@ def search_nets(grid: Any, net: NetOptions, drawing: DrawingOptions | None, *, s
     SheetNets
         The nets (each as its pieces), the drawing options settled, report notes.
     """
-    from voxfab.unfold import unfold, unfold_many
+    from voxfab.unfold import unfold
 
     search: dict[str, Any] = dict(strategy=net.strategy, timeout=net.timeout, fill=net.fill, compact=net.compact,
                                   constraints=constraints)
@@ -130,6 +130,8 @@ def search_nets(grid: Any, net: NetOptions, drawing: DrawingOptions | None, *, s
                                progress=progress, **search)
     notes: list[str] = []
     if net.count > 1:
+        from voxfab.unfold import unfold_many
+
         found = unfold_many(grid, count=net.count, rng=seed, budget=net.budget, fit=box, progress=progress,
                             **search)
         if len(found) < net.count:

@@ -5,7 +5,7 @@
 import {sheetRect} from './sheets.js';
 
 const FOLD_STYLE = {
-  1: {color: '#0000ff', dash: [5, 3]}, // mountain
+  1: {color: '#ff00ff', dash: [5, 3]}, // mountain
   '-1': {color: '#00a000', dash: [6, 2, 1.5, 2]}, // valley
   0: {color: '#d0d0d0', dash: []}, // flat
 };

@@ -13,7 +13,7 @@ import {post} from './api.js';
 import {edgeKey, faceName} from './viewer.js';
 
 const FOLD_STYLE = {
-  1: {color: '#0000ff', dash: [5, 3]}, // mountain
+  1: {color: '#ff00ff', dash: [5, 3]}, // mountain
   '-1': {color: '#00a000', dash: [6, 2, 1.5, 2]}, // valley
   0: {color: '#c8c8c8', dash: []}, // flat
 };
