@@ -54,7 +54,11 @@ def load_shape(source: str, repository: PathLike | None = None, *, pitch: float 
     from voxfab.shape import ShapeOptions
 
     ShapeOptions(pitch=pitch)  # checked before reading
-from ._records import NAME_LIKE, check_name
+    # A name is checked as a name (one line for a malformed one) before it is tried as a path;
+    # an existing file of that name still wins.
+    if NAME_LIKE.fullmatch(source) and not _exists(source, quiet=True):
+        check_name(source)
+        from ._repository import DEFAULT_PATH, Repository
 
         with Repository(repository or DEFAULT_PATH, create=False) as repo:
             shape = repo.shape(source, pitch or 1.0)
