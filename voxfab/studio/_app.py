@@ -25,7 +25,7 @@ from starlette.responses import Response
 from . import _work
 from ._guard import Guard
 from ._http import error_response, plain_response
-from ._routes import draw, edit, jobs, keep, make, net, page
+from ._routes import draw, edit, jobs, keep, make, net, page, paint
 from ._session import Session, Settings
 
 __all__ = ["create_app"]
@@ -67,7 +67,8 @@ def create_app(settings: Settings) -> Starlette:
             session.close()
 
     routes = [*page.routes(session), *draw.routes(session), *edit.routes(session), *keep.routes(session),
-              *net.routes(session), *make.routes(session), *jobs.routes(session)]
+              *net.routes(session), *make.routes(session), *jobs.routes(session),
+              *paint.routes(session)]
     app = Starlette(routes=routes, lifespan=lifespan,
                     exception_handlers={404: not_found, 405: method_not_allowed, 500: server_error})
     app.state.cleanup = session.close

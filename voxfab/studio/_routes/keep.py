@@ -22,6 +22,10 @@ from .. import _bodies, _grid
 from .._http import read_object
 from .._session import Session
 
+#: What Keep says of a painted shape: the repository keeps its voxels only.
+COLOURS_NOT_KEPT = ("The repository keeps the voxels, not their colours: save the shape as .vox or .npz "
+                    "to keep them.")
+
 #: Thumbnails kept in memory (oldest dropped first).
 MAX_THUMBS = 2000
 
@@ -93,7 +97,8 @@ async def thumbnail(session: Session, request: Request) -> Response:
 async def add(session: Session, request: Request) -> dict[str, Any]:
     """Keep the grid sent (as a draft if asked and not well formed): its name, and whether it is new."""
     data = await read_object(request, _bodies.REPO_ADD, example='{"grid": ..., "draft": false}')
-    grid = _grid.unpack(data.get("grid"))
+    shape = _grid.unpack_shape(data.get("grid"))
+    grid = shape.grid
     draft = _bodies.flag(data.get("draft"), name="draft")
 
     def run() -> dict[str, Any]:
@@ -102,8 +107,10 @@ async def add(session: Session, request: Request) -> dict[str, Any]:
             result = repo.add(grid, draft=draft)
         from .._words import plain
 
+        # the repository names voxels: a painted shape's colours are kept by its .vox or .npz
+        note = {} if shape.colours is None else {"note": COLOURS_NOT_KEPT}
         return {"name": result.name, "created": result.created, "draft": result.draft,
-                "reasons": [plain(r) for r in result.reasons]}
+                "reasons": [plain(r) for r in result.reasons], **note}
 
     return await run_in_threadpool(run)
 
