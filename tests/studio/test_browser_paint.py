@@ -184,6 +184,58 @@ def test_paint_a_voxel_a_face_region_and_a_fill_pick_a_colour_undo_and_download_
     assert sum(1 for c in voxels.values() if c == BLUE) == len(region)
     assert sum(1 for c in voxels.values() if c == CHARACTER_COLOURS["trousers"]) == int(trousers.sum())
 
+    # a voxel added by hand on the layer takes the current colour (the hair's, picked above)
+    tab(browser, "edit")
+    added = browser.execute_script("""
+        const e = window.voxfabPaint.editor, g = e.grid, c = e.canvas, r = c.getBoundingClientRect();
+        for (let x = 0; x < g.nx; x++) for (let y = 0; y < g.ny; y++) if (!g.get(x, y, e.layer))
+          return [x, y, e.layer, r.left + (x + 0.5) * r.width / g.nx, r.top + (g.ny - y - 0.5) * r.height / g.ny];
+        return null;""")
+    steps = undo_steps(browser)
+    from selenium.webdriver.common.action_chains import ActionChains
+
+    actions = ActionChains(browser)
+    actions.w3c_actions.pointer_action.move_to_location(int(added[3]), int(added[4]))
+    actions.w3c_actions.pointer_action.click()
+    actions.perform()
+    wait(browser, lambda d: undo_steps(d) == steps + 1, what="the added voxel")
+    rgba = browser.execute_script("return window.voxfabPaint.grid.rgba(...arguments);", *added[:3])
+    assert tuple(rgba) == CHARACTER_COLOURS["hair"]
+    browser.find_element("id", "undo").click()
+
+    # Join parts: the four parts joined by their voxels, listed, as one undo step
+    steps = undo_steps(browser)
+    volume = int(browser.find_element("id", "volume").get_attribute("data-volume"))
+    browser.find_element("css selector", '[data-testid="join-parts"]').click()
+    wait(browser, lambda d: d.find_element("id", "join-result").get_attribute("data-joins") == "4", what="4 joins")
+    wait(browser, lambda d: int(d.find_element("id", "volume").get_attribute("data-volume")) == volume + 6,
+         what="the 6 voxels added")
+    assert undo_steps(browser) == steps + 1 and browser.find_element("id", "wf").text == "not well formed"
+    assert "separate pieces" not in browser.find_element("id", "reasons").text
+    assert all("joined the part of" in li.text for li in browser.find_elements("css selector", "#join-result li"))
+    browser.find_element("id", "undo").click()
+    wait(browser, lambda d: int(d.find_element("id", "volume").get_attribute("data-volume")) == volume,
+         what="the join undone")
+
+
+def test_a_256th_colour_is_refused_in_plain_words(server, browser, tmp_path):
+    open_page(browser, server)
+    vio.write(character(), tmp_path / "character.vox")
+    open_file(browser, tmp_path / "character.vox")
+    tab(browser, "edit")
+    # 255 voxels of the character each in a colour of its own: the palette is full
+    refused = browser.execute_script("""
+        const p = window.voxfabPaint, g = p.grid;
+        let k = 0;
+        for (let i = 0; i < g.data.length && k < 255; i++) if (g.data[i]) {
+          k++; g.colours[i] = k; g.palette.set([k, 7, 7, 255], 4 * k);
+        }
+        for (let i = 0; i < g.data.length; i++) if (g.data[i] && !g.colours[i]) g.colours[i] = 1;
+        const before = p.current.slice();
+        return [p.choose([1, 2, 3, 255]), p.current, before, p.choose([9, 7, 7, 255])];""")
+    assert refused[0] is False and refused[1] == refused[2] and refused[3] is True
+    assert "already uses 255 colours" in browser.find_element("id", "message").text
+
 
 def _two_colour_column(tmp_path: Path) -> Path:
     """The column of small_shape(): red below z = 12, blue from it, as a .vox."""
