@@ -318,3 +318,35 @@ def test_the_net_editor_gallery_and_3d_views_show_the_faces_colours(server, brow
     for name, px in folded:
         assert browser.execute_script(red_or_blue, px) == ("red" if int(name.split(",")[2]) < 12 else "blue"), (name, px)
     browser.save_screenshot(str(SHOTS / "paint-net.png"))
+
+
+def test_a_painted_drawing_keeps_its_colours_when_the_drawing_grows(server, browser):
+    from .test_browser import set_expression, slim_column
+
+    open_page(browser, server)
+    slim_column(browser)
+    before = int(browser.find_element("id", "volume").get_attribute("data-volume"))
+    tab(browser, "edit")
+    choose_colour(browser, GREEN)
+    choose_tool(browser, "fill")
+    browser.find_element("css selector", '#fill-scope option[value="all"]').click()
+    face = browser.execute_script("""
+        const v = window.voxfabPaint.viewer;
+        for (let t = v._polys.length - 1; t >= 0; t--) {
+          const p = v._polys[t], x = p.pts.reduce((a, q) => a + q[0], 0) / 4, y = p.pts.reduce((a, q) => a + q[1], 0) / 4;
+          const hit = v.pick(x, y);
+          if (hit && hit.face === p.name) return p.name.split(',');
+        }
+        return null;""")
+    click_face(browser, [int(c) for c in face[:3]], face[3])
+    everywhere = """
+        const g = window.voxfabPaint.grid;
+        if (!g.colours) return false;
+        for (let i = 0; i < g.data.length; i++)
+          if (g.data[i] && (!g.colours[i] || g.palette[4 * g.colours[i] + 1] !== 255 || g.palette[4 * g.colours[i]] !== 0)) return false;
+        return g.count();"""
+    wait(browser, lambda d: d.execute_script(everywhere) == before, what="the whole column painted green")
+    # a wider column: the painted voxels stay green, and the drawing's new ones take their nearest's green
+    tab(browser, "draw")
+    set_expression(browser, "src-generatrix", "x = 0.3")
+    wait(browser, lambda d: (d.execute_script(everywhere) or 0) > before, what="the wider column, all green")
