@@ -59,7 +59,6 @@ def test_a_voxel_the_page_left_without_colour_takes_its_nearest_one(client):
 def test_bad_colours_are_refused_in_one_line(client):
     wire = pack_shape(centred_shape(character(pitch=1.0)))
     for bad in ({"colours": "AAAA"}, {"palette": "AAAA"}, {"colours": "not base64!"}, {"colours": None}):
-        r = client.post("/api/check", json={"grid": {**wire, **bad}})
         r = client.post("/api/paint/fit", json={"grid": {**wire, **bad}})
         assert r.status_code == 400 and "\n" not in r.json()["error"], (bad, r.text)
 

@@ -7,7 +7,8 @@ Security, as a local server must have it:
   rebinding, cross-site forms) (:class:`._guard.Guard`);
 * request bodies are limited (:data:`._guard.MAX_BODY`);
 * no request names a file: the page is a fixed table of packaged files, shapes
-  come from the repository by ``VVVVV.NNN`` name, downloads by job id and index;
+  come from the repository by ``VVVVV.NNN`` name, downloads by job id and index,
+  and a file the artist opens is read under a name of the session's own;
 * every input goes through the CLI's validation and comes back as
   ``{"error": "one line"}`` with status 400; an unexpected failure is a 500
   with one line, never a traceback (:meth:`._session.Session.api`).
