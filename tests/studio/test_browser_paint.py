@@ -150,6 +150,9 @@ def test_paint_a_voxel_a_face_region_and_a_fill_pick_a_colour_undo_and_download_
     assert browser.find_element("id", "fill-scope").get_attribute("value") == "connected"
     click_face(browser, page((6, 8, 2)), MINUS_Y)
     wait(browser, lambda d: undo_steps(d) == steps + 3, what="the fill's undo step")
+    said = browser.find_element("id", "message").text
+    assert f"Painted {int(np.all(hero.colours.rgba == CHARACTER_COLOURS['trousers'], axis=-1).sum())} voxels" in said
+    assert "fill of the voxels of that colour touching it" in said
     trousers = np.all(hero.colours.rgba == CHARACTER_COLOURS["trousers"], axis=-1)
     painted = browser.execute_script("""
         const g = window.voxfabPaint.grid, out = [];

@@ -264,7 +264,8 @@ export class PaintPanel {
     if (!s) return;
     if (!s.changed) { this.editor.undoStack.pop(); this.say('Those voxels are that colour already.', true); return; }
     this.editor.onEdit(true);
-    const what = {voxel: 'voxel', face: 'face region', fill: 'fill'}[this.tool];
+    const what = {voxel: 'voxel', face: 'face region', fill: this.$('#fill-scope').value === 'all'
+      ? 'fill of every voxel of that colour' : 'fill of the voxels of that colour touching it'}[this.tool];
     this.say(`Painted ${s.painted || 0} voxel${s.painted === 1 ? '' : 's'} ${hex(this.current)} (${what}); Undo takes the stroke back.`, true);
   }
 
