@@ -474,6 +474,10 @@ export class NetView {
         } else { cuts.moveTo(...corner(i, k)); cuts.lineTo(...corner(i, k + 1)); }
       }
     }
+    if (this.fills) { // on painted faces, cuts and folds over a white line: a red cut on a red face still shows
+      ctx.setLineDash([]); ctx.strokeStyle = '#fff'; ctx.lineWidth = lw * 2;
+      for (const path of [byType[1], byType[-1], cuts]) ctx.stroke(path);
+    }
     for (const [type, path] of Object.entries(byType)) {
       const st = FOLD_STYLE[type];
       ctx.strokeStyle = st.color; ctx.lineWidth = lw * 0.8; ctx.setLineDash(s > 8 ? st.dash : []); ctx.stroke(path);
