@@ -33,10 +33,15 @@ def add_shape_argument(parser: argparse.ArgumentParser) -> None:
     """Add the SHAPE positional (a file or a repository name) and ``--repo``."""
     parser.add_argument("shape", metavar="SHAPE", help="a shape file, or a repository name such as 00797.001")
     add_frame_option(parser)
+    add_join_option(parser)
+    add_repository_option(parser)
+
+
+def add_join_option(parser: argparse.ArgumentParser) -> None:
+    """Add ``--join``: join a shape's parts into one piece (read by :func:`joined_if_asked`)."""
     parser.add_argument("--join", action="store_true",
                         help="join parts that touch only by edges or corners (voxel art) into one piece, adding "
                              "the fewest voxels found, each in a neighbour's colour; says where")
-    add_repository_option(parser)
 
 
 def add_frame_option(parser: argparse.ArgumentParser) -> None:

@@ -6,7 +6,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from ._common import DEFAULT_REPOSITORY, add_pitch_option, check_repository_path
+from ._common import DEFAULT_REPOSITORY, add_join_option, add_pitch_option, check_repository_path
 from ._options import integer_argument
 
 HELP = "open the studio: draw, edit and keep shapes, choose nets, download files (local web app)"
@@ -18,6 +18,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="open the page with this shape: a file voxfab reads (.npy, .vox, .binvox, ...) "
                              "or a repository name such as 00797.001")
     add_pitch_option(parser)
+    add_join_option(parser)
     parser.add_argument("--host", default="127.0.0.1",
                         help="address to listen on (default 127.0.0.1: this computer only)")
     parser.add_argument("--port", type=integer_argument, default=8765, help="port (default 8765)")
@@ -56,13 +57,15 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _initial(args: argparse.Namespace):  # noqa: ANN202 - voxfab.studio._grid.InitialShape, imported lazily
-    """SHAPE as the page's first shape: read as every command reads it, checked to fit the 25³ editor now."""
+    """SHAPE as the page's first shape, in its colours: read as every command reads it (joined into one piece
+    with ``--join``), checked to fit the 25³ editor now."""
     from voxfab.repo import load_shape
     from voxfab.studio._grid import InitialShape
 
-    from ._common import print_notes, shape_pitch
+    from ._common import joined_if_asked, print_notes, shape_pitch
 
     shape, name, notes, scaled = load_shape(args.shape, args.repo, pitch=shape_pitch(args))
+    shape = joined_if_asked(args, shape, notes)
     print_notes(notes)
     return InitialShape.of(shape.grid, label=name or Path(args.shape).name, name=name,
-                           pitch=float(shape.pitch) if scaled else None)
+                           pitch=float(shape.pitch) if scaled else None, colours=shape.colours)

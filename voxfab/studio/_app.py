@@ -7,7 +7,8 @@ Security, as a local server must have it:
   rebinding, cross-site forms) (:class:`._guard.Guard`);
 * request bodies are limited (:data:`._guard.MAX_BODY`);
 * no request names a file: the page is a fixed table of packaged files, shapes
-  come from the repository by ``VVVVV.NNN`` name, downloads by job id and index;
+  come from the repository by ``VVVVV.NNN`` name, downloads by job id and index,
+  and a file the artist opens is read under a name of the session's own;
 * every input goes through the CLI's validation and comes back as
   ``{"error": "one line"}`` with status 400; an unexpected failure is a 500
   with one line, never a traceback (:meth:`._session.Session.api`).
@@ -25,7 +26,7 @@ from starlette.responses import Response
 from . import _work
 from ._guard import Guard
 from ._http import error_response, plain_response
-from ._routes import draw, edit, jobs, keep, make, net, page
+from ._routes import draw, edit, jobs, keep, make, net, page, paint
 from ._session import Session, Settings
 
 __all__ = ["create_app"]
@@ -68,7 +69,8 @@ def create_app(settings: Settings) -> Starlette:
             session.close()
 
     routes = [*page.routes(session), *draw.routes(session), *edit.routes(session), *keep.routes(session),
-              *net.routes(session), *make.routes(session), *jobs.routes(session)]
+              *net.routes(session), *make.routes(session), *jobs.routes(session),
+              *paint.routes(session)]
     app = Starlette(routes=routes, lifespan=lifespan,
                     exception_handlers={404: not_found, 405: method_not_allowed, 500: server_error})
     app.state.cleanup = session.close

@@ -26,6 +26,9 @@ FITS = ("grid", "options")
 MAKE = ("grid", "artefact", "pitch", "title", "options", "net", "placement", "shape")
 EDIT = ("job", "index", "cut", "join", "undo", "split", "grid", "marks")
 NET_PICK = ("job", "index")
+PAINT_FIT = ("grid",)
+JOIN = ("grid",)
+SHAPE_FILE = ("grid", "format", "title", "pitch")
 
 #: Frames of the studio's animation preview (fewer than the recipe's 720: it is sent as JSON grids).
 ANIMATE_STEPS = (2, 72)

@@ -206,14 +206,13 @@ def download_settings(artefact: str, values: dict[str, Any]) -> Any:
     return row.settings(row.download_table(artefact, values))
 
 
-def make_files(job: Job, grid: np.ndarray, *, artefact: str, title: str, pitch: float, net: Any,
+def make_files(job: Job, shape: Any, *, artefact: str, title: str, net: Any,
                settings: Any, tube: tuple[dict[str, Any], Path] | None = None, placement: Any = None) -> None:
-    """Write one artefact of the shape into the job's folder through its pipeline in the table of outputs."""
+    """Write one artefact of the shape (a ``VoxelShape``: its pitch and colours go with it) into the job's
+    folder through its pipeline in the table of outputs."""
     from voxfab.fabricate import BuildContext, output_for_download
-    from voxfab.shape import VoxelShape
 
     row = output_for_download(artefact)
-    shape = VoxelShape(grid, pitch)
     out = job.folder / "made"
     out.mkdir(exist_ok=True)
     stem = title.replace(" ", "_")

@@ -8,7 +8,9 @@
 * :mod:`.keep`: the repository (``/api/repo``, ``/api/repo/shape``, ``/api/repo/thumb``);
 * :mod:`.net`: nets to choose from, edit and fit on a sheet (``/api/nets``, ``/api/nets/edit``, ``/api/fits``);
 * :mod:`.make`: the fabrication files (``/api/make``);
-* :mod:`.jobs`: the jobs those start, and their files (``/api/jobs/...``, ``/api/files/...``).
+* :mod:`.jobs`: the jobs those start, and their files (``/api/jobs/...``, ``/api/files/...``);
+* :mod:`.paint`: colours, joining parts, the shape as a file (``/api/palette``, ``/api/paint/fit``,
+  ``/api/join``, ``/api/shape/file``, ``/api/shape/open``).
 
 A route is a module function ``async def name(session, request)`` returning JSON-ready
 data or a response; :meth:`.._session.Session.api` binds it to the session.

@@ -66,8 +66,8 @@ async def shape(session: Session, request: Request) -> dict[str, Any]:
 
     def run() -> dict[str, Any]:
         with session.repository() as repo:
-            grid = _grid.centred(repo.get(name))
-        return {"name": name, "grid": _grid.pack(grid), "facts": _grid.facts(grid)}
+            kept = _grid.centred_shape(repo.shape(name))
+        return {"name": name, "grid": _grid.pack_shape(kept), "facts": _grid.facts(kept.grid)}
 
     return await run_in_threadpool(run)
 
@@ -83,10 +83,10 @@ async def thumbnail(session: Session, request: Request) -> Response:
         # names are never given twice, so a name's picture never changes
         if name not in thumbs:
             with session.repository() as repo:
-                grid = repo.get(name)
+                kept = repo.shape(name)
             if len(thumbs) >= MAX_THUMBS:
                 thumbs.pop(next(iter(thumbs)))
-            thumbs[name] = png_bytes(render(grid, size=120))
+            thumbs[name] = png_bytes(render(kept, size=120))
         return thumbs[name]
 
     return Response(await run_in_threadpool(run), media_type="image/png")
@@ -95,13 +95,14 @@ async def thumbnail(session: Session, request: Request) -> Response:
 async def add(session: Session, request: Request) -> dict[str, Any]:
     """Keep the grid sent (as a draft if asked and not well formed): its name, and whether it is new."""
     data = await read_object(request, _bodies.REPO_ADD, example='{"grid": ..., "draft": false}')
-    grid = _grid.unpack(data.get("grid"))
+    shape = _grid.unpack_shape(data.get("grid"))
+    grid = shape.grid
     draft = _bodies.flag(data.get("draft"), name="draft")
 
     def run() -> dict[str, Any]:
         _grid.require_voxels(grid)
         with session.repository() as repo:
-            result = repo.add(grid, draft=draft)
+            result = repo.add(shape, draft=draft)  # in its colours: the same voxels painted otherwise are another shape
         from .._words import plain
 
         return {"name": result.name, "created": result.created, "draft": result.draft,

@@ -47,9 +47,9 @@ async def make(session: Session, request: Request) -> dict[str, Any]:
     artefact = data.get("artefact")
     if artefact not in _work.artefacts():
         raise InvalidShapeError(f"artefact: expected one of {', '.join(_work.artefacts())}, got {artefact!r:.40}")
-    grid = _grid.unpack(data.get("grid"))
-    _grid.require_voxels(grid)
-    pitch = _bodies.pitch(data.get("pitch"))
+    # the shape with its colours: every output the library colours gets them
+    shape = _grid.unpack_shape(data.get("grid"), pitch=_bodies.pitch(data.get("pitch")))
+    _grid.require_voxels(shape.grid)
     title = data.get("title") or "studio"
     if not isinstance(title, str) or not TITLE.fullmatch(title):
         raise InvalidShapeError(f"title: letters, digits, space, _ . - (at most 64), got {str(title)[:70]!r}")
@@ -73,7 +73,7 @@ async def make(session: Session, request: Request) -> dict[str, Any]:
     if artefact == "animation.gif":
         tube = await run_in_threadpool(_specs.tube_params, data.get("shape"), session.work)
     job = session.jobs.submit("make", lambda j: _work.make_files(
-        j, grid, artefact=artefact, title=title, pitch=pitch, net=net, settings=settings, tube=tube,
+        j, shape, artefact=artefact, title=title, net=net, settings=settings, tube=tube,
         placement=placement))
     return {"job": job.id}
 

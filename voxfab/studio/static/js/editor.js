@@ -1,12 +1,15 @@
-// Layer-by-layer voxel editing with undo and redo (one step per stroke).
+// Layer-by-layer voxel editing with undo and redo (one step per stroke). The undo steps keep the voxels'
+// colours too, so painting (paint.js) undoes through the same steps.
 
 export class LayerEditor {
   // tag(): what the page attaches to each undo step (its state of the shape then), given back as `this.tag`
-  // when the step is restored.
-  constructor(canvas, {onEdit, tag = () => null}) {
-    this.canvas = canvas; this.onEdit = onEdit; this.tagOf = tag;
+  // when the step is restored. pen(grid): the colour index a voxel added by hand takes on a coloured grid
+  // (the current paint colour), 0 for none.
+  constructor(canvas, {onEdit, tag = () => null, pen = () => 0}) {
+    this.canvas = canvas; this.onEdit = onEdit; this.tagOf = tag; this.pen = pen;
     this.grid = null; this.layer = 12; this.undoStack = []; this.redoStack = []; this.tag = null;
     let painting = null; // 1: adding, 0: removing, null: idle
+    let colour = 0; // the colour index of the voxels a stroke adds
     const cellAt = (e) => {
       const r = canvas.getBoundingClientRect();
       const n = this.grid.nx, cell = canvas.width / n;
@@ -22,14 +25,15 @@ export class LayerEditor {
       canvas.setPointerCapture(e.pointerId);
       this.snapshot();
       painting = this.grid.get(c[0], c[1], this.layer) ? 0 : 1;
-      this.grid.set(c[0], c[1], this.layer, painting);
+      colour = painting && this.grid.colours ? this.pen(this.grid) : 0;
+      this.grid.set(c[0], c[1], this.layer, painting, colour);
       this.paint(); this.onEdit(false);
     });
     canvas.addEventListener('pointermove', (e) => {
       if (painting === null) return;
       const c = cellAt(e);
       if (!c || this.grid.get(c[0], c[1], this.layer) === painting) return;
-      this.grid.set(c[0], c[1], this.layer, painting);
+      this.grid.set(c[0], c[1], this.layer, painting, colour);
       this.paint(); this.onEdit(false);
     });
     const up = () => { if (painting !== null) { painting = null; this.onEdit(true); } };
@@ -63,7 +67,7 @@ export class LayerEditor {
     this.redoStack = [];
   }
 
-  restore(e) { this.grid.data.set(e.grid.data); this.tag = e.tag; this.paint(); }
+  restore(e) { this.grid.assign(e.grid); this.tag = e.tag; this.paint(); }
 
   undo() {
     if (!this.undoStack.length) return false;
@@ -89,7 +93,8 @@ export class LayerEditor {
     if (this.layer === 0) return;
     this.snapshot();
     for (let x = 0; x < this.grid.nx; x++) for (let y = 0; y < this.grid.ny; y++) {
-      this.grid.set(x, y, this.layer, this.grid.get(x, y, this.layer - 1));
+      const below = this.grid.get(x, y, this.layer - 1);
+      this.grid.set(x, y, this.layer, below, below && this.grid.colours ? this.grid.colours[this.grid.index(x, y, this.layer - 1)] : 0);
     }
     this.paint();
   }
@@ -101,8 +106,10 @@ export class LayerEditor {
     const cell = c.width / g.nx;
     for (let x = 0; x < g.nx; x++) for (let y = 0; y < g.ny; y++) {
       const top = (g.ny - 1 - y) * cell;
-      if (g.get(x, y, this.layer)) ctx.fillStyle = '#c2632b';
-      else if (g.get(x, y, this.layer - 1)) ctx.fillStyle = '#f1dcc9';
+      // a coloured voxel in its colour; the layer below faint
+      const here = g.get(x, y, this.layer), rgba = g.rgba(x, y, here ? this.layer : this.layer - 1);
+      if (here) ctx.fillStyle = rgba ? `rgb(${rgba[0]},${rgba[1]},${rgba[2]})` : '#c2632b';
+      else if (g.get(x, y, this.layer - 1)) ctx.fillStyle = rgba ? `rgba(${rgba[0]},${rgba[1]},${rgba[2]},0.3)` : '#f1dcc9';
       else continue;
       ctx.fillRect(x * cell + 1, top + 1, cell - 2, cell - 2);
     }

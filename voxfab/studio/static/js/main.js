@@ -7,6 +7,7 @@ import {MakerForms} from './makers.js';
 import {carryEdits, Grid} from './grid.js';
 import {drawThumb} from './nets.js';
 import {NetView} from './netview.js';
+import {faceFills, PaintPanel} from './paint.js';
 import {placedLayout, SheetBoard} from './sheets.js';
 import {Viewer} from './viewer.js';
 
@@ -91,7 +92,7 @@ function setShape(grid, facts, {drawn = null, name = null, label = null, keepHis
   $('#shape-name').textContent = name || 'unsaved';
   viewer.stop();
   viewer.setGrid(grid, currentTab() === 'edit' ? editor.layer : null);
-  editor.setGrid(grid, {keepHistory});
+  editor.setGrid(grid, {keepHistory}); paint.refresh();
   showFacts(facts);
   recipeNote();
   netNote();
@@ -310,12 +311,14 @@ function edited() {
   state.edited = true; state.drawn = null; state.name = null; state.parked = null;
   forgetShapeState();
   $('#shape-name').textContent = 'unsaved';
-  viewer.setGrid(state.shape, editor.layer);
+  viewer.setGrid(state.shape, editor.layer); paint.refresh();
   recipeNote(); netNote();
   check();
 }
 
-const editor = new LayerEditor($('#layer-canvas'), {onEdit: () => edited(), tag: shapeTag});
+const editor = new LayerEditor($('#layer-canvas'), {onEdit: () => edited(), tag: shapeTag, pen: (g) => paint.pen(g)});
+const paint = new PaintPanel({editor, viewer, say, title: () => shapeTitle(), pitch: () => Number($('#pitch').value), // a file opened: as a kept shape
+  opened: (r) => { openShape(null, r); $('#shape-name').textContent = r.label; if (r.pitch) $('#pitch').value = String(r.pitch); }});
 
 function setLayer(z) {
   editor.setLayer(z);
@@ -363,8 +366,8 @@ $('#save-repo').addEventListener('click', async () => {
     const r = await post('/api/repo', {grid: state.shape.pack(), draft: $('#save-draft').checked});
     state.name = r.name;
     $('#shape-name').textContent = r.name;
-    const text = r.draft ? `Kept as draft ${r.name}: ${r.reasons.join('; ')}`
-      : r.created ? `Saved as ${r.name}` : `Already in the repository as ${r.name}`;
+    const text = (r.draft ? `Kept as draft ${r.name}: ${r.reasons.join('; ')}`
+      : r.created ? `Saved as ${r.name}` : `Already in the repository as ${r.name}`);
     $('#save-result').textContent = text; $('#save-result').dataset.name = r.name;
     say(text, true);
     refreshRepo();
@@ -404,14 +407,14 @@ async function refreshRepo(after = null) {
 $('#repo-refresh').addEventListener('click', () => refreshRepo());
 $('#repo-more').addEventListener('click', () => refreshRepo($('#repo-more').dataset.after));
 
-async function openShape(name) {
+async function openShape(name, file = null) { // a kept shape by name, or a file the page opened (paint.js)
   try {
-    const r = await get(`/api/repo/shape?name=${encodeURIComponent(name)}`);
+    const r = file || await get(`/api/repo/shape?name=${encodeURIComponent(name)}`);
     const before = state.shape, was = shapeTag();
     state.base = null; state.baseMaker = null; state.opened = true;
     editor.remember(before, was); // Undo in Edit returns to the shape it replaced, under its name
-    setShape(Grid.unpack(r.grid), r.facts, {name, keepHistory: true});
-    say(`Opened ${name}`, true);
+    setShape(Grid.unpack(r.grid), r.facts, {name, label: file && file.label.replace(/\.[A-Za-z0-9]+$/, ''), keepHistory: true});
+    if (!file) say(`Opened ${name}`, true);
   } catch (e) { say(e); }
 }
 
@@ -558,7 +561,7 @@ function galleryFigure(n, i) {
   // the first sheet large, the others in a strip below it: every sheet squeezed into one row left faces a pixel wide
   const strip = n.placement && n.placement.sheets > 1;
   const cv = Object.assign(document.createElement('canvas'), {width: 420, height: strip ? 540 : 420});
-  cv.dataset.facePx = drawThumb(cv, placedLayout(n.layout, n.placement), n.placement).toFixed(2);
+  cv.dataset.facePx = drawThumb(cv, placedLayout(n.layout, n.placement), n.placement, faceFills(n.layout, state.shape)).toFixed(2);
   const f = n.fit;
   const cap = document.createElement('figcaption');
   cap.innerHTML = '<b></b> <span class="fits"></span>';

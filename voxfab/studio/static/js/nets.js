@@ -44,8 +44,9 @@ function frame([x0, y0, x1, y1], [bx, by, bw, bh], pad) {
 // Draw a net: faces, cut edges red, folds by type, and the marks (cut: thick red, keep: thick blue).
 // box: the part [x, y, w, h] of the canvas to draw in (all of it by default); only: the Set of faces to
 // draw (all by default); bounds: what to fit in the box (the faces drawn by default, or a sheet, outlined).
+// fills: each face's CSS colour (a painted shape's, paint.js faceFills), or null for the paper colour.
 // Returns the pixels of the canvas per face edge.
-export function drawNet(canvas, layout, {marks = null, box = null, only = null, bounds = null} = {}) {
+export function drawNet(canvas, layout, {marks = null, box = null, only = null, bounds = null, fills = null} = {}) {
   const ctx = canvas.getContext('2d'), W = canvas.width, H = canvas.height;
   box = box || [0, 0, W, H];
   ctx.fillStyle = '#fff'; ctx.fillRect(...box);
@@ -57,12 +58,12 @@ export function drawNet(canvas, layout, {marks = null, box = null, only = null, 
     ctx.strokeRect(Math.round(a[0]) + 0.5, Math.round(a[1]) + 0.5, Math.round(b[0] - a[0]) - 1, Math.round(b[1] - a[1]) - 1);
   }
   const shown = (i) => !only || only.has(i);
-  ctx.fillStyle = '#fbf1e2';
   for (let i = 0; i < F; i++) {
     if (!shown(i)) continue;
     ctx.beginPath();
     for (let k = 0; k < 4; k++) ctx[k ? 'lineTo' : 'moveTo'](...toScreen(c[8 * i + 2 * k], c[8 * i + 2 * k + 1]));
-    ctx.closePath(); ctx.fill();
+    ctx.closePath();
+    ctx.fillStyle = (fills && fills[i]) || '#fbf1e2'; ctx.fill();
   }
   const lw = Math.max(0.5, Math.min(2, s / 8));
   const cuts = new Path2D();
@@ -104,19 +105,20 @@ export function drawNet(canvas, layout, {marks = null, box = null, only = null, 
 
 // A gallery thumbnail of a net laid out on its sheets (`layout` as placedLayout gives it): the first sheet
 // large, on its own, the others in a strip below it. Without a placement (a net that does not fit its
-// sheet), the whole net. Returns the canvas pixels per face edge of the first sheet.
-export function drawThumb(canvas, layout, placement) {
+// sheet), the whole net. `fills`: each face's colour, as drawNet takes them. Returns the canvas pixels per
+// face edge of the first sheet.
+export function drawThumb(canvas, layout, placement, fills = null) {
   const W = canvas.width, H = canvas.height;
-  if (!placement) return drawNet(canvas, layout);
+  if (!placement) return drawNet(canvas, layout, {fills});
   const on = Array.from({length: placement.sheets}, () => new Set());
   for (let i = 0; i < layout.faces.length; i++) {
     on[placement.pieces[layout.piece ? layout.piece[i] : 0].sheet].add(i);
   }
   const rest = placement.sheets - 1, strip = rest ? Math.round(0.22 * H) : 0;
-  const s = drawNet(canvas, layout, {box: [0, 0, W, H - strip], only: on[0], bounds: sheetRect(placement, 0)});
+  const s = drawNet(canvas, layout, {box: [0, 0, W, H - strip], only: on[0], bounds: sheetRect(placement, 0), fills});
   for (let k = 1; k <= rest; k++) {
     const w = W / rest;
-    drawNet(canvas, layout, {box: [(k - 1) * w, H - strip, w, strip], only: on[k], bounds: sheetRect(placement, k)});
+    drawNet(canvas, layout, {box: [(k - 1) * w, H - strip, w, strip], only: on[k], bounds: sheetRect(placement, k), fills});
   }
   return s;
 }

@@ -10,6 +10,7 @@
 // fold_type, piece, parent, labels.
 
 import {post} from './api.js';
+import {faceColours} from './paint.js';
 import {edgeKey, faceName} from './viewer.js';
 
 const FOLD_STYLE = {
@@ -312,6 +313,9 @@ export class NetView {
       this.names.set(faceName(layout.faces[i]), i);
     }
     for (let t = 0; t < layout.folds.length; t += 2) this.foldsSet.add(pairKey(layout.folds[t], layout.folds[t + 1]));
+    // a painted shape's faces in their voxels' colours, here and folding up in the 3D view
+    this.colours = faceColours(layout, this.shape && this.shape());
+    this.fills = this.colours && this.colours.map((c) => c && `rgb(${c[0]},${c[1]},${c[2]})`);
     const fit = Math.min((W - 16) / w, (H - 16) / h), pieces = Math.max(...piece) + 1;
     this.pieceButtons(pieces);
     if (!keepView || !this.view) {
@@ -450,6 +454,11 @@ export class NetView {
     const corner = (i, k) => this.toScreen(P[8 * i + 2 * (k % 4)], P[8 * i + 2 * (k % 4) + 1]);
     const faces = new Path2D();
     for (let i = 0; i < F; i++) {
+      if (this.fills && this.fills[i]) { // a painted face on its own
+        ctx.beginPath(); ctx.moveTo(...corner(i, 0)); for (let k = 1; k < 4; k++) ctx.lineTo(...corner(i, k));
+        ctx.closePath(); ctx.fillStyle = this.fills[i]; ctx.fill();
+        continue;
+      }
       faces.moveTo(...corner(i, 0)); for (let k = 1; k < 4; k++) faces.lineTo(...corner(i, k)); faces.closePath();
     }
     ctx.fillStyle = '#fbf1e2'; ctx.fill(faces);
@@ -464,6 +473,10 @@ export class NetView {
           path.moveTo(...corner(i, k)); path.lineTo(...corner(i, k + 1));
         } else { cuts.moveTo(...corner(i, k)); cuts.lineTo(...corner(i, k + 1)); }
       }
+    }
+    if (this.fills) { // on painted faces, cuts and folds over a white line: a red cut on a red face still shows
+      ctx.setLineDash([]); ctx.strokeStyle = '#fff'; ctx.lineWidth = lw * 2;
+      for (const path of [byType[1], byType[-1], cuts]) ctx.stroke(path);
     }
     for (const [type, path] of Object.entries(byType)) {
       const st = FOLD_STYLE[type];
@@ -544,7 +557,7 @@ export class NetView {
     const corners = foldCorners(plan, t);
     // Framed on the net as it is at t: folded, the shape fills the view (framed on the flat net too, it
     // came out small and off centre); the bounds move smoothly with t, so the animation does not jump.
-    this.viewer.setQuads(corners, bounds3d(corners), this.layout.faces.map(faceName));
+    this.viewer.setQuads(corners, bounds3d(corners), this.layout.faces.map(faceName), this.colours);
     const ms = performance.now() - t0;
     this.canvas.dataset.foldMs = ms.toFixed(1);
     return ms;

@@ -2,6 +2,9 @@
 // with dark voxel edges. Drag to orbit, wheel to zoom. No WebGL needed, so it runs anywhere.
 // It also shows a net folding up (setQuads), and lights up the faces and seam edges the net view
 // points at (setHighlight); hovering or clicking a face or edge here tells the net view (onPick).
+// A coloured grid's faces (and a folding net's, given their colours) are drawn in their voxel's colour
+// times the face's shade. With a paint tool set (setTool), a drag paints instead of orbiting (Shift+drag
+// or the right button still orbits).
 
 import {DIRS, exposedFaces} from './grid.js';
 
@@ -38,12 +41,20 @@ export class Viewer {
     this.quads = null; // folding net: {corners: Float64Array(F*12), normalsFlip, lo, hi}
     this.highlight = null; // {faces: Set of face names, edges: [[p, q]], label}
     this.onPick = null; // (hit, clicked) with hit {face: name, edge: [p, q]} or null
+    this.tool = null; // {down(hit), move(hit), up()}: a paint tool, given the face under the pointer
     this._polys = [];
+    canvas.addEventListener('contextmenu', (e) => { if (this.tool) e.preventDefault(); });
     canvas.addEventListener('pointerdown', (e) => {
+      if (this.tool && e.button === 0 && !e.shiftKey) {
+        this._painting = true; canvas.setPointerCapture(e.pointerId);
+        this.tool.down(this._hit(e));
+        return;
+      }
       this._drag = [e.clientX, e.clientY]; this._moved = 0;
       canvas.setPointerCapture(e.pointerId); canvas.style.cursor = 'grabbing';
     });
     canvas.addEventListener('pointermove', (e) => {
+      if (this._painting) { this.tool.move(this._hit(e)); return; }
       if (!this._drag) { this._hover(e, false); return; }
       const [x0, y0] = this._drag; this._drag = [e.clientX, e.clientY];
       this._moved += Math.abs(e.clientX - x0) + Math.abs(e.clientY - y0);
@@ -51,7 +62,10 @@ export class Viewer {
       this.pitch = Math.max(-1.5, Math.min(1.5, this.pitch + (e.clientY - y0) * 0.01));
       this.draw();
     });
-    const end = () => { this._drag = null; canvas.style.cursor = 'grab'; };
+    const end = () => {
+      this._drag = null; canvas.style.cursor = this.tool ? 'crosshair' : 'grab';
+      if (this._painting) { this._painting = false; this.tool.up(); }
+    };
     canvas.addEventListener('pointerup', (e) => { if (this._drag && this._moved < 4) this._hover(e, true); end(); });
     canvas.addEventListener('pointercancel', end);
     canvas.addEventListener('wheel', (e) => {
@@ -75,6 +89,21 @@ export class Viewer {
 
   setLayer(layer) { this.layer = layer; this.draw(); }
 
+  // A paint tool ({down, move, up}, each given the face under the pointer) or null: drags orbit again.
+  setTool(tool) {
+    if (this._painting && this.tool) { this._painting = false; this.tool.up(); }
+    this.tool = tool; this.canvas.style.cursor = tool ? 'crosshair' : 'grab';
+  }
+
+  // The voxel face under a pointer event: {x, y, z, d} (d the index of DIRS), or null.
+  _hit(e) {
+    const r = this.canvas.getBoundingClientRect();
+    const hit = this.pick((e.clientX - r.left) * this.canvas.width / r.width, (e.clientY - r.top) * this.canvas.height / r.height);
+    if (!hit || this.quads || this.mesh) return null;
+    const [x, y, z, d] = hit.face.split(',');
+    return {x: Number(x), y: Number(y), z: Number(z), d: NAMES.indexOf(d)};
+  }
+
   // Light up faces (names "x,y,z,+z") and seam edges ([p, q] 3D points), with a label; null clears.
   setHighlight(h) {
     this.highlight = h;
@@ -85,8 +114,9 @@ export class Viewer {
 
   // Show a net folding: `corners` F*12 numbers (4 corners per face in 3D), framed by `frame` ({lo, hi}: the
   // box fitted in the view, centred); null goes back to the shape.
-  setQuads(corners, frame = null, names = null) {
-    this.quads = corners ? {corners, frame: frame || this.quads?.frame, names} : null;
+  // `fills`: each face's [r, g, b] (its voxel's colour), or null for the paper colour.
+  setQuads(corners, frame = null, names = null, fills = null) {
+    this.quads = corners ? {corners, frame: frame || this.quads?.frame, names, fills} : null;
     this.draw();
   }
 
@@ -151,7 +181,7 @@ export class Viewer {
   _drawQuads(eye, right, up) {
     const {canvas, ctx} = this;
     const W = canvas.width, H = canvas.height;
-    const {corners, frame, names} = this.quads;
+    const {corners, frame, names, fills} = this.quads;
     const lo = frame ? frame.lo : [0, 0, 0], hi = frame ? frame.hi : [25, 25, 25];
     const c = [0, 1, 2].map((j) => (lo[j] + hi[j]) / 2);
     const scale = this.zoom * 0.95 * Math.min(W, H) / (Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) || 1);
@@ -172,11 +202,11 @@ export class Viewer {
     this._polys = [];
     // colours by brightness step, made once: a CSS colour string per face is most of a frame's cost
     const colours = new Map();
-    const colour = (front, light) => {
-      const key = (front ? 1000 : 0) + Math.round(light * 200);
+    const colour = (front, light, own) => {
+      const key = `${front ? 1 : 0},${Math.round(light * 200)},${own || ''}`;
       let hit = colours.get(key);
       if (!hit) {
-        const base = front ? this.color : [205, 205, 205], l = Math.round(light * 200) / 200;
+        const base = front ? own || this.color : [205, 205, 205], l = Math.round(light * 200) / 200;
         const rgb = base.map((v) => Math.min(255, Math.round(v * l)));
         hit = [`rgb(${rgb[0]},${rgb[1]},${rgb[2]})`, `rgb(${rgb[0] * 0.7 | 0},${rgb[1] * 0.7 | 0},${rgb[2] * 0.7 | 0})`];
         colours.set(key, hit);
@@ -191,7 +221,7 @@ export class Viewer {
       const e3 = [corners[o + 9] - corners[o], corners[o + 10] - corners[o + 1], corners[o + 11] - corners[o + 2]];
       const n = normalize([e1[1] * e3[2] - e1[2] * e3[1], e1[2] * e3[0] - e1[0] * e3[2], e1[0] * e3[1] - e1[1] * e3[0]]);
       const front = dot(n, eye) > 0;
-      const [fill, line] = colour(front, shade(front ? n : [-n[0], -n[1], -n[2]], eye));
+      const [fill, line] = colour(front, shade(front ? n : [-n[0], -n[1], -n[2]], eye), fills && fills[i]);
       const pts = [];
       for (let k = 0; k < 4; k++) {
         const q = [corners[o + 3 * k] - c[0], corners[o + 3 * k + 1] - c[1], corners[o + 3 * k + 2] - c[2]];
@@ -308,7 +338,9 @@ export class Viewer {
       const pts = p3.map(project);
       this._polys.push({name: faceName(f), pts, p3});
       const light = shade(d.n, eye);
-      const base = this.layer !== null && f[2] === this.layer ? this.accent : this.color;
+      // a voxel in its own colour (the layer shows by its frame), else the layer edited in the accent
+      const own = g.colours && g.rgba(f[0], f[1], f[2]);
+      const base = own || (this.layer !== null && f[2] === this.layer ? this.accent : this.color);
       const rgb = base.map((v) => Math.min(255, Math.round(v * light)));
       ctx.beginPath();
       ctx.moveTo(pts[0][0], pts[0][1]);
