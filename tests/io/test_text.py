@@ -67,3 +67,33 @@ def test_binary_file_is_not_text(tmp_path):
     path.write_bytes(b"\xff\xfe\x00\x81" * 10)
     with pytest.raises(FormatError, match="not a UTF-8 text file"):
         io.read(path)
+
+
+def test_voxel_art_in_colour_is_drawn_and_read_in_text(tmp_path):
+    from _voxart import character
+
+    shape = character()
+    path = tmp_path / "char.txt"
+    io.write(shape, path)
+    text = path.read_text()
+    # One declared character per colour, read back by hand: the eye at (8, 7, 16) is white.
+    declared = dict(line.split()[2:4] for line in text.splitlines() if line.startswith("; colour "))
+    assert len(declared) == 12
+    layer = text.split("z = 16\n")[1].split("\n\n")[0].splitlines()
+    eye = layer[shape.grid.shape[1] - 1 - 7][8]
+    assert declared[eye] == "#ffffff"
+    assert io.read(path).shape(shape.pitch) == shape
+    # A hand-written file: named colours, '#' a white voxel, an unknown character refused by line.
+    (tmp_path / "hand.txt").write_text("; voxfab layers 2 1 1\n; colour r #c03020 shirt\nz = 0\nr#\n")
+    hand = io.read(tmp_path / "hand.txt")
+    assert [tuple(hand.colours.rgba[x, 0, 0]) for x in range(2)] == [(0xC0, 0x30, 0x20, 255), (255, 255, 255, 255)]
+    (tmp_path / "bad.txt").write_text("; voxfab layers 2 1 1\n; colour r #c03020\nz = 0\nrq\n")
+    with pytest.raises(FormatError, match=r"bad.txt:4: expected 2 characters of '#', '.' or a colour \(r\)"):
+        io.read(tmp_path / "bad.txt")
+
+
+def test_the_bundled_swordsman_is_voxel_art_in_twelve_colours():
+    from pathlib import Path
+
+    shape = io.read(Path(__file__).parents[2] / "recipes/character/swordsman.txt").shape()
+    assert shape.colours.count == 12 and shape.components == 5 and shape.joined()[0].well_formed
