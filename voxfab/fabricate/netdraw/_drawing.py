@@ -13,7 +13,15 @@ from voxfab.errors import InvalidShapeError
 from voxfab.shape import SurfaceGraph, surface_graph
 from voxfab.unfold import Net
 
-from ._assembly import assembly_page, gluing_order, number_faces, number_text, piece_joins, piece_name
+from ._assembly import (
+    assembly_page,
+    gluing_order,
+    number_faces,
+    number_text,
+    piece_joins,
+    piece_name,
+    place_numbers,
+)
 from ._geometry import NetEdges, check_net, classify_edges, merge_unit_segments, trace_outlines
 from ._labels import label_length, seam_labels
 from ._legible import LABEL_ADVANCE, NUMBER_INSET, legibility_problem, number_height, number_start
@@ -498,14 +506,16 @@ def _draw(graph: SurfaceGraph, net: Net, plan: SheetPlan, opts: DrawingOptions, 
     title = f"{name}  FACES {p:g} MM  SEED {net.seed}".strip()
     joins = piece_joins(face_piece, sides)
     order = gluing_order(np.bincount(face_piece, minlength=pieces).tolist(), joins)
-    at = number_faces(face_piece, joined)
-    number_at = tuple((int(fs[f]), pos[f].mean(axis=0)) for f in at.tolist())
-    free = joined[at].all(axis=1).tolist()  # a number's face without seam labels: all of it is room
+    labels = seam_labels(numbers.tolist(), chars)
+    names = [str(i + 1) for i in range(pieces)] if pieces > 1 else []
+    # Each piece's number, boxed, clear of every seam label and tape mark and of the other numbers.
+    spots = place_numbers(names, face_piece, fs, pos, number_faces(face_piece, joined), p, label_h,
+                          _mark_boxes(pos, fs, sides, labels, tabs, elsewhere, p, label_h, opts.numbers),
+                          _paper_boxes(pos, fs, sides, tabs), plan.area) if names else []
+    number_at = tuple((s, c) for s, c, _ in spots)
     sheets = tuple(
         _draw_sheet(s, plan, edges, joined, sides, seam_type, tabs, opts, label_h, title, pos, shared,
-                    seam_labels(numbers.tolist(), chars), elsewhere,
-                    [(piece_name(i + 1), c, free[i]) for i, (ps, c) in enumerate(number_at) if ps == s]
-                    if pieces > 1 else [])
+                    labels, elsewhere, [(names[i], c, h) for i, (ps, c, h) in enumerate(spots) if ps == s])
         for s in range(plan.count)
     )
     return NetDrawing(
@@ -524,7 +534,7 @@ def _draw_sheet(
     s: int, plan: SheetPlan, edges: NetEdges, joined: npt.NDArray[np.bool_], sides: npt.NDArray[np.int64],
     seam_type: npt.NDArray[np.int64], tabs: TabPlan, opts: DrawingOptions, label_h: float, title: str,
     pos: npt.NDArray[np.float64], shared: npt.NDArray[np.bool_], labels: list[str],
-    elsewhere: npt.NDArray[np.bool_], piece_numbers: list[tuple[str, npt.NDArray[np.float64], bool]],
+    elsewhere: npt.NDArray[np.bool_], piece_numbers: list[tuple[str, npt.NDArray[np.float64], float]],
 ) -> Sheet:
     p = plan.pitch
     fs = plan.face_sheet
@@ -604,15 +614,10 @@ def _draw_sheet(
         inward = np.stack([-d[:, 1], d[:, 0]], axis=1)
         here_texts = [labels[i] for i in np.flatnonzero(here).tolist()]
         texts += here_texts
-        # Centred on the edge, or pushed along it just clear of the label on the previous edge.
-        width = np.array([text_width(t, label_h, LABEL_ADVANCE) for t in here_texts]).reshape(-1)
-        along = np.maximum((p - width) / 2, number_start(p, label_h))
-        org.append(p0 + d * along[:, None] + inward * (NUMBER_INSET * p))
+        start, _ = _label_span(p0, d, inward, here_texts, p, label_h)
+        org.append(start)
         dirs.append(d)
-        no_tab = ~tabs.placed[here] & ~elsewhere[here]
-        # A seam without a tab gets a bar along both its edges: tape or glue it edge to edge.
-        off = inward[no_tab] * (0.015 * p)
-        marks.append((p0[no_tab] + d[no_tab] * 0.2 * p + off, p1[no_tab] - d[no_tab] * 0.2 * p + off))
+        marks.append(_tape_bar(p0, p1, d, inward, ~tabs.placed[here] & ~elsewhere[here], p))
     if texts and opts.numbers:
         layers["LABEL"].append(text_polylines(texts, np.concatenate(org), np.concatenate(dirs), label_h,
                                               advance=LABEL_ADVANCE))
@@ -620,7 +625,7 @@ def _draw_sheet(
                                                    np.concatenate([m[1] for m in marks])))
     if piece_numbers:
         layers["LABEL"].append(number_text([t for t, _, _ in piece_numbers], np.array([c for _, c, _ in piece_numbers]),
-                                           p, label_h, np.array([f for _, _, f in piece_numbers])))
+                                           np.array([h for _, _, h in piece_numbers])))
     heading = title + (f"  SHEET {s + 1}/{plan.count}" if plan.count > 1 else "")
     if heading and opts.heading:
         x0, _, x1, _ = plan.area
@@ -635,6 +640,63 @@ def _draw_sheet(
         faces=pos[on], face_index=np.flatnonzero(on), tabs=tab_poly, pieces=pieces,
         fill=(int(on.sum()) * p * p + _polygon_area(tab_poly)) / (plan.size[0] * plan.size[1]),
     )
+
+
+def _label_span(p0: npt.NDArray[np.float64], d: npt.NDArray[np.float64], inward: npt.NDArray[np.float64],
+                texts: list[str], p: float, label_h: float) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """Where seam labels on edges from ``p0`` along ``d`` start (their baseline's start), and their widths, mm:
+    centred on the edge, or pushed along it just clear of the label on the previous edge."""
+    width = np.array([text_width(t, label_h, LABEL_ADVANCE) for t in texts]).reshape(-1)
+    along = np.maximum((p - width) / 2, number_start(p, label_h))
+    return p0 + d * along[:, None] + inward * (NUMBER_INSET * p), width
+
+
+def _tape_bar(p0: npt.NDArray[np.float64], p1: npt.NDArray[np.float64], d: npt.NDArray[np.float64],
+              inward: npt.NDArray[np.float64], no_tab: npt.NDArray[np.bool_], p: float
+              ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """A seam without a tab gets a bar along both its edges: tape or glue it edge to edge (its two ends)."""
+    off = inward[no_tab] * (0.015 * p)
+    return p0[no_tab] + d[no_tab] * 0.2 * p + off, p1[no_tab] - d[no_tab] * 0.2 * p + off
+
+
+def _mark_boxes(pos: npt.NDArray[np.float64], fs: npt.NDArray[np.int64], sides: npt.NDArray[np.int64],
+                labels: list[str], tabs: TabPlan, elsewhere: npt.NDArray[np.bool_], p: float, label_h: float,
+                numbers: bool) -> dict[int, tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]]:
+    """Per sheet, the boxes ``(lo, hi)`` of every seam label and tape mark drawn: where no piece number may go."""
+    lo: list[npt.NDArray[np.float64]] = []
+    hi: list[npt.NDArray[np.float64]] = []
+    sheet: list[npt.NDArray[np.int64]] = []
+    for side in (0, 1):
+        fe = sides[:, side]
+        here = fe[:, 0] >= 0
+        p0, p1 = _edge_points(pos, fe[here])
+        d = (p1 - p0) / p
+        inward = np.stack([-d[:, 1], d[:, 0]], axis=1)
+        on = fs[fe[here, 0]]
+        if numbers:
+            start, width = _label_span(p0, d, inward, [labels[i] for i in np.flatnonzero(here).tolist()], p, label_h)
+            end = start + d * width[:, None] + inward * label_h
+            lo.append(np.minimum(start, end))
+            hi.append(np.maximum(start, end))
+            sheet.append(on)
+        no_tab = ~tabs.placed[here] & ~elsewhere[here]
+        a, b = _tape_bar(p0, p1, d, inward, no_tab, p)
+        lo.append(np.minimum(a, b))
+        hi.append(np.maximum(a, b))
+        sheet.append(on[no_tab])
+    los, his, sheets = np.concatenate(lo), np.concatenate(hi), np.concatenate(sheet)
+    return {int(s): (los[sheets == s], his[sheets == s]) for s in np.unique(sheets).tolist()}
+
+
+def _paper_boxes(pos: npt.NDArray[np.float64], fs: npt.NDArray[np.int64], sides: npt.NDArray[np.int64],
+                 tabs: TabPlan) -> dict[int, tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]]:
+    """Per sheet, the boxes ``(lo, hi)`` of every face and glue tab: the paper a number beside its piece must keep off."""
+    seam_face = sides[np.arange(sides.shape[0]), np.maximum(tabs.side, 0), 0]
+    poly = tabs.polygon[tabs.placed]
+    lo = np.concatenate([pos.min(axis=1), poly.min(axis=1)])
+    hi = np.concatenate([pos.max(axis=1), poly.max(axis=1)])
+    sheets = np.concatenate([fs, fs[seam_face[tabs.placed]]])
+    return {int(s): (lo[sheets == s], hi[sheets == s]) for s in np.unique(sheets).tolist()}
 
 
 def _polygon_area(polys: npt.NDArray[np.float64]) -> float:
