@@ -67,3 +67,20 @@ def test_a_new_answer_replaces_the_last_one(server, browser):
     wait(browser, lambda d: by_id(d, "net-fits-answer").get_attribute("data-answer"), timeout=120,
          what="the second answer")
     assert not _ways(browser)
+
+
+def test_the_maker_forms_show_plain_labels_not_keys(server, browser):
+    from selenium.webdriver.support.ui import Select
+
+    open_page(browser, server)
+    maker = Select(browser.find_element("id", "maker"))
+    for name, key, words in (("revolution", "curve_threshold", "curve grey level"),
+                             ("tube", "profile_open", "open profile (a ribbon)")):
+        maker.select_by_value(name)
+        wait(browser, lambda d, n=name: d.find_element("id", "maker-form").get_attribute("data-maker") == n,
+             what="the form")
+        form = browser.find_element("id", "maker-form")
+        label = form.find_element("css selector", f'[data-testid="param-{key}"]')
+        assert label.text.strip() == words, label.text
+        texts = [e.text for e in form.find_elements("css selector", "label")]
+        assert texts and not any("_" in t for t in texts), texts
