@@ -3,15 +3,18 @@
 The default order of a paper net (issue: buildable objects):
 
 1. one piece on one sheet at the requested face size, found by steering the
-   net search into the sheet (``unfold(fit=...)``);
-2. when none is found, an error naming the largest face size at which a net
-   fits this sheet and the smallest sheet that takes it at this face size,
-   both measured from the most compact net found; never a silent split;
+   net search into the sheet (``unfold(fit=...)``), else by the search of the
+   automatic face size from that face size up (:func:`largest_fitting`); no face
+   size asked for: the largest at which that search finds a one-piece net;
+2. when none is found, an error naming the largest face size at which that
+   search found a net on this sheet and the smallest sheet that takes it at this
+   face size; never a silent split; every way out offered was checked on the
+   shape first (a net found, or the sheet's bound for pieces);
 3. with ``pieces="auto"``, pieces from flat patches (the few large pieces of
    the net search when flat patches give none), packed once by the drawing
    (:func:`_cut_pieces`).
 
-Faces too small for legible marks are refused before any search.
+Faces too small for legible marks are refused before any search (with ways out checked the same way).
 """
 
 from __future__ import annotations
