@@ -127,7 +127,8 @@ def place_numbers(names: list[str], face_piece: npt.NDArray[np.int64], face_shee
                 spot = (centres[int(np.argmax(ok))], h)
                 break
         if spot is None:  # beside the piece, on free paper
-            near = (lows[faces][:, None, :] + pitch / 2 + np.array(_BESIDE)[None] * pitch).reshape(-1, 2)
+            # the nearest spots to any face of the piece first, so the number reads as its piece's
+            near = (lows[faces][None, :, :] + pitch / 2 + np.array(_BESIDE)[:, None, :] * pitch).reshape(-1, 2)
             lo_p, hi_p = paper.get(sheet, (np.zeros((0, 2)), np.zeros((0, 2))))
             lo_all, hi_all = np.concatenate([lo_b, lo_p]), np.concatenate([hi_b, hi_p])
             for scale in NUMBER_SCALES:
