@@ -61,15 +61,16 @@ def _applied(options: DrawingOptions, way: dict, pieces: str) -> tuple[DrawingOp
     return options.replace(**chosen), pieces
 
 
-@pytest.mark.parametrize(("sheet", "pitch"), [("60x60", None), ("60x60", 5.0), ("A4", 5.0)])
-def test_every_way_out_offered_gives_nets(grid, sheet, pitch):
+@pytest.mark.parametrize(("sheet", "pitch", "asked"), [("60x60", None, "one"), ("60x60", 5.0, "one"),
+                                                      ("A4", 5.0, "one"), ("60x60", 5.0, "auto")])
+def test_every_way_out_offered_gives_nets(grid, sheet, pitch, asked):
     options = DrawingOptions(sheet=sheet, pitch=pitch)
     with pytest.raises(FaceSizeError) as info:
-        find_sheet_nets(grid, options, rng=0)
+        find_sheet_nets(grid, options, rng=0, pieces=asked)
     ways = info.value.ways_out
     assert ways
     for way in ways:
-        chosen, pieces = _applied(options, way, "one")
+        chosen, pieces = _applied(options, way, asked)
         got = find_sheet_nets(grid, chosen, rng=0, pieces=pieces)  # no refusal: the way out works
         assert got.nets and got.nets[0], way
         for net in got.nets[0]:

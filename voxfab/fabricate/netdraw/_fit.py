@@ -145,10 +145,22 @@ def split_checked(faces: int, options: DrawingOptions, pitch: float) -> bool:
             and pieces_problem(faces, options, pitch) is None)
 
 
-def _check_legible(options: DrawingOptions, chars: int) -> None:
+def _check_legible(options: DrawingOptions, faces: int, pieces: str) -> None:
+    """Refuse faces too small for the marks; in pieces, each way out checked by the sheet's bound for pieces
+    (one piece: :func:`find_sheet_nets` checks them by a search)."""
+    chars = label_chars(faces, pieces)
     problem = legibility_problem(options, float(options.pitch), chars)
     if problem:
-        raise FaceSizeError(problem, legibility_ways_out(options, chars))
+        raise FaceSizeError(problem, legibility_ways_out(options, chars) if pieces == "one" else
+                            _pieces_legibility_ways(options, faces, chars))
+
+
+def _pieces_legibility_ways(options: DrawingOptions, faces: int, chars: int) -> list[dict[str, Any]]:
+    """Ways out of faces too small for the marks of a net in pieces, each passing the sheet's bound for pieces."""
+    pitch = float(options.pitch)
+    bare = options.replace(numbers=False, tabs=False)
+    marks = legibility_ways_out(options, chars)[1:] if pieces_problem(faces, bare, pitch) is None else []
+    return pieces_ways_out(faces, options, smallest_face_size(options, chars), split=False) + marks
 
 
 def label_chars(faces: int, pieces: str) -> int:
@@ -260,7 +272,7 @@ def sheet_room(options: DrawingOptions, faces: int, pieces: str) -> tuple[int, i
     """The sheet's cells at the face size of ``options`` for a surface of ``faces`` faces, once its marks are
     legible and a face fits: the checks before any search, shared by :func:`find_sheet_nets` and the
     studio's gallery in pieces (:func:`._gallery.net_gallery`), so both refuse a sheet in the same words."""
-    _check_legible(options, label_chars(faces, pieces))
+    _check_legible(options, faces, pieces)
     fit = sheet_cells(options, float(options.pitch))
     if min(fit) < 1:
         raise InvalidShapeError(f"sheet: {options.sheet} has no room for one {options.pitch:g} mm face with its tabs")
@@ -433,13 +445,13 @@ def _checked_legibility_ways(grid: Any, options: DrawingOptions, faces: int, cha
                              rng: int, search: dict[str, Any]) -> list[dict[str, Any]]:
     """The ways out of faces too small for the marks, each checked on this shape: the smallest legible face
     size where a one-piece net was found to fit at it or larger (or pieces pass the sheet's bound), and no marks."""
+    if pieces != "one":
+        return _pieces_legibility_ways(options, faces, chars)
     need = smallest_face_size(options, chars)
     first = legibility_ways_out(options, chars)[:1]
-    if pieces == "one" and largest_fitting(grid, options, rng=rng, search=search, least=need, tab_room=False) is None:
+    if largest_fitting(grid, options, rng=rng, search=search, least=need, tab_room=False) is None:
         # no one piece at legible faces: pieces, where the sheet's bound lets them be
         first = pieces_ways_out(faces, options, smallest_face_size(options, label_chars(faces, "auto")))
-    elif pieces != "one":
-        first = pieces_ways_out(faces, options, need, split=False)
     return first + _without_marks(grid, options, faces, float(options.pitch), pieces, rng=rng, search=search)
 
 
