@@ -38,7 +38,7 @@ _TURN_STEPS_PER_FACE = 15
 
 def smallest_box(grid: npt.ArrayLike, boxes: Sequence[tuple[int, int]], *, rng: int,
                  strategy: str = "default", timeout: float = 60.0, tab_aware: bool = True, fill: bool = False,
-                 constraints: EdgeConstraints | None = None, below: int | None = None) -> tuple[int, Net] | None:
+                 constraints: EdgeConstraints | None = None) -> tuple[int, Net] | None:
     """The last of ``boxes`` (each no larger than the one before) found to hold a one-piece net, and that net.
 
     Parameters
@@ -50,8 +50,6 @@ def smallest_box(grid: npt.ArrayLike, boxes: Sequence[tuple[int, int]], *, rng: 
         Seed.
     strategy : {"default", "paper"}
         How the boards grow (the exact strategy proves boxes one by one instead: not here).
-    below : int, optional
-        Probe only boxes before this index (a box known to hold no net found, and all after it).
 
     Returns
     -------
@@ -75,7 +73,7 @@ def smallest_box(grid: npt.ArrayLike, boxes: Sequence[tuple[int, int]], *, rng: 
     job = Job(g, sg, seed, strat, None, tab_aware, False, time.monotonic() + float(timeout), float(timeout),
               constraints)
     gw = job.growth(n)
-    lo, hi = -1, len(boxes) if below is None else min(int(below), len(boxes))
+    lo, hi = -1, len(boxes)
     # Boxes with fewer cells than faces hold no net: never probed.
     while hi > 0 and _area(boxes[hi - 1]) < n:
         hi -= 1
