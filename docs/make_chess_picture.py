@@ -21,9 +21,9 @@ GAP = 24
 
 
 def piece_picture(name: str) -> Image.Image:
-    """The piece in an isometric view, cropped to its pixels."""
+    """The piece in its profile view (isometric for the lathe-turned pieces), cropped to its pixels."""
     recipe = load_recipe(CHESS / f"{name}.toml")
-    image = render(make_shape(recipe), view="iso", size=520, scale=PX_PER_MM * recipe.pitch).convert("RGB")
+    image = render(make_shape(recipe), view="profile", size=520, scale=PX_PER_MM * recipe.pitch).convert("RGB")
     ink = ImageChops.difference(image, Image.new("RGB", image.size, "white")).getbbox()
     return image.crop(ink)
 

@@ -390,7 +390,8 @@ def valid_files(folder: _Path) -> dict[str, bytes]:
     Image.fromarray(np.where(examples.ball(3)[:, :, 3], 0, 255).astype(np.uint8), "L").save(folder / "valid.png")
     out[".png"] = out["/"] = (folder / "valid.png").read_bytes()
     mesh = trimesh.creation.icosphere(subdivisions=1, radius=2.0)
-    for ext in (".stl", ".obj", ".ply", ".3mf"):
+    mesh.visual.face_colors = [200, 40, 40, 255]  # a coloured mesh: the colour readers are fuzzed too
+    for ext in (".stl", ".obj", ".ply", ".3mf", ".glb"):
         mesh.export(folder / f"valid{ext}")
         out[ext] = (folder / f"valid{ext}").read_bytes()
     out[".stl-ascii"] = trimesh.exchange.stl.export_stl_ascii(mesh).encode()

@@ -143,3 +143,76 @@ def check_written(folder, shape: VoxelShape, thickness: float, kerf: float) -> d
     if kerf == 0:
         assert sorted(areas) == pytest.approx(sorted(p["area"] for p in plates), rel=0.01)
     return report
+
+
+#: PrusaSlicer's low-poly bunny, installed with prusa-slicer: ears and a back that the slotted styles lose.
+BUNNY_STL = "/usr/share/PrusaSlicer/shapes/bunny.stl"
+
+
+@functools.lru_cache(maxsize=1)
+def bunny() -> VoxelShape:
+    """The bunny voxelized as ``voxfab slices bunny.stl`` reads it (25 voxels along its longest side)."""
+    from pathlib import Path
+
+    from voxfab.repo import load_shape
+
+    assert Path(BUNNY_STL).is_file(), f"{BUNNY_STL} is installed with prusa-slicer (apt-get install prusa-slicer)"
+    return load_shape(BUNNY_STL, None)[0]
+
+
+def svg_polylines(path) -> list[tuple[np.ndarray, bool]]:
+    """Points and closedness of every ``<path>`` of an SVG as voxfab writes them (M, L, Z)."""
+    import re
+    from xml.etree import ElementTree
+
+    out = []
+    for e in ElementTree.parse(path).getroot().iter("{http://www.w3.org/2000/svg}path"):
+        d = e.get("d")
+        pts = [(float(x), float(y)) for x, y in re.findall(r"[ML]\s*(-?[\d.]+),(-?[\d.]+)", d)]
+        out.append((np.array(pts, float).reshape(-1, 2), d.rstrip().endswith("Z")))
+    return out
+
+
+def repeated_vertices(points: np.ndarray, closed: bool) -> int:
+    """Zero-length segments of one written polyline: consecutive equal vertices, and the closing one."""
+    same = int(np.all(points[1:] == points[:-1], axis=1).sum())
+    return same + int(closed and len(points) > 1 and np.all(points[0] == points[-1]))
+
+
+def pdf_polylines(path) -> list[list[np.ndarray]]:
+    """The polylines of each page of a PDF as voxfab writes them (``x y m``, ``x y l`` in deflated streams)."""
+    import re
+    import zlib
+
+    data = path.read_bytes()
+    pages = []
+    for m in re.finditer(rb"/Filter /FlateDecode >>\nstream\n", data):
+        start = m.end()
+        end = data.index(b"\nendstream", start)
+        text = zlib.decompress(data[start:end]).decode("latin-1")
+        lines: list[list[tuple[float, float]]] = []
+        for x, y, op in re.findall(r"(-?[\d.]+) (-?[\d.]+) ([ml])\n", text):
+            if op == "m":
+                lines.append([])
+            lines[-1].append((float(x), float(y)))
+        pages.append([np.array(line) for line in lines])
+    return pages
+
+
+def draws_text(lines: list[np.ndarray], text: str) -> bool:
+    """Whether consecutive ``lines`` draw ``text`` in voxfab's stroke font, at some size and place, reading right."""
+    from voxfab.drawing import text_polylines
+
+    ref = text_polylines([text.replace(" ", "")], [(0.0, 0.0)], [(1.0, 0.0)], 1.0).lines()
+    counts = [len(r) for r in ref]
+    flat = np.concatenate(ref) - ref[0][0]
+    span = np.ptp(flat[:, 0])
+    for i in range(len(lines) - len(ref) + 1):
+        window = lines[i:i + len(ref)]
+        if [len(w) for w in window] != counts:
+            continue
+        pts = np.concatenate(window) - window[0][0]
+        scale = np.ptp(pts[:, 0]) / span
+        if scale > 0 and np.allclose(pts, flat * scale, atol=0.01 + 0.01 * scale):
+            return True
+    return False

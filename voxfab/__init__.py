@@ -27,13 +27,12 @@ def load(path: Any, **options: Any) -> VoxelShape:
     """Read a shape from any readable format (see :func:`voxfab.io.read`)."""
     from . import io
 
-    result = io.read(path, **options)
-    return VoxelShape(result.grid, result.pitch or 1.0)
+    return io.read(path, **options).shape()
 
 
 def save(shape: VoxelShape | Any, path: Any) -> None:
-    """Write a shape (or a bool grid) in the format named by the extension."""
+    """Write a shape (or a bool grid) in the format named by the extension, with its pitch and
+    colours where the format keeps them."""
     from . import io
 
-    grid = shape.grid if isinstance(shape, VoxelShape) else shape
-    io.write(grid, path)
+    io.write(shape, path)

@@ -71,20 +71,24 @@ class GroupTime:
     seconds: float
 
 
-def warm_group(group: str) -> GroupTime:
-    """Compile the kernels of ``group`` in this process."""
+def warm_group(group: str, scratch: Path | None = None) -> GroupTime:
+    """Compile the kernels of ``group`` in this process, its pipeline writing into a folder made in ``scratch``
+    (default the system's temporary folder) and removed after."""
     if group not in GROUPS:
         raise InvalidShapeError(f"warm-up: unknown kernel group {group!r}; expected one of {', '.join(GROUPS)}")
     start = time.perf_counter()
-    with tempfile.TemporaryDirectory(prefix="voxfab-warmup-") as tmp:
+    with tempfile.TemporaryDirectory(prefix="voxfab-warmup-", dir=scratch) as tmp:
         GROUPS[group](Path(tmp))
     return GroupTime(group, round(time.perf_counter() - start, 3))
 
 
-def warm_up(groups: Sequence[str] | None = None, *, processes: int | None = None) -> list[GroupTime]:
+def warm_up(groups: Sequence[str] | None = None, *, processes: int | None = None,
+            scratch: Path | None = None) -> list[GroupTime]:
     """Compile the kernel groups, side by side in up to ``processes`` processes (default: one per core).
 
-    With ``processes=1`` the groups are compiled one after the other in this process.
+    With ``processes=1`` the groups are compiled one after the other in this process,
+    their scratch folders made in ``scratch`` (a studio's work folder, removed with
+    it however the studio stops).
 
     Returns
     -------
@@ -97,7 +101,7 @@ def warm_up(groups: Sequence[str] | None = None, *, processes: int | None = None
             raise InvalidShapeError(f"warm-up: unknown kernel group {name!r}; expected one of {', '.join(GROUPS)}")
     workers = min(len(names), processes or os.cpu_count() or 1)
     if workers <= 1:
-        return [warm_group(name) for name in names]
+        return [warm_group(name, scratch) for name in names]
     import concurrent.futures
     import multiprocessing
 

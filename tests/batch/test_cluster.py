@@ -15,6 +15,7 @@ from _batch_fixtures import OUTPUTS, dask_process, free_port, make_repo, process
 
 from voxfab.batch import BATCH_FORMAT, run_batch
 from voxfab.errors import RepositoryError
+from voxfab.recipe import SHAPE_FILES
 
 
 def _check_index(out: Path, built: list[str], failed: list[str]) -> None:
@@ -70,7 +71,7 @@ def test_local_cluster_batch_resume_and_failures(tmp_path: Path) -> None:
     assert sorted(record["shapes"]) == names[:3]
     for entry in record["shapes"].values():
         assert entry["status"] == "built" and entry["worker"].startswith("tcp://127.0.0.1:")
-        assert entry["seconds"] > 0 and entry["files"] == 4
+        assert entry["seconds"] > 0 and entry["files"] == 2 + len(SHAPE_FILES)
 
     # Resume with the whole repository: the three are skipped, the failing shape is reported, the rest built.
     before = {n: (out / n / "mesh.stl").stat().st_mtime_ns for n in names[:3]}

@@ -121,3 +121,11 @@ def test_a_cancelled_job_stops_the_unzipping_search() -> None:
     with cancel_scope(event), pytest.raises(CancelledError):
         unzip(grid_of(ZIPLESS_17), timeout=60)
     assert unzip(grid_of(ZIPLESS_17), timeout=60).outcome == "none"  # outside the scope it runs to its proof
+
+
+@pytest.mark.parametrize("seconds", [1e-9, 1e-4])
+def test_a_search_out_of_time_before_it_began_is_undecided(seconds: float) -> None:
+    """Time that runs out while the short overlaps are ruled out, before the solver, is undecided, not an error."""
+    found = unzip(grid_of(ZIPLESS_17), timeout=seconds)
+    assert found.outcome == "undecided" and found.net is None and found.certificate is None
+    assert "ran out of time" in found.why and "raise the timeout" in found.why

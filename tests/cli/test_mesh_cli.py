@@ -64,10 +64,12 @@ def test_contacts_error_lists_them(tmp_path, capsys):
 
 
 def test_bad_options_are_one_line_errors(tmp_path, shape_file, capsys):
-    assert main(["mesh", str(shape_file), "-o", str(tmp_path / "x.ply")]) == 4
+    assert main(["mesh", str(shape_file), "-o", str(tmp_path / "x.step")]) == 4
     assert main(["mesh", str(shape_file), "-o", str(tmp_path / "x.glb"), "--magnet", "big"]) == 3
+    assert main(["mesh", str(shape_file), "-o", str(tmp_path / "x.3mf"), "--colours", "17"]) == 3
     assert main(["mesh", str(shape_file), "-o", str(tmp_path / "x.glb"), "--pitch", "-1"]) == 3
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 3 and all(line.startswith("voxfab: error:") for line in err)
+    assert len(err) == 4 and all(line.startswith("voxfab: error:") for line in err)
+    assert "--colours: expected an integer number of filaments from 1 to 16, got 17" in err[2]
     assert main(["mesh", str(shape_file), "-o", str(tmp_path / "x.glb"), "--pitch", "1", "--size", "3"]) == 3
     assert "give one of them" in capsys.readouterr().err

@@ -209,3 +209,46 @@ def test_printed_figures_agree_with_the_json_on_the_pawn(tmp_path):
         assert split.startswith(f"net split into {net['pieces']} pieces on {len(net['fill'])} sheets")
         untabbed = [int(x.split()[0]) for x in lines if " without room for a tab" in x]
         assert (untabbed or [0]) == [net["seams_without_tab_room"]]
+
+
+#: What ``voxfab net`` never runs on a small shape: the pictures, the plates, the census, the other makers,
+#: the net editor and hunter, the repository's database (the shape is a file), and the heavy libraries of
+#: other commands (and numba: a small surface runs the plain-Python kernels).
+NOT_RUN_BY_NET = ("voxfab.render", "voxfab.fabricate.plates", "voxfab.census", "voxfab.digitize",
+                  "voxfab.studio", "voxfab.batch", "voxfab.generate", "voxfab.unfold._edit", "voxfab.unfold._hunt",
+                  "voxfab.unfold._many", "voxfab.repo._repository", "sqlite3", "dask", "distributed", "ortools",
+                  "build123d", "OCP", "numba", "trimesh", "matplotlib", "PIL")
+
+
+def test_net_on_a_cube_imports_only_what_it_runs(tmp_path):
+    np.save(tmp_path / "cube.npy", np.ones((1, 1, 1), dtype=bool))
+    code = (
+        "import sys\nfrom voxfab.cli import main\n"
+        "status = main(['net', 'cube.npy', '-o', 'cube.json', '-o', 'cube.svg'])\n"
+        f"print(status, sorted(m for m in sys.modules if m.split('.')[0] in {NOT_RUN_BY_NET!r} "
+        f"or m.startswith({NOT_RUN_BY_NET!r})))\n"
+    )
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path, timeout=300)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.splitlines()[-1] == "0 []"
+    assert Net.from_json((tmp_path / "cube.json").read_text()).face_count == 6
+
+
+def test_a_hopeless_sheet_for_pieces_is_refused_before_any_search_with_or_without_a_face_size(tmp_path):
+    np.save(tmp_path / "queen.npy", _recipe_grid("chess/queen"))
+    # The kernels of the net search: loaded (compiled, or their plain-Python copy) only when a search runs.
+    search = ("numba", "voxfab.unfold._board", "voxfab.unfold._growth", "voxfab.unfold._tabroom",
+              "voxfab.unfold._pure")
+    lines = {}
+    for size in ((), ("--face-size", "8.6")):
+        argv = ["net", "queen.npy", "--pieces", "auto", "--sheet", "60x60", *size, "-o", "q.pdf"]
+        code = (f"import sys\nfrom voxfab.cli import main\nstatus = main({argv!r})\n"
+                f"print(status, sorted(m for m in sys.modules if m.startswith({search!r})))\n")
+        r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path, timeout=300)
+        assert r.returncode == 0, r.stderr
+        assert r.stdout.splitlines()[-1] == "6 []", size
+        lines[size] = r.stderr.strip().splitlines()
+        assert len(lines[size]) == 1 and lines[size][0].startswith("voxfab: error: sheet 60x60 is too small")
+    # Without a face size, pieces take the smallest with legible marks (8.6 mm): the same refusal.
+    assert lines[()] == lines[("--face-size", "8.6")]
+    assert not list(tmp_path.glob("q*.pdf"))

@@ -30,6 +30,26 @@ def test_render_png_view_through_the_real_entry_point(tmp_path):
         assert im.size == (150, 150)
 
 
+def test_the_profile_view_and_where_it_has_no_shape(tmp_path, capsys):
+    from pathlib import Path
+
+    from voxfab.recipe import load_recipe, make_shape
+
+    knight = make_shape(load_recipe(Path(__file__).parents[2] / "recipes" / "chess" / "knight.toml")).grid
+    np.save(tmp_path / "k.npy", knight)
+    assert main(["render", str(tmp_path / "k.npy"), "-o", str(tmp_path / "k.png"), "--view", "profile",
+                 "--size", "90"]) == 0
+    assert (tmp_path / "k.png").read_bytes() == png_bytes(render(knight, view="profile", size=90))
+    assert (tmp_path / "k.png").read_bytes() != png_bytes(render(knight, view="iso", size=90))
+    # A folding net has no voxels to choose a profile from: one line, no traceback.
+    (tmp_path / "n.json").write_text(tree_net(np.ones((2, 1, 1), dtype=bool)).to_json())
+    capsys.readouterr()
+    assert main(["render", "--fold", str(tmp_path / "n.json"), "-o", str(tmp_path / "f.gif"),
+                 "--view", "profile"]) != 0
+    assert capsys.readouterr().err.strip().splitlines() == [
+        "voxfab: error: view: 'profile' is chosen from a shape's voxels; this picture has none"]
+
+
 def test_negative_view_written_with_a_space(tmp_path):
     g = examples.random_shape(7)
     np.save(tmp_path / "s.npy", g)

@@ -97,8 +97,9 @@ def test_queen_sheets_declare_millimetres_and_r12_on_request(tmp_path) -> None:
 
 
 def test_radial_hub_wider_than_the_queens_neck_offers_ways_out_that_work(tmp_path) -> None:
-    """Six radial plates of 6 mm need a 22.5 mm hub slot, wider than the queen's neck: the command says so and
-    names fewer or thinner plates; each way out keeps every plate whole; --strict fails."""
+    """Six radial plates of 6 mm need a 22.5 mm hub slot, wider than the queen's neck: no two plates hold each
+    other there, and the command says so and names fewer or thinner plates; each way out keeps every plate
+    whole."""
     import re
 
     import trimesh
@@ -107,22 +108,54 @@ def test_radial_hub_wider_than_the_queens_neck_offers_ways_out_that_work(tmp_pat
     np.save(tmp_path / "queen.npy", queen.grid)
     asked = ("queen.npy", "--pitch", "3.4", "--style", "radial", "--radial-plates", "6", "--thickness", "6")
     proc = _run(*asked, "-o", "six", cwd=tmp_path)
-    assert proc.returncode == 0, proc.stderr
-    (line,) = [x for x in proc.stderr.splitlines() if "hub slot" in x]
+    assert proc.returncode == 10 and not (tmp_path / "six").exists(), proc.stderr
+    (line,) = proc.stderr.splitlines()
+    assert "no two plates hold each other at the hub" in line
     assert "22.5 mm for 6 plates of 6 mm" in line and "wider than the solid's neck" in line
     fewer = int(re.search(r"--radial-plates (\d+)", line).group(1))
     thinner = float(re.search(r"--thickness ([0-9.]+), with 6 plates", line).group(1))
     assert 2 <= fewer < 6 and 0 < thinner < 6
-    report = json.loads((tmp_path / "six" / "plates.json").read_text())
-    assert report["advice"] == [line.removeprefix("voxfab: warning: ")]
-    assert report["trimmed"] or report["left_out"]
     for plates, thickness, out in ((fewer, "6", "fewer"), (6, f"{thinner:g}", "thinner")):
         way = _run("queen.npy", "--pitch", "3.4", "--style", "radial", "--radial-plates", str(plates),
                    "--thickness", thickness, "--strict", "-o", out, cwd=tmp_path)
         assert way.returncode == 0, way.stderr
         got = json.loads((tmp_path / out / "plates.json").read_text())
         assert got["plates"] == plates and not got["trimmed"] and not got["left_out"] and not got["advice"]
+        assert not got["weak"]
         scene = trimesh.load(tmp_path / out / "assembly.3mf", force="scene")
         assert len(scene.geometry) == plates
     strict = _run(*asked, "--strict", "-o", "strict", cwd=tmp_path)
-    assert strict.returncode == 11 and "hub slot" in strict.stderr
+    assert strict.returncode == 10 and "hub slot" in strict.stderr
+
+
+def test_weak_radial_joints_warn_and_fail_strict(tmp_path) -> None:
+    """The knight at 2.4 mm, radial: pairs that engage over less than half the shorter plate are dropped,
+    listed as weak in plates.json and warned about; --strict exits 11."""
+    knight = make_shape(load_recipe("recipes/chess/knight.toml"))
+    np.save(tmp_path / "knight.npy", knight.grid)
+    proc = _run("knight.npy", "--pitch", "2.4", "--style", "radial", "--strict", "-o", "k", cwd=tmp_path)
+    assert proc.returncode == 11, proc.stderr
+    weak = json.loads((tmp_path / "k" / "plates.json").read_text())["weak"]
+    assert weak and all(pair.startswith("R") for pair in weak)
+    (line,) = [x for x in proc.stderr.splitlines() if "crossing(s) dropped" in x]
+    assert all(pair in line for pair in weak)
+
+
+def test_cli_by_colour_cuts_each_colour_on_sheets_of_its_own(tmp_path) -> None:
+    from _voxart import character
+
+    from voxfab.io import write
+
+    write(character().joined()[0], tmp_path / "hero.vox")
+    proc = _run("hero.vox", "-o", "out", "--thickness", "2", "--sheet", "200x150", "--by-colour", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    report = json.loads((tmp_path / "out" / "plates.json").read_text())
+    assert report["by_colour"] and len(report["colours"]) >= 4
+    colour_of = {p["number"]: p["colour"]["hex"] for p in report["plates_list"]}
+    for sheet in report["sheets_list"]:
+        assert {colour_of[n] for n in sheet["plates"]} == {sheet["colour"]}
+        assert sheet["file"] == f"sheet-{sheet['index']:02d}-{sheet['colour'][1:]}.dxf"
+        doc = ezdxf.readfile(tmp_path / "out" / sheet["file"])
+        assert len([r for r in closed_rings(doc) if shapely.Polygon(r).area > 0]) >= len(sheet["plates"])
+        svg = (tmp_path / "out" / sheet["file"]).with_suffix(".svg").read_text()
+        assert f"<title>sheet {sheet['index']}, {sheet['colour']}</title>" in svg

@@ -160,8 +160,8 @@ def test_png_fills_holes_even_odd_and_draws_visible_lines(tmp_path: Path) -> Non
     # a solid 0.2 mm cut line at 5 px/mm is one pixel wide: the row y = 10 mm is red
     red = (img[:, :, 0] == 255) & (img[:, :, 1] == 0)
     assert red[300 - 50, 50:250].mean() > 0.95
-    # the mountain fold is dashed: blue pixels along x = 60 mm with gaps
-    column = (img[25:250, 300, 2] == 255) & (img[25:250, 300, 0] == 0)
+    # the mountain fold is dashed: magenta pixels along x = 60 mm with gaps
+    column = (img[25:250, 300, 2] == 255) & (img[25:250, 300, 0] == 255) & (img[25:250, 300, 1] == 0)
     assert 0.5 < column.mean() < 0.8
 
 

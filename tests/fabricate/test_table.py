@@ -13,7 +13,7 @@ import pytest
 
 from voxfab.fabricate import Artefact, BuildContext, build_order, outputs
 from voxfab.fabricate._table import resolve
-from voxfab.recipe import build, load_recipe, make_shape
+from voxfab.recipe import SHAPE_FILES, build, load_recipe, make_shape
 
 RECIPES = Path(__file__).resolve().parents[2] / "recipes"
 
@@ -59,7 +59,7 @@ def test_a_build_writes_only_the_files_its_rows_declare(tmp_path, recipe):
     built = build(load_recipe(path), tmp_path / "out")
     manifest = json.loads((built / "manifest.json").read_text())
     assert set(manifest["outputs"]) == set(outputs())
-    patterns = [p for row in outputs().values() for p in row.files] + ["shape.npy", "shape.vox"]
+    patterns = [p for row in outputs().values() for p in row.files] + list(SHAPE_FILES)
     for entry in manifest["files"]:
         assert any(fnmatch.fnmatch(entry["path"], p) for p in patterns), entry["path"]
         assert (built / entry["path"]).is_file()
@@ -96,9 +96,9 @@ def test_an_output_passes_on_exactly_what_its_row_declares():
         dataclasses.replace(outputs()["pictures"], uses=("nett",))
 
 
-def test_the_pictures_draw_a_net_given_as_its_pieces_when_it_is_one(tmp_path):
-    """A gallery pick and the net output's gift are the net as its pieces: one piece is drawn, a net in several
-    pieces leaves the pictures to unfold a one-piece net of their own (as ``voxfab render`` would)."""
+def test_the_pictures_draw_a_net_given_as_its_pieces(tmp_path):
+    """A gallery pick and the net output's gift are the net as its pieces: one piece is drawn as that net, a net
+    in several pieces as those pieces (not a one-piece net of the pictures' own)."""
     from voxfab.render import PictureOptions, png_bytes
     from voxfab.render._net import net_picture
     from voxfab.render._triptych import make_net
@@ -121,4 +121,4 @@ def test_the_pictures_draw_a_net_given_as_its_pieces_when_it_is_one(tmp_path):
     assert drawn([picked], tmp_path / "one") == picture(picked) != picture(make_net(shape, rng=0))
     pieces = unfold(shape.grid, rng=0, fit=(20, 20), pieces="flat")
     assert len(pieces) > 1
-    assert drawn(pieces, tmp_path / "several") == picture(make_net(shape, rng=0))
+    assert drawn(pieces, tmp_path / "several") == picture(pieces) != picture(make_net(shape, rng=0))

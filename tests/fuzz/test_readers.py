@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 from voxfab import io
 
 #: Every readable format; ".stl-ascii" is the text flavour of STL.
-FORMATS = [".npy", ".npz", ".txt", ".vox", ".binvox", ".png", "/", ".stl", ".stl-ascii", ".obj", ".ply", ".3mf"]
+FORMATS = [".npy", ".npz", ".txt", ".vox", ".binvox", ".png", "/", ".stl", ".stl-ascii", ".obj", ".ply", ".3mf", ".glb"]
 
 
 def test_every_reader_is_fuzzed():
@@ -28,7 +28,7 @@ def test_mutated_files_read_or_fail_cleanly(corpus, ext):
     folder, valid = corpus
     outcomes = []
 
-    meshes = (".stl", ".stl-ascii", ".obj", ".ply", ".3mf")
+    meshes = (".stl", ".stl-ascii", ".obj", ".ply", ".3mf", ".glb")
 
     @settings(max_examples=20 if ext in meshes else 30, database=None, derandomize=True)
     @given(data=st.one_of(mutated(valid[ext]), st.binary(max_size=64)))

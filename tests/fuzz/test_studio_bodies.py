@@ -271,13 +271,13 @@ def test_plate_options_take_effect_on_the_download(studio, queen) -> None:
     counts = {}
     for n in (3, 5):
         r = studio.post("/api/make", json={"grid": pack(queen), "artefact": "plates.zip", "pitch": 2.0,
-                                           "options": {"style": "radial", "radial_plates": n, "thickness": 2.0,
+                                           "options": {"style": "radial", "radial_plates": n, "thickness": 1.0,
                                                        "plate_sheet": "900x600"}})
         assert r.status_code == 200, r.text
         assert _wait(studio, r.json()["job"])["state"] == "done"
         archive = zipfile.ZipFile(io.BytesIO(studio.get(f"/api/files/{r.json()['job']}/0").content))
-        report = json.loads(archive.read("slices/plates.json"))
-        assert report["style"] == "radial" and report["thickness"] == 2.0
+        report = json.loads(archive.read("studio-plates-plates.json"))  # no title: the files are the studio's
+        assert report["style"] == "radial" and report["thickness"] == 1.0
         counts[n] = report["plates"]
     assert counts[3] < counts[5] and counts[3] <= 3
 

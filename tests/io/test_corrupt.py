@@ -14,7 +14,7 @@ from voxfab.errors import FormatError
 from voxfab.shape import examples
 
 WRITABLE = [".npy", ".npz", ".txt", ".vox", ".binvox"]
-MESHES = [".stl", ".obj", ".ply", ".3mf"]
+MESHES = [".stl", ".obj", ".ply", ".3mf", ".glb"]
 READERS = [*WRITABLE, ".png", "/", *MESHES]
 
 TEXT = b"Shopping list:\n- eggs\n- flour\n- 25 little cubes\n" * 4

@@ -113,3 +113,28 @@ def test_sixteen_bit_grey_is_scaled_not_clipped(tmp_path):
     Image.fromarray(levels).save(tmp_path / "z0.png")
     assert Image.open(tmp_path / "z0.png").mode == "I;16"
     assert io.read(tmp_path).grid[:, 0, 0].tolist() == [True, True, False, False]
+
+
+def test_slices_in_colour_round_trip_and_read_by_pillow(tmp_path):
+    from _voxart import character
+
+    shape = character()
+    io.write(shape, f"{tmp_path / 'slices'}/")
+    files = sorted((tmp_path / "slices").glob("*.png"))
+    assert [f.name for f in files][:2] == ["z00.png", "z01.png"] and len(files) == shape.grid.shape[2]
+    # Pillow alone: the eye at (8, 7, 16) is white on a transparent ground, in row Y - 1 - y, column x.
+    layer = np.asarray(Image.open(files[16]))
+    assert tuple(layer[shape.grid.shape[1] - 1 - 7, 8]) == (255, 255, 255, 255)
+    assert layer[..., 3].min() == 0
+    back = io.read(tmp_path / "slices")
+    assert back.shape(shape.pitch) == shape  # light voxels (white eyes, yellow buttons) are filled: opaque pixels
+
+
+def test_convert_writes_a_folder_of_slices(tmp_path):
+    from _voxart import character
+
+    from voxfab.cli import main
+
+    io.write(character(), tmp_path / "char.vox")
+    assert main(["convert", str(tmp_path / "char.vox"), f"{tmp_path / 'out'}/"]) == 0
+    assert io.read(tmp_path / "out").colours.count == 12

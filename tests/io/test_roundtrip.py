@@ -16,8 +16,8 @@ WRITABLE = [".npy", ".npz", ".txt", ".vox", ".binvox"]
 
 
 def test_registry_lists_the_formats():
-    assert io.writable_formats() == sorted(WRITABLE)
-    assert set(io.readable_formats()) == set(WRITABLE) | {"/", ".png", ".stl", ".obj", ".ply", ".3mf"}
+    assert io.writable_formats() == sorted([*WRITABLE, "/"])
+    assert set(io.readable_formats()) == set(WRITABLE) | {"/", ".png", ".stl", ".obj", ".ply", ".3mf", ".glb"}
 
 
 @st.composite

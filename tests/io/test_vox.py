@@ -32,8 +32,9 @@ def model(size: tuple[int, int, int], voxels: list[tuple[int, int, int, int]]) -
     )
 
 
-def ntrn(node: int, child: int, frame: dict[str, str]) -> bytes:
-    return chunk(b"nTRN", struct.pack("<i", node) + vdict({}) + struct.pack("<iiii", child, -1, 0, 1) + vdict(frame))
+def ntrn(node: int, child: int, frame: dict[str, str], attrs: dict[str, str] | None = None) -> bytes:
+    return chunk(b"nTRN", struct.pack("<i", node) + vdict(attrs or {}) + struct.pack("<iiii", child, -1, 0, 1)
+                 + vdict(frame))
 
 
 def ngrp(node: int, children: list[int]) -> bytes:
@@ -116,39 +117,100 @@ def test_full_256_side_round_trips_and_257_is_refused(tmp_path):
 
 # -- reading files of other writers ---------------------------------------------------
 
-def test_multi_model_scene_graph_reads_first_model_with_note(tmp_path):
+def test_scene_graph_places_each_model_by_its_transform(tmp_path):
     scene = (
         ntrn(0, 1, {}) + ngrp(1, [2, 4])
         + ntrn(2, 3, {"_t": "10 0 0"}) + nshp(3, 0)
         + ntrn(4, 5, {"_t": "-10 0 0"}) + nshp(5, 1)
     )
     children = (
-        chunk(b"PACK", struct.pack("<i", 2))
-        + model((2, 3, 4), [(0, 0, 0, 5), (1, 2, 3, 200)])
+        model((2, 3, 4), [(0, 0, 0, 5), (1, 2, 3, 200)])
         + model((5, 5, 5), [(4, 4, 4, 1)])
         + scene
         + chunk(b"LAYR", struct.pack("<i", 0) + vdict({"_name": "a"}) + struct.pack("<i", -1))
-        + chunk(b"RGBA", bytes(1024))
+        + chunk(b"RGBA", bytes(range(256)) * 4)
         + chunk(b"MATL", struct.pack("<i", 1) + vdict({"_type": "_diffuse"}))
     )
     path = tmp_path / "scene.vox"
     path.write_bytes(vox_file(children, version=200))
     result = io.read(path)
-    expected = np.zeros((2, 3, 4), dtype=bool)
-    expected[0, 0, 0] = expected[1, 2, 3] = True  # any colour index is a filled voxel
-    assert np.array_equal(result.grid, expected)
-    assert "file has 2 models; read the first" in result.notes
-    assert any("scene graph (nGRP/nSHP/nTRN)" in n for n in result.notes)
-    assert not any("rotat" in n and "not applied" in n for n in result.notes)
+    # By hand: a model's voxel v has its centre at v + 1/2 - size // 2, then the translation.
+    # Model 0 (pivot 1, 1, 2): (0,0,0) -> (9,-1,-2), (1,2,3) -> (10,1,1); model 1 (pivot 2,2,2): (4,4,4) -> (-8,2,2).
+    assert result.grid.shape == (19, 4, 5) and result.grid.sum() == 3
+    index = result.colours.index
+    assert index[17, 0, 0] == 5 and index[18, 2, 3] == 200 and index[0, 3, 4] == 1
+    # The file's RGBA entry i is the colour of index i + 1.
+    assert list(result.colours.palette[5]) == [16, 17, 18, 19]
+    assert result.notes == ()
 
 
-def test_scene_rotation_is_reported(tmp_path):
-    children = model((2, 2, 2), [(0, 0, 1, 1)]) + ntrn(0, 1, {"_r": "17"}) + nshp(1, 0)
+def test_scene_rotations_compose_and_hidden_models_are_left_out(tmp_path):
+    # _r = 17: the first row picks -y, the second +x: a quarter turn about z, the x axis onto y.
+    line = model((3, 1, 1), [(0, 0, 0, 1), (2, 0, 0, 2)])
+    hidden = model((1, 1, 1), [(0, 0, 0, 3)])
+    children = (line + hidden + ntrn(0, 1, {}) + ngrp(1, [2, 4, 6])
+                + ntrn(2, 3, {"_r": "17"}) + nshp(3, 0)
+                + chunk(b"nTRN", struct.pack("<i", 4) + vdict({"_hidden": "1"}) + struct.pack("<iiii", 5, -1, 0, 1)
+                        + vdict({"_t": "5 5 5"})) + nshp(5, 1)
+                + chunk(b"nTRN", struct.pack("<i", 6) + vdict({}) + struct.pack("<iiii", 7, -1, 1, 1)
+                        + vdict({"_t": "0 9 0"})) + nshp(7, 1)
+                + chunk(b"LAYR", struct.pack("<i", 1) + vdict({"_hidden": "1"}) + struct.pack("<i", -1)))
     path = tmp_path / "rot.vox"
-    path.write_bytes(vox_file(children))
+    path.write_bytes(vox_file(children, version=200))
     result = read_vox(path)
-    assert result.grid[0, 0, 1] and result.grid.sum() == 1
-    assert "the scene graph rotates a model; the rotation was not applied" in result.notes
+    assert result.grid.shape == (1, 3, 1)
+    assert result.colours.index[0, 0, 0] == 1 and result.colours.index[0, 2, 0] == 2
+
+
+def test_scene_of_a_characters_parts_gives_the_character(tmp_path):
+    from _voxart import character
+
+    from voxfab.shape import label_components
+
+    shape = character()
+    labels, count = label_components(shape.grid)
+    models, nodes, children = b"", b"", []
+    for part in range(1, count + 1):
+        mask = labels == part
+        lo, hi = np.argwhere(mask).min(axis=0), np.argwhere(mask).max(axis=0) + 1
+        size = tuple(int(v) for v in hi - lo)
+        xyz = np.argwhere(mask) - lo
+        models += model(size, [(*map(int, v), int(shape.colours.index[tuple(v + lo)])) for v in xyz])
+        t = lo + np.array(size) // 2  # the translation that puts the model's pivot back in place
+        node = 2 * part
+        nodes += ntrn(node, node + 1, {"_t": " ".join(map(str, t))}, {"_name": f"part{part}"}) + nshp(node + 1, part - 1)
+        children.append(node)
+    palette = chunk(b"RGBA", np.roll(shape.colours.palette, -1, axis=0).tobytes())
+    path = tmp_path / "char.vox"
+    path.write_bytes(vox_file(models + ntrn(0, 1, {}) + ngrp(1, children) + nodes + palette, version=200))
+    assert io.read(path).shape(shape.pitch) == shape.crop()
+
+
+def test_scene_over_the_grid_names_its_models(tmp_path):
+    children = (model((4, 4, 4), [(0, 0, 0, 1)]) + model((2, 2, 30), [(0, 0, 29, 1)])
+                + ntrn(0, 1, {}) + ngrp(1, [2, 4])
+                + ntrn(2, 3, {}, {"_name": "body"}) + nshp(3, 0) + ntrn(4, 5, {"_t": "0 0 20"}, {"_name": "pole"})
+                + nshp(5, 1))
+    path = tmp_path / "big.vox"
+    path.write_bytes(vox_file(children, version=200))
+    with pytest.raises(InvalidShapeError, match=r"the scene is 2x2x37 voxels, over the 25-voxel grid: body \(4x4x4\) at \(-2, -2, -2\); pole \(2x2x30\)"):
+        io.read(path)
+
+
+def test_animation_frames(tmp_path):
+    frames = [model((2, 1, 1), [(k % 2, 0, 0, k + 1)]) for k in range(3)]
+    path = tmp_path / "anim.vox"
+    path.write_bytes(vox_file(chunk(b"PACK", struct.pack("<i", 3)) + b"".join(frames)))
+    first = io.read(path)
+    assert first.colours.index[0, 0, 0] == 1
+    assert first.notes == ("file holds 3 animation frames; read the first (--frame K reads frame K)",)
+    second = io.read(path, frame=2)
+    assert second.colours.index[1, 0, 0] == 2 and second.notes == ()
+    with pytest.raises(InvalidShapeError, match="frame 4: the file holds 3 frames"):
+        io.read(path, frame=4)
+    with pytest.raises(InvalidShapeError, match="option frame does not apply to .npy"):
+        np.save(tmp_path / "a.npy", np.ones((1, 1, 1), bool))
+        io.read(tmp_path / "a.npy", frame=1)
 
 
 def test_single_model_without_scene_has_no_note(tmp_path):
@@ -175,7 +237,7 @@ def test_single_model_without_scene_has_no_note(tmp_path):
         (model((2, 2, 2), [(0, 0, 0, 1)]) + b"\x00\x01\x02\x03" + struct.pack("<ii", 0, 0), "corrupt chunk id"),
         (model((2, 2, 2), [(0, 0, 0, 1)]) + b"nTRN" + struct.pack("<ii", -5, 0), "negative size"),
         (model((2, 2, 2), [(0, 0, 0, 1)]) + chunk(b"nTRN", struct.pack("<i", 0) + struct.pack("<i", 99)), "corrupt DICT"),
-        (model((2, 2, 2), [(0, 0, 0, 1)]) + ntrn(0, 1, {"_r": "abc"}), "corrupt rotation"),
+        (model((2, 2, 2), [(0, 0, 0, 1)]) + ntrn(0, 1, {"_r": "abc"}), "corrupt transform"),
     ],
 )
 def test_corrupt_chunks_give_format_error_naming_the_file(tmp_path, children, message):
@@ -213,3 +275,17 @@ def test_empty_model_is_an_empty_grid_error(tmp_path):
     path.write_bytes(vox_file(model((3, 3, 3), [])))
     with pytest.raises(InvalidShapeError, match="empty"):
         io.read(path)
+
+
+def test_frame_on_the_command_line(tmp_path, capsys):
+    import json
+
+    from voxfab.cli import main
+
+    frames = [model((3, 1, 1), [(0, 0, 0, 1)] + [(1, 0, 0, 2)] * k) for k in range(2)]
+    path = tmp_path / "anim.vox"
+    path.write_bytes(vox_file(chunk(b"PACK", struct.pack("<i", 2)) + b"".join(frames)))
+    assert main(["info", str(path), "--frame", "2", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["volume"] == 2
+    assert main(["info", str(path), "--frame", "3"]) != 0
+    assert "frame 3: the file holds 2 frames" in capsys.readouterr().err

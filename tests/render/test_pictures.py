@@ -54,7 +54,7 @@ def test_the_net_picture_option_draws_the_given_net(tmp_path):
     net = tree_net(BAR.grid)
     made = render_pictures(BAR, PictureOptions(size=100, triptych=False, net_picture=True), tmp_path, name="bar",
                            seed=0, net=net)
-    assert [f.path for f in made.files] == ["render_iso.png", "net_picture.png"]
+    assert [f.path for f in made.files] == ["render_profile.png", "net_picture.png"]
     assert (tmp_path / "net_picture.png").read_bytes() == png_bytes(net_picture(net, BAR, size=100))
 
 

@@ -33,9 +33,9 @@ def test_writes_views_slices_triptych_and_turntable(tmp_path):
         assert (again / n).read_bytes() == (tmp_path / n).read_bytes(), n
 
 
-def test_defaults_write_iso_and_triptych(tmp_path):
+def test_defaults_write_the_profile_view_and_triptych(tmp_path):
     files = recipe_output(VoxelShape(np.ones((2, 2, 2), dtype=bool)), tmp_path, name="cube", seed=0, size=100)
-    assert [f.path for f in files] == ["render_iso.png", "triptych.png", "triptych.pdf"]
+    assert [f.path for f in files] == ["render_profile.png", "triptych.png", "triptych.pdf"]
 
 
 @pytest.mark.parametrize(("options", "text"), [({"views": ["top"]}, "top"), ({"size": 5}, "size"),
@@ -46,5 +46,5 @@ def test_bad_options_are_refused(options, text):
 
 
 def test_view_filenames():
-    assert [view_filename(v) for v in ("iso", "x", "-x", "-z")] == [
-        "render_iso.png", "render_x.png", "render_neg_x.png", "render_neg_z.png"]
+    assert [view_filename(v) for v in ("iso", "x", "-x", "-z", "profile")] == [
+        "render_iso.png", "render_x.png", "render_neg_x.png", "render_neg_z.png", "render_profile.png"]

@@ -153,7 +153,9 @@ def test_bad_input_names_the_parameter():
         render(g, background="not-a-colour")
     with pytest.raises(InvalidShapeError, match="empty"):
         render(np.zeros((3, 3, 3), dtype=bool))
-    assert {v.value for v in View} == {"iso", *AXIS_VIEWS}
+    assert {v.value for v in View} == {"iso", "profile", *AXIS_VIEWS}
+    with pytest.raises(InvalidShapeError, match="profile"):
+        camera_for("profile")
 
 
 def test_png_round_trips_through_pillow(tmp_path):

@@ -31,7 +31,7 @@ def test_triptych_holds_net_slices_and_3d_under_the_title():
     lay = triptych_layout(300)
     assert img.size == (lay.width, lay.height)
     a = np.asarray(img)
-    expected = [net_picture(net, BOX, size=300), slice_sheet(BOX, size=300, height=300), render(BOX, size=300)]
+    expected = [net_picture(net, BOX, size=300), slice_sheet(BOX, size=300, height=300), render(BOX, view="profile", size=300)]
     for pic, (left, top, right, bottom) in zip(expected, lay.panels):
         assert np.array_equal(a[top:bottom, left:right], np.asarray(pic))
     title = a[: lay.title_height]
@@ -105,3 +105,42 @@ def test_pdf_renders_in_poppler_like_the_png(tmp_path):
         back = np.asarray(im.convert("RGB")).astype(int)
     assert back.shape == np.asarray(img).shape
     assert np.abs(back - np.asarray(img).astype(int)).mean() < 12  # the same picture, resampled by poppler
+
+
+def _paper_bits(panel: np.ndarray) -> list[int]:
+    """Pixel areas of the separate bits of paper in a net panel above its legend strip, largest first."""
+    from scipy import ndimage
+
+    strip = max(18, panel.shape[0] // 22)
+    paper = (255 * 3 - panel[: panel.shape[0] - strip].astype(int).sum(axis=-1)) > 30
+    paper = ndimage.binary_closing(paper, iterations=2)  # a tab and its face are one bit of paper
+    labels, _ = ndimage.label(paper, structure=np.ones((3, 3)))
+    return sorted((int(a) for a in np.bincount(labels.ravel())[1:] if a > 100), reverse=True)
+
+
+def test_a_net_in_pieces_is_drawn_piece_by_piece_each_with_its_outline():
+    """The pawn split in pieces: the triptych's net panel shows each piece apart, its area as its faces'."""
+    from pathlib import Path
+
+    from voxfab.recipe import load_recipe, make_shape
+    from voxfab.render._raster import parse_color
+    from voxfab.shape import surface_graph
+    from voxfab.unfold import unfold
+
+    pawn = make_shape(load_recipe(Path(__file__).resolve().parents[2] / "recipes" / "chess" / "pawn.toml")).grid
+    pieces = unfold(pawn, rng=0, fit=(20, 20), pieces="flat")
+    assert len(pieces) > 1
+    assert sum(p.face_count for p in pieces) == surface_graph(pawn).face_count
+    img = triptych(pawn, name="pawn", net=pieces, panel=400)
+    assert png_bytes(img) == png_bytes(triptych(pawn, name="pawn", net=list(pieces), panel=400))
+    left, top, right, bottom = triptych_layout(400).panels[0]
+    panel = np.asarray(img)[top:bottom, left:right]
+    assert np.array_equal(panel, np.asarray(net_picture(pieces, pawn, size=400)))
+    bits = _paper_bits(panel)
+    assert len(bits) == len(pieces), bits
+    faces = sorted((p.face_count for p in pieces), reverse=True)
+    ratios = np.array(bits) / np.array(faces)
+    assert ratios.max() < 2.0 * ratios.min(), (bits, faces)
+    # The cut outlines are the drawing's red, round every piece.
+    red = np.array(parse_color("#ff0000", name="cut"))
+    assert (np.abs(panel.astype(int) - red).sum(axis=-1) < 60).sum() > 100 * len(pieces)

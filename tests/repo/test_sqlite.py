@@ -190,11 +190,11 @@ def test_schema_1_file_is_migrated(tmp_path: Path) -> None:
         assert repo.add(bad, draft=True).name == "draft-5"
     raw = sqlite3.connect(path)
     try:
-        assert raw.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION == 3
+        assert raw.execute("PRAGMA user_version").fetchone()[0] == SCHEMA_VERSION == 5
         assert {r[0] for r in raw.execute("SELECT typeof(key) || typeof(symmetric_key) FROM shapes")} == {"blobblob"}
         assert raw.execute("PRAGMA integrity_check").fetchone()[0] == "ok"
         names = {r[0] for r in raw.execute("SELECT name FROM sqlite_master")}
         assert {"shapes_key", "shapes_symmetric_key", "shapes_order"} <= names and "shapes_v2" not in names
-        assert {"range_members", "range_members_shape"} <= names
+        assert {"range_members", "range_members_shape", "range_made"} <= names
     finally:
         raw.close()

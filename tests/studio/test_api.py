@@ -450,7 +450,7 @@ def test_make_files(client, tmp_path, artefact):
         assert got.content.startswith(b"%PDF")
     elif artefact == "plates.zip":
         names = zipfile.ZipFile(path).namelist()
-        assert any(n.endswith(".dxf") for n in names) and "slices/assembly.pdf" in names
+        assert any(n.endswith(".dxf") for n in names) and "column-plates-assembly.pdf" in names
     else:
         with Image.open(path) as im:
             assert im.width > 3 * im.height / 2
@@ -562,14 +562,16 @@ def test_make_plates_in_a_style_and_see_the_assembly(client, style):
 
     queen = make_shape(load_recipe(Path(__file__).resolve().parents[2] / "recipes" / "chess" / "queen.toml")).grid
     r = client.post("/api/make", json={"grid": pack(queen), "artefact": "plates.zip", "pitch": 2.0, "title": "queen",
-                                       "options": {"thickness": 3.0, "style": style, "plate_sheet": "600x400"}})
+                                       # radial plates thin enough for a hub slot the queen's neck holds
+                                       "options": {"thickness": 3.0 if style == "interlocked" else 1.5,
+                                                   "style": style, "plate_sheet": "600x400"}})
     assert r.status_code == 200, r.text
     s = wait_job(client, r.json()["job"])
     assert s["state"] == "done", s
     archive = zipfile.ZipFile(io.BytesIO(client.get(f"/api/files/{r.json()['job']}/0").content))
-    report = json.loads(archive.read("slices/plates.json"))
+    report = json.loads(archive.read("queen-plates-plates.json"))
     plates = s["result"]["assembly"]["plates"]
-    assert "slices/assembly.3mf" in archive.namelist()
+    assert "queen-plates-assembly.3mf" in archive.namelist()
     assert report["style"] == style and len(plates) == report["plates"] > 1
     assert sorted(p["name"] for p in plates) == sorted(p["label"] for p in report["plates_list"])
     # Every plate sits inside the queen's box (25 voxels at 2 mm) in the print's frame.

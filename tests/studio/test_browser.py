@@ -202,7 +202,7 @@ def test_net_gallery_pick_and_download_svg(server, browser):
     assert ids == [i for i in ("LABEL", "GRID", "VALLEY", "MOUNTAIN", "CUT") if i in ids] and ids[-2:] == [
         "MOUNTAIN", "CUT"]
     style = {g.get("id"): g.get("stroke") for g in groups}
-    assert style["CUT"] == "#ff0000" and style["MOUNTAIN"] == "#0000ff"
+    assert style["CUT"] == "#ff0000" and style["MOUNTAIN"] == "#ff00ff"
     cut = svgpathtools.parse_path(groups[-1].find("s:path", ns).get("d"))
     xmin, xmax, ymin, ymax = cut.bbox()
     assert 10 <= xmin < xmax <= 200 and 10 <= ymin < ymax <= 287 and cut.isclosed()
@@ -374,7 +374,8 @@ def test_interlocked_plates_from_the_make_tab_show_their_assembly(server, browse
     time.sleep(0.3)
     import json
 
-    report = json.loads(zipfile.ZipFile(archive).read("slices/plates.json"))
+    # named after the shape inside the zip too: NAME-plates.zip holds NAME-plates-plates.json
+    report = json.loads(zipfile.ZipFile(archive).read(f"{archive.stem}-plates.json"))
     assert report["style"] == "interlocked" and report["plates"] == plates >= 2
     # Back to the shape: the viewer draws voxels again.
     browser.find_element("id", "show-shape").click()

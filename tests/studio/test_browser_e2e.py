@@ -23,11 +23,11 @@ pytestmark = pytest.mark.slow
 def _edit_zoomed(browser, canvas, layout, pairs, kind):
     """Zoom the 2D view onto each edge in turn (a face of the queen's net is a few pixels wide at full
     view) and click it, until one edit is made; the edge and the new layout."""
-    from .test_browser_netedit import _edge_mid
+    from .test_browser_netedit import _edit_point
 
     for i, j in pairs[:8]:
         k = layout["neighbor"][4 * i: 4 * i + 4].index(j)
-        mx, my = (float(v) for v in _edge_mid(layout, i, k))
+        mx, my = _edit_point(browser, layout, i, k)
         browser.execute_script("""
             const v = window.voxfabNetView, c = v.canvas, s = 40;
             v.view = Object.assign({}, v.view, {s, ox: c.width / 2 - arguments[0] * s, oy: c.height / 2 + arguments[1] * s});

@@ -216,9 +216,10 @@ def test_voxfab_studio_shape_opens_the_page_on_it(browser, tmp_path):
 
 
 def test_the_chosen_net_and_its_marks_go_when_the_shape_changes(server, browser):
-    from selenium.webdriver import ActionChains
+    import numpy as np
 
     from .test_browser import _gallery, slim_column
+    from .test_browser_netedit import _edit_by_click, _layout
 
     open_page(browser, server)
     slim_column(browser)
@@ -229,15 +230,12 @@ def test_the_chosen_net_and_its_marks_go_when_the_shape_changes(server, browser)
     wait(browser, lambda d: len(d.find_elements("css selector", items)) == 2, timeout=90, what="two nets")
     browser.find_elements("css selector", items)[0].click()
     canvas = browser.find_element("id", "net-canvas")
-    for dx, dy in ((0, 0), (7, 3), (-5, 9), (3, -11), (12, 12)):
-        ActionChains(browser).move_to_element_with_offset(canvas, dx, dy).click().perform()
-        # a click on an edge asks the server for the cut (clicks meanwhile are ignored): wait for its answer;
-        # a click beside every edge changes nothing, and the next point is tried
-        try:
-            wait(browser, lambda d: d.find_element("id", "marks-count").text != "no marks", timeout=15, what="a cut")
-            break
-        except AssertionError:
-            continue
+    wait(browser, lambda d: _layout(d) is not None, what="the chosen net")
+    layout = _layout(browser)
+    # Click folds in turn (from the net's last faces, nearer its outline) until one can be cut: a cut that
+    # leaves no room to hang the cut-off faces elsewhere is refused, and the next fold is tried.
+    folds = sorted({tuple(p) for p in np.array(layout["folds"]).reshape(-1, 2).tolist()}, reverse=True)
+    _edit_by_click(browser, canvas, layout, folds, "cut")
     assert browser.find_element("id", "marks-count").text == "1 cut, 0 kept"
     assert attr(browser, "net-chosen-label", "data-index") == "0"
     # The shape changes (a hand edit): its nets, the chosen one and the marks on it go.

@@ -33,9 +33,14 @@ def _move_to_net_point(browser, canvas, x, y, click=False):
     actions.perform()
 
 
-def _edge_mid(layout, i, k):
-    """The middle of edge k of face i in the page's 2D view (pieces side by side as netview.js lays them)."""
-    c = np.array(layout["corners"], dtype=float).reshape(-1, 4, 2)
+def _view_corners(browser):
+    """The faces' corners in the page's 2D view, (F, 4, 2): each piece where netview.js lays it out."""
+    return np.array(browser.execute_script("return Array.from(window.voxfabNetView.pts);"), dtype=float).reshape(-1, 4, 2)
+
+
+def _edge_mid(corners, i, k):
+    """The middle of edge k of face i, of the 2D view's ``corners`` (:func:`_view_corners`)."""
+    c = np.asarray(corners, dtype=float)
     a, b = c[i, k], c[i, (k + 1) % 4]
     centre = c[i].mean(axis=0)
     mid = (a + b) / 2
@@ -63,7 +68,9 @@ def _edit_by_click(browser, canvas, layout, pairs, kind, timeout=30):
 
 
 def _edit_point(browser, layout, i, k):
-    return [float(v) for v in _edge_mid(layout, i, k)]
+    """Where to click edge k of face i of the page's net ``layout`` (the one it shows), in its 2D view."""
+    assert _layout(browser)["corners"] == layout["corners"], "the page shows another net"
+    return [float(v) for v in _edge_mid(_view_corners(browser), i, k)]
 
 
 def test_edit_the_net_in_linked_views_and_fold_it_up(server, browser):

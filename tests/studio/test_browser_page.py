@@ -18,7 +18,7 @@ from _dxf_read import entity_points
 from ._helpers import SHOTS, queen
 from .test_browser import attr, tab, wait
 from .test_browser_net import _check_files, _downloads, _files_ready, _placement, by_id
-from .test_browser_netedit import _edge_mid, _layout, _move_to_net_point
+from .test_browser_netedit import _edit_point, _layout, _move_to_net_point
 
 pytestmark = pytest.mark.slow
 
@@ -165,7 +165,7 @@ def _hover_a_seam(browser):
     seams = [(i, int(j)) for i in range(nb.shape[0]) for j in nb[i] if i < j and (i, j) not in folds]
     i, j = seams[len(seams) // 2]
     k = list(nb[i]).index(j)
-    x, y = (float(v) for v in _edge_mid(layout, i, k))
+    x, y = _edit_point(browser, layout, i, k)
     _zoom_onto(browser, x, y)
     _move_to_net_point(browser, canvas, x, y)
     return wait(browser, lambda d: attr(d, "viewer", "data-highlight-label"), what="the seam lit in 3D"), (x, y)

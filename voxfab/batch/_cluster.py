@@ -10,15 +10,20 @@ address that does gets a Dask client.
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import math
 import re
+import shutil
 import socket
 import struct
+import tempfile
 import time
+from pathlib import Path
 from typing import Any
 
 from voxfab._shared.limits import MAX_BATCH_WORKERS, MAX_WAIT_SECONDS, check_count
+from voxfab._shared.numbers import is_digits
 from voxfab.errors import MissingDependencyError, RepositoryError
 
 __all__ = ["Cluster", "check_wait", "check_workers", "check_dashboard", "probe_scheduler", "connect"]
@@ -67,7 +72,7 @@ def _host_port(address: str) -> tuple[str, int] | None:
         if protocol != "tcp":
             return None
     host, sep, port = rest.rpartition(":")
-    if not sep or not port.isdigit() or not 0 < int(port) <= 65535 or not host:
+    if not sep or not is_digits(port) or len(port) > 5 or not 0 < int(port) <= 65535 or not host:
         raise RepositoryError(f"--scheduler: expected tcp://HOST:PORT, got {address[:80]!r}")
     return host.strip("[]"), int(port)
 
@@ -123,20 +128,26 @@ def probe_scheduler(address: str, timeout: float) -> None:
 
 @dataclasses.dataclass
 class Cluster:
-    """A Dask client, the local cluster it owns (None on a running scheduler), and its worker count."""
+    """A Dask client, the local cluster it owns (None on a running scheduler), its worker count, and the
+    local cluster's scratch folder (removed at close)."""
 
     client: Any
     cluster: Any
     workers: int
+    scratch: Path | None = None
 
     def worker_count(self) -> int:
         """Workers the scheduler has now."""
         return len(self.client.scheduler_info().get("workers", {}))
 
     def close(self) -> None:
-        self.client.close()
-        if self.cluster is not None:
-            self.cluster.close()
+        try:
+            self.client.close()
+            if self.cluster is not None:
+                self.cluster.close()
+        finally:
+            if self.scratch is not None:
+                shutil.rmtree(self.scratch, ignore_errors=True)
 
 
 def connect(scheduler: str | None, workers: int, dashboard: str | None, timeout: float) -> Cluster:
@@ -180,7 +191,19 @@ def connect(scheduler: str | None, workers: int, dashboard: str | None, timeout:
     # time).  Tasks are sent ahead instead; the callers keep few in flight, so none is sent far ahead.
     import dask
 
-    with dask.config.set({"distributed.scheduler.worker-saturation": "inf"}):
-        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
-                               dashboard_address=dashboard, silence_logs=50, scheduler_kwargs=quiet_http)
-    return Cluster(Client(cluster, timeout=timeout), cluster, workers)
+    # The workers' scratch space in a folder of this run's own, removed however the run ends (Dask's
+    # default, TMPDIR/dask-scratch-space, is shared by every cluster and left behind with its locks).
+    scratch = Path(tempfile.mkdtemp(prefix="voxfab-dask-"))
+    cluster = None
+    try:
+        with dask.config.set({"distributed.scheduler.worker-saturation": "inf", "temporary-directory": str(scratch)}):
+            cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
+                                   dashboard_address=dashboard, silence_logs=50, scheduler_kwargs=quiet_http,
+                                   local_directory=str(scratch), preload=["voxfab.batch._preload"])
+        return Cluster(Client(cluster, timeout=timeout), cluster, workers, scratch)
+    except BaseException:  # Ctrl-C while the cluster starts included
+        if cluster is not None:
+            with contextlib.suppress(Exception):
+                cluster.close()
+        shutil.rmtree(scratch, ignore_errors=True)
+        raise

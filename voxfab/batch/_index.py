@@ -8,9 +8,12 @@ import json
 import math
 from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from voxfab._shared.typing import BoolGrid
+
+if TYPE_CHECKING:
+    from voxfab.shape import VoxelShape
 
 __all__ = ["draw_thumbnails", "hunt_summary", "write_index", "HuntSummary", "SHEET_SHAPES", "INDEX_NAME", "THUMBS"]
 
@@ -21,9 +24,9 @@ THUMBS = "thumbs"
 SHEET_SHAPES = 400
 
 
-def draw_thumbnails(grid: BoolGrid, gives: Mapping[str, Any], thumbs: Path, *, name: str, seed: int,
+def draw_thumbnails(grid: BoolGrid | VoxelShape, gives: Mapping[str, Any], thumbs: Path, *, name: str, seed: int,
                     size: int) -> list[str]:
-    """Write ``thumbs/<name>.png`` (isometric render) and ``thumbs/<name>-net.png``.
+    """Write ``thumbs/<name>.png`` (isometric render) and ``thumbs/<name>-net.png``, in colour for a coloured shape.
 
     The net is what the build's outputs gave (``gives``, :attr:`voxfab.recipe.BuiltRecipe.gives`):
     the net output's net when it is in one piece, else the hunt's zipper net, else its

@@ -115,7 +115,7 @@ def parse_name_range(text: str) -> tuple[tuple[int, int], tuple[int, int]]:
         if not part:
             bounds.append(default)
             continue
-        m = NAME_PATTERN.match(part)
+        m = NAME_PATTERN.fullmatch(part)
         if not m:
             raise RepositoryError(f"--names: {part!r} is not a shape name (expected A:B such as 00100.001:00200.999)")
         bounds.append((int(m.group(1)), int(m.group(2))))

@@ -218,10 +218,11 @@ def _path_exists(faces: list[list[int]], verts: dict, clauses: list) -> bool:
         if slit is not None:
             lits.append(cut_of_edge[edges[slit]].Not())
         m.AddBoolOr(lits)
-    solver = cp_model.CpSolver()
-    solver.parameters.num_search_workers = 1
+    from voxfab.unfold._cpsat import one_worker_solver, solve
+
+    solver = one_worker_solver()  # CP-SAT's own Ctrl-C handler off, the search stopped by Ctrl-C
     solver.parameters.max_time_in_seconds = 600.0
-    status = solver.Solve(m)
+    status = solve(solver, m)
     if status == cp_model.INFEASIBLE:
         return False
     if status in (cp_model.OPTIMAL, cp_model.FEASIBLE):

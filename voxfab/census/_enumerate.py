@@ -1,4 +1,4 @@
-"""Every polycube of n cubes once, up to rotation (and up to rotation and reflection), in a fixed order.
+"""Every polycube of n cubes once, up to rotation ("one-sided"), in a fixed order; the free ones counted too.
 
 Canonical growth: the polycubes of n + 1 cubes are the canonical forms of the
 polycubes of n cubes with one face neighbour added.  A polycube's canonical
@@ -9,9 +9,10 @@ exactly when their forms are equal.  Each level is kept as one sorted int array
 of forms, so the same ``n`` always gives the same list in the same order, and
 the whole growth is vectorised over chunks of candidates.
 
-Counts (OEIS A000162 up to rotation, A038119 up to rotation and reflection):
-1, 1, 2, 8, 29, 166, 1023, 6922, 48311, 346543 and 1, 1, 2, 7, 23, 112, 607,
-3811, 25413, 178083.
+Counts, in the OEIS's words: one-sided polycubes (up to rotation, A000162)
+1, 1, 2, 8, 29, 166, 1023, 6922, 48311, 346543, and free polycubes (up to
+rotation and reflection, a mirror image counted as the same, A038119) 1, 1, 2,
+7, 23, 112, 607, 3811, 25413, 178083.  The census lists the one-sided ones.
 """
 
 from __future__ import annotations
@@ -23,7 +24,7 @@ import numpy.typing as npt
 
 from voxfab.shape import rotation_matrices
 
-__all__ = ["MAX_CUBES", "canonical_cells", "count_free", "polycube_levels", "polycubes"]
+__all__ = ["MAX_CUBES", "canonical_cells", "count_free", "count_polycubes", "polycube_levels", "polycubes"]
 
 #: The largest n enumerated: the level of 11 cubes holds 2.5 million forms (about 0.5 GB while it grows).
 MAX_CUBES = 11
@@ -107,14 +108,19 @@ def canonical_cells(cells: npt.ArrayLike) -> npt.NDArray[np.int64]:
     return _decode(_forms(c, n), n)[0]
 
 
-def count_free(n: int, forms: npt.NDArray[np.int32]) -> tuple[int, int]:
-    """``(up to rotation, up to rotation and reflection)`` counts of the forms of n cubes."""
+def count_polycubes(n: int, forms: npt.NDArray[np.int32]) -> tuple[int, int]:
+    """``(one-sided, free)`` counts of the forms of n cubes: up to rotation (A000162), and up to rotation and
+    reflection (A038119)."""
     cells = _decode(forms, n)
     mirrored = _forms(cells, n, mirror=True)
     # A chiral pair is one shape up to reflection: count each pair once by its lesser form.
     both = np.stack([forms, mirrored], axis=1)
     least = _lexmin_rows(both)
     return int(forms.shape[0]), int(np.unique(least, axis=0).shape[0])
+
+
+#: The earlier name of :func:`count_polycubes`, whose first count is one-sided, not free.
+count_free = count_polycubes
 
 
 def polycubes(n_max: int) -> Iterator[tuple[int, int, npt.NDArray[np.int64]]]:

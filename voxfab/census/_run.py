@@ -5,9 +5,18 @@ chunks of them to the workers (:func:`._task.census_task`), which write the nets
 under ``DIR/nets/`` and send back small records, and writes ``DIR/census.json``
 (under a temporary name, then renamed) every few seconds and at the end, with
 the page ``DIR/census.html``.  A run started again on the same DIR with the
-same settings keeps every record whose net files are there and censuses only
-the rest, so an interrupted run resumes, and ``census 8`` after ``census 6``
-censuses only the polycubes of 7 and 8 cubes.
+same settings keeps every record whose net files check out (:mod:`._resume`)
+and censuses only the rest, so an interrupted run resumes, ``census 8`` after
+``census 6`` censuses only the polycubes of 7 and 8 cubes, and ``census 6``
+after ``census 8`` keeps the census of 8.
+
+Everything that can be refused is refused before anything is made: N, the
+settings, the scheduler's address (``tcp://HOST:PORT``) and the scheduler
+itself, the output folder, an earlier ``census.json`` that is no census.  A
+serial run stops within a fraction of a second on Ctrl-C (SIGINT sets the
+searches' cancel event, :func:`_interrupts`), saves the records done and raises
+KeyboardInterrupt; an interrupted search is never recorded.  A run whose every
+search failed raises :class:`~voxfab.errors.UnfoldError` after saving.
 
 Everything in ``census.json`` but the times and the workers (``rows[].seconds``
 and ``rows[].cpu_seconds``, this run's search time per n, and ``run``) depends
@@ -19,20 +28,26 @@ from __future__ import annotations
 
 import contextlib
 import dataclasses
+import ipaddress
 import json
+import os
+import re
+import select
+import signal
+import tempfile
+import threading
 import time
 import uuid
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
-from voxfab.errors import InvalidShapeError, RepositoryError
+from voxfab.errors import CancelledError, InvalidShapeError, OutputError, RepositoryError, UnfoldError
 
-from ._task import CensusSettings, CensusTask, census_task
+from ._resume import CENSUS_FORMAT
+from ._task import NETS, CensusSettings, CensusTask, census_task
 
-__all__ = ["CENSUS_FORMAT", "CensusReport", "check_census_size", "run_census", "shape_id"]
-
-CENSUS_FORMAT = "voxfab-census/1"
+__all__ = ["CENSUS_FORMAT", "CensusInterrupted", "CensusReport", "check_census_size", "check_scheduler", "run_census", "shape_id"]
 #: Shapes sent to a worker at once: a polycube takes tens of milliseconds, a Dask task a few.
 _CHUNK = 24
 #: Shapes listed per n as the first without an unzipping (or undecided), with their proofs.
@@ -58,6 +73,80 @@ def check_census_size(n: object) -> int:
     return n
 
 
+#: A host name (RFC 1123 labels) or an IPv4 address's digits; IPv6 comes in brackets.
+_HOST = re.compile(r"^(?=.{1,253}$)[A-Za-z0-9](?:[A-Za-z0-9-]{0,61}[A-Za-z0-9])?(?:\.[A-Za-z0-9](?:[A-Za-z0-9-]{0,61}"
+                   r"[A-Za-z0-9])?)*$")
+
+
+def check_scheduler(address: object) -> str:
+    """Return a scheduler address ``tcp://HOST:PORT`` (or ``HOST:PORT``), or refuse it in one line.
+
+    The census talks to a scheduler over plain TCP only: ``tls://`` needs
+    certificates it has no option for, ``ucx://`` and ``inproc://`` are no
+    address of a scheduler another process runs.
+    """
+    text = str(address)
+    refuse = RepositoryError(f"--scheduler: expected tcp://HOST:PORT with a port of 1 to 65535, got {text[:80]!r}")
+    if not isinstance(address, str):
+        raise refuse
+    protocol, sep, rest = address.partition("://")
+    if not sep:
+        protocol, rest = "tcp", address
+    if protocol != "tcp":
+        raise RepositoryError(f"--scheduler: the census reaches a scheduler over tcp:// only, got {text[:80]!r}")
+    host, sep, port = rest.rpartition(":")
+    if not sep or not port.isdigit() or not 1 <= int(port) <= 65535:
+        raise refuse
+    if host.startswith("[") and host.endswith("]"):
+        try:
+            ipaddress.IPv6Address(host[1:-1])
+        except ValueError:
+            raise refuse from None
+    elif re.fullmatch(r"[0-9.]+", host):
+        try:
+            ipaddress.IPv4Address(host)
+        except ValueError:
+            raise refuse from None
+    elif not _HOST.match(host):
+        raise refuse
+    return address
+
+
+def _check_folder(out: Path, path: Path) -> None:
+    """Refuse DIR, DIR/nets or DIR/census.json where they are not what the census makes, before anything is made."""
+    from voxfab._shared.atomic import check_output
+
+    check_output(path, parents=True)
+    nets = out / NETS
+    if nets.exists() and not nets.is_dir():
+        raise OutputError(f"{nets}: exists and is not a folder; the census keeps its nets there")
+    # A folder is tried by making and removing a hidden one in it: permissions alone do not tell a read-only
+    # mount or a virtual file system (/proc), nor anything to root; the scheduler is reached only after.
+    where = out if out.is_dir() else out.parent
+    try:
+        os.rmdir(tempfile.mkdtemp(prefix=f".{out.name}.{os.getpid()}-", suffix=".tmp", dir=where))
+    except OSError as exc:
+        raise OutputError(f"{out}: cannot write in {where}: {exc.strerror or exc}") from None
+
+
+def _make_folder(out: Path) -> None:
+    """Make DIR and DIR/nets; a folder that cannot hold them (read-only, virtual) is refused in one line."""
+    for folder in (out, out / NETS):
+        try:
+            folder.mkdir(exist_ok=True)
+        except OSError as exc:
+            raise OutputError(f"{folder}: cannot create the folder: {exc.strerror or exc}") from None
+
+
+class CensusInterrupted(KeyboardInterrupt):
+    """A census stopped by Ctrl-C after it saved the records done (``path``, ``saved`` of them)."""
+
+    def __init__(self, path: Path, saved: int) -> None:
+        super().__init__(f"stopped; {saved} polycubes saved in {path}")
+        self.path = path
+        self.saved = saved
+
+
 @dataclasses.dataclass(frozen=True)
 class CensusReport:
     """What a census run did: its rows, the shapes censused now and kept from an earlier run, time, workers."""
@@ -71,33 +160,13 @@ class CensusReport:
     page: Path
 
 
-def _read_previous(path: Path, settings: dict[str, Any], outdir: Path) -> dict[str, dict[str, Any]]:
-    """Records of an earlier run with the same settings whose net files are all there."""
-    if not path.is_file():
-        return {}
-    try:
-        data = json.loads(path.read_text())
-    except (OSError, ValueError):
-        return {}
-    if not isinstance(data, dict) or data.get("format") != CENSUS_FORMAT or data.get("settings") != settings:
-        return {}
-    kept = {}
-    for rec in data.get("shapes", []):
-        if not isinstance(rec, dict) or "id" not in rec or "error" in rec:
-            continue
-        files = [rec.get("net"), rec.get("unzip_net")]
-        if all(f is None or (outdir / str(f)).is_file() for f in files):
-            kept[str(rec["id"])] = rec
-    return kept
-
-
 def _rows(n_max: int, counts: dict[int, tuple[int, int]], shapes: dict[str, dict[str, Any]],
           wall: dict[int, float], cpu: dict[int, float]) -> list[dict[str, Any]]:
     """One row per n: the counts, the outcomes, the surfaces, the shapes to show, and this run's search time."""
     rows = []
     for n in range(1, n_max + 1):
         mine = [r for k, r in sorted(shapes.items()) if r.get("n") == n]
-        row: dict[str, Any] = {"n": n, "free": counts[n][0], "free_mirror": counts[n][1], "censused": len(mine)}
+        row: dict[str, Any] = {"n": n, "one_sided": counts[n][0], "free": counts[n][1], "censused": len(mine)}
         for key in ("unfold", "unzip"):
             for outcome in ("found", "none", "undecided"):
                 row[f"{key}_{outcome}"] = sum(1 for r in mine if r.get(key) == outcome)
@@ -171,100 +240,232 @@ def run_census(
     OutputError
         ``outdir`` cannot be made.
     """
-    from voxfab._shared.atomic import check_output
     from voxfab.batch._cluster import check_wait, check_workers
 
     from ._enumerate import _decode as decode_forms
-    from ._enumerate import count_free, polycube_levels
+    from ._enumerate import count_polycubes, polycube_levels
+    from ._resume import census_size, kept_records, read_earlier
     from ._topology import grid_of
 
     n_max = check_census_size(n_max)
     if store is not None:
-        from voxfab.repo._records import check_range_name
-
-        check_range_name(store)
+        _check_store(store, repository)
     settings = settings if settings is not None else CensusSettings()
     connect_timeout = check_wait(connect_timeout)
-    if scheduler is None and workers != 0:
+    if scheduler is not None:
+        scheduler = check_scheduler(scheduler)
+    elif workers != 0:
         workers = check_workers(workers)
     out = Path(outdir)
     path = out / "census.json"
-    check_output(path, parents=True)
-    out.mkdir(exist_ok=True)
-    (out / "nets").mkdir(exist_ok=True)
-    records = {k: v for k, v in _read_previous(path, settings.to_dict(), out).items() if int(k[:2]) <= n_max}
-    kept = len(records)
-    counts: dict[int, tuple[int, int]] = {}
-    todo: list[tuple[str, int, tuple[tuple[int, int, int], ...]]] = []
-    members: list[tuple[str, Any]] = []  # the range to store, when asked
-    for n, forms in polycube_levels(n_max):
-        counts[n] = count_free(n, forms)
-        for i, cells in enumerate(decode_forms(forms, n).tolist()):
-            sid = shape_id(n, i)
-            if store is not None:
-                members.append((sid, grid_of(cells)))
-            if sid in records:
-                continue
-            todo.append((sid, n, tuple(tuple(c) for c in cells)))
-    if store is not None:
-        from voxfab.repo import DEFAULT_PATH, Repository
+    _check_folder(out, path)
+    earlier = read_earlier(path)
+    n_max = census_size(earlier, n_max, settings.to_dict(), path)
+    if earlier is not None and earlier.settings != settings.to_dict():
+        earlier = None
+    with _runner(scheduler, workers, connect_timeout) as (run, nworkers):
+        counts: dict[int, tuple[int, int]] = {}
+        todo: list[tuple[str, int, tuple[tuple[int, int, int], ...]]] = []
+        members: list[tuple[str, Any]] = []  # the range to store, when asked
+        earlier_cells: dict[str, list[list[int]]] = {}  # the polycubes the earlier records name
+        for n, forms in polycube_levels(n_max):
+            counts[n] = count_polycubes(n, forms)
+            for i, cells in enumerate(decode_forms(forms, n).tolist()):
+                sid = shape_id(n, i)
+                if store is not None:
+                    members.append((sid, grid_of(cells)))
+                if earlier is not None and sid in earlier.records:
+                    earlier_cells[sid] = cells
+                todo.append((sid, n, tuple(tuple(c) for c in cells)))
+        records = kept_records(earlier, earlier_cells, out, settings.square_zipper)
+        kept = len(records)
+        todo = [t for t in todo if t[0] not in records]
+        if store is not None:
+            from voxfab.repo import DEFAULT_PATH, Repository
 
-        with Repository(repository or DEFAULT_PATH, create=True) as repo:
-            repo.add_range(store, members, meta={"source": f"polycube census of 1..{n_max} cubes"})
-        members.clear()
-    wall: dict[int, float] = {}  # search seconds per n, this run's, added over the shapes
-    cpu: dict[int, float] = {}
-    start = time.perf_counter()
-    last, wait = time.monotonic(), _SAVE_EVERY
+            with Repository(repository or DEFAULT_PATH, create=True) as repo:
+                repo.add_range(store, members, meta={"source": f"polycube census of 1..{n_max} cubes"})
+            members.clear()
+        # The first thing made, once the range is stored: every refusal before left nothing behind.
+        _make_folder(out)
+        wall: dict[int, float] = {}  # search seconds per n, this run's, added over the shapes
+        cpu: dict[int, float] = {}
+        start = time.perf_counter()
+        last, wait = time.monotonic(), _SAVE_EVERY
+        done = 0
+        failed: list[dict[str, Any]] = []
+        per_worker: dict[str, int] = {}
 
-    def save(complete: bool) -> None:
-        data = {
-            "format": CENSUS_FORMAT, "n": n_max, "settings": settings.to_dict(), "complete": complete,
-            "rows": _rows(n_max, counts, records, wall, cpu),
-            "run": {"seconds": round(time.perf_counter() - start, 1), "workers": used[0],
-                    "where": scheduler or ("serial" if workers == 0 else "local Dask cluster"),
-                    "censused": done, "kept": kept, "shapes_per_worker": dict(sorted(per_worker.items()))},
-            "shapes": [{k: v for k, v in r.items() if k not in ("seconds", "cpu_seconds")}
-                       for _, r in sorted(records.items())],
-        }
-        _write(path, data)
+        def save(complete: bool) -> None:
+            data = {
+                "format": CENSUS_FORMAT, "n": n_max, "settings": settings.to_dict(), "complete": complete,
+                "rows": _rows(n_max, counts, records, wall, cpu),
+                "run": {"seconds": round(time.perf_counter() - start, 1), "workers": nworkers,
+                        "where": scheduler or ("serial" if workers == 0 else "local Dask cluster"),
+                        "censused": done, "kept": kept, "shapes_per_worker": dict(sorted(per_worker.items()))},
+                "shapes": [{k: v for k, v in r.items() if k not in ("seconds", "cpu_seconds")}
+                           for _, r in sorted(records.items())],
+            }
+            _write(path, data)
 
-    done = 0
-    used = [0]
-    per_worker: dict[str, int] = {}
-    where = str(out.resolve())  # workers elsewhere see the shared folder by its full path, not the client's cwd
-    # The largest polycubes first: they cost the most, so the last chunks, which leave a worker idle
-    # while the other finishes, are the cheapest (the order of the records in the file does not change).
-    todo.sort(key=lambda item: -item[1])
-    chunks = (CensusTask(tuple(todo[i:i + _CHUNK]), where, settings) for i in range(0, len(todo), _CHUNK))
-    with _runner(scheduler, workers, connect_timeout) as (run, used[0]):
-        for recs, worker in run(chunks):
-            per_worker[worker] = per_worker.get(worker, 0) + len(recs)
-            for r in recs:
-                wall[r["n"]] = wall.get(r["n"], 0.0) + float(r.get("seconds", 0.0))
-                cpu[r["n"]] = cpu.get(r["n"], 0.0) + float(r.get("cpu_seconds", 0.0))
-                records[r["id"]] = r
-            done += len(recs)
-            if on_progress is not None:
-                on_progress(done, len(todo))
-            if time.monotonic() - last > wait:
-                began = time.thread_time()  # the save's own CPU: a client starved by other work is not slow
-                save(False)
-                last = time.monotonic()
-                wait = max(_SAVE_EVERY, _SAVE_SHARE * (time.thread_time() - began))
+        where = str(out.resolve())  # workers elsewhere see the shared folder by its full path, not the client's cwd
+        # The largest polycubes first: they cost the most, so the last chunks, which leave a worker idle
+        # while the other finishes, are the cheapest (the order of the records in the file does not change).
+        todo.sort(key=lambda item: -item[1])
+        # One shape at a time in this process: an interrupt loses only the search under way.
+        size = 1 if run is _serial else _CHUNK
+        chunks = (CensusTask(tuple(todo[i:i + size]), where, settings) for i in range(0, len(todo), size))
+        try:
+            with contextlib.closing(run(chunks)) as results:
+                for recs, worker in results:
+                    per_worker[worker] = per_worker.get(worker, 0) + len(recs)
+                    for r in recs:
+                        wall[r["n"]] = wall.get(r["n"], 0.0) + float(r.get("seconds", 0.0))
+                        cpu[r["n"]] = cpu.get(r["n"], 0.0) + float(r.get("cpu_seconds", 0.0))
+                        records[r["id"]] = r
+                        if "error" in r:
+                            failed.append(r)
+                    done += len(recs)
+                    if on_progress is not None:
+                        on_progress(done, len(todo))
+                    if time.monotonic() - last > wait:
+                        began = time.thread_time()  # the save's own CPU: a client starved by other work is not slow
+                        save(False)
+                        last = time.monotonic()
+                        wait = max(_SAVE_EVERY, _SAVE_SHARE * (time.thread_time() - began))
+        except BaseException as exc:
+            save(False)  # what is done is kept for the next run, whatever stopped this one
+            if type(exc) is KeyboardInterrupt:  # not a subclass the caller gave its own meaning (SIGTERM)
+                raise CensusInterrupted(path, len(records)) from None
+            raise
     save(True)
     from ._report import write_page
 
     page = write_page(out, json.loads(path.read_text()))
     rows = tuple(_rows(n_max, counts, records, wall, cpu))
-    return CensusReport(rows, done, kept, time.perf_counter() - start, used[0], path, page)
+    if failed:
+        one = min(failed, key=lambda r: r["id"])  # the first in the file, whichever finished first
+        first = f"{one['id']}: {one['error']}"
+        if len(failed) == done:
+            raise UnfoldError(f"every search of the census failed ({done} polycubes; {first}); see {path}")
+        import warnings
+
+        from voxfab.errors import VoxfabWarning
+
+        warnings.warn(f"{len(failed)} of {done} polycubes failed ({first}); they are censused again by the next run",
+                      VoxfabWarning, stacklevel=2)
+    return CensusReport(rows, done, kept, time.perf_counter() - start, nworkers, path, page)
+
+
+def _check_store(store: str, repository: str | Path | None) -> None:
+    """Refuse a bad range name, or a repository whose range tables are damaged, before anything is made."""
+    from voxfab.repo import DEFAULT_PATH, Repository
+    from voxfab.repo._records import check_range_name
+
+    check_range_name(store)
+    where = Path(repository or DEFAULT_PATH)
+    if not where.exists():
+        return  # made when the range is stored
+    with Repository(where, create=False) as repo:
+        problems = repo.check(rows=False)
+    if problems:
+        more = f" (and {len(problems) - 1} more)" if len(problems) > 1 else ""
+        raise RepositoryError(f"{where}: {problems[0]}{more}; 'voxfab repo check' lists every problem")
+
+
+@contextlib.contextmanager
+def _interrupts() -> Iterator[threading.Event]:
+    """An event that SIGINT sets while the block runs (main thread), heard even inside a native solver.
+
+    Python runs a signal handler only between bytecodes of the main thread, which a
+    solver in native code holds for seconds; so the signal's byte also goes to a
+    wakeup pipe that a thread watches.  The event stops every search of the block
+    (:func:`voxfab._shared.progress.check_cancelled`, CP-SAT's cancel watcher), and
+    the handler raises KeyboardInterrupt as soon as Python runs it.  (CP-SAT's own
+    SIGINT handler, which ends a search as if out of time, is off in a cancel scope.)
+    """
+    event = threading.Event()
+    if threading.current_thread() is not threading.main_thread():
+        yield event
+        return
+    r, w = os.pipe()
+    os.set_blocking(w, False)
+    stop = threading.Event()
+
+    again = threading.Event()
+
+    def on_sigint(signum: int, frame: Any) -> None:
+        event.set()  # for a solver in native code, were this handler late
+        if _in_exec_of_text(frame):
+            again.set()  # not here: the watcher sends SIGINT again in a moment
+            return
+        raise KeyboardInterrupt  # at once in Python code (an import of seconds, a search's own loop)
+
+    def watch() -> None:
+        while not stop.is_set():
+            if select.select([r], [], [], 0.1)[0] and signal.SIGINT in os.read(r, 256):
+                event.set()
+            if again.is_set() and not stop.is_set():
+                again.clear()
+                os.kill(os.getpid(), signal.SIGINT)
+
+    previous = signal.signal(signal.SIGINT, on_sigint)
+    try:
+        old_fd = signal.set_wakeup_fd(w, warn_on_full_buffer=False)
+    except ValueError:  # a wakeup fd of the caller's (an event loop) stays: the handler alone sets the event
+        old_fd = None
+    watcher = threading.Thread(target=watch, name="census-sigint", daemon=True)
+    watcher.start()
+    try:
+        yield event
+    finally:
+        stop.set()
+        watcher.join()
+        if old_fd is not None:
+            signal.set_wakeup_fd(old_fd)
+        signal.signal(signal.SIGINT, previous)
+        os.close(r)
+        os.close(w)
+
+
+def _in_exec_of_text(frame: Any) -> bool:
+    """Whether Python runs source text given to ``exec`` or ``eval`` (a dataclass's methods being made, at import).
+
+    A KeyboardInterrupt that leaves such source marks the interpreter, which then ends by
+    SIGINT whatever the program does with the exception (exit status -2, not 130); there the
+    handler waits for the signal sent again a moment later.
+    """
+    while frame is not None:
+        if frame.f_code.co_filename == "<string>" and frame.f_code.co_name == "<module>":
+            return True
+        frame = frame.f_back
+    return False
+
+
+def _serial(tasks: Iterator[CensusTask]) -> Iterator[tuple[list[dict[str, Any]], str]]:
+    """Run tasks in this process; Ctrl-C stops the search under way and raises KeyboardInterrupt, recording nothing."""
+    from voxfab._shared.progress import cancel_scope
+
+    with _interrupts() as event:
+        for t in tasks:
+            try:
+                with cancel_scope(event):  # the searches only: the caller's meter, between them, runs outside it
+                    result = census_task(t)
+            except CancelledError:
+                if event.is_set():
+                    raise KeyboardInterrupt from None
+                raise
+            if event.is_set():  # heard between two searches: the chunk is whole, stop after it
+                yield result
+                raise KeyboardInterrupt
+            yield result
 
 
 @contextlib.contextmanager
 def _runner(scheduler: str | None, workers: int, timeout: float) -> Iterator[tuple[Callable, int]]:
     """A function running census tasks (yielding each one's result as it comes), and the worker count."""
     if scheduler is None and workers == 0:
-        yield (lambda tasks: (census_task(t) for t in tasks)), 1
+        yield _serial, 1
         return
     from voxfab.batch._cluster import connect
 

@@ -11,8 +11,15 @@
   vertex, flat ones too), from the same hunt step, for comparison.
 
 Each search has its own time limit; one that runs out is ``undecided``, never an
-answer.  A worker writes the nets it finds under ``DIR/nets/`` (each file under a
-temporary name, then renamed) and returns a small JSON record.
+answer; one that is interrupted (a cancel, Ctrl-C) is no record at all.  A worker
+writes the nets it finds under ``DIR/nets/`` (each file under a temporary name,
+then renamed) and returns a small JSON record.
+
+A net file is a ``voxfab-net/1`` net whose ``folds`` are every uncut edge (a
+spanning tree of the squares, plus the edges whose two squares meet in the
+plane anyway, which the validator requires; an unzipping's uncut edges close up
+round the flat vertices its path leaves out), plus ``tree``: the fold tree, the
+F - 1 folds the net is folded along (:func:`voxfab.unfold.fold_tree`).
 """
 
 from __future__ import annotations
@@ -26,7 +33,7 @@ import numpy as np
 
 from voxfab._shared.options import SeedOptions, option
 
-__all__ = ["CensusSettings", "CensusTask", "census_shape", "census_task", "net_paths"]
+__all__ = ["CensusSettings", "CensusTask", "census_shape", "census_task", "fold_tree_pairs", "net_paths", "net_text"]
 
 #: Folder of DIR holding the nets.
 NETS = "nets"
@@ -64,6 +71,22 @@ def net_paths(shape_id: str) -> tuple[str, str]:
     return f"{NETS}/{shape_id}.net.json", f"{NETS}/{shape_id}.unzip.json"
 
 
+def fold_tree_pairs(net: Any) -> list[list[int]]:
+    """The net's fold tree as sorted face pairs: F - 1 of its folds, one parent per face but the root."""
+    from voxfab.unfold import fold_tree
+
+    _, parent, order = fold_tree(net)
+    return sorted(sorted((int(parent[f]), int(f))) for f in order[1:])
+
+
+def net_text(net: Any) -> str:
+    """A census net file: the net's ``voxfab-net/1`` JSON with its fold tree as ``tree``."""
+    import json
+
+    text = net.to_json().rstrip()
+    return f'{text[:-1]}, "tree": {json.dumps(fold_tree_pairs(net))}}}\n'
+
+
 def census_shape(shape_id: str, cells: Any, outdir: str | Path | None, settings: CensusSettings) -> dict[str, Any]:
     """Census one polycube; write its nets under ``outdir`` (none when ``outdir`` is None).
 
@@ -97,7 +120,7 @@ def census_shape(shape_id: str, cells: Any, outdir: str | Path | None, settings:
     }
     why = list(hunt.why)
     if outdir is not None and hunt.one_piece is not None:
-        write_text(Path(outdir) / net_file, hunt.one_piece.to_json())
+        write_text(Path(outdir) / net_file, net_text(hunt.one_piece))
     if topo.kind == "manifold":
         found = unzip(g, timeout=settings.timeout)
         record["unzip"] = found.outcome
@@ -105,7 +128,7 @@ def census_shape(shape_id: str, cells: Any, outdir: str | Path | None, settings:
         if found.net is not None:
             record["unzip_path"] = [list(p) for p in found.path]
             if outdir is not None:
-                write_text(Path(outdir) / unzip_file, found.net.to_json())
+                write_text(Path(outdir) / unzip_file, net_text(found.net))
         if found.certificate is not None:
             record["certificate"] = found.certificate
         if found.why:
@@ -124,7 +147,7 @@ def census_task(task: CensusTask) -> tuple[list[dict[str, Any]], str]:
     """Census every shape of a task; return the records and the worker's name."""
     import socket
 
-    from voxfab.errors import VoxfabError
+    from voxfab.errors import CancelledError, VoxfabError
 
     try:
         from distributed import get_worker
@@ -136,6 +159,8 @@ def census_task(task: CensusTask) -> tuple[list[dict[str, Any]], str]:
     for shape_id, _, cells in task.shapes:
         try:
             out.append(census_shape(shape_id, cells, task.outdir, task.settings))
+        except CancelledError:
+            raise  # an interrupted search is no answer: the shape stays to do
         except VoxfabError as exc:  # a shape the searches refuse is recorded, never a lost chunk
             out.append({"id": shape_id, "n": len(cells), "cells": [list(p) for p in cells], "error":
                         " ".join(str(exc).split())})

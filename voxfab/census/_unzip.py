@@ -118,6 +118,7 @@ def unzip(grid: npt.ArrayLike, *, timeout: float = 10.0) -> Unzipping:
         surface_edges,
         tree_path,
     )
+    from voxfab.unfold._exact import Undecided
     from voxfab.unfold._layout import build_net, count_without_tab_room
 
     from ._topology import topology
@@ -143,9 +144,14 @@ def unzip(grid: npt.ArrayLike, *, timeout: float = 10.0) -> Unzipping:
     corner = np.bincount(sg.vertex.ravel()) != 4  # squares round each vertex: 4 at a flat one
     m, cut = path_model(sg, faces, edges, optional=~corner)  # the path ends at corners, may pass flat vertices
     nogoods: list[list[int]] = []
-    for path in short_overlaps(sg, faces, edges, _SHORT_PATH, deadline):
-        m.add_bool_or([lit for i in path for lit in cut[i]])
-        nogoods.append(list(path))
+    try:
+        for path in short_overlaps(sg, faces, edges, _SHORT_PATH, deadline):
+            m.add_bool_or([lit for i in path for lit in cut[i]])
+            nogoods.append(list(path))
+    except Undecided:  # the time ran out before the search began: undecided, like any search out of time
+        return Unzipping("undecided", None, (), None,
+                         f"undecided: the unzipping search ran out of time while it ruled out the short overlaps "
+                         f"of the {f}-square surface; raise the timeout")
     slit_rules: list[tuple[list[int], int]] = []
 
     def refuse(values: list[bool]) -> list[list]:

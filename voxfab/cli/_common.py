@@ -32,7 +32,24 @@ def path_argument(text: str) -> Path:
 def add_shape_argument(parser: argparse.ArgumentParser) -> None:
     """Add the SHAPE positional (a file or a repository name) and ``--repo``."""
     parser.add_argument("shape", metavar="SHAPE", help="a shape file, or a repository name such as 00797.001")
+    add_frame_option(parser)
+    parser.add_argument("--join", action="store_true",
+                        help="join parts that touch only by edges or corners (voxel art) into one piece, adding "
+                             "the fewest voxels found, each in a neighbour's colour; says where")
     add_repository_option(parser)
+
+
+def add_frame_option(parser: argparse.ArgumentParser) -> None:
+    """Add ``--frame K``: the animation frame of a ``.vox`` to read."""
+    from voxfab.cli._options import integer_argument
+
+    parser.add_argument("--frame", type=integer_argument, default=None, metavar="K",
+                        help="for an animated .vox: the frame to read, from 1 (default the first)")
+
+
+def reader_options(args: argparse.Namespace) -> dict[str, Any]:
+    """The reader options the command line gave (only those given, so other formats are not refused)."""
+    return {} if getattr(args, "frame", None) is None else {"frame": args.frame}
 
 
 def add_repository_option(parser: argparse.ArgumentParser) -> None:
@@ -118,9 +135,27 @@ def load_command_shape(args: argparse.Namespace, *, pitch: float | None = None) 
     """
     from voxfab.repo import load_shape
 
-    shape, name, notes, scaled = load_shape(args.shape, args.repo, pitch=pitch)
+    shape, name, notes, scaled = load_shape(args.shape, args.repo, pitch=pitch, **reader_options(args))
+    shape = joined_if_asked(args, shape, notes)
     print_notes(notes)
     return shape, name or Path(args.shape).stem, scaled
+
+
+def joined_if_asked(args: argparse.Namespace, shape: VoxelShape, notes: list[str]) -> VoxelShape:
+    """The shape joined into one piece when ``--join`` was given, with a note per join added to ``notes``."""
+    if not getattr(args, "join", False):
+        return shape
+    joined, joins = shape.joined()
+    notes += [join.describe() for join in joins] or ["--join: the shape is one piece already"]
+    return joined
+
+
+def print_scale_note(args: argparse.Namespace, scaled: bool) -> None:
+    """After an object whose size comes from the pitch (a print, plates) was made from a shape
+    with no scale, say so in one line, and how to give it one."""
+    if not scaled:
+        print_notes([f"{args.shape} holds no scale: made at 1 mm per voxel (give --pitch MM, or the shape.npz "
+                     "a build wrote, which keeps its pitch)"])
 
 
 def print_warnings(warnings: Sequence[str], *, strict: bool = False) -> int:

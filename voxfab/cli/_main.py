@@ -50,13 +50,21 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"voxfab: error: {where}{message} (see {self.prog} --help)\n")
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """Return the argument parser with every available subcommand."""
+def build_parser(only: str | None = None) -> argparse.ArgumentParser:
+    """Return the argument parser with every available subcommand.
+
+    With ``only`` (a command name, or ``""`` for none), only that command's module is imported and its
+    arguments added; the others are bare names, so a command loads what it runs and
+    no other command's options (their classes pull in the plates, the pictures, the census).
+    """
     parser = _Parser(prog="voxfab", description="Fabrication CAD for voxel shapes.")
     parser.add_argument("--version", action="version", version=f"voxfab {__version__}")
     parser.add_argument("--debug", action="store_true", help="show tracebacks on errors")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     for name, module_name in COMMANDS.items():
+        if only is not None and name != only:
+            sub.add_parser(name)
+            continue
         try:
             module = importlib.import_module(module_name)
         except ModuleNotFoundError as exc:
@@ -69,6 +77,22 @@ def build_parser() -> argparse.ArgumentParser:
         module.add_arguments(p)
         p.set_defaults(_run=module.run)
     return parser
+
+
+def _command_named(argv: Sequence[str]) -> str | None:
+    """The command ``argv`` runs: None for every command (``voxfab --help`` lists them), ``""`` for none.
+
+    voxfab's own options (``--debug``, ``--version``) take no value, so the first word
+    that is not an option is the command.
+    """
+    for arg in argv:
+        if arg == "--version":
+            return ""
+        if arg in ("-h", "--help"):
+            return None
+        if not arg.startswith("-"):
+            return arg if arg in COMMANDS else None
+    return None
 
 
 def _exit_code(exc: VoxfabError) -> int:
@@ -160,8 +184,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     """
     from voxfab._shared import progress
 
-    parser = build_parser()
     argv = _joined_negative_views(sys.argv[1:] if argv is None else list(argv))
+    parser = build_parser(_command_named(argv))
     for arg in argv:
         # argparse (3.11) turns the value of "--opt=--" into [] and skips its type check.
         if arg.startswith("-") and arg.endswith("=--"):

@@ -18,17 +18,23 @@ T = TypeVar("T")
 _METAVARS = {"mm": "MM", "s": "S", "px": "PX", "voxels": "N", "degrees": "DEG", "mm/voxel": "MM"}
 
 
-def _float(text: str) -> float:
-    """A float from the command line; ``nan`` and ``inf`` pass to the option check."""
+def number_argument(text: str) -> float:
+    """An argparse ``type``: a number in ASCII digits (:func:`voxfab._shared.numbers.parse_float`);
+    ``nan`` and ``inf`` pass to the option check."""
+    from voxfab._shared.numbers import parse_float
+
     try:
-        return float(text)
+        return parse_float(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected a number, got {text[:80]!r}") from None
 
 
-def _int(text: str) -> int:
+def integer_argument(text: str) -> int:
+    """An argparse ``type``: a whole number in ASCII digits (:func:`voxfab._shared.numbers.parse_int`)."""
+    from voxfab._shared.numbers import parse_int
+
     try:
-        return int(text)
+        return parse_int(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected an integer, got {text[:80]!r}") from None
 
@@ -74,9 +80,9 @@ def add_option_arguments(
             if spec.choices is not None and spec.kind is str:
                 kw["choices"] = spec.choices
             elif spec.kind is float:
-                kw["type"] = _float
+                kw["type"] = number_argument
             elif spec.kind is int:
-                kw["type"] = _int
+                kw["type"] = integer_argument
             if spec.kind is tuple:
                 kw["nargs"] = "+"
             kw["metavar"] = spec.metavar or _METAVARS.get(spec.unit) or ("N" if spec.kind is int else "TEXT")

@@ -7,6 +7,7 @@ import sys
 from pathlib import Path
 
 from voxfab.cli._common import add_repository_option, path_argument
+from voxfab.cli._options import integer_argument, number_argument
 
 HELP = "build the outputs of many repository shapes on Dask workers (local or a cluster), with an index"
 
@@ -18,13 +19,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("-o", "--output", type=path_argument, required=True, metavar="DIR",
                         help="batch folder: DIR/<name>/ per shape, DIR/batch.json, DIR/index.html")
     parser.add_argument("--names", metavar="A:B", help="the shapes named A to B (inclusive), e.g. 00100.001:00200.999")
-    parser.add_argument("--limit", type=int, metavar="N", help="the first N selected shapes in name order")
+    parser.add_argument("--limit", type=integer_argument, metavar="N", help="the first N selected shapes in name order")
     where = parser.add_mutually_exclusive_group()
     where.add_argument("--scheduler", metavar="ADDRESS",
                        help="a running Dask scheduler, e.g. tcp://host:8786 (its workers must see DIR)")
-    where.add_argument("--workers", type=int, default=2, metavar="N",
+    where.add_argument("--workers", type=integer_argument, default=2, metavar="N",
                        help="worker processes of the local cluster (default 2)")
-    parser.add_argument("--connect-timeout", type=float, default=30.0, metavar="S",
+    parser.add_argument("--connect-timeout", type=number_argument, default=30.0, metavar="S",
                         help="seconds to wait for the scheduler and its first worker (default 30)")
     parser.add_argument("--dashboard", default=":0", metavar="[HOST]:PORT",
                         help="local cluster dashboard address (default :0, a free port; needs bokeh)")

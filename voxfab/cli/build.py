@@ -44,8 +44,11 @@ def run(args: argparse.Namespace) -> int:
         print(f"{folder}: {len(manifest['files'])} files")
         mesh_report = folder / "mesh.json"
         if "mesh" in manifest["outputs"] and mesh_report.exists():
-            from voxfab.fabricate.mesh import estimate_line
+            from voxfab.fabricate.mesh import estimate_line, filaments_line
 
-            print(f"  print: {estimate_line(json.loads(mesh_report.read_text()))}")
+            figures = json.loads(mesh_report.read_text())
+            print(f"  print: {estimate_line(figures)}")
+            if "colours" in figures:
+                print(f"  colours: {filaments_line(figures['colours'])}")
         warnings += [f"{recipe.name}: {w}" for w in manifest["warnings"]]
     return print_warnings(warnings, strict=args.strict)

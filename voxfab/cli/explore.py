@@ -5,12 +5,13 @@ from __future__ import annotations
 import argparse
 
 from voxfab.cli._common import add_repository_option, open_repository_for_writing
+from voxfab.cli._options import integer_argument
 
 HELP = "generate N new well-formed shapes (distinct up to the 48 cube symmetries) into the repository"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--count", type=int, required=True, metavar="N", help="new shapes to store")
+    parser.add_argument("--count", type=integer_argument, required=True, metavar="N", help="new shapes to store")
     from voxfab._shared.options import SeedOptions
     from voxfab.cli._options import add_option_arguments
     from voxfab.digitize import random_makers
@@ -23,7 +24,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--volume", metavar="MIN:MAX",
                         help="keep volumes in MIN..MAX (inclusive); growth aims inside it (default: growth aims "
                              "at 25..625, the makers' shapes keep any volume)")
-    parser.add_argument("--max-attempts", type=int, metavar="N",
+    parser.add_argument("--max-attempts", type=integer_argument, metavar="N",
                         help="give up after N candidates (default max(2000, 50 x count))")
     add_repository_option(parser)
 

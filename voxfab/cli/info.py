@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from ._common import add_shape_argument, print_json, print_notes
+from ._common import add_shape_argument, joined_if_asked, print_json, print_notes, reader_options
 
 HELP = "show volume, extents, components, well-formedness and repository name of a shape"
 
@@ -26,6 +26,7 @@ def shape_info(shape: Any) -> dict[str, Any]:
         "components": shape.components,
         "cavities": cavity_count(shape.grid),
         "surface_faces": shape.exposed_faces,
+        "colours": 0 if shape.colours is None else shape.colours.count,
         "well_formed": shape.well_formed,
         "reasons": shape.reasons,
     }
@@ -37,13 +38,14 @@ def _repository_name(args: argparse.Namespace, shape: Any) -> str | None:
     from voxfab.repo import Repository
 
     with Repository(args.repo, create=False) as repo:
-        return repo.find(shape.grid)
+        return repo.find(shape)
 
 
 def run(args: argparse.Namespace) -> int:
     from voxfab.repo import load_shape
 
-    shape, name, notes, _ = load_shape(args.shape, args.repo)
+    shape, name, notes, _ = load_shape(args.shape, args.repo, **reader_options(args))
+    shape = joined_if_asked(args, shape, notes)
     print_notes(notes)
     info = shape_info(shape)
     info["name"] = name or (_repository_name(args, shape) if shape.well_formed else None)

@@ -1,4 +1,4 @@
-"""``voxfab mesh``: a checked, print-ready solid as 3MF, STL, OBJ or GLB."""
+"""``voxfab mesh``: a checked, print-ready solid as 3MF, STL, OBJ, GLB or PLY, in the shape's colours."""
 
 from __future__ import annotations
 
@@ -11,11 +11,13 @@ from ._common import (
     add_strict_option,
     load_command_shape,
     print_json,
+    print_notes,
+    print_scale_note,
     print_warnings,
     shape_pitch,
 )
 
-HELP = "write a print-ready solid (3MF, STL, OBJ or GLB), checked edge by edge"
+HELP = "write a print-ready solid (3MF, STL, OBJ, GLB or PLY), checked edge by edge, in the shape's colours"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -25,7 +27,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
     add_shape_argument(parser)
     parser.add_argument("-o", "--output", type=Path, required=True, metavar="OUT",
-                        help="output file: .3mf (default choice for slicers), .stl, .obj or .glb")
+                        help="output file: .3mf (default choice for slicers, in colour), .stl (one colour), "
+                        ".obj (with a .mtl of its colours), .glb or .ply")
     add_pitch_option(parser)
     add_option_arguments(parser, MeshOptions, exclude=("label",))
     parser.add_argument("--label", nargs="?", const="{name}", default=None, metavar="TEXT",
@@ -37,7 +40,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from voxfab._shared.atomic import check_output
     from voxfab.errors import InvalidShapeError
-    from voxfab.fabricate.mesh import MeshOptions, estimate_line, fabricate_mesh, format_for
+    from voxfab.fabricate.mesh import MeshOptions, estimate_line, fabricate_mesh, filaments_line, format_for
 
     from ._options import options_from_args
 
@@ -50,7 +53,7 @@ def run(args: argparse.Namespace) -> int:
         from voxfab._shared.deps import require_extra
 
         require_extra("cad", "--label (an engraved label)")
-    shape, name, _ = load_command_shape(args, pitch=shape_pitch(args))
+    shape, name, scaled = load_command_shape(args, pitch=shape_pitch(args))
     made = fabricate_mesh(shape, options, args.output, name=name)
     info = made.report
     if args.json:
@@ -62,4 +65,8 @@ def run(args: argparse.Namespace) -> int:
             f"{size} mm, {info['volume_mm3']:g} mm³, {info['bridges']} bridge(s)"
         )
         print(f"  print: {estimate_line(info)}")
+        if "colours" in info:
+            print(f"  colours: {filaments_line(info['colours'])}")
+    print_notes(list(info.get("notes", [])))
+    print_scale_note(args, scaled or options.size is not None)
     return print_warnings(made.warnings, strict=args.strict)

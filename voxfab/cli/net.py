@@ -71,7 +71,11 @@ def run(args: argparse.Namespace) -> int:
 
     seed = options_from_args(SeedOptions, args).seed
     search = options_from_args(netdraw.NetOptions, args)
-    netdraw.check_request(search, args.output, box=args.fit is not None)  # before loading the shape
+    from voxfab._shared.options import option_specs
+
+    given = [s.name for s in option_specs(netdraw.DrawingOptions) if s.cli and getattr(args, s.name, None) is not None]
+    # before loading the shape; every drawing option given must be read by an output
+    netdraw.check_request(search, args.output, box=args.fit is not None, drawing_given=given)
     # The paper scale: --face-size, else the shape's pitch (--pitch or the file's own); a shape
     # with neither is drawn at the largest face size that puts the net on the sheet (None).
     pitch = shape_pitch(args)
@@ -81,7 +85,7 @@ def run(args: argparse.Namespace) -> int:
     if face_size is None and scaled:
         face_size = shape.pitch
         drawing = drawing.replace(pitch=face_size)
-    made = netdraw.net_files(shape.grid, search, drawing, args.output, title=title,
+    made = netdraw.net_files(shape, search, drawing, args.output, title=title,
                              seed=seed, constraints=_constraints(args.constraints),
                              box=netdraw.parse_box(args.fit, face_size))
     print_notes(made.notes)

@@ -7,6 +7,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from voxfab.cli._common import add_repository_option, load_command_shape, print_json
+from voxfab.cli._options import integer_argument
 from voxfab.errors import InvalidShapeError, UnknownFormatError
 
 if TYPE_CHECKING:
@@ -15,7 +16,7 @@ if TYPE_CHECKING:
 
 HELP = "draw a shape: 3D view, turntable GIF, slice sheet, net, triptych, or a repository contact sheet"
 
-_VIEWS = ("iso", "x", "-x", "y", "-y", "z", "-z")
+_VIEWS = ("iso", "x", "-x", "y", "-y", "z", "-z", "profile")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -35,12 +36,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     mode.add_argument("--contact-sheet", action="store_true",
                       help="every shape of the repository (--repo) by volume, with names")
     mode.add_argument("--fold", type=Path, metavar="NET.json",
-                      help="a GIF of this net folding up from the flat sheet to the shape (no SHAPE needed)")
-    parser.add_argument("--steps", type=int, default=36, metavar="N",
+                      help="a GIF of this net folding up from the flat sheet to the shape (SHAPE, when given, "
+                           "colours its faces)")
+    parser.add_argument("--steps", type=integer_argument, default=36, metavar="N",
                         help="frames of the --fold animation, 2 to 240 (default 36)")
     parser.add_argument("--net", type=Path, metavar="NET.json",
                         help="a voxfab-net/1 file: draw it (or use it in --triptych) instead of unfolding")
-    parser.add_argument("--view", choices=_VIEWS, default="iso", help="3D view (default iso)")
+    parser.add_argument("--view", choices=_VIEWS, default="iso", help="3D view (default iso; profile: turned towards the side whose silhouette says the most)")
     add_option_arguments(parser, SeedOptions)  # the triptych's net
     add_option_arguments(parser, PictureOptions)
 
@@ -91,13 +93,15 @@ def _read_net(path: Path) -> Net:
 
 def _fold(args: argparse.Namespace, out: Path, size: int | None) -> int:
     from voxfab.render import save_fold_animation
+    from voxfab.render._net import unfolded_shape
 
-    if args.shape is not None:
-        raise InvalidShapeError("render --fold: takes no SHAPE, only the net file")
     if out.suffix.lower() != ".gif":
         raise UnknownFormatError(f"{out}: a fold animation is written as .gif, not {out.suffix.lower() or 'no extension'!r}")
     net = _read_net(args.fold)
-    frames = save_fold_animation(net, out, steps=args.steps, view=args.view, size=size or 400)
+    colours = None
+    if args.shape is not None:  # the shape the net unfolds: its faces take their voxels' colours
+        colours = unfolded_shape(load_command_shape(args)[0], net).colours
+    frames = save_fold_animation(net, out, steps=args.steps, view=args.view, size=size or 400, colours=colours)
     print_json({"output": str(out), "kind": "fold", "faces": net.face_count, "frames": frames, "view": args.view})
     return 0
 

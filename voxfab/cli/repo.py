@@ -7,6 +7,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from voxfab.cli._common import add_repository_option, open_repository_for_writing, print_json, print_notes
+from voxfab.cli._options import integer_argument
 
 if TYPE_CHECKING:
     from voxfab.repo import Repository
@@ -36,7 +37,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     p = _subparser(sub, "list", "list the stored shapes by volume, then the drafts")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--volume", metavar="MIN:MAX", help="only volumes MIN..MAX (inclusive; MIN: or :MAX open)")
-    p.add_argument("--limit", type=int, metavar="N", help="at most N shapes (one page)")
+    p.add_argument("--limit", type=integer_argument, metavar="N", help="at most N shapes (one page)")
     p.add_argument("--after", metavar="NAME",
                    help="start after this name (the last of the previous page; JSON gives it as 'next_after')")
     p.add_argument("--no-drafts", action="store_true", help="leave the drafts out")
@@ -47,7 +48,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     p = _subparser(sub, "stats", "count the stored shapes per volume")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--volume", metavar="MIN:MAX", help="only volumes MIN..MAX (inclusive)")
-    p.add_argument("--bins", type=int, metavar="N",
+    p.add_argument("--bins", type=integer_argument, metavar="N",
                    help="group the volumes into at most N ranges of a round width instead of one line per volume")
 
     p = _subparser(sub, "show", "show what is stored about one shape")
@@ -119,7 +120,7 @@ def _add(args: argparse.Namespace) -> int:
                     raise RepositoryError(
                         f"{path}: not well formed: {'; '.join(reasons)} (use --draft to store it as a draft)"
                     )
-            added = repo.add(result.grid, symmetric=args.symmetric, draft=args.draft, meta=meta)
+            added = repo.add(result.shape(), symmetric=args.symmetric, draft=args.draft, meta=meta)
             print(f"{added.name} {'created' if added.created else 'exists'}", flush=True)
             if added.reasons:
                 print_notes([f"{path}: stored as a draft: {'; '.join(added.reasons)}"])

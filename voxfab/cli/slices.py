@@ -11,6 +11,7 @@ from voxfab.cli._common import (
     add_strict_option,
     load_command_shape,
     print_json,
+    print_scale_note,
     print_warnings,
     shape_pitch,
 )
@@ -39,7 +40,8 @@ def run(args: argparse.Namespace) -> int:
 
     options = options_from_args(PlateOptions, args)
     check_output(args.output, folder=True, marker="plates.json")  # an existing folder, before the work
-    shape, title, _ = load_command_shape(args, pitch=shape_pitch(args))
+    shape, title, scaled = load_command_shape(args, pitch=shape_pitch(args))
     made = fabricate_plates(shape, options, args.output, name=title)
     print_json({**made.report, "files": [str(args.output / f.path) for f in made.files]})
+    print_scale_note(args, scaled)
     return print_warnings(made.warnings, strict=args.strict)

@@ -7,6 +7,7 @@ import sys
 from pathlib import Path
 
 from ._common import DEFAULT_REPOSITORY, add_pitch_option, check_repository_path
+from ._options import integer_argument
 
 HELP = "open the studio: draw, edit and keep shapes, choose nets, download files (local web app)"
 
@@ -19,7 +20,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_pitch_option(parser)
     parser.add_argument("--host", default="127.0.0.1",
                         help="address to listen on (default 127.0.0.1: this computer only)")
-    parser.add_argument("--port", type=int, default=8765, help="port (default 8765)")
+    parser.add_argument("--port", type=integer_argument, default=8765, help="port (default 8765)")
     parser.add_argument("--repo", type=Path, default=DEFAULT_REPOSITORY, metavar="PATH",
                         help=f"repository database (default {DEFAULT_REPOSITORY})")
     parser.add_argument("--no-browser", action="store_true", help="do not open a browser")

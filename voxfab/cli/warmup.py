@@ -11,8 +11,10 @@ HELP = "compile the numba kernels now (after an install), so the first build doe
 
 
 def _positive(text: str) -> int:
+    from voxfab._shared.numbers import parse_int
+
     try:
-        value = int(text)
+        value = parse_int(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected a whole number, got {text[:80]!r}") from None
     if value < 1:

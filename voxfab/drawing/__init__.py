@@ -25,6 +25,7 @@ from pathlib import Path
 
 from voxfab.errors import UnknownFormatError
 
+from ._cutters import CUTTERS, Cutter, CutterMarks, cutter_area, registration_marks
 from ._font import text_polylines, text_width
 from ._layers import (
     DASH_PATTERNS,
@@ -38,16 +39,23 @@ from ._layers import (
     parse_colors,
 )
 from ._legend import Legend
-from ._model import Drawing, Fill, Page, PlacedImage
+from ._model import HALO, Drawing, Fill, Ink, Page, PlacedImage
 from ._polylines import Polylines
 from ._sheets import MAX_SHEET, SHEETS, parse_sheet, sheet_problem
 from .dxf import DEFAULT_DXF_VERSION
 
 __all__ = [
+    "CUTTERS",
+    "Cutter",
+    "CutterMarks",
+    "cutter_area",
+    "registration_marks",
     "DASH_PATTERNS",
     "Drawing",
     "FORMATS",
     "Fill",
+    "HALO",
+    "Ink",
     "HAIRLINE",
     "LAYERS",
     "LAYER_PURPOSES",

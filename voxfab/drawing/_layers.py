@@ -5,7 +5,9 @@ these layers, so a laser operator meets the same names and colours in every
 file.  Colours are pure RGB (laser drivers map them exactly) with the common
 fab-lab meaning: cut red, score blue, engrave black.  The mountain/valley
 folds of a paper net are two scores with their own dash styles, so printed
-sheets read like an origami diagram and laser jobs can split them.
+sheets read like an origami diagram, and colours of their own (magenta, green):
+every layer has a colour, and an AutoCAD Color Index, no other layer has, so a
+laser program that maps its jobs by colour never merges two kinds of line.
 """
 
 from __future__ import annotations
@@ -86,7 +88,7 @@ LAYERS: dict[str, LayerStyle] = {
     "GRID": LayerStyle("#b0b0b0", LineStyle.DOTTED, 0.15),
     "SCORE": LayerStyle("#0000ff", LineStyle.SOLID, 0.2),
     "VALLEY": LayerStyle("#00ff00", LineStyle.DASHDOT, 0.2),
-    "MOUNTAIN": LayerStyle("#0000ff", LineStyle.DASHED, 0.2),
+    "MOUNTAIN": LayerStyle("#ff00ff", LineStyle.DASHED, 0.2),
     "CUT": LayerStyle("#ff0000", LineStyle.SOLID, 0.2),
 }
 

@@ -26,16 +26,27 @@ class Fill:
         so holes are rings inside rings.
     color : str
         ``#rrggbb``.
+    nonzero : bool
+        Fill by the nonzero winding rule (overlapping counter-clockwise rings
+        make one area) instead of even-odd.
+    name : str
+        An id for the area (SVG ``id``), or ``""``.
+    colors, names : tuple of str
+        When given, one per ring: each ring is an area of its own in its own colour,
+        with its own id (the faces of a coloured net, written in one pass).
     """
 
     rings: Polylines
     color: str
+    nonzero: bool = False
+    name: str = ""
+    colors: tuple[str, ...] = ()
+    names: tuple[str, ...] = ()
 
     @property
     def rgb(self) -> tuple[int, int, int]:
         """The colour as 0..255 integers."""
-        c = self.color
-        return int(c[1:3], 16), int(c[3:5], 16), int(c[5:7], 16)
+        return _rgb(self.color)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -74,6 +85,50 @@ class PlacedImage:
                    float(height))
 
 
+@dataclasses.dataclass(frozen=True, eq=False)
+class Ink:
+    """Part of a layer printed in a colour of its own over coloured fills (prints only).
+
+    A coloured net prints its folds and labels black on light faces and white on
+    dark ones; the layer keeps every line for DXF and laser files, and the
+    print backends draw the layer's inks instead of the layer.
+
+    Attributes
+    ----------
+    layer : str
+        The layer whose lines these are (its dash style and visible width apply).
+    lines : Polylines
+    color : str
+        ``#rrggbb`` of the lines.
+    halo : str
+        ``#rrggbb`` of a wider stroke drawn under them (a line between two faces
+        stays clear of both), or ``""`` for none.
+    """
+
+    layer: str
+    lines: Polylines
+    color: str
+    halo: str = ""
+
+    @property
+    def rgb(self) -> tuple[int, int, int]:
+        """The colour as 0..255 integers."""
+        return _rgb(self.color)
+
+    @property
+    def halo_rgb(self) -> tuple[int, int, int]:
+        """The halo colour as 0..255 integers."""
+        return _rgb(self.halo)
+
+
+def _rgb(c: str) -> tuple[int, int, int]:
+    return int(c[1:3], 16), int(c[3:5], 16), int(c[5:7], 16)
+
+
+#: Width of an ink's halo beyond the line on each side, mm.
+HALO = 0.25
+
+
 def _no_circles() -> npt.NDArray[np.float64]:
     return np.zeros((0, 3))
 
@@ -99,6 +154,15 @@ class Page:
     images : tuple of PlacedImage
         Raster pictures painted first, under fills and lines (PDF, PNG and
         SVG; DXF, for cutting, leaves them out).
+    inks : tuple of Ink
+        Layers printed in colours of their own (PDF, PNG and SVG draw a layer's
+        inks instead of the layer; DXF keeps the layer).
+    marks : Polylines
+        Registration marks of a print-then-cut cutter: closed rings printed
+        solid black, the same in the print and the cut file (DXF leaves them out).
+    artwork : bool
+        The fills are the picture itself (a coloured net): SVG writes them in
+        laser files too.
     title : str
         Page title (SVG ``<title>``).
     """
@@ -110,11 +174,16 @@ class Page:
     fills: tuple[Fill, ...] = ()
     images: tuple[PlacedImage, ...] = ()
     title: str = ""
+    inks: tuple[Ink, ...] = ()
+    marks: Polylines = dataclasses.field(default_factory=Polylines.empty)
+    artwork: bool = False
 
     def __post_init__(self) -> None:
-        for name in list(self.layers) + list(self.circles):
+        for name in list(self.layers) + list(self.circles) + [i.layer for i in self.inks]:
             if name not in LAYERS:
                 raise InvalidShapeError(f"drawing: unknown layer {name!r}; expected one of {', '.join(LAYERS)}")
+        # Every writer draws a page's lines: a zero-length segment dropped here is dropped from every file.
+        object.__setattr__(self, "layers", {k: v.without_repeats() for k, v in self.layers.items()})
 
     def lines(self, layer: str) -> Polylines:
         """The polylines of ``layer`` (empty when it has none)."""
@@ -152,9 +221,16 @@ class Page:
             self, width=float(width), height=float(height),
             layers={k: v.translated(d) for k, v in self.layers.items()},
             circles={k: v + (d[0], d[1], 0.0) for k, v in self.circles.items()},
-            fills=tuple(Fill(f.rings.translated(d), f.color) for f in self.fills),
+            fills=tuple(dataclasses.replace(f, rings=f.rings.translated(d)) for f in self.fills),
             images=tuple(dataclasses.replace(i, x=i.x + float(d[0]), y=i.y + float(d[1])) for i in self.images),
+            inks=tuple(dataclasses.replace(i, lines=i.lines.translated(d)) for i in self.inks),
+            marks=self.marks.translated(d),
         )
+
+    def inks_of(self, layer: str) -> tuple[Ink, ...] | None:
+        """The inks ``layer`` is printed in, or None when it prints in its own colour."""
+        found = tuple(i for i in self.inks if i.layer == layer)
+        return found or None
 
     def with_layers(self, extra: Mapping[str, Polylines]) -> Page:
         """A copy with ``extra`` polylines appended to their layers."""

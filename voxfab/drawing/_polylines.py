@@ -10,6 +10,9 @@ import dataclasses
 import numpy as np
 import numpy.typing as npt
 
+#: Decimals of the coarsest writer (SVG): vertices printed alike at this rounding are one vertex.
+WRITTEN_DECIMALS = 3
+
 
 @dataclasses.dataclass(frozen=True, eq=False)
 class Polylines:
@@ -66,6 +69,13 @@ class Polylines:
         offs = np.concatenate([[0]] + [p.offsets[1:] + s for p, s in zip(parts, shift)])
         return cls(pts, offs, np.concatenate([p.closed for p in parts]))
 
+    def select(self, keep: npt.ArrayLike) -> Polylines:
+        """The polylines where ``keep`` (S,) bool is True, in order."""
+        keep = np.asarray(keep, dtype=bool)
+        counts = np.diff(self.offsets)
+        return Polylines(self.points[np.repeat(keep, counts)], np.concatenate([[0], np.cumsum(counts[keep])]),
+                         self.closed[keep])
+
     def __len__(self) -> int:
         return int(self.closed.shape[0])
 
@@ -90,6 +100,37 @@ class Polylines:
         """Total length, mm."""
         a, b = self.segments()
         return float(np.linalg.norm(b - a, axis=1).sum())
+
+    def without_repeats(self, decimals: int = WRITTEN_DECIMALS) -> Polylines:
+        """The same polylines without the zero-length segments a writer would print (cutters stall on them).
+
+        A vertex equal to the one before it at ``decimals`` is dropped, and so is the last
+        vertex of a closed polyline equal to its first; a polyline left with one vertex
+        (a point) is dropped.
+        """
+        if not len(self):
+            return self
+        if not self.points.shape[0]:
+            return Polylines.empty()
+        q = np.round(self.points, decimals)
+        counts = np.diff(self.offsets)
+        owner = np.repeat(np.arange(len(self)), counts)
+        keep = np.ones(q.shape[0], dtype=bool)
+        keep[1:] = ~(np.all(q[1:] == q[:-1], axis=1) & (owner[1:] == owner[:-1]))
+        # a closed polyline's last kept vertex is the first of its run: compare it with the first vertex
+        kept_idx = np.flatnonzero(keep)
+        last = kept_idx[np.searchsorted(kept_idx, self.offsets[1:], side="left") - 1]
+        first = self.offsets[:-1]
+        wrap = self.closed & (counts > 1) & (last != first)
+        wrap[wrap] = np.all(q[last[wrap]] == q[first[wrap]], axis=1)
+        keep[last[wrap]] = False
+        kept = np.bincount(owner[keep], minlength=len(self))
+        if keep.all() and np.all(kept >= 2):
+            return self
+        keep &= (kept >= 2)[owner]
+        lines = kept[kept >= 2]
+        return Polylines(self.points[keep], np.concatenate([[0], np.cumsum(lines)]).astype(np.int64),
+                         self.closed[kept >= 2])
 
     def translated(self, shift: npt.ArrayLike) -> Polylines:
         """The same polylines moved by ``shift`` (2,)."""

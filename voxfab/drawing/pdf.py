@@ -21,7 +21,7 @@ from voxfab._shared.atomic import write_bytes
 from ._format import numbers, polyline_text
 from ._layers import DASH_PATTERNS, LAYERS, LayerStyle, Lines
 from ._legend import Legend, legend_layers
-from ._model import Drawing, Page, PlacedImage
+from ._model import HALO, Drawing, Page, PlacedImage
 from ._polylines import Polylines
 
 __all__ = ["MM", "pdf_document", "page_content", "write_pdf"]
@@ -53,6 +53,10 @@ def _circle_ops(circles: np.ndarray) -> str:
     return "".join(out)
 
 
+def _hex_rgb(c: str) -> tuple[int, int, int]:
+    return int(c[1:3], 16), int(c[3:5], 16), int(c[5:7], 16)
+
+
 def _rgb(rgb: tuple[int, int, int]) -> str:
     return " ".join(numbers([c / 255.0 for c in rgb], decimals=3))
 
@@ -66,18 +70,33 @@ def page_content(page: Page, *, styles: Mapping[str, LayerStyle] | None = None, 
         w, h, x, y = numbers([image.width, image.height, image.x, image.y])
         out.append(f"q {w} 0 0 {h} {x} {y} cm /Im{i} Do Q\n")
     for fill in page.fills:
-        if len(fill.rings):
-            out.append(f"{_rgb(fill.rgb)} rg\n{_path_ops(fill.rings)}f*\n")
+        if len(fill.rings) and fill.colors:  # each ring in its own colour: one path per colour
+            colors = np.array(fill.colors)
+            for c in dict.fromkeys(fill.colors):
+                rings = fill.rings.select(colors == c)
+                out.append(f"{_rgb(_hex_rgb(c))} rg\n{_path_ops(rings)}{'f' if fill.nonzero else 'f*'}\n")
+        elif len(fill.rings):
+            out.append(f"{_rgb(fill.rgb)} rg\n{_path_ops(fill.rings)}{'f' if fill.nonzero else 'f*'}\n")
     for name in LAYERS:
-        lines = Polylines.concat([page.lines(name), extra.get(name, Polylines.empty())])
+        st = st_map[name]
+        dash = " ".join(numbers(DASH_PATTERNS[st.style]))
+        inks = page.inks_of(name)
+        w = st.line_width(Lines.PREVIEW)
+        # Every halo first, so no halo covers another ink's line where two meet.
+        ops = [_path_ops(i.lines) for i in inks or ()]  # each ink's path, stroked twice with a halo
+        strokes = [(i.halo_rgb, w + 2 * HALO, o) for i, o in zip(inks or (), ops) if i.halo]
+        for rgb, width, path in strokes + [(i.rgb, w, o) for i, o in zip(inks or (), ops)]:
+            out.append(f"{_rgb(rgb)} RG {numbers([width])[0]} w [{dash}] 0 d\n{path}S\n")
+        own = Polylines.empty() if inks else page.lines(name)
+        lines = Polylines.concat([own, extra.get(name, Polylines.empty())])
         circles = page.circles_of(name)
         if not len(lines) and not circles.shape[0]:
             continue
-        st = st_map[name]
-        dash = " ".join(numbers(DASH_PATTERNS[st.style]))
         width = numbers([st.line_width(Lines.PREVIEW)])[0]
         out.append(f"{_rgb(st.rgb)} RG {width} w [{dash}] 0 d\n")
         out.append(_path_ops(lines) + _circle_ops(circles) + "S\n")
+    if len(page.marks):
+        out.append(f"0 0 0 rg\n{_path_ops(page.marks)}f*\n")
     out.append("Q\n")
     return "".join(out).encode("ascii")
 

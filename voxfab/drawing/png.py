@@ -19,7 +19,7 @@ from voxfab._shared.atomic import write_bytes
 
 from ._layers import DASH_PATTERNS, LAYERS, LayerStyle, Lines
 from ._legend import Legend, legend_layers
-from ._model import Page, PlacedImage
+from ._model import HALO, Fill, Page, PlacedImage
 from ._polylines import Polylines
 
 if TYPE_CHECKING:
@@ -55,10 +55,14 @@ def dashes(lines: Polylines, pattern: tuple[float, ...]) -> Polylines:
     return Polylines.from_segments(a[seg] + t0[:, None] * d, a[seg] + t1[:, None] * d)
 
 
-def even_odd_mask(rings: Polylines, width: int, height: int, to_px) -> npt.NDArray[np.bool_]:  # noqa: ANN001
+def even_odd_mask(rings: Polylines, width: int, height: int, to_px, *,  # noqa: ANN001
+                  nonzero: bool = False, origin: tuple[int, int] = (0, 0)) -> npt.NDArray[np.bool_]:
     """``(height, width)`` pixels whose centres lie inside an odd number of ``rings``.
 
-    ``to_px`` maps ``(N, 2)`` mm points to pixel ``(col, row)``.
+    ``to_px`` maps ``(N, 2)`` mm points to pixel ``(col, row)``.  With ``nonzero``,
+    the pixels of nonzero winding number instead (overlapping rings of one
+    orientation make one area).  ``origin`` ``(col, row)``: the mask is the window of
+    that many pixels from there, computed in the page's own pixel coordinates.
     """
     a, b = rings.segments()
     if not a.shape[0]:
@@ -66,18 +70,88 @@ def even_odd_mask(rings: Polylines, width: int, height: int, to_px) -> npt.NDArr
     p, q = to_px(a), to_px(b)
     y0, y1 = np.minimum(p[:, 1], q[:, 1]), np.maximum(p[:, 1], q[:, 1])
     # Rows whose centre (r + 0.5) lies in [y0, y1): each such row crosses the edge once.
-    r0 = np.clip(np.ceil(y0 - 0.5), 0, height).astype(np.int64)
-    r1 = np.clip(np.ceil(y1 - 0.5), 0, height).astype(np.int64)
+    c_lo, r_lo = origin
+    r0 = np.clip(np.ceil(y0 - 0.5), r_lo, r_lo + height).astype(np.int64)
+    r1 = np.clip(np.ceil(y1 - 0.5), r_lo, r_lo + height).astype(np.int64)
     n = r1 - r0
     e = np.repeat(np.arange(a.shape[0]), n)
     row = np.arange(e.size) - np.repeat(np.cumsum(n) - n, n) + r0[e]
     yc = row + 0.5
     t = (yc - p[e, 1]) / (q[e, 1] - p[e, 1])
     xc = p[e, 0] + t * (q[e, 0] - p[e, 0])
-    col = np.clip(np.ceil(xc - 0.5), 0, width).astype(np.int64)
+    col = np.clip(np.ceil(xc - 0.5), c_lo, c_lo + width).astype(np.int64) - c_lo
+    row = row - r_lo
     toggles = np.zeros((height, width + 1), dtype=np.int64)
+    if nonzero:
+        np.add.at(toggles, (row, col), np.sign(q[e, 1] - p[e, 1]).astype(np.int64))
+        return np.cumsum(toggles, axis=1)[:, :width] != 0
     np.add.at(toggles, (row, col), 1)
     return (np.cumsum(toggles, axis=1)[:, :width] % 2).astype(bool)
+
+
+def _paint_convex(pixels: npt.NDArray[np.uint8], rings: Polylines, colors: tuple[str, ...], to_px) -> None:  # noqa: ANN001
+    """Paint convex ``rings``, each in its colour, later rings over earlier ones.
+
+    A row crosses a convex ring at two points at most, so the ring covers the pixels between
+    them: one span per ring and row, found for all rings at once (a net has thousands of faces).
+    The pixels are those :func:`even_odd_mask` gives each ring alone.
+    """
+    h, w = pixels.shape[:2]
+    a, b = rings.segments()
+    if not a.shape[0]:
+        return
+    owner = np.repeat(np.arange(len(rings)), np.diff(rings.offsets))  # closed rings: one edge per vertex
+    p, q = to_px(a), to_px(b)
+    y0, y1 = np.minimum(p[:, 1], q[:, 1]), np.maximum(p[:, 1], q[:, 1])
+    r0 = np.clip(np.ceil(y0 - 0.5), 0, h).astype(np.int64)
+    r1 = np.clip(np.ceil(y1 - 0.5), 0, h).astype(np.int64)
+    n = r1 - r0
+    e = np.repeat(np.arange(a.shape[0]), n)
+    if not e.size:
+        return
+    row = np.arange(e.size) - np.repeat(np.cumsum(n) - n, n) + r0[e]
+    t = (row + 0.5 - p[e, 1]) / (q[e, 1] - p[e, 1])
+    col = np.clip(np.ceil(p[e, 0] + t * (q[e, 0] - p[e, 0]) - 0.5), 0, w).astype(np.int64)
+    ring = owner[e]
+    order = np.lexsort((col, row, ring))
+    ring, row, col = ring[order], row[order], col[order]
+    first = np.flatnonzero(np.r_[True, (ring[1:] != ring[:-1]) | (row[1:] != row[:-1])])
+    last = np.r_[first[1:], ring.size] - 1
+    span_ring, span_row, c0, c1 = ring[first], row[first], col[first], col[last]
+    length = c1 - c0
+    keep = length > 0
+    span_ring, span_row, c0, length = span_ring[keep], span_row[keep], c0[keep], length[keep]
+    pix_row = np.repeat(span_row, length)
+    pix_col = np.arange(pix_row.size) - np.repeat(np.cumsum(length) - length, length) + np.repeat(c0, length)
+    rgb = np.array([[int(c[i:i + 2], 16) for i in (1, 3, 5)] for c in colors], dtype=np.uint8)
+    pixels[pix_row, pix_col] = rgb[np.repeat(span_ring, length)]
+
+
+def _fill(pixels: npt.NDArray[np.uint8], fill: Fill, to_px) -> None:  # noqa: ANN001
+    """Paint ``fill`` on ``pixels``, working only in the box round its rings (a net has a fill per face)."""
+    h, w = pixels.shape[:2]
+    if not len(fill.rings):
+        return
+    px = to_px(fill.rings.points)
+    c0, r0 = (max(int(np.floor(v)) - 1, 0) for v in px.min(axis=0))
+    c1, r1 = (int(np.ceil(v)) + 1 for v in px.max(axis=0))
+    c1, r1 = min(c1, w), min(r1, h)
+    if c1 <= c0 or r1 <= r0:
+        return
+    mask = even_odd_mask(fill.rings, c1 - c0, r1 - r0, to_px, nonzero=fill.nonzero, origin=(c0, r0))
+    pixels[r0:r1, c0:c1][mask] = fill.rgb
+
+
+def _stroke(draw, to_px, lines: Polylines, pattern: tuple[float, ...], rgb: tuple[int, int, int],  # noqa: ANN001
+            px: float) -> None:
+    """Draw ``lines`` (dashed by ``pattern`` in mm, solid when empty) ``px`` pixels wide."""
+    if pattern:
+        lines = dashes(lines, pattern)
+    px_width = max(1, int(round(px)))
+    for pts, closed in zip(lines.lines(), lines.closed.tolist()):
+        pp = to_px(np.concatenate([pts, pts[:1]]) if closed else pts)
+        if pp.shape[0] > 1:
+            draw.line([tuple(v) for v in pp.tolist()], fill=rgb, width=px_width)
 
 
 def _paste(pixels: npt.NDArray[np.uint8], placed: PlacedImage, page_height: float, scale: float) -> None:
@@ -149,7 +223,10 @@ def page_image(page: Page, *, scale: float, styles: Mapping[str, LayerStyle] | N
     for placed in page.images:
         _paste(pixels, placed, page.height, scale)
     for fill in page.fills:
-        pixels[even_odd_mask(fill.rings, w, h, to_px)] = fill.rgb
+        if fill.colors:  # each (convex) ring in its own colour, painted row span by row span
+            _paint_convex(pixels, fill.rings, fill.colors, to_px)
+        else:
+            _fill(pixels, fill, to_px)
     image = Image.fromarray(pixels, "RGB")
     draw = ImageDraw.Draw(image)
     extra = legend_layers(page, legend) if legend else {}
@@ -157,19 +234,29 @@ def page_image(page: Page, *, scale: float, styles: Mapping[str, LayerStyle] | N
         if name in hidden:
             continue
         st = st_map[name]
-        lines = Polylines.concat([page.lines(name), extra.get(name, Polylines.empty())])
-        px_width = max(1, int(round(st.line_width(Lines.PREVIEW) * scale)))
         pattern = DASH_PATTERNS[st.style]
-        if pattern and sum(pattern) * scale >= _MIN_DASH_PX:
-            lines = dashes(lines, pattern)
-        for pts, closed in zip(lines.lines(), lines.closed.tolist()):
-            pp = to_px(np.concatenate([pts, pts[:1]]) if closed else pts)
-            if pp.shape[0] > 1:
-                draw.line([tuple(v) for v in pp.tolist()], fill=st.rgb, width=px_width)
+        if not (pattern and sum(pattern) * scale >= _MIN_DASH_PX):
+            pattern = ()
+        width = st.line_width(Lines.PREVIEW)
+        inks = page.inks_of(name)
+        for ink in inks or ():  # every halo first, so no halo covers another ink's line
+            if ink.halo:
+                _stroke(draw, to_px, ink.lines, pattern, ink.halo_rgb, (width + 2 * HALO) * scale)
+        for ink in inks or ():
+            _stroke(draw, to_px, ink.lines, pattern, ink.rgb, width * scale)
+        own = Polylines.empty() if inks else page.lines(name)
+        _stroke(draw, to_px, Polylines.concat([own, extra.get(name, Polylines.empty())]), pattern, st.rgb,
+                width * scale)
+        px_width = max(1, int(round(st.line_width(Lines.PREVIEW) * scale)))
         for x, y, r in page.circles_of(name).tolist():
             cx, cy = x * scale, (page.height - y) * scale
             draw.ellipse([cx - r * scale, cy - r * scale, cx + r * scale, cy + r * scale], outline=st.rgb,
                          width=px_width)
+    if len(page.marks):
+        marks = even_odd_mask(page.marks, w, h, to_px)
+        out = np.asarray(image).copy()
+        out[marks] = 0
+        image = Image.fromarray(out, "RGB")
     return image
 
 

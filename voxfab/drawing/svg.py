@@ -10,8 +10,8 @@ SVG's y axis points down, so pages are flipped on output.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from html import escape
 from pathlib import Path
-from xml.sax.saxutils import escape
 
 import numpy as np
 
@@ -19,7 +19,7 @@ from voxfab._shared.atomic import write_text
 
 from ._format import numbers, polyline_text
 from ._layers import DASH_PATTERNS, LAYERS, LayerStyle, Lines
-from ._model import Page
+from ._model import HALO, Page
 from ._polylines import Polylines
 
 __all__ = ["page_svg", "write_svg"]
@@ -40,8 +40,15 @@ def _fills(page: Page) -> list[str]:
             continue
         pts = rings.points.copy()
         pts[:, 1] = page.height - pts[:, 1]
+        if fill.colors:  # a path per ring, each in its colour
+            first = [f'<path id="{escape(n)}" fill="{c}" d="M%s,%s' if n else f'<path fill="{c}" d="M%s,%s'
+                     for c, n in zip(fill.colors, fill.names or ("",) * len(fill.colors))]
+            out.append(polyline_text(pts, rings.offsets, first, " L%s,%s", ' Z"/>\n'))
+            continue
         d = polyline_text(pts, rings.offsets, "M%s,%s", " L%s,%s", " Z ")
-        out.append(f'<path fill="{fill.color}" d="{d.rstrip()}"/>\n')
+        name = f' id="{escape(fill.name)}"' if fill.name else ""
+        rule = ' fill-rule="nonzero"' if fill.nonzero else ""
+        out.append(f'<path{name} fill="{fill.color}"{rule} d="{d.rstrip()}"/>\n')
     out.append("</g>\n")
     return out
 
@@ -87,8 +94,8 @@ def page_svg(page: Page, *, styles: Mapping[str, LayerStyle] | None = None, line
         f'width="{w}mm" height="{h}mm" viewBox="0 0 {w} {h}">\n',
     ]
     if page.title:
-        out.append(f"<title>{escape(page.title)}</title>\n")
-    if lines is Lines.PREVIEW:
+        out.append(f"<title>{escape(page.title, quote=False)}</title>\n")
+    if lines is Lines.PREVIEW or page.artwork:
         out += _images(page)
         if page.fills:
             out += _fills(page)
@@ -96,6 +103,22 @@ def page_svg(page: Page, *, styles: Mapping[str, LayerStyle] | None = None, line
         st = st_map[name]
         dash = DASH_PATTERNS[st.style]
         dash_attr = f' stroke-dasharray="{" ".join(numbers(dash))}"' if dash else ""
+        inks = page.inks_of(name)
+        if inks:
+            # Printed art: visible widths whatever the file's lines, a halo under each ink.
+            w = st.line_width(Lines.PREVIEW)
+            paths = [_paths(ink.lines, page.height) for ink in inks]  # each stroked twice with a halo
+            for part, width in (("halo", w + 2 * HALO), ("ink", w)):
+                for i, ink in enumerate(inks):
+                    color = ink.halo if part == "halo" else ink.color
+                    if not color:
+                        continue
+                    out.append(f'<g id="{name}-{part}{i + 1}" fill="none" stroke="{color}" '
+                               f'stroke-width="{numbers([width])[0]}"{dash_attr} stroke-linecap="butt" '
+                               'stroke-linejoin="miter">\n')
+                    out.append(paths[i])
+                    out.append("</g>\n")
+            continue
         width = numbers([st.line_width(lines)])[0]
         out.append(
             f'<g id="{name}" inkscape:groupmode="layer" inkscape:label="{name}" fill="none" '
@@ -107,6 +130,12 @@ def page_svg(page: Page, *, styles: Mapping[str, LayerStyle] | None = None, line
             cx, cy, rr = numbers([x, page.height - y, r], decimals=3)
             out.append(f'<circle cx="{cx}" cy="{cy}" r="{rr}"/>\n')
         out.append("</g>\n")
+    if len(page.marks):
+        pts = page.marks.points.copy()
+        pts[:, 1] = page.height - pts[:, 1]
+        d = polyline_text(pts, page.marks.offsets, "M%s,%s", " L%s,%s", " Z ")
+        out.append('<g id="REGISTRATION" inkscape:groupmode="layer" inkscape:label="REGISTRATION" stroke="none" '
+                   f'fill="#000000" fill-rule="evenodd">\n<path d="{d.rstrip()}"/>\n</g>\n')
     out.append("</svg>\n")
     return "".join(out)
 

@@ -230,11 +230,8 @@ def _run_pictures(shape: Any, options: Any, outdir: Path, *, name: str, seed: in
                   context: BuildContext) -> Artefact:
     render_pictures = resolve(outputs()["pictures"].pipeline)  # render sits above fabricate: named, not imported
 
-    net = context.net
-    if isinstance(net, (list, tuple)):
-        # The pictures draw a net in one piece; for a net in pieces they unfold one of their own.
-        net = net[0] if len(net) == 1 else None
-    return render_pictures(shape, options, outdir, name=name, seed=seed, net=net)
+    # A net in pieces (a gallery pick, the net output's gift) is drawn as its pieces, each with its outline.
+    return render_pictures(shape, options, outdir, name=name, seed=seed, net=context.net)
 
 
 def _pictures_download(download: str, values: Mapping[str, Any]) -> dict[str, Any]:
@@ -356,7 +353,8 @@ def _table() -> dict[str, Output]:
                "voxfab.fabricate.hunt:fabricate_hunt", ("hunt.json", "hunt-net.json", "hunt-zipper.json"),
                _run_hunt, unfolds=True, command="build", gives=("hunt_net", "zipper_net")),
         Output("mesh", (OptionTable("voxfab.fabricate.mesh:MeshOptions", "mesh"),),
-               "voxfab.fabricate.mesh:fabricate_mesh", ("mesh.3mf", "mesh.stl", "mesh.obj", "mesh.glb", "mesh.json"),
+               "voxfab.fabricate.mesh:fabricate_mesh", ("mesh.3mf", "mesh.stl", "mesh.obj", "mesh.mtl", "mesh.glb",
+                                                        "mesh.ply", "mesh.json"),
                _run_mesh, downloads=("mesh.3mf", "mesh.stl"), download_table=_mesh_download, command="mesh",
                warm_group="print", warm=_warm_mesh,
                kernels=(("voxfab.fabricate.mesh._contact_scan", "contact_scan"),

@@ -51,9 +51,11 @@ def parse_volume_range(text: str) -> tuple[int, int]:
     lo_text, sep, hi_text = str(text).partition(":")
     if not (lo_text.strip() or hi_text.strip()):
         raise InvalidShapeError(f"volume: expected MIN:MAX, MIN: or :MAX, got {text!r}")
+    from voxfab._shared.numbers import parse_int
+
     try:
-        lo = int(lo_text) if lo_text.strip() else 1
-        hi = int(hi_text) if hi_text.strip() else GRID_SIDE**3
+        lo = parse_int(lo_text.strip()) if lo_text.strip() else 1
+        hi = parse_int(hi_text.strip()) if hi_text.strip() else GRID_SIDE**3
     except ValueError:
         raise InvalidShapeError(f"volume: expected MIN:MAX with whole numbers, got {text!r}") from None
     if not sep:

@@ -9,7 +9,7 @@ import struct
 import zlib
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -17,6 +17,10 @@ from voxfab._shared.limits import check_regular_file
 from voxfab._shared.typing import BoolGrid, PathLike
 from voxfab._shared.validate import as_grid
 from voxfab.errors import FormatError, InvalidShapeError, UnknownFormatError, VoxfabError
+
+if TYPE_CHECKING:
+    from voxfab.shape import VoxelShape
+    from voxfab.shape._colour import VoxelColours
 
 #: Modules that register formats; imported on first use so `import voxfab` stays light.
 FORMAT_MODULES = (
@@ -29,7 +33,9 @@ FORMAT_MODULES = (
 )
 
 Reader = Callable[..., "ReadResult"]
-Writer = Callable[[BoolGrid, PathLike], None]
+#: ``writer(grid, path, **carried)``: a writer that keeps a shape's pitch or colours takes
+#: them as the keywords ``pitch`` and ``colours``; the others get the grid alone.
+Writer = Callable[..., None]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -43,11 +49,20 @@ class ReadResult:
         Millimetres per voxel, when the file says so.
     notes : tuple of str
         Things the user should know (a model skipped, voxels dropped, ...).
+    colours : VoxelColours or None
+        The colour of each voxel, when the file has colours.
     """
 
     grid: BoolGrid
     pitch: float | None = None
     notes: tuple[str, ...] = ()
+    colours: VoxelColours | None = None
+
+    def shape(self, pitch: float | None = None) -> VoxelShape:
+        """The shape read, at ``pitch``, else the file's own pitch, else 1 mm."""
+        from voxfab.shape import VoxelShape
+
+        return VoxelShape(self.grid, pitch or self.pitch or 1.0, self.colours)
 
 
 _READERS: dict[str, Reader] = {}
@@ -148,15 +163,48 @@ def read(path: PathLike, **options: Any) -> ReadResult:
         # only needs to know that this file could not be read.
         raise FormatError(f"{path}: cannot read as {ext}: {exc or type(exc).__name__}") from exc
     grid = as_grid(result.grid, name=str(path))
+    if result.colours is not None and not result.colours.matches(grid):
+        raise FormatError(f"{path}: the colours do not cover exactly the filled voxels")
     return dataclasses.replace(result, grid=grid)
 
 
-def write(grid: np.ndarray, path: PathLike) -> None:
-    """Write a voxel grid, choosing the format by extension. Written atomically."""
+def carries(extension: str) -> frozenset[str]:
+    """What a format keeps besides the voxels: ``{"pitch", "colours"}`` or a part of it."""
     _load_all()
-    ext = Path(path).suffix.lower()
+    writer = _WRITERS.get(extension.lower())
+    if writer is None:
+        return frozenset()
+    params = inspect.signature(writer).parameters
+    return frozenset(k for k in ("pitch", "colours") if k in params)
+
+
+def writer_for(path: PathLike) -> str:
+    """The format ``path`` is written in: its extension, or ``"/"`` for a folder of PNG slices (an existing
+    folder, or a path ending in a separator).
+
+    Raises
+    ------
+    UnknownFormatError
+        For an extension no module writes, listing those that are written.
+    """
+    _load_all()
+    folder = str(path).endswith(("/", "\\")) or Path(path).is_dir()
+    ext = "/" if folder else Path(path).suffix.lower()
     if ext not in _WRITERS:
         raise UnknownFormatError(
-            f"{path}: cannot write {ext or '(no extension)'!r}; writable: {', '.join(writable_formats())}"
+            f"{path}: cannot write {ext or '(no extension)'!r}; writable: "
+            + ", ".join("a folder/ of PNG slices" if e == "/" else e for e in writable_formats())
         )
-    _WRITERS[ext](as_grid(grid, name="shape"), path)
+    return ext
+
+
+def write(shape: VoxelShape | np.ndarray, path: PathLike) -> None:
+    """Write a shape (or a bare grid), choosing the format by extension. Written atomically.
+
+    A format that keeps the pitch or the colours (``.npz``, ``.vox``, PNG slices) gets
+    them from a :class:`~voxfab.shape.VoxelShape`; :func:`carries` tells which.
+    """
+    ext = writer_for(path)
+    grid = getattr(shape, "grid", shape)
+    kept = {k: getattr(shape, k) for k in carries(ext) if hasattr(shape, k)}
+    _WRITERS[ext](as_grid(grid, name="shape"), path, **kept)

@@ -26,6 +26,7 @@ import math
 import numpy as np
 
 from voxfab._shared.atomic import write_bytes
+from voxfab._shared.numbers import is_digits
 from voxfab._shared.typing import BoolGrid, PathLike
 from voxfab._shared.validate import MAX_SIDE, as_grid
 from voxfab.errors import FormatError, InvalidShapeError
@@ -96,7 +97,7 @@ def _parse_header(data: bytes, path: PathLike) -> tuple[tuple[int, int, int], in
         pos = end + 1
         words = line.split()
         if lineno == 1:
-            if len(words) != 2 or words[0] != "#binvox" or not words[1].isdigit():
+            if len(words) != 2 or words[0] != "#binvox" or not is_digits(words[1]):
                 raise FormatError(f"{path}: not a binvox file (the first line is not '#binvox N')")
             continue
         if not words or words[0].startswith("#"):

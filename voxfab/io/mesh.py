@@ -21,6 +21,7 @@ from __future__ import annotations
 import math
 import warnings
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -36,7 +37,7 @@ from ._registry import ReadResult, register
 __all__ = ["read_mesh_shape", "voxelize", "mesh_grid", "MESH_EXTENSIONS", "DEFAULT_RESOLUTION"]
 
 #: Extensions read as triangle meshes.
-MESH_EXTENSIONS = (".stl", ".obj", ".ply", ".3mf")
+MESH_EXTENSIONS = (".stl", ".obj", ".ply", ".3mf", ".glb")
 #: Voxels along the longest side of the mesh, as the artist's 25³ grid.
 DEFAULT_RESOLUTION = 25
 
@@ -168,6 +169,14 @@ def voxelize(
 def mesh_grid(
     vertices: npt.ArrayLike, faces: npt.ArrayLike, *, resolution: int = DEFAULT_RESOLUTION, name: str = "mesh"
 ) -> tuple[BoolGrid, float, list[str]]:
+    """Voxelize a mesh, fill it solid and keep its largest 6-connected piece (see :func:`placed_mesh_grid`)."""
+    grid, pitch, notes, _ = placed_mesh_grid(vertices, faces, resolution=resolution, name=name)
+    return grid, pitch, notes
+
+
+def placed_mesh_grid(
+    vertices: npt.ArrayLike, faces: npt.ArrayLike, *, resolution: int = DEFAULT_RESOLUTION, name: str = "mesh"
+) -> tuple[BoolGrid, float, list[str], npt.NDArray[np.float64]]:
     """Voxelize a mesh, fill it solid and keep its largest 6-connected piece.
 
     Returns
@@ -178,6 +187,8 @@ def mesh_grid(
         Voxel size in the mesh's units.
     notes : list of str
         The resolution used and what was filled or dropped.
+    origin : (3,) float ndarray
+        Where the low corner of the cropped grid's voxel ``[0, 0, 0]`` is, in the mesh's units.
 
     Raises
     ------
@@ -204,9 +215,11 @@ def mesh_grid(
                 f"({pitch:.6g} mesh units per voxel)"
             )
             solid, _ = _solid_piece(raw, notes)
-    from voxfab.shape import crop
+    from voxfab.shape import bounding_box
 
-    return crop(solid), pitch, notes
+    lo, hi = bounding_box(solid)
+    cropped = solid[lo[0]:hi[0], lo[1]:hi[1], lo[2]:hi[2]].copy()
+    return cropped, pitch, notes, origin + np.array(lo) * pitch
 
 
 def _solid_piece(raw: BoolGrid, notes: list[str]) -> tuple[BoolGrid, tuple[np.ndarray, np.ndarray] | None]:
@@ -354,8 +367,9 @@ def ray_tests(vertices: npt.ArrayLike, faces: npt.ArrayLike, *, resolution: int)
     return int(total.sum())
 
 
-def _load(path: PathLike, file_type: str) -> tuple[np.ndarray, np.ndarray, bool]:
-    """Load vertices, faces and watertightness with trimesh; any parser failure is a FormatError."""
+def _load(path: PathLike, file_type: str) -> tuple[np.ndarray, np.ndarray, bool, Any]:
+    """Load vertices, faces, watertightness and the loaded mesh (its colours) with trimesh; any parser
+    failure is a FormatError."""
     try:
         import trimesh
     except ImportError:  # pragma: no cover - trimesh is a dependency
@@ -367,7 +381,9 @@ def _load(path: PathLike, file_type: str) -> tuple[np.ndarray, np.ndarray, bool]
         # vertices, which only a corrupt file has.
         with open(path, "rb") as fh, warnings.catch_warnings(), np.errstate(all="ignore"):
             warnings.simplefilter("ignore")
-            loaded = trimesh.load(fh, file_type=file_type, force="mesh", process=False)
+            # An OBJ names its materials and textures by file names beside it.
+            resolver = trimesh.resolvers.FilePathResolver(str(path)) if file_type == "obj" else None
+            loaded = trimesh.load(fh, file_type=file_type, force="mesh", process=False, resolver=resolver)
         vertices = np.asarray(loaded.vertices, dtype=np.float64)
         faces = np.asarray(loaded.faces, dtype=np.int64)
     except VoxfabError:
@@ -396,7 +412,7 @@ def _load(path: PathLike, file_type: str) -> tuple[np.ndarray, np.ndarray, bool]
     with warnings.catch_warnings(), np.errstate(all="ignore"):
         warnings.simplefilter("ignore")
         watertight = bool(trimesh.Trimesh(vertices, faces, process=True, validate=False).is_watertight)
-    return vertices, faces, watertight
+    return vertices, faces, watertight, loaded
 
 
 def read_mesh_shape(path: PathLike, *, resolution: int = DEFAULT_RESOLUTION) -> ReadResult:
@@ -429,7 +445,7 @@ def read_mesh_shape(path: PathLike, *, resolution: int = DEFAULT_RESOLUTION) -> 
     n = _check_resolution(resolution)
     file_type = Path(path).suffix.lower().lstrip(".")
     check_mesh_size(path, file_type)
-    vertices, faces, watertight = _load(path, file_type)
+    vertices, faces, watertight, loaded = _load(path, file_type)
     work = ray_tests(vertices, faces, resolution=n)
     if work > MAX_RAY_TESTS:
         raise LimitError(
@@ -437,14 +453,22 @@ def read_mesh_shape(path: PathLike, *, resolution: int = DEFAULT_RESOLUTION) -> 
             f"{MAX_RAY_TESTS:,} (long thin triangles across the grid; try a lower --resolution)"
         )
     try:
-        grid, pitch, notes = mesh_grid(vertices, faces, resolution=n, name=str(path))
+        grid, pitch, notes, origin = placed_mesh_grid(vertices, faces, resolution=n, name=str(path))
     except InvalidShapeError as exc:
         msg = str(exc)
         raise InvalidShapeError(msg if msg.startswith(str(path)) else f"{path}: {msg}") from None
     notes.insert(0, f"mesh of {len(faces)} triangles, {'watertight' if watertight else 'NOT watertight'}")
     if not watertight:
         notes.append("the mesh has open or non-manifold edges: inside voxels are those most rays along x, y, z see inside")
-    return ReadResult(grid, pitch, tuple(notes))
+    colours = None
+    if getattr(getattr(loaded, "visual", None), "defined", False):
+        from ._meshcolour import surface_samples, voxel_colours
+
+        samples = surface_samples(loaded, vertices, faces, pitch / 2)
+        if samples is not None:
+            colours, colour_notes = voxel_colours(grid, origin, pitch, *samples)
+            notes += colour_notes + [f"{colours.count} colours from the mesh's surface, each voxel the nearest's"]
+    return ReadResult(grid, pitch, tuple(notes), colours)
 
 
 for _ext in MESH_EXTENSIONS:

@@ -12,10 +12,16 @@ Layout (ephtracy/voxel-model, ``MagicaVoxel-file-format-vox.txt``)::
 Axes: MagicaVoxel is right-handed with z up, as voxfab is, so ``x, y, z`` in the
 file are ``x, y, z`` of the grid ``[x, y, z]`` without any swap.
 
-Reading keeps every voxel of the first model whatever its colour; a file with
-several models or a scene graph is read by taking the first model, with a note.
-Writing gives one model (``SIZE`` + ``XYZI``) in colour index 1, plus a palette,
-as version 150, which every MagicaVoxel since 0.98 opens.
+Reading keeps every voxel with its colour: the index of each voxel and the palette
+(the file's ``RGBA``, else MagicaVoxel's default palette), so that writing it back
+gives the same RGBA everywhere.  A voxel stored with colour index 0, which
+MagicaVoxel never writes, takes index 255.  A version 200 file's scene graph is
+read as the editor shows it: every visible model placed by its transforms
+(:mod:`voxfab.io._voxscene`).  An animation (a ``PACK`` of models, or shape nodes
+with a model per frame) gives its first frame, with a note, or the ``frame`` asked.
+Writing gives one model (``SIZE`` + ``XYZI``) with each voxel's colour index and the
+shape's palette (an uncoloured shape: index 1, a light grey), as
+version 150, which every MagicaVoxel since 0.98 opens.
 """
 
 from __future__ import annotations
@@ -28,6 +34,7 @@ from voxfab._shared.atomic import write_bytes
 from voxfab._shared.typing import BoolGrid, PathLike
 from voxfab._shared.validate import as_grid
 from voxfab.errors import FormatError, InvalidShapeError
+from voxfab.shape._colour import VoxelColours, default_palette
 
 from ._registry import ReadResult, register
 
@@ -61,13 +68,15 @@ def _chunk(chunk_id: bytes, content: bytes, children: bytes = b"") -> bytes:
     return _HEADER.pack(chunk_id, len(content), len(children)) + content + children
 
 
-def vox_bytes(grid: BoolGrid) -> bytes:
+def vox_bytes(grid: BoolGrid, colours: VoxelColours | None = None) -> bytes:
     """Return the ``.vox`` file content of a grid (deterministic).
 
     Parameters
     ----------
     grid : (X, Y, Z) bool ndarray
         At most 256 voxels per side.
+    colours : VoxelColours, optional
+        Each voxel's colour index and the palette; default index 1, a light grey.
 
     Returns
     -------
@@ -78,17 +87,19 @@ def vox_bytes(grid: BoolGrid) -> bytes:
     xyz = np.argwhere(g)  # C order: sorted by x, then y, then z
     xyzi = np.empty((len(xyz), 4), dtype=np.uint8)
     xyzi[:, :3] = xyz
-    xyzi[:, 3] = 1
+    xyzi[:, 3] = 1 if colours is None else colours.index[g]
     size = _chunk(b"SIZE", struct.pack("<3i", *g.shape))
     voxels = _chunk(b"XYZI", struct.pack("<i", len(xyz)) + xyzi.tobytes())
-    rgba = _chunk(b"RGBA", _PALETTE)
+    # The file's RGBA entry i is colour index i + 1.
+    palette = _PALETTE if colours is None else np.roll(colours.palette, -1, axis=0).tobytes()
+    rgba = _chunk(b"RGBA", palette)
     main = _chunk(b"MAIN", b"", size + voxels + rgba)
     return _MAGIC + struct.pack("<i", VOX_VERSION) + main
 
 
-def write_vox(grid: BoolGrid, path: PathLike) -> None:
-    """Write a grid as a one-model MagicaVoxel file, atomically."""
-    write_bytes(path, vox_bytes(grid))
+def write_vox(grid: BoolGrid, path: PathLike, *, colours: VoxelColours | None = None) -> None:
+    """Write a grid, in its colours when given, as a one-model MagicaVoxel file, atomically."""
+    write_bytes(path, vox_bytes(grid, colours))
 
 
 def _chunks(data: bytes, start: int, end: int, path: PathLike, where: str) -> list[tuple[bytes, int, int]]:
@@ -118,10 +129,8 @@ def _chunks(data: bytes, start: int, end: int, path: PathLike, where: str) -> li
     return out
 
 
-def _model(
-    data: bytes, size: tuple[int, int], xyzi: tuple[int, int], path: PathLike, *, build: bool = True
-) -> BoolGrid | None:
-    """Check one model's SIZE and XYZI chunks; return its grid when ``build``."""
+def _model(data: bytes, size: tuple[int, int], xyzi: tuple[int, int], path: PathLike) -> np.ndarray:
+    """Check one model's SIZE and XYZI chunks; return its colour index grid (0 = empty)."""
     s0, s1 = size
     if s1 - s0 < 12:
         raise FormatError(f"{path}: SIZE chunk holds {s1 - s0} bytes, expected 12")
@@ -141,16 +150,17 @@ def _model(
             f"{path}: XYZI chunk is truncated: {count} voxels need {4 + 4 * count} bytes, "
             f"it holds {x1 - x0}"
         )
-    xyz = np.frombuffer(data, dtype=np.uint8, count=4 * count, offset=x0 + 4).reshape(count, 4)[:, :3]
+    xyzi = np.frombuffer(data, dtype=np.uint8, count=4 * count, offset=x0 + 4).reshape(count, 4)
+    xyz = xyzi[:, :3]
     outside = (xyz >= np.array(dims)).any(axis=1)
     if outside.any():
         bad = tuple(int(v) for v in xyz[np.argmax(outside)])
         raise FormatError(f"{path}: voxel {bad} lies outside the model size {dims}")
-    if not build:
-        return None
-    grid = np.zeros(dims, dtype=bool)
-    grid[xyz[:, 0], xyz[:, 1], xyz[:, 2]] = True
-    return grid
+    index = np.zeros(dims, dtype=np.uint8)
+    # Index 0 is no colour in MagicaVoxel; such a voxel keeps the place of index 255,
+    # the palette's last, unused, entry.
+    index[xyz[:, 0], xyz[:, 1], xyz[:, 2]] = np.where(xyzi[:, 3] == 0, 255, xyzi[:, 3])
+    return index
 
 
 class _Cursor:
@@ -182,52 +192,31 @@ class _Cursor:
         return {self.string(): self.string() for _ in range(n)}
 
 
-#: ``_r`` of a transform without rotation (rows pick x, y, z with + signs).
-_IDENTITY_ROTATION = 4
+def read_vox(path: PathLike, *, frame: int | None = None) -> ReadResult:
+    """Read a MagicaVoxel ``.vox`` file in its colours, as the editor shows it.
 
-
-def _rotations(data: bytes, chunks: list[tuple[bytes, int, int]], path: PathLike) -> list[int]:
-    """The ``_r`` rotation codes of every nTRN frame other than the identity."""
-    found = []
-    for cid, start, stop in chunks:
-        if cid != b"nTRN":
-            continue
-        cur = _Cursor(data, start, stop, path, "nTRN")
-        cur.int32()  # node id
-        cur.dict()  # node attributes
-        cur.int32()  # child node id
-        cur.int32()  # reserved
-        cur.int32()  # layer id
-        frames = cur.int32()
-        if frames < 0 or cur.pos + 4 * frames > stop:
-            raise FormatError(f"{path}: nTRN chunk holds a corrupt frame count {frames}")
-        for _ in range(frames):
-            r = cur.dict().get("_r")
-            if r is not None:
-                try:
-                    code = int(r)
-                except ValueError:
-                    raise FormatError(f"{path}: nTRN chunk holds a corrupt rotation {r!r}") from None
-                if code != _IDENTITY_ROTATION:
-                    found.append(code)
-    return found
-
-
-def read_vox(path: PathLike) -> ReadResult:
-    """Read the first model of a MagicaVoxel ``.vox`` file.
+    Parameters
+    ----------
+    path : path
+    frame : int, optional
+        The animation frame to read, from 1 (default the first, with a note when
+        the file holds several): a ``PACK`` file's models, or a scene's shape nodes'.
 
     Returns
     -------
     ReadResult
-        ``grid`` (X, Y, Z) bool with the model's ``SIZE``; ``notes`` tell when
-        the file held several models or a scene graph.
+        ``grid`` (X, Y, Z) bool and ``colours``: a file without a scene graph gives
+        its model with its ``SIZE``; a scene graph (version 200) gives every visible
+        model placed by its transforms, cut to the scene's bounding box.
 
     Raises
     ------
     FormatError
-        On a wrong magic, a truncated or corrupt chunk, a voxel outside its model.
+        On a wrong magic, a truncated or corrupt chunk, a voxel outside its model,
+        a corrupt scene graph.
     InvalidShapeError
-        For a model over 256 voxels on a side.
+        For a model over 256 voxels on a side, a scene that does not fit the
+        25-voxel grid (naming its models and their sizes), a frame that does not exist.
     """
     with open(path, "rb") as fh:
         data = fh.read()
@@ -253,6 +242,7 @@ def read_vox(path: PathLike) -> ReadResult:
 
     sizes: list[tuple[int, int]] = []
     xyzis: list[tuple[int, int]] = []
+    rgba: int | None = None
     scene = sorted({c.decode() for c, _, _ in children if c in _SCENE_CHUNKS})
     for cid, start, stop in children:
         if cid == b"SIZE":
@@ -263,27 +253,75 @@ def read_vox(path: PathLike) -> ReadResult:
             if len(xyzis) != len(sizes) - 1:
                 raise FormatError(f"{path}: XYZI chunk without a SIZE chunk before it")
             xyzis.append((start, stop))
-        elif cid == b"RGBA" and stop - start < 1024:
-            raise FormatError(f"{path}: RGBA chunk holds {stop - start} bytes, expected 1024")
+        elif cid == b"RGBA":
+            if stop - start < 1024:
+                raise FormatError(f"{path}: RGBA chunk holds {stop - start} bytes, expected 1024")
+            rgba = start
     if not sizes:
         raise FormatError(f"{path}: no model (SIZE and XYZI chunks) in the file")
     if len(xyzis) != len(sizes):
         raise FormatError(f"{path}: the last SIZE chunk has no XYZI chunk")
-    grid = _model(data, sizes[0], xyzis[0], path)
-    # The other models are checked too, so that corruption anywhere is reported.
-    for s, x in zip(sizes[1:], xyzis[1:]):
-        _model(data, s, x, path, build=False)
+    if rgba is None:
+        palette = default_palette()
+    else:
+        # The file's entry i is colour index i + 1; entry 255 (index 256) does not exist.
+        palette = np.roll(np.frombuffer(data, dtype=np.uint8, count=1024, offset=rgba).reshape(256, 4), 1, axis=0)
+    # Every model is checked, so that corruption anywhere is reported.
+    models = [_model(data, s, x, path) for s, x in zip(sizes, xyzis)]
+    if frame is not None and frame < 1:
+        raise InvalidShapeError(f"{path}: frame {frame}: frames count from 1")
     notes: list[str] = []
-    if len(sizes) > 1:
-        notes.append(f"file has {len(sizes)} models; read the first")
     if scene:
-        notes.append(
-            f"file has a scene graph ({'/'.join(scene)}); read the first model's voxels "
-            "as stored, without the scene's translations and rotations"
-        )
-        if _rotations(data, children, path):
-            notes.append("the scene graph rotates a model; the rotation was not applied")
-    return ReadResult(grid, None, tuple(notes))
+        index, frames = _scene(data, children, models, path, frame=(frame or 1) - 1)
+    else:
+        frames = len(models) if any(c == b"PACK" for c, _, _ in children) else 1
+        index = models[min((frame or 1) - 1, len(models) - 1)]
+        if frames == 1 and len(models) > 1:
+            notes.append(f"file has {len(models)} models and no scene graph; read the first")
+    if frame is not None and frame > frames:
+        raise InvalidShapeError(f"{path}: frame {frame}: the file holds {frames} frame{'s' * (frames > 1)}")
+    if frame is None and frames > 1:
+        notes.append(f"file holds {frames} animation frames; read the first (--frame K reads frame K)")
+    return ReadResult(index != 0, None, tuple(notes), VoxelColours(index, palette))
+
+
+def _scene(data: bytes, children: list[tuple[bytes, int, int]], models: list[np.ndarray], path: PathLike,
+           *, frame: int) -> tuple[np.ndarray, int]:
+    """The colour index grid of the scene as the editor shows it, and its number of frames."""
+    from voxfab.shape import GRID_SIDE
+
+    from ._voxscene import place_voxels, scene_placements
+
+    placements, frames = scene_placements(
+        children, lambda start, stop, name: _Cursor(data, start, stop, path, name), frame=frame, path=path)
+    coords, colours, boxes = [], [], []
+    for p in placements:
+        if not 0 <= p.model < len(models):
+            raise FormatError(f"{path}: the scene places model {p.model}; the file holds {len(models)}")
+        model = models[p.model]
+        xyz = np.argwhere(model)
+        world = place_voxels(xyz, model.shape, p)
+        coords.append(world)
+        colours.append(model[tuple(xyz.T)])
+        if len(world):
+            # The model's own box as the scene turns it, and where its voxels land.
+            boxes.append((p.name, np.abs(p.rotation) @ np.array(model.shape), world.min(axis=0)))
+    if not boxes:
+        raise InvalidShapeError(f"{path}: the scene shows no voxel (every model is hidden or empty)")
+    every = np.concatenate(coords)
+    lo, hi = every.min(axis=0), every.max(axis=0)
+    size = hi - lo + 1
+    if size.max() > GRID_SIDE:
+        parts = "; ".join(f"{name} ({'x'.join(map(str, box))}) at ({', '.join(map(str, at))})"
+                          for name, box, at in boxes)
+        raise InvalidShapeError(f"{path}: the scene is {'x'.join(map(str, size))} voxels, over the "
+                                f"{GRID_SIDE}-voxel grid: {parts}")
+    index = np.zeros(tuple(size), dtype=np.uint8)
+    # Models later in the scene cover earlier ones where they overlap.
+    for world, colour in zip(coords, colours):
+        local = world - lo
+        index[local[:, 0], local[:, 1], local[:, 2]] = colour
+    return index, frames
 
 
 register(".vox", reader=read_vox, writer=write_vox)

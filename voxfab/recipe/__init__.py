@@ -5,6 +5,7 @@ See the README's "Recipe format" section for the keys.
 
 from ._build import (
     MANIFEST_FORMAT,
+    SHAPE_FILES,
     BuiltRecipe,
     apply_operation,
     build,
@@ -16,6 +17,7 @@ from ._schema import OperationSpec, OutputSpec, Recipe, SourceSpec, load_recipe
 
 __all__ = [
     "MANIFEST_FORMAT",
+    "SHAPE_FILES",
     "BuiltRecipe",
     "OperationSpec",
     "OutputSpec",

@@ -17,7 +17,6 @@ from voxfab._shared.validate import as_grid, confine_inputs
 from voxfab._version import __version__
 from voxfab.errors import RecipeError, VoxfabError
 from voxfab.shape import VoxelShape, canonical_key
-from voxfab.shape import _ops as ops
 
 from ._schema import OperationSpec, Recipe, SourceSpec
 
@@ -26,46 +25,70 @@ if TYPE_CHECKING:
 
 MANIFEST_FORMAT = "voxfab-manifest/1"
 
+#: The shape files every build writes beside its outputs, and what each is for.
+SHAPE_FILES = {
+    "shape.npz": "the voxel shape with its pitch and colours: what every voxfab command reads at the recipe's scale",
+    "shape.npy": "the voxel shape as a NumPy bool array [x, y, z], z up",
+    "shape.vox": "the voxel shape in its colours for MagicaVoxel and other voxel editors",
+}
 
-def make_source(source: SourceSpec, base_dir: Path) -> BoolGrid:
-    """Return the grid a source describes (a maker's output or a file's content)."""
+
+def make_source(source: SourceSpec, base_dir: Path, pitch: float = 1.0) -> VoxelShape:
+    """Return the shape a source describes (a maker's output, or a file's content with its colours)."""
     if source.file is not None:
         from voxfab import io
 
-        result = io.read(source.file, **dict(source.params))
-        return result.grid
+        return io.read(source.file, **dict(source.params)).shape(pitch)
     from voxfab.digitize import get_maker
 
     grid = get_maker(source.maker or "")(base_dir=base_dir, **dict(source.params))
     try:
-        return np.asarray(as_grid(grid, name=f"{source.keypath} (maker {source.maker!r})"))
+        return VoxelShape(as_grid(grid, name=f"{source.keypath} (maker {source.maker!r})"), pitch)
     except VoxfabError as exc:
         raise RecipeError(str(exc)) from None
 
 
-def apply_operation(grid: BoolGrid, op: OperationSpec, base_dir: Path) -> BoolGrid:
-    """Apply one recipe operation to a grid."""
+def paint_mask(grid: BoolGrid, where: str | None) -> BoolGrid:
+    """The voxels of ``grid`` where the expression ``where`` of the voxel indices x, y, z is < 0 (all when None).
+
+    The sign convention is the implicit maker's: ``"z - 12"`` is the part below z = 12.
+    """
+    if where is None:
+        return np.asarray(grid, dtype=bool)
+    from voxfab.digitize import compile_expression
+
+    x, y, z = np.indices(np.shape(grid), dtype=np.float64)
+    return np.asarray(grid, dtype=bool) & (compile_expression(where, ("x", "y", "z"), name="where")(x, y, z) < 0)
+
+
+def apply_operation(shape: VoxelShape, op: OperationSpec, base_dir: Path) -> VoxelShape:
+    """Apply one recipe operation to a shape (its colours move with its voxels)."""
     params = dict(op.params)
     if op.op == "fill":
-        return ops.fill_cavities(grid)
+        return shape.fill_cavities()
     if op.op == "largest":
-        return ops.largest_component(grid)
+        return shape.largest_component()
     if op.op == "crop":
-        return ops.crop(grid)
+        return shape.crop()
     if op.op == "rotate":
-        return ops.rotate(grid, params.get("axis", "z"), params.get("turns", 1))
+        return shape.rotate(params.get("axis", "z"), params.get("turns", 1))
     if op.op == "mirror":
-        return ops.mirror(grid, params.get("axis", "x"))
+        return shape.mirror(params.get("axis", "x"))
+    if op.op == "join":
+        return shape.joined()[0]
+    if op.op == "paint":
+        from voxfab.shape import parse_colour
+
+        return shape.painted(parse_colour(params["colour"]), paint_mask(shape.grid, params.get("where")))
     if op.op == "shift":
         try:
-            return ops.translate(grid, tuple(params["by"]))
+            return shape.translate(tuple(params["by"]))
         except VoxfabError as exc:
             raise RecipeError(f"{op.keypath} (shift): {exc}") from None
     assert op.source is not None
-    other = make_source(op.source, base_dir)
-    return {"union": ops.union, "intersection": ops.intersection, "difference": ops.difference}[op.op](
-        grid, other
-    )
+    other = make_source(op.source, base_dir, shape.pitch)
+    return {"union": VoxelShape.__or__, "intersection": VoxelShape.__and__,
+            "difference": VoxelShape.__sub__}[op.op](shape, other)
 
 
 def make_shape(recipe: Recipe) -> VoxelShape:
@@ -75,12 +98,12 @@ def make_shape(recipe: Recipe) -> VoxelShape:
     ``allow_outside=True``.
     """
     with confine_inputs(None if recipe.allow_outside else recipe.base_dir):
-        grid = make_source(recipe.source, recipe.base_dir)
+        shape = make_source(recipe.source, recipe.base_dir, recipe.pitch)
         for op in recipe.operations:
-            grid = apply_operation(grid, op, recipe.base_dir)
-            if not grid.any():
+            shape = apply_operation(shape, op, recipe.base_dir)
+            if not shape.grid.any():
                 raise RecipeError(f"{recipe.path}: {op.keypath} ({op.op}) left an empty shape")
-    return VoxelShape(grid, recipe.pitch)
+    return shape
 
 
 
@@ -96,8 +119,8 @@ class BuiltRecipe:
     Attributes
     ----------
     folder : Path
-        Its output folder, holding ``shape.npy``, ``shape.vox``, each output's
-        files and ``manifest.json``.
+        Its output folder, holding ``shape.npz`` (the voxels, their pitch and
+        colours), ``shape.npy``, ``shape.vox``, each output's files and ``manifest.json``.
     gives : mapping
         What its outputs made, by the names the table of outputs declares
         (:attr:`voxfab.fabricate.Output.gives`): ``"net"``, the pieces of the net
@@ -151,12 +174,10 @@ def _build_into(recipe: Recipe, target: Path, aside: Aside) -> dict[str, Any]:
     # pictures draw), so the order is the table's, not the recipe's.
     order = build_order(specs)
     with atomic_dir(target, marker="manifest.json") as tmp:
-        io.write(shape.grid, tmp / "shape.npy")
-        io.write(shape.grid, tmp / "shape.vox")
-        files = [
-            OutputFile("shape.npy", "the voxel shape as a NumPy bool array [x, y, z], z up"),
-            OutputFile("shape.vox", "the voxel shape for MagicaVoxel and other voxel editors"),
-        ]
+        files = []
+        for file_name, purpose in SHAPE_FILES.items():
+            io.write(shape, tmp / file_name)
+            files.append(OutputFile(file_name, purpose))
         warnings: list[str] = []
         gives: dict[str, Any] = {}
         for spec in progress([specs[name] for name in order], desc="outputs"):
@@ -183,6 +204,7 @@ def _build_into(recipe: Recipe, target: Path, aside: Aside) -> dict[str, Any]:
                 "well_formed": shape.well_formed,
                 "reasons": shape.reasons,
                 "key": canonical_key(shape.grid),
+                "colours": 0 if shape.colours is None else shape.colours.count,
             },
             "outputs": list(order),
             "warnings": warnings,

@@ -28,6 +28,8 @@ _OPERATIONS: dict[str, dict[str, type | tuple]] = {
     "rotate": {"axis": str, "turns": int},
     "mirror": {"axis": str},
     "shift": {"by": tuple[int, int, int]},
+    "paint": {"colour": str, "where": str},
+    "join": {},
     "union": {"source": dict},
     "intersection": {"source": dict},
     "difference": {"source": dict},
@@ -217,6 +219,23 @@ def _parse_source(
     return SourceSpec(maker_name, None, tuple(sorted(params.items())), keypath)
 
 
+def _check_paint(op: dict[str, Any], keypath: str, err: Callable[[str, str], RecipeError]) -> None:
+    """A paint operation's colour and expression, checked before anything runs."""
+    from voxfab.digitize import compile_expression
+    from voxfab.shape import parse_colour
+
+    if "colour" not in op:
+        raise err(keypath, "op 'paint' needs 'colour = \"#rrggbb\"' (and 'where', an expression of x, y, z "
+                           "painted where it is < 0)")
+    for key, check in (("colour", lambda v: parse_colour(v)),
+                       ("where", lambda v: compile_expression(v, ("x", "y", "z"), name="where"))):
+        if key in op:
+            try:
+                check(op[key])
+            except VoxfabError as exc:
+                raise err(f"{keypath}.{key}", str(exc).split(": ", 1)[-1]) from None
+
+
 def load_recipe(path: PathLike, *, allow_outside: bool = False) -> Recipe:
     """Read and fully validate a recipe file.
 
@@ -258,7 +277,7 @@ def load_recipe(path: PathLike, *, allow_outside: bool = False) -> Recipe:
         if key not in _TOP_KEYS:
             raise err(key, f"unknown key; a recipe accepts: {', '.join(sorted(_TOP_KEYS))}")
     name = data.get("name", p.stem)
-    if not isinstance(name, str) or not _NAME.match(name):
+    if not isinstance(name, str) or not _NAME.fullmatch(name):
         raise err("name", f"expected a folder-safe name (letters, digits, _ . -), got {name!r}")
     try:
         seed = SeedOptions(seed=data.get("seed", 0)).seed
@@ -304,6 +323,8 @@ def load_recipe(path: PathLike, *, allow_outside: bool = False) -> Recipe:
             if key == "axis" and value not in ("x", "y", "z"):
                 raise err(f"{kp}.axis", f"expected 'x', 'y' or 'z', got {value!r}")
             params.append((key, value if key != "by" else tuple(value)))
+        if kind == "paint":
+            _check_paint(op, kp, err)
         if kind == "shift" and "by" not in op:
             raise err(kp, "op 'shift' needs 'by = [dx, dy, dz]' (voxels)")
         if kind in ("union", "intersection", "difference") and sub is None:

@@ -36,13 +36,14 @@ from ._raster import DEFAULT_COLOR, Raster, fit_frame, rasterize
 from ._render import render, render_raster, save_render, supersampling
 from ._slices import SliceAxis, layers, slice_layout, slice_sheet
 from ._triptych import make_net, triptych, triptych_layout
-from ._views import Camera, View, camera_for, orbit_camera
+from ._views import Camera, View, camera_for, orbit_camera, profile_camera
 
 __all__ = [
     "View",
     "Camera",
     "camera_for",
     "orbit_camera",
+    "profile_camera",
     "Raster",
     "rasterize",
     "fit_frame",

@@ -2,7 +2,9 @@
 
 Frames are palette images on the fixed palette of :func:`palette_for` (background
 plus 255 shades of the cube colour), which is exactly the colour model of the
-rasterizer, so no quantization happens and the bytes are reproducible.
+rasterizer, so no quantization happens and the bytes are reproducible.  A coloured
+shape's turntable is drawn in colour and put on one palette made for all its frames
+(:func:`~._image.shared_palette`).
 """
 
 from __future__ import annotations
@@ -23,8 +25,8 @@ from voxfab.errors import InvalidShapeError
 from voxfab.fabricate._outputs import Artefact, OutputFile
 from voxfab.shape import VoxelShape, bounding_box
 
-from ._image import gif_bytes
-from ._raster import DEFAULT_COLOR, Frame, fit_frame, palette_for, parse_color, rasterize, to_indexed
+from ._image import gif_bytes, shared_palette
+from ._raster import DEFAULT_COLOR, Frame, fit_frame, palette_for, parse_color, rasterize, to_indexed, to_rgb
 from ._render import Color, check_size, shape_grid
 from ._views import ISO_AZIMUTH, ISO_ELEVATION, Camera, View, camera_for, orbit_camera
 
@@ -67,6 +69,17 @@ def _frame_image(grid: npt.NDArray[np.bool_], camera: Camera, frame: Frame, pale
     return rgb.quantize(palette=target, dither=Image.Dither.NONE)
 
 
+def _colour_frame(grid: npt.NDArray[np.bool_], camera: Camera, frame: Frame, colours: object,
+                  fg: tuple[int, int, int], bg: tuple[int, int, int], k: int) -> npt.NDArray[np.uint8]:
+    """One RGB frame of a coloured shape (``colours`` of ``grid``); with k > 1 drawn k times larger and averaged."""
+    from PIL import Image
+
+    if k > 1:
+        frame = Frame(frame.width * k, frame.height * k, frame.scale * k, frame.ox * k, frame.oy * k)
+    rgb = to_rgb(rasterize(grid, camera, frame), fg, bg, colours)
+    return np.asarray(Image.fromarray(rgb).reduce(k)) if k > 1 else rgb
+
+
 def _antialias(scale: float, antialias: int | None) -> int:
     if antialias is None:
         return 1 if scale >= 10.0 else min(3, math.ceil(10.0 / scale))
@@ -99,14 +112,17 @@ def turntable_frames(
     Returns
     -------
     list of PIL.Image.Image
-        ``frames`` palette pictures of ``size × size`` pixels.
+        ``frames`` palette pictures of ``size × size`` pixels; a coloured shape's in its
+        colours, on one palette made for all frames.
     """
     grid = shape_grid(shape)
     n = _check_frames(frames)
     px = check_size(size)
     if not -90.0 < float(elevation) < 90.0:
         raise InvalidShapeError(f"elevation: expected degrees strictly between -90 and 90, got {elevation}")
-    palette = palette_for(parse_color(color, name="color"), parse_color(background, name="background"))
+    fg, bg = parse_color(color, name="color"), parse_color(background, name="background")
+    palette = palette_for(fg, bg)
+    colours = shape.colours if isinstance(shape, VoxelShape) else None
     lo, hi = (np.asarray(b) for b in bounding_box(grid))
     diagonal = float(np.linalg.norm(hi - lo))
     scale = 0.92 * px / diagonal
@@ -118,8 +134,9 @@ def turntable_frames(
         centre = (lo + hi) / 2.0
         frame = Frame(px, px, scale, px / 2.0 - scale * float(centre @ camera.right),
                       px / 2.0 + scale * float(centre @ camera.up))
-        out.append(_frame_image(grid, camera, frame, palette, k))
-    return out
+        out.append(_frame_image(grid, camera, frame, palette, k) if colours is None else
+                   _colour_frame(grid, camera, frame, colours, fg, bg, k))
+    return out if colours is None else shared_palette(out, colours.palette[colours.used, :3])
 
 
 def animation_frames(
@@ -146,7 +163,7 @@ def animation_frames(
     if not items:
         raise InvalidShapeError("grids: an animation needs at least one shape")
     px = check_size(size)
-    camera: Camera = camera_for(view)
+    camera: Camera = camera_for(view, np.logical_or.reduce(items) if view == View.PROFILE else None)
     boxes = [bounding_box(g) for g in items if g.any()]
     if not boxes:
         raise InvalidShapeError("grids: every shape is empty")

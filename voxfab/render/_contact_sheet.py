@@ -14,6 +14,7 @@ from voxfab._shared.progress import progress
 from voxfab._shared.typing import PathLike
 from voxfab._shared.validate import as_grid
 from voxfab.errors import InvalidShapeError, RepositoryError
+from voxfab.shape import VoxelShape
 
 from ._image import font
 from ._raster import DEFAULT_COLOR, parse_color
@@ -64,8 +65,8 @@ def contact_sheet(
 
     Parameters
     ----------
-    shapes : sequence of (str, (X, Y, Z) bool array_like)
-        Names and grids.
+    shapes : sequence of (str, VoxelShape or (X, Y, Z) bool array_like)
+        Names and shapes; a coloured shape is drawn in its colours.
     tile : int
         Side of each picture in pixels.
     columns : int or None
@@ -87,7 +88,7 @@ def contact_sheet(
     sheet = np.empty((lay.height, lay.width, 3), dtype=np.uint8)
     sheet[:] = bg
     for (name, grid), (x0, y0) in progress(zip(shapes, lay.origins), total=len(shapes), desc="contact sheet"):
-        g = as_grid(grid, name=f"shape {name}")
+        g = grid if isinstance(grid, VoxelShape) else as_grid(grid, name=f"shape {name}")
         sheet[y0 : y0 + side, x0 : x0 + side] = np.asarray(render(g, view="iso", size=side, background=bg,
                                                                    color=fg))
     image = Image.fromarray(sheet)

@@ -20,9 +20,10 @@ import numpy.typing as npt
 from voxfab._shared.atomic import write_bytes
 from voxfab._shared.typing import PathLike
 from voxfab.errors import InvalidShapeError
+from voxfab.shape import VoxelColours
 from voxfab.unfold import fold_tree
 
-from ._image import gif_bytes
+from ._image import gif_bytes, shared_palette
 from ._views import View, camera_for, orbit_camera
 
 __all__ = ["fold_angles", "fold_frames", "draw_fold", "save_fold_animation"]
@@ -123,10 +124,12 @@ def fold_frames(net: object, *, steps: int = 24) -> list[npt.NDArray[np.float64]
 
 
 def draw_fold(corners: npt.NDArray[np.float64], *, view: str = "iso", size: int = 400,
-              scale: tuple[npt.NDArray[np.float64], float] | None = None) -> object:
+              scale: tuple[npt.NDArray[np.float64], float] | None = None,
+              face_rgb: npt.NDArray[np.uint8] | None = None) -> object:
     """One picture of faces in space: the painter's algorithm, the outside shaded, the back paper-grey.
 
-    ``scale`` (centre, half-width) fixes the framing so the frames of one animation line up.
+    ``scale`` (centre, half-width) fixes the framing so the frames of one animation line up;
+    ``face_rgb`` (F, 3) colours each face's outside (default: card).
     """
     from PIL import Image, ImageDraw
 
@@ -152,17 +155,30 @@ def draw_fold(corners: npt.NDArray[np.float64], *, view: str = "iso", size: int 
     outline = (60, 45, 30) if edge >= 6 else None
     for f in np.argsort(pts[..., 2].mean(axis=1)):  # far faces first
         shade = 0.55 + 0.45 * float(light[f])
-        colour = (int(225 * shade), int(190 * shade), int(140 * shade)) if facing[f] > 0 else \
-            (int(200 * shade), int(200 * shade), int(200 * shade))
+        outside = (225, 190, 140) if face_rgb is None else face_rgb[f].tolist()
+        colour = (int(outside[0] * shade), int(outside[1] * shade), int(outside[2] * shade)) if facing[f] > 0 \
+            else (int(200 * shade), int(200 * shade), int(200 * shade))
         draw.polygon([tuple(p) for p in px[f].tolist()], fill=colour, outline=outline)
     return image
 
 
+def _face_colours(net: object, colours: VoxelColours) -> npt.NDArray[np.uint8]:
+    """The RGB of each face's voxel; refused when a face's voxel is not a coloured voxel (another shape's net)."""
+    v = np.asarray(net.voxel, dtype=np.int64).reshape(-1, 3)  # type: ignore[attr-defined]
+    inside = np.all((v >= 0) & (v < colours.index.shape), axis=1)
+    if not inside.all() or not colours.index[v[:, 0], v[:, 1], v[:, 2]].all():
+        raise InvalidShapeError("colours: the net's faces do not lie on the shape's voxels; give the shape "
+                                "the net was made of")
+    return colours.at(v)[:, :3]
+
+
 def save_fold_animation(net: object, path: PathLike, *, steps: int = 36, view: str = "iso", size: int = 400,
-                        duration_ms: int = 80, hold: int = 8) -> int:
+                        duration_ms: int = 80, hold: int = 8, colours: VoxelColours | None = None) -> int:
     """Write a GIF of ``net`` folding up from flat to the shape; return its frame count (``steps``).
 
     The folded shape is held for ``hold`` more frame times at the end (one frame of the GIF).
+    With ``colours`` (of the grid the net unfolds) each face shows its voxel's colour, and all
+    frames share one palette made for them (:func:`~._image.shared_palette`).
     """
     if view not in tuple(v.value for v in View):
         raise InvalidShapeError(f"view: expected one of {', '.join(v.value for v in View)}, got {view!r}")
@@ -171,7 +187,10 @@ def save_fold_animation(net: object, path: PathLike, *, steps: int = 36, view: s
     centre = (every.min(axis=0) + every.max(axis=0)) / 2
     # One framing for the whole animation: the widest moment sets it.
     half = float(np.linalg.norm(every - centre, axis=1).max())
-    pictures = [draw_fold(f, view=view, size=size, scale=(centre, half)) for f in frames]
+    face_rgb = None if colours is None else _face_colours(net, colours)
+    pictures = [draw_fold(f, view=view, size=size, scale=(centre, half), face_rgb=face_rgb) for f in frames]
+    if face_rgb is not None:
+        pictures = shared_palette(pictures, face_rgb)
     pictures += [pictures[-1]] * hold
     write_bytes(path, gif_bytes(pictures, duration_ms=duration_ms))  # type: ignore[arg-type]
     return len(frames)

@@ -9,6 +9,7 @@ tinted by their outward direction like the 3D picture.
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -24,9 +25,10 @@ from ._render import Color, check_size, shape_grid
 if TYPE_CHECKING:
     from PIL import Image
 
+    from voxfab.fabricate.netdraw._placement import Placement
     from voxfab.unfold import Net
 
-__all__ = ["DEFAULT_STYLES", "HIDDEN", "LineStyle", "net_picture"]
+__all__ = ["DEFAULT_STYLES", "HIDDEN", "LineStyle", "as_pieces", "net_picture"]
 
 #: A fold style that leaves the line out of the picture (beside the dash styles of :class:`LineStyle`).
 HIDDEN = "none"
@@ -44,6 +46,14 @@ _MARGIN = 0.1
 _TAB = 0.4
 #: Shade of the six face directions (+x, -x, +y, -y, +z, -z), as in the 3D picture.
 _TINT = np.array([0.62, 0.86, 0.70, 0.93, 1.0, 0.78])
+#: Faces of paper round a net in pieces and between two of its pieces: room for their tabs.
+_BORDER = 1
+_GAP = 2
+
+
+def as_pieces(net: Net | Sequence[Net]) -> list[Net]:
+    """A net as the list of its pieces: a one-piece net, or a net in pieces as the gallery and the net output give it."""
+    return list(net) if isinstance(net, Sequence) else [net]
 
 
 def _scale(net: Net, width: int, height: int) -> float:
@@ -70,22 +80,84 @@ def _fold_styles(styles: dict[str, str] | None) -> dict[str, str]:
     return style
 
 
-def _face_fills(net: Net, faces: npt.NDArray[np.float64], index: npt.NDArray[np.int64],
-                fg: npt.NDArray[np.float64]) -> list[Fill]:
-    normal = net.normal[index]
+def _shelves(extents: list[tuple[int, int]], width: int) -> tuple[list[tuple[int, int]], int, int]:
+    """Pieces of ``extents`` faces in rows at most ``width`` faces wide, :data:`_GAP` apart, in piece order:
+    each piece's lowest corner and the rows' extent, in faces."""
+    spots: list[tuple[int, int]] = []
+    x = y = row = used = 0
+    for w, h in extents:
+        if x and x + w > width:
+            y, x, row = y + row + _GAP, 0, 0
+        spots.append((x, y))
+        used = max(used, x + w)
+        x, row = x + w + _GAP, max(row, h)
+    return spots, used, y + row
+
+
+def _pieces_sheet(pieces: list[Net], width: int, height: int) -> tuple[float, Placement]:
+    """Pixels per mm and the placement that lay a net's pieces on one sheet filling ``width`` x ``height`` pixels.
+
+    Every piece is drawn whole, its own cut outline apart from the others, in rows whose
+    width is chosen (over every possible break) to make the faces largest.
+    """
+    from voxfab.fabricate.netdraw._placement import PiecePlace, Placement
+
+    p, m = _PICTURE_PITCH, _MARGIN * _PICTURE_PITCH
+    lows = [piece.corners2d.reshape(-1, 2).min(axis=0) for piece in pieces]
+    extents = [tuple(int(v) for v in piece.corners2d.reshape(-1, 2).max(axis=0) - lo) for piece, lo in zip(pieces, lows)]
+
+    def fitted(rows: int) -> tuple[float, list[tuple[int, int]], int, int]:
+        spots, w, h = _shelves(extents, rows)
+        w, h = w + 2 * _BORDER, h + 2 * _BORDER
+        return min(width / (w * p + 2 * m), height / (h * p + 2 * m)), spots, w, h
+
+    widest = sum(w for w, _ in extents) + _GAP * (len(extents) - 1)
+    scale, spots, w, h = max((fitted(r) for r in range(max(w for w, _ in extents), widest + 1)),
+                             key=lambda f: f[0])
+    # rows from the top down (the sheet's y is up), so the pieces read in their order
+    places = tuple(PiecePlace(i, 0, m + (x + _BORDER - float(lo[0])) * p,
+                              m + (h - _BORDER - y - ext[1] - float(lo[1])) * p)
+                   for i, ((x, y), lo, ext) in enumerate(zip(spots, lows, extents)))
+    return scale * (1.0 - 1e-6), Placement((w * p + 2 * m, h * p + 2 * m), m, p, 1, places)
+
+
+def _face_fills(normal: npt.NDArray[np.int64], faces: npt.NDArray[np.float64], index: npt.NDArray[np.int64],
+                fg: npt.NDArray[np.float64], face_rgb: npt.NDArray[np.uint8] | None = None) -> list[Fill]:
+    """One fill per face direction, or with ``face_rgb`` (the colour of each net face) per direction and colour."""
+    normal = normal[index]
     direction = np.argmax(np.abs(normal), axis=1) * 2 + (normal.sum(axis=1) < 0)
+    if face_rgb is None:
+        colour = np.zeros(len(index), dtype=np.int64)
+        bases = fg[None, :]
+    else:
+        bases, colour = np.unique(np.asarray(face_rgb, dtype=np.float64)[index], axis=0, return_inverse=True)
+        colour = colour.reshape(-1)
     fills = []
     for d in range(6):
-        sel = direction == d
-        if sel.any():
-            rgb = np.rint(fg * (0.55 + 0.45 * _TINT[d])).astype(int)
-            rings = Polylines.from_list(list(faces[sel]), [True] * int(sel.sum()))
-            fills.append(Fill(rings, "#{:02x}{:02x}{:02x}".format(*rgb.tolist())))
+        for c, base in enumerate(bases):
+            sel = (direction == d) & (colour == c)
+            if sel.any():
+                rgb = np.rint(base * (0.55 + 0.45 * _TINT[d])).astype(int)
+                rings = Polylines.from_list(list(faces[sel]), [True] * int(sel.sum()))
+                fills.append(Fill(rings, "#{:02x}{:02x}{:02x}".format(*rgb.tolist())))
     return fills
 
 
+def unfolded_shape(shape: VoxelShape | npt.ArrayLike, net: Net | Sequence[Net]) -> VoxelShape | npt.ArrayLike:
+    """The shape ``net`` (or its pieces) unfolds: ``shape``, or with its cavities filled for a net of the
+    outer surface (the filled voxels taking their nearest voxel's colour)."""
+    if not as_pieces(net)[0].filled:
+        return shape
+    from voxfab.shape import fill_cavities
+
+    full = fill_cavities(shape_grid(shape))
+    if isinstance(shape, VoxelShape):
+        return VoxelShape(full, shape.pitch, None if shape.colours is None else shape.colours.fitted(full))
+    return full
+
+
 def net_picture(
-    net: Net,
+    net: Net | Sequence[Net],
     shape: VoxelShape | npt.ArrayLike,
     *,
     size: int = 800,
@@ -101,8 +173,9 @@ def net_picture(
 
     Parameters
     ----------
-    net : Net
-        A net of ``shape`` (face i of the net is face i of the shape's surface graph).
+    net : Net or sequence of Net
+        A net of ``shape`` (face i of the net is face i of the shape's surface graph), or
+        the pieces of one: each piece is drawn with its own cut outline, apart from the others.
     shape : VoxelShape or (X, Y, Z) bool array_like
         The shape the net unfolds; it gives fold types and which cut edges glue together.
     size : int
@@ -110,7 +183,7 @@ def net_picture(
     height : int or None
         Picture height in pixels; default ``size``.
     background, color : str or (r, g, b)
-        Paper and face colours.
+        Paper and face colours; a coloured shape's faces take their voxels' colours.
     styles : dict or None
         Line style per fold kind (``"mountain"``, ``"valley"``, ``"flat"``), each one of
         ``"solid"``, ``"dashed"``, ``"dashdot"``, ``"dotted"``, ``"none"``.
@@ -141,25 +214,45 @@ def net_picture(
     from voxfab.fabricate.netdraw._legible import number_ratio
 
     strip = max(18, h_total // 22) if legend else 0
-    scale = _scale(net, width, h_total - strip)
+    pieces = as_pieces(net)
+    placement = None
+    if len(pieces) == 1:
+        scale = _scale(pieces[0], width, h_total - strip)
+    else:
+        scale, placement = _pieces_sheet(pieces, width, h_total - strip)
     # Labels under a few pixels are specks, not characters: leave them out of small pictures.
-    seams_max = 2 * net.face_count
+    seams_max = 2 * sum(piece.face_count for piece in pieces)
     numbers = numbers and number_ratio(label_length(seams_max)) * _PICTURE_PITCH * scale >= _MIN_DIGIT_PX
     colors = ",".join(f"{FOLD_LAYERS[k]}={LAYERS[FOLD_LAYERS[k]].color}:{v}"
                       for k, v in style.items() if v != HIDDEN)
+    room = (width / scale, (h_total - strip) / scale)  # mm the picture holds above its legend
+    sheet_mm = room if placement is None else placement.sheet
     options = DrawingOptions(
-        pitch=_PICTURE_PITCH, sheet=f"{width / scale:.6f}x{(h_total - strip) / scale:.6f}",
+        pitch=_PICTURE_PITCH, sheet=f"{sheet_mm[0]:.6f}x{sheet_mm[1]:.6f}",
         margin=_MARGIN * _PICTURE_PITCH, tab_width=_TAB * _PICTURE_PITCH, grid_lines=style["flat"] != HIDDEN,
         colors=colors, numbers=numbers, tabs=tabs, heading=False,
         # A picture shows the net however small its marks come out on screen.
         min_label_height=0.01, min_tab_depth=0.01,
     )
-    drawing = draw_net(grid, net, options=options)
+    if placement is None:
+        drawing = draw_net(grid, pieces[0], options=options)
+    else:
+        from voxfab.fabricate.netdraw import draw_pieces
+
+        # the placement's sheet as the options read it back, so the two agree to the micron
+        placement = dataclasses.replace(placement, sheet=options.sheet_size)
+        drawing = draw_pieces(grid, pieces, options=options, placement=placement)
     sheet = drawing.sheets[0]
     page = sheet.page()
-    page = dataclasses.replace(page, fills=(*_face_fills(net, sheet.faces, sheet.face_index, fg), *page.fills))
-    # The legend goes in a strip below the net.
-    page = page.shifted((0.0, strip / scale), width=width / scale, height=h_total / scale)
+    normal = np.concatenate([piece.normal for piece in pieces])
+    colours = shape.colours if isinstance(shape, VoxelShape) else None
+    # the pieces' voxels index the grid the net unfolds: the shape's own, uncropped
+    face_rgb = None if colours is None else colours.at(np.concatenate([piece.voxel for piece in pieces]))[:, :3]
+    page = dataclasses.replace(page, fills=(*_face_fills(normal, sheet.faces, sheet.face_index, fg, face_rgb),
+                                            *page.fills))
+    # The legend goes in a strip below the net; pieces on a sheet of their own are centred in the room left.
+    centring = ((room[0] - sheet_mm[0]) / 2, (room[1] - sheet_mm[1]) / 2) if placement is not None else (0.0, 0.0)
+    page = page.shifted((centring[0], strip / scale + centring[1]), width=width / scale, height=h_total / scale)
     hidden = frozenset(FOLD_LAYERS[k] for k, v in style.items() if v == HIDDEN)
     key = Legend(y=0.25 * strip / scale, right=0.5 * strip / scale, height=0.5 * strip / scale) if legend else None
     image = page_image(page, scale=scale, styles=options.styles, background=bg, legend=key, hidden=hidden)

@@ -28,8 +28,8 @@ class PictureOptions(Options):
 
     size: int = option(800, help="picture side (triptych panels too; the turntable uses half)", unit="px",
                        low=16, high=8192)
-    views: tuple[str, ...] = option(("iso",), help="3D views written as render_VIEW.png", choices=VIEWS,
-                                    cli=False)
+    views: tuple[str, ...] = option(("profile",), help="3D views written as render_VIEW.png (profile: turned "
+                                    "towards the side whose silhouette says the most)", choices=VIEWS, cli=False)
     triptych: bool = option(True, help="also write triptych.png and triptych.pdf (net | slices | 3D)",
                             cli=False)
     net_picture: bool = option(False, help="also write net_picture.png, the triptych's net on its own", cli=False)

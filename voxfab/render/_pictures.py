@@ -145,7 +145,7 @@ def _side(picture: Picture, options: PictureOptions) -> int:
 
 
 def _draw(p: Picture, shape: VoxelShape, o: PictureOptions, *, side: int, name: str, seed: int,
-          net: Net | None) -> Image.Image | list[Image.Image]:
+          net: Net | Sequence[Net] | None) -> Image.Image | list[Image.Image]:
     """The picture ``p`` shows (a list of frames for a turntable)."""
     if p.kind is PictureKind.VIEW:
         from ._render import render
@@ -160,16 +160,12 @@ def _draw(p: Picture, shape: VoxelShape, o: PictureOptions, *, side: int, name: 
 
         return triptych(shape, name=name, rng=seed, net=net, panel=side, background=o.background, color=o.color)
     if p.kind is PictureKind.NET:
-        from voxfab.shape import fill_cavities
-
-        from ._net import net_picture
-        from ._render import shape_grid
+        from ._net import net_picture, unfolded_shape
         from ._triptych import make_net
 
         the_net = net if net is not None else make_net(shape, rng=seed)
         # A net of the outer surface unfolds the shape with its cavities filled (as in the triptych).
-        grid = fill_cavities(shape_grid(shape)) if the_net.filled else shape
-        return net_picture(the_net, grid, size=side, background=o.background)
+        return net_picture(the_net, unfolded_shape(shape, the_net), size=side, background=o.background)
     from ._animate import turntable_frames
 
     return turntable_frames(shape, frames=o.frames, size=side, background=o.background, color=o.color)
@@ -182,7 +178,7 @@ def render_pictures(
     *,
     name: str,
     seed: int,
-    net: Net | None = None,
+    net: Net | Sequence[Net] | None = None,
     pictures: Sequence[Picture] | None = None,
 ) -> Artefact:
     """The pictures pipeline: views, slice sheet, triptych, net picture and turntable, as asked.
@@ -201,8 +197,9 @@ def render_pictures(
     seed : int
         Seed of the net of the triptych and net picture when ``net`` is not
         given (``voxfab.unfold.unfold(grid, rng=seed)``, as the ``net`` output).
-    net : Net, optional
-        The net to draw (the one the net output wrote, or the user's file).
+    net : Net or sequence of Net, optional
+        The net to draw (the one the net output wrote, or the user's file), or
+        its pieces (a net split to fit its sheet), each drawn with its own outline.
     pictures : sequence of Picture, optional
         The files to write instead of :func:`pictures_asked` ``(options)``.
 

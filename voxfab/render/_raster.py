@@ -6,9 +6,10 @@ chunks of faces), the nearest sample per pixel wins through a packed
 ``(depth, face)`` key and ``np.minimum.at``, and the winning face's local
 coordinates give its distance to the voxel edges, which are drawn dark.
 
-Colour is one scalar *shade* per pixel times the base colour, so a picture uses
-at most 256 colours (background + shade levels) and GIF frames share one fixed
-palette exactly.
+Colour is one scalar *shade* per pixel times the base colour, so a picture of an
+uncoloured shape uses at most 256 colours (background + shade levels) and GIF
+frames share one fixed palette exactly.  The raster also keeps the voxel each pixel
+shows, so a coloured shape is drawn with each voxel's own colour times its shade.
 """
 
 from __future__ import annotations
@@ -21,7 +22,7 @@ import numpy.typing as npt
 
 from voxfab._shared.validate import as_grid, check_positive
 from voxfab.errors import InvalidShapeError
-from voxfab.shape import DIRECTIONS
+from voxfab.shape import DIRECTIONS, VoxelColours
 
 from ._views import Camera
 
@@ -93,12 +94,16 @@ class Raster:
         Covered pixels that belong to a voxel edge line.
     frame : Frame
         The projection used.
+    voxel : (H, W) int64 ndarray
+        The flat index (C order, in the grid rasterized) of the voxel each covered
+        pixel shows; -1 elsewhere.
     """
 
     shade: npt.NDArray[np.float32]
     coverage: npt.NDArray[np.bool_]
     edge: npt.NDArray[np.bool_]
     frame: Frame
+    voxel: npt.NDArray[np.int64]
 
 
 def _box_corners(lo: npt.NDArray[np.int64], hi: npt.NDArray[np.int64]) -> npt.NDArray[np.float64]:
@@ -143,10 +148,10 @@ def fit_frame(
 
 def _visible_faces(
     grid: npt.NDArray[np.bool_], camera: Camera
-) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]:
-    """Origin corners ``(F, 3)`` and directions ``(F,)`` of exposed faces facing the camera."""
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64], npt.NDArray[np.int64]]:
+    """Origin corners ``(F, 3)``, directions ``(F,)`` and voxels (flat indices) of exposed faces facing the camera."""
     p = np.pad(grid, 1)
-    origins, dirs = [], []
+    origins, dirs, voxels = [], [], []
     for d, n in enumerate(DIRECTIONS):
         if float(n @ camera.toward) <= 1e-9:
             continue  # back faces are hidden by the front ones of a closed surface
@@ -157,9 +162,10 @@ def _visible_faces(
             o[:, d // 2] += 1.0
         origins.append(o)
         dirs.append(np.full(len(v), d, dtype=np.int64))
+        voxels.append(np.ravel_multi_index(tuple(v.T), grid.shape) if len(v) else np.zeros(0, np.int64))
     if not origins:
-        return np.zeros((0, 3)), np.zeros(0, dtype=np.int64)
-    return np.concatenate(origins), np.concatenate(dirs)
+        return np.zeros((0, 3)), np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
+    return np.concatenate(origins), np.concatenate(dirs), np.concatenate(voxels).astype(np.int64)
 
 
 def _face_axes(d: int) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
@@ -202,7 +208,7 @@ def rasterize(
     g = as_grid(grid, name="shape", allow_empty=True)
     w, h, s = frame.width, frame.height, frame.scale
     ew = min(max(0.5, 0.05 * s), 1.6) if edge_width is None else float(edge_width)
-    origins, dirs = _visible_faces(g, camera)
+    origins, dirs, face_voxel = _visible_faces(g, camera)
     nf = len(dirs)
     if nf >= 1 << _FACE_BITS:
         raise InvalidShapeError(f"shape: {nf} visible faces is too many to render")
@@ -288,11 +294,14 @@ def rasterize(
     shade[pix] = val
     edge = np.zeros(w * h, dtype=bool)
     edge[pix] = on_edge
+    voxel = np.full(w * h, -1, dtype=np.int64)
+    voxel[pix] = face_voxel[win]
     return Raster(
         shade=shade.reshape(h, w),
         coverage=covered.reshape(h, w),
         edge=edge.reshape(h, w),
         frame=frame,
+        voxel=voxel.reshape(h, w),
     )
 
 
@@ -314,8 +323,14 @@ def to_indexed(raster: Raster) -> npt.NDArray[np.uint8]:
 
 
 def to_rgb(
-    raster: Raster, color: tuple[int, int, int], background: tuple[int, int, int]
+    raster: Raster, color: tuple[int, int, int], background: tuple[int, int, int],
+    colours: VoxelColours | None = None,
 ) -> npt.NDArray[np.uint8]:
-    """``(H, W, 3)`` uint8 picture: the palette of :func:`palette_for` applied to :func:`to_indexed`."""
+    """``(H, W, 3)`` uint8 picture: the palette of :func:`palette_for` applied to :func:`to_indexed`, or,
+    with ``colours`` (of the grid rasterized), each pixel its voxel's colour times its shade."""
     pal = np.asarray(palette_for(color, background), dtype=np.uint8).reshape(-1, 3)
-    return pal[to_indexed(raster)]
+    if colours is None:
+        return pal[to_indexed(raster)]
+    base = colours.rgba[..., :3].reshape(-1, 3)[np.maximum(raster.voxel, 0)].astype(np.float64)
+    shaded = np.rint(base * np.clip(raster.shade, 0.0, 1.0)[..., None]).astype(np.uint8)
+    return np.where(raster.coverage[..., None], shaded, np.asarray(background, dtype=np.uint8))

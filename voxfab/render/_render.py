@@ -12,7 +12,7 @@ from voxfab._shared.typing import PathLike
 from voxfab._shared.validate import as_grid
 from voxfab.drawing.png import png_bytes
 from voxfab.errors import InvalidShapeError
-from voxfab.shape import VoxelShape, bounding_box, crop
+from voxfab.shape import VoxelColours, VoxelShape, bounding_box, crop
 
 from ._raster import DEFAULT_COLOR, Frame, Raster, fit_frame, parse_color, rasterize, to_rgb
 from ._views import Camera, View, camera_for
@@ -29,6 +29,13 @@ def shape_grid(shape: VoxelShape | npt.ArrayLike, *, name: str = "shape") -> npt
     """The bool grid of a VoxelShape or an array (checked, non-empty)."""
     grid = shape.grid if isinstance(shape, VoxelShape) else shape
     return as_grid(grid, name=name)
+
+
+def shape_colours(shape: VoxelShape | npt.ArrayLike) -> VoxelColours | None:
+    """The colours of a coloured shape, cropped as :func:`render_raster` crops its grid (None when uncoloured)."""
+    if isinstance(shape, VoxelShape) and shape.colours is not None:
+        return shape.crop().colours
+    return None
 
 
 def check_size(size: int, *, name: str = "size", minimum: int = 16, maximum: int = 8192) -> int:
@@ -57,10 +64,11 @@ def render_raster(
     With ``supersample`` k the raster is k times larger in each direction, with
     the same framing (voxel edges stay on the same final pixel boundaries).
     """
-    # Cropping first makes the picture independent of where the shape sits in its grid.
+    # Cropping first makes the picture independent of where the shape sits in its grid
+    # (and the raster's voxels index the cropped grid, which shape_colours crops alike).
     grid = crop(shape_grid(shape))
     n = check_size(size)
-    camera = view if isinstance(view, Camera) else camera_for(view)
+    camera = view if isinstance(view, Camera) else camera_for(view, grid)
     lo, hi = bounding_box(grid)
     frame = fit_frame(np.asarray(lo), np.asarray(hi), camera, width=n, height=n, margin=margin, scale=scale)
     k = int(supersample)
@@ -78,7 +86,7 @@ def supersampling(shape: VoxelShape | npt.ArrayLike, *, view: str | View | Camer
                   scale: float | None = None) -> int:
     """The automatic anti-aliasing factor: 1 at 10+ pixels per voxel, up to 4 below."""
     grid = shape_grid(shape)
-    camera = view if isinstance(view, Camera) else camera_for(view)
+    camera = view if isinstance(view, Camera) else camera_for(view, grid)
     lo, hi = bounding_box(grid)
     n = check_size(size)
     s = fit_frame(np.asarray(lo), np.asarray(hi), camera, width=n, height=n, scale=scale).scale
@@ -101,12 +109,14 @@ def render(
     ----------
     shape : VoxelShape or (X, Y, Z) bool array_like
         The shape, indexed ``[x, y, z]`` with z up.
-    view : {"iso", "x", "-x", "y", "-y", "z", "-z"}
-        Isometric, or the orthographic view from the named side (``"z"``: from above).
+    view : {"iso", "x", "-x", "y", "-y", "z", "-z", "profile"}
+        Isometric, the orthographic view from the named side (``"z"``: from above), or the
+        view that shows the shape's profile (:func:`voxfab.render.profile_camera`).
     size : int
         Width and height of the picture in pixels.
     background, color : str or (r, g, b)
-        Background and cube colours (names or ``#rrggbb``).
+        Background and cube colours (names or ``#rrggbb``); a coloured shape's
+        voxels are drawn in their own colours instead of ``color``.
     scale : float or None
         Pixels per voxel; default: as large as fits.
     antialias : int or None
@@ -129,7 +139,7 @@ def render(
     else:
         k = int(antialias)
     raster = render_raster(shape, view=view, size=size, scale=scale, supersample=k)
-    image = Image.fromarray(to_rgb(raster, fg, bg))
+    image = Image.fromarray(to_rgb(raster, fg, bg, shape_colours(shape)))
     return image.reduce(k) if k > 1 else image
 
 

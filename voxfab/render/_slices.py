@@ -16,7 +16,7 @@ from voxfab.shape import VoxelShape, crop
 
 from ._image import font
 from ._raster import DEFAULT_COLOR, parse_color
-from ._render import Color, check_size, shape_grid
+from ._render import Color, check_size, shape_colours, shape_grid
 
 if TYPE_CHECKING:
     from PIL import Image
@@ -72,15 +72,27 @@ def layers(shape: VoxelShape | npt.ArrayLike, *, axis: str | SliceAxis = "z") ->
         ``C`` columns left to right, with the same orientation as the render views
         ``"z"``, ``"x"`` and ``"y"``.
     """
-    a = check_choice(axis, SliceAxis, name="axis")
-    g = crop(shape_grid(shape))
+    return _oriented(crop(shape_grid(shape)), check_choice(axis, SliceAxis, name="axis"))
+
+
+def _oriented(g: npt.NDArray, a: SliceAxis) -> npt.NDArray:
+    """A cropped grid ``[x, y, z, ...]`` as the layers of :func:`layers` (trailing axes, such as RGB, kept)."""
+    extra = tuple(range(3, g.ndim))
     if a is SliceAxis.Z:
-        stack = np.transpose(g, (2, 1, 0))[:, ::-1, :]  # rows: y down, columns: x
+        stack = np.transpose(g, (2, 1, 0, *extra))[:, ::-1, :]  # rows: y down, columns: x
     elif a is SliceAxis.X:
-        stack = np.transpose(g, (0, 2, 1))[:, ::-1, :]  # rows: z down, columns: y
+        stack = np.transpose(g, (0, 2, 1, *extra))[:, ::-1, :]  # rows: z down, columns: y
     else:
-        stack = np.transpose(g, (1, 2, 0))[:, ::-1, ::-1]  # rows: z down, columns: -x
+        stack = np.transpose(g, (1, 2, 0, *extra))[:, ::-1, ::-1]  # rows: z down, columns: -x
     return np.ascontiguousarray(stack)
+
+
+def layer_colours(shape: VoxelShape | npt.ArrayLike, *, axis: str | SliceAxis = "z") -> npt.NDArray[np.uint8] | None:
+    """The RGB of each cell of :func:`layers`, ``(N, R, C, 3)``; None for an uncoloured shape."""
+    colours = shape_colours(shape)
+    if colours is None:
+        return None
+    return _oriented(colours.rgba[..., :3], check_choice(axis, SliceAxis, name="axis"))
 
 
 def slice_layout(n_layers: int, layer_shape: tuple[int, int], *, width: int, height: int | None = None,
@@ -126,6 +138,8 @@ def _layer_picture(
     cell: int,
     fg: tuple[int, int, int],
     paper: tuple[int, int, int],
+    rgb: npt.NDArray[np.uint8] | None = None,
+    rgb_below: npt.NDArray[np.uint8] | None = None,
 ) -> npt.NDArray[np.uint8]:
     up = np.repeat(np.repeat(layer, cell, axis=0), cell, axis=1)
     lw = min(max(1, cell // 12), 3)
@@ -134,14 +148,18 @@ def _layer_picture(
     edge = ((rr < lw) | (rr >= cell - lw))[:, None] | ((cc < lw) | (cc >= cell - lw))[None, :]
     out = np.empty(up.shape + (3,), dtype=np.uint8)
     out[:] = paper
+    if rgb is not None:  # each cell in its voxel's colour: the uniform colour becomes a picture of colours
+        fg = np.repeat(np.repeat(rgb, cell, axis=0), cell, axis=1)[up]
     if below is not None:
         ghost = np.repeat(np.repeat(below, cell, axis=0), cell, axis=1)
-        tint = np.rint(0.75 * np.asarray(paper) + 0.25 * np.asarray(fg) * 0.7).astype(np.uint8)
+        under = np.asarray(fg) if rgb_below is None else np.repeat(np.repeat(rgb_below, cell, axis=0), cell,
+                                                                   axis=1)[ghost]
+        tint = np.rint(0.75 * np.asarray(paper) + 0.25 * under * 0.7).astype(np.uint8)
         out[ghost] = tint
     out[up] = fg
     if cell >= 6:  # below that, grid lines would swallow the voxels
         dark = np.rint(np.asarray(fg) * 0.28).astype(np.uint8)
-        out[up & edge] = dark
+        out[up & edge] = dark if rgb is None else dark[edge[up]]
     # A thin frame shows each layer's full extent.
     frame = np.zeros(up.shape, dtype=bool)
     frame[0, :] = frame[-1, :] = True
@@ -176,7 +194,7 @@ def slice_sheet(
     columns : int or None
         Cells per row; default: a near-square sheet.
     background, color : str or (r, g, b)
-        Sheet and voxel colours.
+        Sheet and voxel colours; a coloured shape's cells are drawn in their voxels' colours.
     ghost : bool
         Show the layer below each layer faintly, as it lies under it when stacked.
 
@@ -193,11 +211,14 @@ def slice_sheet(
     bg = parse_color(background, name="background")
     fg = parse_color(color, name="color")
     stack = layers(shape, axis=axis)
+    rgb = layer_colours(shape, axis=axis)
     lay = slice_layout(len(stack), stack.shape[1:], width=width, height=height, columns=columns)
     sheet = np.empty((lay.height, lay.width, 3), dtype=np.uint8)
     sheet[:] = bg
     for i, layer in enumerate(stack):
-        pic = _layer_picture(layer, stack[i - 1] if ghost and i > 0 else None, lay.cell, fg, bg)
+        below = ghost and i > 0
+        pic = _layer_picture(layer, stack[i - 1] if below else None, lay.cell, fg, bg,
+                             None if rgb is None else rgb[i], None if rgb is None or not below else rgb[i - 1])
         x0, y0 = lay.origins[i]
         sheet[y0 : y0 + pic.shape[0], x0 : x0 + pic.shape[1]] = pic
     image = Image.fromarray(sheet)

@@ -12,12 +12,14 @@ from voxfab.errors import UnfoldError
 from voxfab.shape import VoxelShape
 
 from ._image import font
-from ._net import net_picture
+from ._net import net_picture, unfolded_shape
 from ._raster import DEFAULT_COLOR, parse_color
 from ._render import Color, check_size, render, shape_grid
 from ._slices import slice_sheet
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     from PIL import Image
 
     from voxfab.unfold import Net
@@ -86,7 +88,7 @@ def triptych(
     *,
     name: str,
     rng: np.random.Generator | int = 0,
-    net: Net | None = None,
+    net: Net | Sequence[Net] | None = None,
     panel: int = 800,
     background: Color = "white",
     color: Color = DEFAULT_COLOR,
@@ -101,9 +103,10 @@ def triptych(
         Title of the picture (the shape's name).
     rng : numpy Generator or int
         Seed of the net when ``net`` is not given (``voxfab.unfold.unfold(grid, rng=rng)``).
-    net : Net or None
+    net : Net, sequence of Net, or None
         A net of the shape (of its outer surface when ``net.filled``) to draw
-        instead of a new one.
+        instead of a new one, or the pieces of one (a net split to fit a
+        sheet): each piece is drawn with its own cut outline.
     panel : int
         Side of each square panel in pixels.
     background, color : str or (r, g, b)
@@ -117,23 +120,22 @@ def triptych(
     """
     from PIL import Image, ImageDraw
 
-    from voxfab.shape import fill_cavities
-
     side = check_size(panel, name="panel", minimum=64)
     grid = shape_grid(shape)
     bg = parse_color(background, name="background")
     fg = parse_color(color, name="color")
     lay = triptych_layout(side)
-    net_grid = fill_cavities(grid) if net is not None and net.filled else grid
     try:
         the_net = net if net is not None else make_net(grid, rng=rng)
-        net_img = net_picture(the_net, net_grid, size=side, background=bg, color=fg)
+        # the shape, not its grid: a coloured shape's panels are drawn in its colours
+        net_img = net_picture(the_net, unfolded_shape(shape, net) if net is not None else shape, size=side,
+                              background=bg, color=fg)
     except UnfoldError as exc:
         net_img = _message_panel(f"no net drawn: {exc}", side, bg)
     pictures = [
         net_img,
-        slice_sheet(grid, size=side, height=side, background=bg, color=fg),
-        render(grid, view="iso", size=side, background=bg, color=fg),
+        slice_sheet(shape, size=side, height=side, background=bg, color=fg),
+        render(shape, view="profile", size=side, background=bg, color=fg),
     ]
     image = Image.new("RGB", (lay.width, lay.height), bg)
     for pic, box in zip(pictures, lay.panels):

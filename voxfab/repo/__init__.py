@@ -11,8 +11,10 @@ on request), are stored once, found through indexed canonical keys.
 Only this package touches :mod:`sqlite3`.  See :class:`Repository`.
 """
 
+from importlib import import_module
+from typing import TYPE_CHECKING, Any
+
 from ._load import LoadedShape, load_shape
-from ._ranges import RangeInfo
 from ._records import (
     DRAFT_PATTERN,
     MAX_RANK,
@@ -23,8 +25,27 @@ from ._records import (
     format_name,
     is_shape_name,
 )
-from ._repository import DEFAULT_PATH, AddResult, Entry, Repository
-from ._sqlite import SCHEMA_VERSION
+
+if TYPE_CHECKING:
+    from ._ranges import RangeInfo
+    from ._repository import DEFAULT_PATH, AddResult, Entry, Repository
+    from ._sqlite import SCHEMA_VERSION
+
+#: Names whose modules (and sqlite3) load on first use: a command that reads a shape file opens no database.
+_LAZY = {"RangeInfo": "_ranges", "DEFAULT_PATH": "_repository", "AddResult": "_repository", "Entry": "_repository",
+         "Repository": "_repository", "SCHEMA_VERSION": "_sqlite"}
+
+
+def __getattr__(name: str) -> Any:
+    if name not in _LAZY:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(import_module(f"{__name__}.{_LAZY[name]}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))
 
 __all__ = [
     "Repository",

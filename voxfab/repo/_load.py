@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
-from pathlib import Path
+import os
 from typing import Any, NamedTuple
 
 from voxfab._shared.typing import PathLike
 from voxfab.shape import VoxelShape
 
-from ._records import is_shape_name
-from ._repository import DEFAULT_PATH
+from ._records import NAME_LIKE, check_name
 
 
 class LoadedShape(NamedTuple):
@@ -55,12 +54,36 @@ def load_shape(source: str, repository: PathLike | None = None, *, pitch: float 
     from voxfab.shape import ShapeOptions
 
     ShapeOptions(pitch=pitch)  # checked before reading
-    if is_shape_name(source) and not Path(source).exists():
-        from ._repository import Repository
+    # A name is checked as a name (one line for a malformed one) before it is tried as a path;
+    # an existing file of that name still wins.
+    if NAME_LIKE.fullmatch(source) and not _exists(source, quiet=True):
+        check_name(source)
+        from ._repository import DEFAULT_PATH, Repository
 
         with Repository(repository or DEFAULT_PATH, create=False) as repo:
-            grid = repo.get(source)
-        return LoadedShape(VoxelShape(grid, pitch or 1.0), source, [], pitch is not None)
+            shape = repo.shape(source, pitch or 1.0)
+        return LoadedShape(shape, source, [], pitch is not None)
+    _exists(source)  # a path no system call can look up is one line, not an OSError
     result = io.read(source, **options)
     own = pitch if pitch is not None else result.pitch
-    return LoadedShape(VoxelShape(result.grid, own or 1.0), None, list(result.notes), own is not None)
+    return LoadedShape(result.shape(own), None, list(result.notes), own is not None)
+
+
+def _exists(source: str, *, quiet: bool = False) -> bool:
+    """Whether a file or folder ``source`` exists.
+
+    A path the system cannot even look up (a name over 255 bytes, a NUL byte) is
+    refused in one line, or with ``quiet`` counts as missing.
+    """
+    from voxfab.errors import FormatError
+
+    try:
+        os.stat(source)
+    except (FileNotFoundError, NotADirectoryError):
+        return False
+    except (OSError, ValueError) as exc:
+        if quiet:
+            return False
+        detail = getattr(exc, "strerror", None) or exc
+        raise FormatError(f"{source[:80]!r}{'...' if len(source) > 80 else ''}: cannot read: {detail}") from None
+    return True

@@ -15,7 +15,7 @@ from voxfab._shared.limits import parse_json
 from voxfab._shared.typing import BoolGrid
 from voxfab._shared.validate import MAX_SIDE, as_grid
 from voxfab.errors import RepositoryError, VoxfabError
-from voxfab.shape import canonical_key, crop, well_formed_reasons
+from voxfab.shape import VoxelColours, VoxelShape, canonical_key, crop, well_formed_reasons
 
 __all__ = [
     "MAX_RANK",
@@ -30,6 +30,7 @@ __all__ = [
     "encode_bits",
     "decode_bits",
     "decode_row",
+    "decode_colours",
     "decode_reasons",
     "decode_meta",
     "format_name",
@@ -41,14 +42,19 @@ __all__ = [
 
 #: Ranks run 001..999 per volume.
 MAX_RANK = 999
+# The patterns are matched whole (``fullmatch``): ``$`` would also match before a final newline,
+# and ASCII digits only (``\d`` takes any script's digits).
 #: A repository name: 5-digit zero-padded volume, a dot, 3-digit rank.
-NAME_PATTERN = re.compile(r"^(\d{5})\.(\d{3})$")
+NAME_PATTERN = re.compile(r"([0-9]{5})\.([0-9]{3})")
 #: The id of a draft (a stored shape that is not well formed).
-DRAFT_PATTERN = re.compile(r"^draft-(\d+)$")
+DRAFT_PATTERN = re.compile(r"draft-([0-9]+)")
 #: The name of a range: lowercase letters, digits, ``-`` and ``_``, starting with a letter.
-RANGE_PATTERN = re.compile(r"^[a-z][a-z0-9_-]{0,39}$")
+RANGE_PATTERN = re.compile(r"[a-z][a-z0-9_-]{0,39}")
 #: A member of a range: ``RANGE:MEMBER`` (``polycubes-9:08-000001``).
-MEMBER_PATTERN = re.compile(r"^([a-z][a-z0-9_-]{0,39}):([0-9a-z][0-9a-z_-]{0,39})$")
+MEMBER_PATTERN = re.compile(r"([a-z][a-z0-9_-]{0,39}):([0-9a-z][0-9a-z_-]{0,39})")
+#: What a user writing a repository name writes: text a file name would not be mistaken for
+#: (checked as a name, never tried as a path).
+NAME_LIKE = re.compile(r"[0-9]{5}\.[0-9]+|draft-[^./]*|[a-z][a-z0-9_-]*:[^./]*", re.DOTALL)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -69,6 +75,8 @@ class Record:
         Why the shape is not well formed (empty when it is).
     meta : str or None
         The metadata as JSON text with sorted keys.
+    colours : bytes or None
+        The RGBA of each voxel of the cropped grid in C order (None: uncoloured).
     """
 
     volume: int
@@ -78,6 +86,7 @@ class Record:
     symmetric_key: str
     reasons: tuple[str, ...]
     meta: str | None
+    colours: bytes | None = None
 
 
 def encode_bits(cropped: BoolGrid) -> bytes:
@@ -118,6 +127,7 @@ def decode_row(
     volume: object,
     key: object = None,
     symmetric_key: object = None,
+    colours: object = None,
 ) -> BoolGrid:
     """Decode a stored row's grid after checking it against what the row says of it.
 
@@ -147,7 +157,7 @@ def decode_row(
             continue
         if not isinstance(stored, bytes) or len(stored) != 32:
             raise _corrupt(name, f"{label} is not a 32-byte blob")
-        if canonical_key(grid, symmetric=symmetric) != stored.hex():
+        if canonical_key(grid, symmetric=symmetric, colours=decode_colours(name, colours, grid)) != stored.hex():
             raise _corrupt(name, f"{label} does not match the stored voxels")
     return grid
 
@@ -214,23 +224,41 @@ def prepare(
     key: str | None = None,
     symmetric_key: str | None = None,
     reasons: tuple[str, ...] | None = None,
+    colours: VoxelColours | None = None,
 ) -> Record:
-    """Compute everything stored for a grid checked by :func:`check_grid`.
+    """Compute everything stored for a grid checked by :func:`check_grid`, and its ``colours``.
 
     ``meta`` is JSON text from :func:`encode_meta`; ``key``, ``symmetric_key`` and
     ``reasons`` (from :func:`voxfab.shape.well_formed_reasons`) may be passed when
-    already computed.
+    already computed.  A coloured shape's keys cover its colours: the same voxels in
+    other colours are another shape.
     """
-    c = crop(grid)
+    shape = VoxelShape(grid, 1.0, colours).crop()
+    c, cc = shape.grid, shape.colours
     return Record(
         volume=int(np.count_nonzero(c)),
         extents=(int(c.shape[0]), int(c.shape[1]), int(c.shape[2])),
         bits=encode_bits(c),
-        key=key or canonical_key(c),
-        symmetric_key=symmetric_key or canonical_key(c, symmetric=True),
+        key=key or canonical_key(c, colours=cc),
+        symmetric_key=symmetric_key or canonical_key(c, symmetric=True, colours=cc),
         reasons=tuple(well_formed_reasons(c)) if reasons is None else tuple(reasons),
         meta=meta,
+        colours=None if cc is None else cc.rgba[c].tobytes(),
     )
+
+
+def decode_colours(name: str, blob: object, grid: BoolGrid) -> VoxelColours | None:
+    """The colours stored for ``grid`` (the RGBA of each voxel in C order), or None; a bad blob is a corrupt row."""
+    if blob is None:
+        return None
+    if not isinstance(blob, (bytes, bytearray)) or len(blob) != 4 * int(np.count_nonzero(grid)):
+        raise _corrupt(name, "colours is not 4 bytes of RGBA per voxel")
+    rgba = np.zeros((*grid.shape, 4), dtype=np.uint8)
+    rgba[grid] = np.frombuffer(bytes(blob), dtype=np.uint8).reshape(-1, 4)
+    try:
+        return VoxelColours.from_rgba(grid, rgba)
+    except VoxfabError as exc:
+        raise _corrupt(name, str(exc)) from None
 
 
 def format_name(volume: int, rank: int) -> str:
@@ -245,7 +273,7 @@ def draft_name(row_id: int) -> str:
 
 def is_shape_name(text: str) -> bool:
     """Whether ``text`` has the form of a stored shape's name: ``VVVVV.NNN``, ``draft-N`` or ``RANGE:MEMBER``."""
-    return bool(NAME_PATTERN.match(text) or DRAFT_PATTERN.match(text) or MEMBER_PATTERN.match(text))
+    return isinstance(text, str) and any(p.fullmatch(text) for p in (NAME_PATTERN, DRAFT_PATTERN, MEMBER_PATTERN))
 
 
 def check_name(name: object) -> str:
@@ -260,7 +288,7 @@ def check_name(name: object) -> str:
 
 def check_range_name(name: object) -> str:
     """Return ``name`` if it can name a range, else raise RepositoryError."""
-    if not isinstance(name, str) or not RANGE_PATTERN.match(name):
+    if not isinstance(name, str) or not RANGE_PATTERN.fullmatch(name):
         raise RepositoryError(
             f"{name!r}: not a range name (expected lowercase letters, digits, '-' and '_', starting with a "
             "letter, at most 40 characters, such as polycubes-8)"

@@ -14,15 +14,26 @@ import numpy.typing as npt
 
 from voxfab._shared.typing import BoolGrid, PathLike
 from voxfab.errors import RepositoryError
-from voxfab.shape import canonical_key, well_formed_reasons
+from voxfab.shape import VoxelShape, canonical_key, well_formed_reasons
 
-from ._ranges import RangeInfo, check_members, insert_members, member_rows, range_infos, split_member
+from ._ranges import (
+    RangeInfo,
+    check_members,
+    claim_drafts,
+    insert_members,
+    member_rows,
+    range_infos,
+    remove_made_drafts,
+    require_sound,
+    split_member,
+)
 from ._records import (
     MAX_RANK,
     Record,
     check_grid,
     check_name,
     check_range_name,
+    decode_colours,
     decode_meta,
     decode_reasons,
     decode_row,
@@ -31,7 +42,7 @@ from ._records import (
     format_name,
     prepare,
 )
-from ._sqlite import connect, immediate, sqlite_errors
+from ._sqlite import SCHEMA_OBJECTS, connect, immediate, sqlite_errors
 
 __all__ = ["DEFAULT_PATH", "AddResult", "Entry", "Repository"]
 
@@ -174,8 +185,8 @@ class Repository:
 
         Parameters
         ----------
-        grid : (X, Y, Z) bool array_like
-            The shape; only its cropped content is stored.
+        grid : (X, Y, Z) bool array_like or VoxelShape
+            The shape; only its cropped content is stored, with its colours when it has them.
         symmetric : bool
             Also treat rotated and mirrored copies (48 cube symmetries) as equal.
         draft : bool
@@ -237,10 +248,13 @@ class Repository:
         """
         results, pending = self._prepare_many(grids, symmetric=symmetric, draft=draft, metas=metas, keys=keys,
                                               reasons=reasons)
-        if pending:
+        # A draft the artist adds that a range stored already becomes the artist's: removing the range keeps it.
+        found_drafts = [r.name for r in results if r is not None and r.draft]
+        if pending or found_drafts:
             db = self._db
             with sqlite_errors(self._path), immediate(db):
                 self._insert_pending(db, results, pending, symmetric=symmetric)
+                claim_drafts(db, found_drafts)
         return [r for r in results if r is not None]
 
     def _prepare_many(
@@ -271,9 +285,10 @@ class Repository:
         pending: list[tuple[int, Record]] = []
         for i, (grid, m) in enumerate(zip(grids, metas)):
             label = "shape" if len(grids) == 1 else f"shape {i}"
-            g = check_grid(grid, name=label)
+            colours = getattr(grid, "colours", None)
+            g = check_grid(getattr(grid, "grid", grid), name=label)
             meta = encode_meta(m)
-            key = keys[i] if keys is not None else canonical_key(g, symmetric=symmetric)
+            key = keys[i] if keys is not None else canonical_key(g, symmetric=symmetric, colours=colours)
             found = self._lookup(key, symmetric=symmetric)
             if found is not None:
                 name, stored_reasons = found
@@ -283,9 +298,9 @@ class Repository:
                 continue
             known = None if reasons is None else tuple(reasons[i])
             if symmetric:
-                record = prepare(g, meta=meta, symmetric_key=key, reasons=known)
+                record = prepare(g, meta=meta, symmetric_key=key, reasons=known, colours=colours)
             else:
-                record = prepare(g, meta=meta, key=key, reasons=known)
+                record = prepare(g, meta=meta, key=key, reasons=known, colours=colours)
             if record.reasons and not draft:
                 raise _not_well_formed(label, record.reasons)
             results.append(None)
@@ -340,7 +355,9 @@ class Repository:
         db = self._db
         with sqlite_errors(self._path), immediate(db):
             self._insert_pending(db, results, pending, symmetric=False)
-            return insert_members(db, range_name, [(m, r.name) for m, r in zip(names, results) if r is not None])
+            made = [r.name for r in (results[i] for i, _ in pending) if r is not None and r.created and r.draft]
+            return insert_members(db, range_name, [(m, r.name) for m, r in zip(names, results) if r is not None],
+                                  made)
 
     def ranges(self) -> list[RangeInfo]:
         """Every stored range, by name, with its number of members."""
@@ -370,19 +387,21 @@ class Repository:
         return [Entry(f"{range_name}:{m}", v, (nx, ny, nz), bool(d)) for m, v, nx, ny, nz, d in rows]
 
     def remove_range(self, range_name: str) -> int:
-        """Delete a range: its members, and its drafts that no other range holds.  Return the member count.
+        """Delete a range: its members, and the drafts it stored itself that no other range holds.
 
-        Named shapes (``VVVVV.NNN``) in the range stay stored.
+        Named shapes (``VVVVV.NNN``) in the range stay stored, and so do the
+        artist's own drafts (a census finds a stored draft equal to a polycube and
+        shares it).  Returns the member count.
         """
         check_range_name(range_name)
         db = self._db
         with sqlite_errors(self._path), immediate(db):
+            require_sound(db)
             shapes = [r[0] for r in db.execute("SELECT shape FROM range_members WHERE range = ?", (range_name,))]
             if not shapes:
                 raise RepositoryError(f"{range_name}: no such range in {self._path}")
             db.execute("DELETE FROM range_members WHERE range = ?", (range_name,))
-            db.execute("DELETE FROM shapes WHERE draft = 1 AND id IN (SELECT value FROM json_each(?))"
-                       " AND id NOT IN (SELECT shape FROM range_members)", (json.dumps(shapes),))
+            remove_made_drafts(db, shapes)
         return len(shapes)
 
     def _lookup(self, key: str, *, symmetric: bool) -> tuple[str, tuple[str, ...]] | None:
@@ -402,10 +421,10 @@ class Repository:
         if row is not None:
             return AddResult(row[0], False, r.reasons)
         values = (r.volume, *r.extents, r.bits, bytes.fromhex(r.key), bytes.fromhex(r.symmetric_key),
-                  json.dumps(list(r.reasons)), r.meta)
+                  json.dumps(list(r.reasons)), r.meta, r.colours)
         insert = (
-            "INSERT INTO shapes (name, rank, draft, volume, nx, ny, nz, bits, key, symmetric_key, reasons, meta)"
-            " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)"
+            "INSERT INTO shapes (name, rank, draft, volume, nx, ny, nz, bits, key, symmetric_key, reasons, meta,"
+            " colours) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)"
         )
         if r.reasons:
             row_id = db.execute(insert, (None, None, 1, *values)).lastrowid
@@ -458,9 +477,16 @@ class Repository:
         """
         return decode_row(name, *self._grid_columns(name))
 
+    def shape(self, name: str, pitch: float = 1.0) -> VoxelShape:
+        """The stored shape ``name`` (cropped) in its colours, at ``pitch`` mm per voxel."""
+        bits, extents, volume, key, skey, colours = self._grid_columns(name)
+        grid = decode_row(name, bits, extents, volume, key, skey, colours)
+        return VoxelShape(grid, pitch, decode_colours(name, colours, grid))
+
     def _grid_columns(self, name: str) -> tuple[Any, ...]:
-        bits, nx, ny, nz, volume, key, skey = self._row(name, f"{_BITS}, nx, ny, nz, volume, key, symmetric_key")
-        return bits, (nx, ny, nz), volume, key, skey
+        bits, nx, ny, nz, volume, key, skey, colours = self._row(
+            name, f"{_BITS}, nx, ny, nz, volume, key, symmetric_key, colours")
+        return bits, (nx, ny, nz), volume, key, skey, colours
 
     def packed(self, name: str) -> tuple[bytes, tuple[int, int, int]]:
         """Return the stored packed bits of ``name`` and its extents, without unpacking.
@@ -469,8 +495,8 @@ class Repository:
         a batch sends these few bytes to its workers.  The row is checked as by
         :meth:`get` first, so a worker never receives a corrupt shape.
         """
-        bits, extents, volume, key, skey = self._grid_columns(name)
-        decode_row(name, bits, extents, volume, key, skey)
+        bits, extents, volume, key, skey, colours = self._grid_columns(name)
+        decode_row(name, bits, extents, volume, key, skey, colours)
         return bytes(bits), extents
 
     def find(self, grid: npt.ArrayLike, *, symmetric: bool = False) -> str | None:
@@ -479,7 +505,8 @@ class Repository:
         Equal means the same voxels up to translation, and with ``symmetric`` up to
         the 48 cube symmetries.  Drafts are found too (their ``draft-N`` id).
         """
-        found = self._lookup(canonical_key(grid, symmetric=symmetric), symmetric=symmetric)
+        key = canonical_key(getattr(grid, "grid", grid), symmetric=symmetric, colours=getattr(grid, "colours", None))
+        found = self._lookup(key, symmetric=symmetric)
         return None if found is None else found[0]
 
     def list(
@@ -539,7 +566,7 @@ class Repository:
             parts.append((" AND ".join(where), params))
         if drafts:
             # A range's drafts are listed with the range (list_range), not among the artist's drafts.
-            where, params = ["draft = 1 AND id NOT IN (SELECT shape FROM range_members)"], []
+            where, params = ["draft = 1 AND id NOT IN (SELECT shape FROM range_made)"], []
             if start is not None and start[0] == 1:
                 where.append("(volume, id) > (?, ?)")
                 params += [start[1], start[2]]
@@ -580,7 +607,7 @@ class Repository:
             ).fetchall()
             drafts = self._db.execute(
                 "SELECT count(*) FROM shapes WHERE draft = 1 AND volume BETWEEN ? AND ?"
-                " AND id NOT IN (SELECT shape FROM range_members)", (lo, hi)
+                " AND id NOT IN (SELECT shape FROM range_made)", (lo, hi)
             ).fetchone()[0]
             ranges = range_infos(self._db)
         return {
@@ -600,12 +627,14 @@ class Repository:
 
         Keys: ``name``, ``volume``, ``rank`` (None for drafts), ``extents``,
         ``draft``, ``reasons`` (why a draft is not well formed), ``key`` and
-        ``symmetric_key`` (canonical sha256 keys), ``meta`` (None if none stored).
+        ``symmetric_key`` (canonical sha256 keys), ``meta`` (None if none stored),
+        ``colours`` (distinct colours, 0 when uncoloured).
         """
-        volume, rank, nx, ny, nz, d, reasons, key, skey, meta, bits = self._row(
-            name, f"volume, rank, nx, ny, nz, draft, reasons, key, symmetric_key, meta, {_BITS}"
+        volume, rank, nx, ny, nz, d, reasons, key, skey, meta, bits, colours = self._row(
+            name, f"volume, rank, nx, ny, nz, draft, reasons, key, symmetric_key, meta, {_BITS}, colours"
         )
-        decode_row(name, bits, (nx, ny, nz), volume, key, skey)
+        grid = decode_row(name, bits, (nx, ny, nz), volume, key, skey, colours)
+        stored = decode_colours(name, colours, grid)
         return {
             "name": name,
             "volume": volume,
@@ -616,6 +645,7 @@ class Repository:
             "key": key.hex(),
             "symmetric_key": skey.hex(),
             "meta": decode_meta(name, meta),
+            "colours": 0 if stored is None else stored.count,
         }
 
     def export(self, name: str, path: PathLike) -> Path:
@@ -628,8 +658,7 @@ class Repository:
         """
         from voxfab import io
 
-        grid = self.get(name)
-        io.write(grid, path)
+        io.write(self.shape(name), path)
         return Path(path)
 
     # -- removing ---------------------------------------------------------------
@@ -650,45 +679,63 @@ class Repository:
         db = self._db
         with sqlite_errors(self._path), immediate(db):
             if member is not None:  # the member, and its draft when no range holds it any more
+                require_sound(db)
                 row = db.execute("SELECT shape FROM range_members WHERE range = ? AND member = ?", member).fetchone()
                 if row is None:
                     raise RepositoryError(f"{name}: no such shape in {self._path}")
                 db.execute("DELETE FROM range_members WHERE range = ? AND member = ?", member)
-                db.execute("DELETE FROM shapes WHERE id = ? AND draft = 1"
-                           " AND id NOT IN (SELECT shape FROM range_members)", (row[0],))
+                remove_made_drafts(db, [row[0]])
                 return
             held = db.execute("SELECT m.range || ':' || m.member FROM range_members m JOIN shapes s"
                               " ON s.id = m.shape WHERE s.name = ? LIMIT 1", (name,)).fetchone()
             if held is not None:
                 raise RepositoryError(f"{name}: the range member {held[0]} is this shape; remove the member "
                                       "or its range first")
+            db.execute("DELETE FROM range_made WHERE shape IN (SELECT id FROM shapes WHERE name = ?)", (name,))
             deleted = db.execute("DELETE FROM shapes WHERE name = ?", (name,)).rowcount
         if deleted == 0:
             raise RepositoryError(f"{name}: no such shape in {self._path}")
 
-    def check(self) -> list[str]:
+    def check(self, *, rows: bool = True) -> list[str]:
         """Return the problems found in the file (an empty list when it is sound).
 
-        Runs SQLite's ``PRAGMA integrity_check``, then checks every row as a read
+        Checks that every table and index of the schema is there, runs SQLite's
+        ``PRAGMA integrity_check``, then checks every row as a read
         does (blob length against the box, column types, JSON of ``reasons`` and
         ``meta``, volume and both keys against the decoded voxels), that every name
         matches its row (``VVVVV.NNN`` from volume and rank, ``draft-N`` from the row
         id), that no rank exceeds its volume's counter, and that named shapes are
-        well formed while drafts say why they are not.
+        well formed while drafts say why they are not; and every range member
+        (names, positions, the row it points at).  With ``rows=False`` only the
+        schema and the ranges are checked (what storing a range relies on: quick).
         """
         problems: list[str] = []
         with sqlite_errors(self._path):
             db = self._db
-            problems += [r[0] for r in db.execute("PRAGMA integrity_check") if r[0] != "ok"]
-            rows = db.execute(
+            present = {r[0] for r in db.execute("SELECT name FROM sqlite_master")}
+            missing = {n for n in SCHEMA_OBJECTS if n not in present}
+            problems += [f"the table or index {n} is missing" for n in SCHEMA_OBJECTS if n in missing]
+            if rows:
+                problems += [r[0] for r in db.execute("PRAGMA integrity_check") if r[0] != "ok"]
+        if rows and not {"shapes", "rank_counters"} & missing:
+            problems += self._row_problems()
+        if not {"shapes", "range_members", "range_made"} & missing:
+            with sqlite_errors(self._path):
+                problems += check_members(self._db)
+        return problems
+
+    def _row_problems(self) -> list[str]:
+        problems: list[str] = []
+        with sqlite_errors(self._path):
+            rows = self._db.execute(
                 f"SELECT s.id, s.name, s.volume, s.rank, s.draft, s.nx, s.ny, s.nz, {_BITS}, s.key,"
-                " s.symmetric_key, s.reasons, s.meta, c.last_rank"
+                " s.symmetric_key, s.reasons, s.meta, c.last_rank, s.colours"
                 " FROM shapes s LEFT JOIN rank_counters c ON c.volume = s.volume ORDER BY s.id"
             ).fetchall()
-        for row_id, name, volume, rank, d, nx, ny, nz, bits, key, skey, reasons, meta, last in rows:
+        for row_id, name, volume, rank, d, nx, ny, nz, bits, key, skey, reasons, meta, last, colours in rows:
             label = f"row {row_id} ({name})" if isinstance(name, str) else f"row {row_id}"
             try:
-                grid = decode_row(label, bits, (nx, ny, nz), volume, key, skey)
+                grid = decode_row(label, bits, (nx, ny, nz), volume, key, skey, colours)
                 why = decode_reasons(label, reasons)
                 decode_meta(label, meta)
             except RepositoryError as exc:
@@ -706,8 +753,6 @@ class Repository:
                 problems.append(f"{label}: a named shape that is not well formed")
             if d and not why:
                 problems.append(f"{label}: a draft that gives no reason")
-        with sqlite_errors(self._path):
-            problems += check_members(self._db)
         return problems
 
     # -- container protocol -----------------------------------------------------

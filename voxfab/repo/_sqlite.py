@@ -17,6 +17,11 @@ Schema 3 adds named ranges (``range_members``): an ordered set of stored shapes
 under one name, such as the polycubes of a census, each member named
 ``RANGE:MEMBER``.  Most members are drafts (a census shape need not span the
 grid); the drafts of a range stay out of the plain listing.
+
+Schema 4 records which drafts a range stored itself (``range_made``): removing a
+range removes those, never a draft the artist added (even one a census later
+found equal to one of its polycubes).  A file of schema 3 counts every draft a
+range holds as the range's own, as schema 3 did.
 """
 
 from __future__ import annotations
@@ -29,10 +34,10 @@ from pathlib import Path
 
 from voxfab.errors import RepositoryError
 
-__all__ = ["SCHEMA_VERSION", "APPLICATION_ID", "BUSY_TIMEOUT_S", "connect", "immediate", "sqlite_errors"]
+__all__ = ["SCHEMA_VERSION", "SCHEMA_OBJECTS", "APPLICATION_ID", "BUSY_TIMEOUT_S", "connect", "immediate", "sqlite_errors"]
 
 #: Version of the schema written by this code (``PRAGMA user_version``).
-SCHEMA_VERSION = 3
+SCHEMA_VERSION = 5
 #: ``PRAGMA application_id`` of a voxfab repository: the bytes "VXFB".
 APPLICATION_ID = 0x56584642
 #: How long a writer waits for another process's write lock before giving up.
@@ -122,7 +127,21 @@ _MIGRATIONS: tuple[tuple[str, ...], ...] = (
         """,
         "CREATE INDEX range_members_shape ON range_members (shape)",
     ),
+    # 3 -> 4: the drafts ranges stored themselves (the only shapes removing a range removes).
+    (
+        "CREATE TABLE range_made (shape INTEGER PRIMARY KEY REFERENCES shapes (id))",
+        "INSERT INTO range_made (shape) SELECT DISTINCT m.shape FROM range_members m JOIN shapes s ON s.id = m.shape"
+        " WHERE s.draft = 1",
+    ),
+    # 4 -> 5: colours.  The RGBA of each voxel of the stored (cropped) grid, in C order; NULL for an
+    # uncoloured shape, so every shape stored before reads as it did.
+    (
+        "ALTER TABLE shapes ADD COLUMN colours BLOB CHECK (colours IS NULL OR length(colours) = 4 * volume)",
+    ),
 )
+#: The tables and indexes of the current schema: a file missing one is damaged (``Repository.check``).
+SCHEMA_OBJECTS = ("shapes", "rank_counters", "range_members", "range_made", "shapes_key", "shapes_symmetric_key",
+                  "shapes_order", "range_members_shape")
 assert len(_MIGRATIONS) == SCHEMA_VERSION
 
 

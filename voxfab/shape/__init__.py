@@ -1,7 +1,16 @@
-"""Voxel shapes: pure functions over 3D bool grids ``[x, y, z]`` and the VoxelShape value."""
+"""Voxel shapes: pure functions over 3D bool grids ``[x, y, z]``, the VoxelShape value and its colours."""
 
 from . import _examples as examples
 from ._canonical import canonical_key
+from ._colour import (
+    PALETTE_SIZE,
+    VoxelColours,
+    default_palette,
+    hex_colour,
+    parse_colour,
+    srgb_to_lab,
+)
+from ._join import Join, describe_parts, join_parts
 from ._model import VoxelShape
 from ._ops import (
     GRID_SIDE,
@@ -41,6 +50,15 @@ from ._surface import (
 __all__ = [
     "ShapeOptions",
     "VoxelShape",
+    "VoxelColours",
+    "Join",
+    "join_parts",
+    "describe_parts",
+    "PALETTE_SIZE",
+    "default_palette",
+    "hex_colour",
+    "parse_colour",
+    "srgb_to_lab",
     "examples",
     "canonical_key",
     "GRID_SIDE",

@@ -74,19 +74,30 @@ def extents(grid: npt.ArrayLike) -> tuple[int, int, int]:
     return (hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2])
 
 
+def _cells(grid: npt.ArrayLike, *, allow_empty: bool = True) -> npt.NDArray:
+    """A bool grid checked, or a colour index grid (3D ``uint8``) as it is: the moves of the
+    voxels (crop, pad, shift, rotate, mirror) move their colours with the same code."""
+    a = np.asarray(grid)
+    if a.dtype == np.uint8 and a.ndim == 3:
+        if not allow_empty and not a.any():
+            raise InvalidShapeError("shape: the grid is empty (no filled voxel)")
+        return a
+    return as_grid(a, allow_empty=allow_empty)
+
+
 def crop(grid: npt.ArrayLike) -> BoolGrid:
-    """Return the grid cut down to its bounding box."""
-    g = as_grid(grid)
-    lo, hi = bounding_box(g)
+    """Return the grid cut down to its bounding box (a colour index grid is cut the same way)."""
+    g = _cells(grid, allow_empty=False)
+    lo, hi = bounding_box(g != 0)
     return g[lo[0] : hi[0], lo[1] : hi[1], lo[2] : hi[2]].copy()
 
 
 def pad_to(grid: npt.ArrayLike, size: tuple[int, int, int], *, center: bool = True) -> BoolGrid:
     """Return the grid placed in a larger empty grid of ``size`` (centred by default)."""
-    g = as_grid(grid, allow_empty=True)
+    g = _cells(grid)
     if any(s < t for s, t in zip(size, g.shape)):
         raise InvalidShapeError(f"size: {size} is smaller than the grid {g.shape}")
-    out = np.zeros(size, dtype=bool)
+    out = np.zeros(size, dtype=g.dtype)
     off = [((s - t) // 2 if center else 0) for s, t in zip(size, g.shape)]
     out[off[0] : off[0] + g.shape[0], off[1] : off[1] + g.shape[1], off[2] : off[2] + g.shape[2]] = g
     return out
@@ -237,10 +248,10 @@ def translate(grid: npt.ArrayLike, offset: tuple[int, int, int]) -> BoolGrid:
     InvalidShapeError
         If a filled voxel would leave the grid.
     """
-    g = as_grid(grid, allow_empty=True)
+    g = _cells(grid)
     if not g.any():
         return g.copy()
-    lo, hi = bounding_box(g)
+    lo, hi = bounding_box(g != 0)
     for axis, d in enumerate(offset):
         if lo[axis] + d < 0 or hi[axis] + d > g.shape[axis]:
             raise InvalidShapeError(f"offset: {tuple(offset)} moves filled voxels out of the grid")
@@ -295,7 +306,7 @@ def rotations(grid: npt.ArrayLike) -> list[BoolGrid]:
 
 def rotate(grid: npt.ArrayLike, axis: str = "z", quarter_turns: int = 1) -> BoolGrid:
     """Rotate by ``quarter_turns`` × 90° counter-clockwise about ``axis`` (x, y or z)."""
-    g = as_grid(grid, allow_empty=True)
+    g = _cells(grid)
     axes = {"x": (1, 2), "y": (2, 0), "z": (0, 1)}
     if axis not in axes:
         raise InvalidShapeError(f"axis: expected one of 'x', 'y', 'z', got {axis!r}")
@@ -304,7 +315,7 @@ def rotate(grid: npt.ArrayLike, axis: str = "z", quarter_turns: int = 1) -> Bool
 
 def mirror(grid: npt.ArrayLike, axis: str = "x") -> BoolGrid:
     """Reflect the grid across a plane normal to ``axis`` (x, y or z)."""
-    g = as_grid(grid, allow_empty=True)
+    g = _cells(grid)
     if axis not in ("x", "y", "z"):
         raise InvalidShapeError(f"axis: expected one of 'x', 'y', 'z', got {axis!r}")
     return np.ascontiguousarray(np.flip(g, axis="xyz".index(axis)))

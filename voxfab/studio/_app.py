@@ -60,7 +60,8 @@ def create_app(settings: Settings) -> Starlette:
         if settings.warm_up:
             import threading
 
-            threading.Thread(target=_work.warm_kernels_here, name="studio-warm-up", daemon=True).start()
+            threading.Thread(target=_work.warm_kernels_here, args=(session.work,), name="studio-warm-up",
+                             daemon=True).start()
         try:
             yield
         finally:

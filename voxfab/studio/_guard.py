@@ -11,6 +11,8 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
+from voxfab._shared.numbers import is_digits
+
 from ._http import SAFETY_HEADERS, error_response, plain_response
 
 #: Largest request body in bytes (an uploaded bitmap is at most 4 MB, as base64 in JSON).
@@ -83,7 +85,7 @@ class Guard:
         if origin is not None and origin not in self.origins:
             return plain_response(403, "voxfab studio: requests from other sites are refused")
         length = headers.get("content-length")
-        if length is not None and (not length.isdigit() or int(length) > self.max_body):
+        if length is not None and (not is_digits(length) or len(length) > 18 or int(length) > self.max_body):
             return self._too_large()
         return None
 

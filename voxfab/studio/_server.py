@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import contextlib
+import signal
 import socket
 import threading
 import webbrowser
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from types import FrameType
 from typing import Any
@@ -70,9 +72,25 @@ def serve(*, host: str = "127.0.0.1", port: int = 8765, repo: Path, open_browser
         server.run()
     finally:
         # Also after a second Ctrl-C, when uvicorn skips the application's shutdown: jobs cancelled,
-        # the session's folder removed (a no-op when the shutdown ran).
-        app.app.state.cleanup()
-    print("voxfab studio: stopped", flush=True)
+        # the session's folder removed (a no-op when the shutdown ran).  A Ctrl-C or SIGTERM now
+        # would cut the clean-up short and leave the folder: it takes a second at most, undisturbed.
+        with _signals_held():
+            app.app.state.cleanup()
+            print("voxfab studio: stopped", flush=True)
+
+
+@contextlib.contextmanager
+def _signals_held() -> Iterator[None]:
+    """Ignore SIGINT and SIGTERM in the block (main thread only; elsewhere they cannot be set)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    held = {sig: signal.signal(sig, signal.SIG_IGN) for sig in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        yield
+    finally:
+        for sig, handler in held.items():
+            signal.signal(sig, handler)
 
 
 def _server_class() -> type:

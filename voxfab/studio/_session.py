@@ -9,6 +9,7 @@ module functions that take the :class:`Session` as their first argument;
 
 from __future__ import annotations
 
+import os
 import re
 import shutil
 import tempfile
@@ -63,6 +64,34 @@ class Settings:
     initial: _grid.InitialShape | None = None
 
 
+#: The name of a session's temporary work folder: this prefix, the studio's pid, ``-`` and random letters.
+WORK_PREFIX = "voxfab-studio-"
+_WORK_NAME = re.compile(re.escape(WORK_PREFIX) + r"([0-9]{1,10})-[A-Za-z0-9_]+")
+
+
+def sweep_dead_sessions(folder: Path | None = None) -> list[Path]:
+    """Remove the work folders that studios no longer running left in ``folder`` (default the temporary folder).
+
+    A studio killed outright (SIGKILL, a power cut) cannot clean up after itself;
+    the next one does.  Only folders named with the pid of a process that is gone
+    are removed: a studio running beside this one keeps its own.
+    """
+    from voxfab._shared.atomic import _alive
+
+    where = Path(folder or tempfile.gettempdir())
+    removed = []
+    try:
+        names = [e.name for e in os.scandir(where) if e.name.startswith(WORK_PREFIX) and e.is_dir(follow_symlinks=False)]
+    except OSError:
+        return removed
+    for name in names:
+        m = _WORK_NAME.fullmatch(name)
+        if m and not _alive(int(m.group(1))):
+            shutil.rmtree(where / name, ignore_errors=True)
+            removed.append(where / name)
+    return removed
+
+
 class Session:
     """The state one studio's routes share, made on first use: the work folder and its jobs.
 
@@ -93,7 +122,10 @@ class Session:
             if self._made is None:
                 from ._jobs import Jobs
 
-                folder = self.settings.work or Path(tempfile.mkdtemp(prefix="voxfab-studio-"))
+                if self.settings.work is None:
+                    sweep_dead_sessions()
+                # The pid in the name: the next studio clears the folder of one that died (see sweep_dead_sessions).
+                folder = self.settings.work or Path(tempfile.mkdtemp(prefix=f"{WORK_PREFIX}{os.getpid()}-"))
                 folder.mkdir(parents=True, exist_ok=True)
                 self._made = folder, Jobs(folder)
             return self._made
@@ -159,4 +191,9 @@ class Session:
         folder, jobs = self._made
         jobs.shutdown()
         if self.settings.work is None:
-            shutil.rmtree(folder, ignore_errors=True)
+            # A job or the warm-up still running on its thread may write in the folder while it goes
+            # (and make its own sub-folders again): removed until it stays gone.
+            for _ in range(5):
+                shutil.rmtree(folder, ignore_errors=True)
+                if not folder.exists():
+                    break

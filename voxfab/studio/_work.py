@@ -9,6 +9,7 @@ NET.svg``), and the recipe outputs ``mesh``, ``slices`` and ``pictures``
 
 from __future__ import annotations
 
+import io
 import shutil
 import zipfile
 from pathlib import Path
@@ -101,20 +102,26 @@ def net_gallery(job: Job, grid: np.ndarray, *, count: int, seed: int, net: Any, 
     job.result = netdraw.gallery_json(gallery, grid, nets=list(job.items))
 
 
-def warm_kernels_here() -> None:
+def warm_kernels_here(scratch: Path) -> None:
     """Compile (or load from numba's cache) every kernel group in this process, so the first real request is not slowed.
 
     numba compiles on the first call in each process, and that time would otherwise
-    count against the artist's first preview or the first net's budget.
+    count against the artist's first preview or the first net's budget.  The
+    pipelines write into ``scratch`` (the session's work folder): a studio stopped
+    meanwhile removes their files with its own.
     """
     from voxfab.errors import VoxfabError
     from voxfab.warmup import warm_up
 
     try:
-        warm_up(processes=1)  # here, not in child processes: this process serves the requests
+        warm_up(processes=1, scratch=scratch)  # here, not in child processes: this process serves the requests
         warm_gallery_here()
     except VoxfabError:  # pragma: no cover - the warm-up jobs are fixed and valid
         pass
+    except OSError:
+        if scratch.is_dir():
+            raise
+        # the studio stopped and removed its work folder under the warm-up: nothing to warm up for
 
 
 def warm_gallery_here() -> None:
@@ -133,24 +140,38 @@ def warm_gallery_here() -> None:
 
 # --- fabrication files ------------------------------------------------------------------------
 
-def _zip(folder: Path, files: list[Path], target: Path) -> Path:
+def _zip(named: list[tuple[str, Path]], target: Path) -> Path:
+    """A zip of ``(name in the zip, file)`` pairs, written to a temporary name and renamed."""
+    from voxfab._shared.atomic import write_bytes
+
+    buf = io.BytesIO()
     # fixed dates and order: the same shape gives the same archive
-    with zipfile.ZipFile(target, "w", compression=zipfile.ZIP_DEFLATED) as zf:
-        for f in sorted(files):
-            info = zipfile.ZipInfo(f.relative_to(folder).as_posix(), date_time=(1980, 1, 1, 0, 0, 0))
+    with zipfile.ZipFile(buf, "w", compression=zipfile.ZIP_DEFLATED) as zf:
+        for arcname, f in sorted(named):
+            info = zipfile.ZipInfo(arcname, date_time=(1980, 1, 1, 0, 0, 0))
             info.compress_type = zipfile.ZIP_DEFLATED
             zf.writestr(info, f.read_bytes())
+    write_bytes(target, buf.getvalue())
     return target
 
 
-def _one(job: Job, name: str, paths: list[Path]) -> None:
-    """Offer one download: the file itself, or a zip of several (a net over several sheets)."""
+def _flat_name(prefix: str, path: str) -> str:
+    """``PREFIX-REST`` for an output's file ``FOLDER/REST``: named after the shape, no folder of the output's left
+    (``slices/sheet-01.dxf`` of the plates: ``queen-plates-sheet-01.dxf``)."""
+    parts = Path(path).parts
+    return "-".join([prefix, *(parts[1:] if len(parts) > 1 else parts)])
+
+
+def _one(job: Job, name: str, paths: list[Path], *, shape: str) -> None:
+    """Offer one download: the file itself, or a zip of several (a net over several sheets), each named after ``shape``."""
     if len(paths) == 1:
-        job.files.append((name if paths[0].suffix == Path(name).suffix else paths[0].name, paths[0]))
+        job.files.append((name if paths[0].suffix == Path(name).suffix else f"{shape}-{paths[0].name}", paths[0]))
         return
-    # NAME-net.svg in sheets: NAME-net-svg.zip, so the SVG, DXF and JSON zips of one net keep apart.
+    # NAME-net.svg in sheets: NAME-net-svg.zip, so the SVG, DXF and JSON zips of one net keep apart;
+    # in it NAME-net.sheet-1.svg and so on, each file named after the shape wherever it is unpacked.
     stem = f"{Path(name).stem}-{Path(name).suffix[1:]}"
-    job.files.append((f"{stem}.zip", _zip(job.folder, paths, job.folder / f"{stem}.zip")))
+    named = [(f"{shape}-{p.name}", p) for p in paths]
+    job.files.append((f"{stem}.zip", _zip(named, job.folder / f"{stem}.zip")))
 
 
 #: Most triangles of an assembly sent to the page's 3D view.
@@ -213,11 +234,11 @@ def make_files(job: Job, grid: np.ndarray, *, artefact: str, title: str, pitch: 
         job.result["assembly"] = assembly_triangles(assembly)
     stem_of, ext = artefact.rsplit(".", 1)
     if ext == "zip":  # the whole folder the output wrote (the plates and their sheets)
-        files = [out / f.path for f in made.files]
-        job.files.append((f"{stem}-{stem_of}.zip", _zip(out, files, job.folder / f"{stem}-{stem_of}.zip")))
+        named = [(_flat_name(f"{stem}-{stem_of}", f.path), out / f.path) for f in made.files]
+        job.files.append((f"{stem}-{stem_of}.zip", _zip(named, job.folder / f"{stem}-{stem_of}.zip")))
     else:
         # The files of the asked kind: one, or several sheets (zipped).
         files = [out / f.path for f in made.files if f.path.endswith(f".{ext}") and f.path.startswith(stem_of)]
         name = f"{stem}.{ext}" if row.name == "mesh" else f"{stem}-{artefact}"
-        _one(job, name, files)
+        _one(job, name, files, shape=stem)
     job.step(1, 1, "done")

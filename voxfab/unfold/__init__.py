@@ -9,20 +9,42 @@ one-piece net and a zipper net, ``solve_with_nogoods`` runs CP-SAT with
 no-goods added lazily (the zipper search's and the census's loop).
 """
 
+from importlib import import_module
+from typing import TYPE_CHECKING, Any
+
 from voxfab.errors import NoNetExistsError
 
 from ._constraints import EdgeConstraints
-from ._cpsat import solve_with_nogoods
-from ._edit import EditResult, cut_edge, join_edge
 from ._exact import Undecided
-from ._hunt import HUNT_NET, HUNT_ZIPPER, HuntOutcome, hunt_shape
 from ._job import NoFitError, Pieces, Strategy
 from ._layout import seam_pairs, tab_room
-from ._many import unfold_many
 from ._net import NET_FORMAT, Net, fold_tree
 from ._outline import outline_key
 from ._search import unfold
 from ._validate import ValidationReport, validate
+
+if TYPE_CHECKING:
+    from ._cpsat import solve_with_nogoods
+    from ._edit import EditResult, cut_edge, join_edge
+    from ._hunt import HUNT_NET, HUNT_ZIPPER, HuntOutcome, hunt_shape
+    from ._many import unfold_many
+
+#: Names whose modules load on first use: a command that searches one net never runs them.
+_LAZY = {"solve_with_nogoods": "_cpsat", "EditResult": "_edit", "cut_edge": "_edit", "join_edge": "_edit",
+         "HUNT_NET": "_hunt", "HUNT_ZIPPER": "_hunt", "HuntOutcome": "_hunt", "hunt_shape": "_hunt",
+         "unfold_many": "_many"}
+
+
+def __getattr__(name: str) -> Any:
+    if name not in _LAZY:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(import_module(f"{__name__}.{_LAZY[name]}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))
 
 __all__ = [
     "fold_tree",

@@ -30,42 +30,69 @@ def cp_model():  # noqa: ANN201 - the ortools module
 
 
 def one_worker_solver():  # noqa: ANN201 - an ortools CpSolver
-    """A CP-SAT solver with one worker and a fixed seed: the same search, and so the same answer, every run."""
+    """A CP-SAT solver with one worker and a fixed seed: the same search, and so the same answer, every run.
+
+    CP-SAT's own SIGINT handler is off: installed from any thread on each search and
+    never put back, it left Python's Ctrl-C handler replaced, so that a later Ctrl-C
+    killed the process outright (a studio after a search: no clean-up), and during a
+    search it turned Ctrl-C into "ran out of time".  :func:`solve` stops the search on
+    Ctrl-C itself.
+    """
     solver = cp_model().CpSolver()
     solver.parameters.num_search_workers = 1
     solver.parameters.random_seed = _SOLVER_SEED
+    solver.parameters.catch_sigint_signal = False
     return solver
 
 
 def solve(solver: Any, model: Any) -> int:
-    """``solver.solve(model)``, stopped within a fraction of a second when this thread's work is cancelled.
+    """``solver.solve(model)``, stopped within a fraction of a second by a cancel or a Ctrl-C.
 
-    CP-SAT runs in native code and never calls :func:`check_cancelled`; a watcher thread
-    polls the cancel event and stops the search (again each 0.05 s, in case the search
-    had not begun), then the cancel is raised here.
+    CP-SAT runs in native code, which neither calls :func:`check_cancelled` nor lets
+    Python's signal handlers run: the search runs on a helper thread while this one
+    waits in short steps, stops it when this thread's work is cancelled, and on a
+    Ctrl-C (KeyboardInterrupt, main thread) stops it and lets the interrupt go on.
     """
     from voxfab._shared.progress import cancel_event, check_cancelled
 
+    solver.parameters.catch_sigint_signal = False
     event = cancel_event()
-    if event is None:
+    main = threading.current_thread() is threading.main_thread()
+    if event is None and not main:
         return solver.solve(model)
     check_cancelled()
+    outcome: list[Any] = []
     done = threading.Event()
 
-    def watch() -> None:
-        while not done.wait(0.05):
-            if event.is_set():
-                solver.stop_search()
+    def run() -> None:
+        try:
+            outcome.append(solver.solve(model))
+        except BaseException as exc:  # noqa: BLE001 - raised again on the caller's thread
+            outcome.append(exc)
+        finally:
+            done.set()
 
-    watcher = threading.Thread(target=watch, name="cpsat-cancel", daemon=True)
-    watcher.start()
+    threading.Thread(target=run, name="cpsat-search", daemon=True).start()
+    # Waited for on an event, not Thread.join: a join cut short by KeyboardInterrupt may return at
+    # once the next time, and a search still running in native code when the interpreter exits
+    # aborts the process ("terminate called without an active exception").
     try:
-        status = solver.solve(model)
-    finally:
-        done.set()
-        watcher.join()
+        while not done.wait(0.05):
+            if event is not None and event.is_set():
+                solver.stop_search()
+    except BaseException:
+        solver.stop_search()
+        while True:
+            try:
+                done.wait()
+                break
+            except KeyboardInterrupt:  # a second Ctrl-C: the search is stopping already (milliseconds)
+                solver.stop_search()
+        raise
     check_cancelled()
-    return status
+    if isinstance(outcome[0], BaseException):
+        raise outcome[0]
+    return outcome[0]
 
 
 class NogoodSearch(NamedTuple):

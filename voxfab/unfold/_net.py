@@ -88,8 +88,18 @@ class Net:
         c = self.corners2d.reshape(-1, 2)
         return (int(c[:, 0].min()), int(c[:, 1].min()), int(c[:, 0].max()), int(c[:, 1].max()))
 
-    def to_dict(self) -> dict[str, Any]:
-        """The ``voxfab-net/1`` JSON object."""
+    def to_dict(self, colours: Any = None) -> dict[str, Any]:
+        """The ``voxfab-net/1`` JSON object; with the shape's ``colours`` (a
+        :class:`~voxfab.shape.VoxelColours`), each face says its voxel's ``"colour": "#rrggbb"``."""
+        d = self._dict()
+        if colours is not None:
+            from voxfab.shape import hex_colour
+
+            for face, rgba in zip(d["faces"], colours.at(self.voxel)):
+                face["colour"] = hex_colour(rgba)
+        return d
+
+    def _dict(self) -> dict[str, Any]:
         return {
             "format": NET_FORMAT,
             "seed": int(self.seed),
@@ -112,9 +122,9 @@ class Net:
             "folds": self.folds.tolist(),
         }
 
-    def to_json(self) -> str:
-        """Deterministic JSON text (one face per line keeps diffs readable)."""
-        d = self.to_dict()
+    def to_json(self, colours: Any = None) -> str:
+        """Deterministic JSON text (one face per line keeps diffs readable); ``colours`` as in :meth:`to_dict`."""
+        d = self.to_dict(colours)
         faces = d.pop("faces")
         folds = d.pop("folds")
         head = json.dumps(d, sort_keys=True)[:-1]

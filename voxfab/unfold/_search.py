@@ -58,7 +58,7 @@ def _prepare(grid: npt.ArrayLike, fill: bool, pieces: Pieces) -> npt.NDArray[np.
         raise UnfoldError(
             f"the shape is not 6-connected: it has {parts} pieces joined at most by edges or "
             "corners, so no one-piece net exists; keep the largest piece or ask for "
-            "pieces='auto' (CLI --pieces auto) for one net per surface"
+            "pieces='auto' (CLI --pieces auto) for one net per part, or join the parts (CLI --join)"
         )
     return fill_cavities(g) if fill else g
 

@@ -1,4 +1,4 @@
-"""3MF, STL, OBJ and GLB: valid files that read back to the same mesh, byte for byte stable."""
+"""3MF, STL, OBJ, GLB and PLY: valid files that read back to the same mesh, byte for byte stable."""
 
 import zipfile
 
@@ -29,7 +29,7 @@ def _same_mesh(a: MeshData, b: MeshData, *, atol: float) -> None:
         assert np.allclose(va, vb, atol=atol)
 
 
-@pytest.mark.parametrize("ext", [".3mf", ".obj", ".glb"])
+@pytest.mark.parametrize("ext", [".3mf", ".obj", ".glb", ".ply"])
 def test_indexed_formats_round_trip(tmp_path, split_pair, ext):
     path = tmp_path / f"m{ext}"
     write_mesh(path, split_pair, name="pair")
@@ -67,7 +67,7 @@ def test_3mf_package_and_model(tmp_path, split_pair):
     assert len(root.findall("m:build/m:item", ns)) == 3
 
 
-@pytest.mark.parametrize("ext", [".3mf", ".obj", ".glb"])
+@pytest.mark.parametrize("ext", [".3mf", ".obj", ".glb", ".ply"])
 def test_trimesh_reads_the_same_split_mesh(tmp_path, split_pair, ext):
     trimesh = pytest.importorskip("trimesh")
     path = tmp_path / f"m{ext}"
@@ -93,8 +93,8 @@ def test_glb_scene_is_in_metres_and_y_up(tmp_path):
 
 
 def test_unknown_extension_and_bad_files(tmp_path, split_pair):
-    with pytest.raises(UnknownFormatError, match=r"\.ply"):
-        format_for(tmp_path / "m.ply")
+    with pytest.raises(UnknownFormatError, match=r"\.step"):
+        format_for(tmp_path / "m.step")
     bad = tmp_path / "bad.3mf"
     bad.write_bytes(b"not a zip")
     with pytest.raises(FormatError):

@@ -173,3 +173,76 @@ def test_mesh_json_says_what_prusa_slicer_supports(tmp_path, name):
         assert report["support_area_mm2"] > 0 and report["support_lowest_mm"] >= shape.pitch - 1e-6
     else:
         assert report["support_area_mm2"] == 0
+
+
+def _slice_with_extruders(path, gcode, extruders: int, *, wipe_tower: bool = True) -> str:
+    """PrusaSlicer's G-code of a 3MF for a printer of ``extruders`` extruders (colour.md's command line)."""
+    many = lambda value: ",".join([value] * extruders)  # noqa: E731
+    args = [PRUSA, "--export-gcode", "--nozzle-diameter", many("0.4"), "--temperature", many("210"),
+            "--filament-diameter", many("1.75"), *(["--wipe-tower"] if wipe_tower else []),
+            "--use-relative-e-distances", "-o", str(gcode), str(path)]
+    run = subprocess.run(args, capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0, run.stderr[-2000:]
+    return gcode.read_text()
+
+
+@needs_prusa
+def test_prusa_slicer_prints_a_coloured_character_with_three_tools(tmp_path):
+    """A --colours 3 print of the coloured character slices with 3 extruders and changes between the 3
+    tools; the same character uncoloured, sliced the same way, never changes tool."""
+    from _voxart import character
+
+    from voxfab.fabricate.mesh import MeshOptions, fabricate_mesh
+
+    coloured = fabricate_mesh(character(), MeshOptions(colours=3), tmp_path / "c.3mf", name="c")
+    assert len(coloured.report["colours"]["filaments"]) == 3
+    info = _info(tmp_path / "c.3mf")
+    assert info["manifold"] == "yes" and int(info["number_of_facets"]) == coloured.report["triangles"]
+    text = _slice_with_extruders(tmp_path / "c.3mf", tmp_path / "c.gcode", 3)
+    assert set(re.findall(r"^T(\d+)\s*$", text, re.M)) == {"0", "1", "2"}
+    fabricate_mesh(character().with_colours(None), MeshOptions(), tmp_path / "p.3mf", name="p")
+    plain = _slice_with_extruders(tmp_path / "p.3mf", tmp_path / "p.gcode", 3)
+    assert not re.findall(r"^T\d+", plain, re.M) and plain.count("\nG1 ") > 100
+
+
+def _tools_by_layer(text: str) -> dict[float, set[int]]:
+    """The tools that extrude on each layer (by its ``;Z:`` height) of PrusaSlicer's G-code."""
+    tool, z, layers = None, None, {}
+    for line in text.splitlines():
+        if m := re.match(r"T(\d+)\s*$", line):
+            tool = int(m.group(1))
+        elif line.startswith(";Z:"):
+            z = float(line[3:])
+        elif line.startswith("G1 ") and re.search(r" X", line) and (e := re.search(r" E([0-9.]+)", line)):
+            if float(e.group(1)) > 0 and z is not None:
+                layers.setdefault(z, set()).add(tool if tool is not None else 0)
+    return layers
+
+
+@needs_prusa
+def test_prusa_slicer_prints_each_painted_colour_with_its_extruder(tmp_path):
+    """Five slabs in five colours: every layer inside a slab is printed by the extruder mesh.json gives
+    its colour, so the painting code of each extruder (4, 8, 0C, 1C, 2C) reaches the right tool."""
+    import json
+
+    from voxfab.fabricate.mesh import MeshOptions, fabricate_mesh
+    from voxfab.shape import VoxelColours, VoxelShape
+
+    colours = [(230, 230, 230), (200, 30, 30), (30, 60, 200), (40, 170, 60), (240, 200, 30)]
+    g = np.ones((5, 5, 5), bool)
+    rgba = np.zeros((5, 5, 5, 4), np.uint8)
+    for k, c in enumerate(colours):
+        rgba[:, :, k] = (*c, 255)
+    shape = VoxelShape(g, 3.0, VoxelColours.from_rgba(g, rgba))
+    fabricate_mesh(shape, MeshOptions(), tmp_path / "s.3mf", name="s", report_path=tmp_path / "s.json")
+    extruder = {f["colour"]: f["extruder"] for f in json.loads((tmp_path / "s.json").read_text())["colours"]["filaments"]}
+    assert sorted(extruder.values()) == [1, 2, 3, 4, 5]
+    layers = _tools_by_layer(_slice_with_extruders(tmp_path / "s.3mf", tmp_path / "s.gcode", 5, wipe_tower=False))
+    checked = 0
+    for k, c in enumerate(colours):
+        want = extruder["#" + "".join(f"{v:02x}" for v in c)] - 1
+        for z, tools in layers.items():
+            if 3.0 * k + 0.7 < z < 3.0 * (k + 1) - 0.7:  # well inside slab k
+                assert tools == {want}, (k, z, tools, want)
+                checked += 1
+    assert checked >= 5 * 5

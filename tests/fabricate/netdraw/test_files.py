@@ -62,7 +62,7 @@ def test_svg_reads_back_in_mm(tmp_path: Path, ball_net: Net) -> None:
     assert [g.get("id") for g in groups] == ["LABEL", "GRID", "VALLEY", "MOUNTAIN", "CUT"]
     style = {g.get("id"): (g.get("stroke"), g.get("stroke-dasharray"), g.get("stroke-width")) for g in groups}
     assert style["CUT"] == ("#ff0000", None, "0.01")
-    assert style["MOUNTAIN"][0] == "#0000ff" and style["MOUNTAIN"][1]
+    assert style["MOUNTAIN"][0] == "#ff00ff" and style["MOUNTAIN"][1]
     assert style["VALLEY"][0] == "#00ff00" and len(style["VALLEY"][1].split()) == 4
     # The cut outline path lies inside the sheet.
     import svgpathtools
@@ -104,7 +104,7 @@ def test_dxf_passes_audit_and_reads_back(tmp_path: Path, version: str, ball_net:
     assert not auditor.has_fixes, [f.message for f in auditor.fixes]
     assert doc.dxfversion == {"R12": "AC1009", "R2000": "AC1015"}[version]
     assert {"CUT", "MOUNTAIN", "VALLEY", "GRID", "LABEL"} <= {layer.dxf.name for layer in doc.layers}
-    assert doc.layers.get("CUT").color == 1 and doc.layers.get("MOUNTAIN").color == 5
+    assert doc.layers.get("CUT").color == 1 and doc.layers.get("MOUNTAIN").color == 6
     assert doc.layers.get("MOUNTAIN").dxf.linetype == "DASHED"
     kinds = {e.dxftype() for e in doc.modelspace()}
     assert kinds <= ({"LINE", "POLYLINE"} if version == "R12" else {"LINE", "LWPOLYLINE"})
@@ -138,8 +138,8 @@ def test_pdf_renders_non_blank(tmp_path: Path, ball_net: Net) -> None:
     assert abs(img.shape[0] - 297 / 25.4 * 60) < 2 and abs(img.shape[1] - 210 / 25.4 * 60) < 2
     rgb = img.astype(int)
     red = rgb[..., 0] - np.maximum(rgb[..., 1], rgb[..., 2]) > 60
-    blue = rgb[..., 2] - np.maximum(rgb[..., 0], rgb[..., 1]) > 60
-    assert red.sum() > 100 and blue.sum() > 20
+    magenta = np.minimum(rgb[..., 0], rgb[..., 2]) - rgb[..., 1] > 60
+    assert red.sum() > 100 and magenta.sum() > 20
 
 
 def test_pieces_packed_on_sheets_write_numbered_files(tmp_path: Path) -> None:
@@ -310,7 +310,7 @@ def _paper(cut: np.ndarray):
 def engine_dxf(tmp_path_factory, ball_net: Net):
     """The ball's net at the smallest legible face size on A2, as R12 DXF."""
     folder = tmp_path_factory.mktemp("dxf")
-    # Two-character labels reach 2 mm at 6.7 mm; 3 mm tabs at 45 degrees need 7.5 mm.
+    # Two-character labels reach 2 mm at 6.8 mm; 3 mm tabs at 45 degrees need 7.5 mm.
     options = DrawingOptions(pitch=7.5, sheet="A2", grid_lines=True)
     from voxfab.fabricate.netdraw import write_net_drawing
 

@@ -76,24 +76,24 @@ def test_every_piece_that_has_room_gets_a_dowel(vase_stack) -> None:
 
 
 def test_thin_plates_multiply_layers_and_keep_the_stack_as_tall_as_the_object() -> None:
-    g = examples.box(3, 3, 4)
-    exact = make_plates(g, pitch=3.0, thickness=1.0)
+    g = examples.box(3, 3, 4)  # 18 mm plates: room for a whole 2 mm label beside the dowel hole
+    exact = make_plates(g, pitch=6.0, thickness=2.0)
     assert exact.plates_per_layer == 3 and exact.drift == pytest.approx(0.0) and not exact.resampled
     assert [p.label.text for p in exact.plates[:3]] == ["1-1.1", "1-1.2", "1-1.3"]
-    stack = make_plates(g, pitch=3.0, thickness=1.1)
-    # 12 mm of object in 1.1 mm plates: round(10.9) = 11 plates, 12.1 mm; each plate takes the voxel
-    # layer at its mid-height (0.55, 1.65, 2.75 | 3.85, 4.95 | 6.05, ... mm).
+    stack = make_plates(g, pitch=6.0, thickness=2.2)
+    # 24 mm of object in 2.2 mm plates: round(10.9) = 11 plates, 24.2 mm; each plate takes the voxel
+    # layer at its mid-height (1.1, 3.3, 5.5 | 7.7, 9.9 | 12.1, ... mm).
     assert stack.counts == (3, 2, 3, 3) and stack.plates_per_layer == 0 and stack.resampled
     assert len(stack.plates) == 11
-    assert stack.drift == pytest.approx(11 * 1.1 - 12.0) and abs(stack.drift) < 1.1 / 2
-    assert [p.z for p in stack.plates] == pytest.approx([i * 1.1 for i in range(11)])
+    assert stack.drift == pytest.approx(11 * 2.2 - 24.0) and abs(stack.drift) < 2.2 / 2
+    assert [p.z for p in stack.plates] == pytest.approx([i * 2.2 for i in range(11)])
     assert [p.label.text for p in stack.plates[3:5]] == ["2-1.1", "2-1.2"]
     for p in stack.plates:
-        assert p.polygon().contains(shapely.MultiLineString(list(p.label.strokes)))
+        assert p.label.complete and p.polygon().contains(shapely.MultiLineString(list(p.label.strokes)))
         # plates under the layer's top one are hidden by an identical plate
         assert p.label.hidden or p.layer == 4
-    thick = make_plates(g, pitch=3.0, thickness=3.2)
-    assert thick.plates_per_layer == 1 and thick.drift == pytest.approx(4 * 0.2)
+    thick = make_plates(g, pitch=6.0, thickness=6.4)
+    assert thick.plates_per_layer == 1 and thick.drift == pytest.approx(4 * 0.4)
 
 
 @pytest.mark.parametrize(("layers", "pitch", "thickness"), [(25, 2.0, 3.0), (25, 3.0, 3.1), (7, 1.0, 0.3),
@@ -123,8 +123,8 @@ def test_queen_scale_stack_is_17_plates_of_3_mm() -> None:
     assert [p.z for p in stack.plates] == pytest.approx([3.0 * i for i in range(17)])
 
 
-def test_labels_are_on_the_plate_and_hidden_by_the_next_one(vase_stack) -> None:
-    stack = vase_stack
+def test_labels_are_on_the_plate_and_hidden_by_the_next_one() -> None:
+    stack = make_plates(examples.vase(12), pitch=5.0, thickness=5.0)  # walls wide enough for 2 mm labels
     above = {}
     for p in stack.plates:
         above.setdefault(p.layer, []).append(p.outline)

@@ -1,4 +1,4 @@
-"""Print-ready solids: manifold meshes from voxels, contact bridges, CAD parts, 3MF/STL/OBJ/GLB.
+"""Print-ready solids: manifold meshes from voxels, contact bridges, CAD parts, 3MF/STL/OBJ/GLB/PLY, in colour.
 
 >>> from voxfab.shape import examples
 >>> result = build_mesh(examples.tunnel_cube(5), pitch=2.0)
@@ -8,6 +8,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from pathlib import Path
 
@@ -28,6 +29,7 @@ from ._build import (
     parse_magnet,
 )
 from ._check import MeshReport, check_mesh
+from ._colours import MAX_FILAMENTS, Filament, Filaments, assign_filaments, filaments_line
 from ._contacts import Contacts, bridge_boxes, find_contacts
 from ._data import MeshData
 from ._faces import voxel_mesh
@@ -56,6 +58,9 @@ __all__ = [
     "MIN_WALL",
     "ContactMode",
     "Contacts",
+    "Filament",
+    "Filaments",
+    "MAX_FILAMENTS",
     "MeshData",
     "MeshOptions",
     "MeshReport",
@@ -64,9 +69,11 @@ __all__ = [
     "PrintEstimate",
     "PrintProfile",
     "SpinReport",
+    "assign_filaments",
     "bridge_boxes",
     "build_mesh",
     "fabricate_mesh",
+    "filaments_line",
     "check_mesh",
     "estimate_line",
     "estimate_print",
@@ -194,7 +201,9 @@ def fabricate_mesh(
     options : MeshOptions
         Checked options (the file format comes from ``path``'s extension).
     path : path-like
-        The mesh file to write (.3mf, .stl, .obj or .glb).
+        The mesh file to write (.3mf, .stl, .obj, .glb or .ply).  A coloured
+        shape's colours go into every format but STL (a note says so); a 3MF holds
+        at most :data:`MAX_FILAMENTS` of them (more are merged, with a warning).
     name : str
         The shape's name: file metadata, and ``{name}`` in the label.
     report_path : path-like, optional
@@ -209,14 +218,34 @@ def fabricate_mesh(
     target = Path(path)
     module = format_for(target)  # refuse an unknown extension before any work
     label = options.label.replace("{name}", name) if options.label else None
+    coloured = shape.colours is not None
+    notes: list[str] = []
+    if coloured and module.EXTENSION == ".stl":
+        notes.append("STL holds no colour: the print is written in one (write .3mf to print its colours, "
+                     ".glb, .obj or .ply to view them)")
+        shape, coloured = shape.with_colours(None), False
+    limit = options.colours
+    if coloured and limit is None and module.EXTENSION == ".3mf":
+        limit = MAX_FILAMENTS  # a printer holds no more: merge rather than write a file no printer prints
+    elif not coloured and options.colours is not None:
+        notes.append(f"colours = {options.colours}: the shape has no colours, so there is nothing to merge")
     result = build_mesh(
         shape, size=options.size, contacts=options.contacts, bridge_width=options.bridge_width,
         fill=options.solid, hollow=options.hollow, label=label, engrave_depth=options.engrave_depth,
-        base=options.base, magnet=options.magnet, merge=options.merge, name=name,
+        base=options.base, magnet=options.magnet, merge=options.merge, name=name, colours=limit,
     )
-    write_mesh(target, result.mesh, name=name)
+    if result.filaments is not None and options.colours is None and result.filaments.visible > MAX_FILAMENTS:
+        merged = (f"the shape shows {result.filaments.visible} colours, more than the {MAX_FILAMENTS} filaments a "
+                  f"printer holds: merged to {MAX_FILAMENTS} (set colours, --colours N, to choose how many)")
+        result = dataclasses.replace(result, warnings=(*result.warnings, merged))
+    written = write_mesh(target, result.mesh, name=name)
     report = report_dict(result, name=name, infill=options.infill, spin=options.spin)
+    if result.filaments is not None:
+        report["colours"] = result.filaments.as_dict()
+    if notes:
+        report["notes"] = notes
     files = [OutputFile(target.name, module.DESCRIPTION)]
+    files += [OutputFile(p.name, module.MATERIAL_DESCRIPTION) for p in written[1:]]
     if report_path is not None:
         rp = Path(report_path)
         write_text(rp, json.dumps(report, indent=2, sort_keys=True) + "\n")

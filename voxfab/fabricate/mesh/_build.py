@@ -11,10 +11,11 @@ import numpy.typing as npt
 
 from voxfab._shared.validate import as_grid, check_choice, check_positive
 from voxfab.errors import FabricationError, InvalidShapeError
-from voxfab.shape import VoxelShape, crop, exposed_faces, fill_cavities
+from voxfab.shape import VoxelShape, bounding_box, crop, exposed_faces, fill_cavities
 
 from ._check import MeshReport, check_mesh
-from ._contacts import NO_CONTACTS, Contacts, bridge_boxes, bridged_grid, find_contacts
+from ._colours import MAX_FILAMENTS, Filaments, assign_filaments
+from ._contacts import NO_CONTACTS, Contacts, bridge_boxes, bridged_colours, bridged_grid, find_contacts
 from ._data import MeshData
 from ._faces import voxel_mesh
 
@@ -62,6 +63,9 @@ class MeshResult:
         Bridge boxes added.
     warnings : tuple of str
         Printability warnings, one line each.
+    filaments : Filaments or None
+        For a coloured shape, the filament of each colour (``mesh.colour`` holds
+        each triangle's filament, ``mesh.palette`` their colours).
     """
 
     mesh: MeshData
@@ -70,6 +74,7 @@ class MeshResult:
     contacts: int
     bridges: int
     warnings: tuple[str, ...]
+    filaments: Filaments | None = None
 
 
 def parse_magnet(spec: str) -> tuple[float, float]:
@@ -224,6 +229,7 @@ def build_mesh(
     magnet: tuple[float, float] | str | None = None,
     merge: bool = True,
     name: str = "shape",
+    colours: int | None = None,
 ) -> MeshResult:
     """Turn a voxel shape into a checked, print-ready mesh.
 
@@ -257,6 +263,12 @@ def build_mesh(
         Merge coplanar faces.
     name : str
         Name used in messages.
+    colours : int, optional
+        For a coloured shape, the most filaments: more colours are merged
+        perceptually (:func:`assign_filaments`).  Default: one filament per
+        visible colour.  Each triangle takes the colour of the voxel whose face it
+        lies on; bridges, a base plate and pocket or label walls that of a
+        neighbouring voxel.
 
     Returns
     -------
@@ -269,20 +281,26 @@ def build_mesh(
     FabricationError
         When the mesh would be too large, contacts are refused, or a check fails.
     """
+    if colours is not None and not 1 <= int(colours) <= MAX_FILAMENTS:
+        raise InvalidShapeError(f"colours: expected a number of filaments from 1 to {MAX_FILAMENTS}, got {colours}")
     inputs = _check_inputs(
         shape, pitch=pitch, size=size, contacts=contacts, hollow=hollow, base=base, magnet=magnet,
         label=label, engrave_depth=engrave_depth, name=name,
     )
     warnings: list[str] = []
-    g = _solid_grid(inputs.grid, inputs, fill=fill, warnings=warnings)
+    g, index = _solid_grid(inputs.grid, inputs, fill=fill, warnings=warnings)
     found = _checked_contacts(g, inputs)
-    surface = _voxel_surface(g, found, inputs, bridge_width=bridge_width, merge=merge, warnings=warnings)
+    surface = _voxel_surface(g, index, found, inputs, bridge_width=bridge_width, merge=merge, warnings=warnings)
     if not (surface.boxes_left or inputs.base or inputs.label or inputs.magnet):
-        return MeshResult(surface.mesh, surface.report, inputs.pitch, found.count, len(surface.boxes),
-                          tuple(warnings + _parts_warning(surface.report)))
-    out, checked = _cad_features(g, surface, inputs, warnings=warnings)
+        out, checked = surface.mesh, surface.report
+    else:
+        out, checked = _cad_features(g, index, surface, inputs, warnings=warnings)
+    filaments = None
+    if index is not None:
+        assert inputs.palette is not None
+        out, filaments = assign_filaments(out, index, inputs.palette, colours)
     return MeshResult(out, checked, inputs.pitch, found.count, len(surface.boxes),
-                      tuple(warnings + _parts_warning(checked)))
+                      tuple(warnings + _parts_warning(checked)), filaments)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -290,6 +308,8 @@ class _Inputs:
     """The checked parameters of :func:`build_mesh` (lengths in mm)."""
 
     grid: npt.NDArray[np.bool_]
+    index: npt.NDArray[np.uint8] | None  # the colour index of each voxel of ``grid`` (None: uncoloured)
+    palette: npt.NDArray[np.uint8] | None
     pitch: float
     mode: ContactMode
     hollow: int
@@ -321,6 +341,9 @@ def _check_inputs(
     g0 = as_grid(shape.grid if isinstance(shape, VoxelShape) else shape, name=name)
     mode = check_choice(contacts, ContactMode, name="contacts")
     g = crop(g0)
+    coloured = isinstance(shape, VoxelShape) and shape.colours is not None
+    index = crop(shape.colours.index) if coloured else None  # type: ignore[union-attr]
+    palette = shape.colours.palette if coloured else None  # type: ignore[union-attr]
     pitch_mm = resolve_pitch(g, pitch=pitch, size=size, default=default_pitch)
     hollow = int(hollow)
     if hollow < 0:
@@ -340,23 +363,55 @@ def _check_inputs(
             f"{name}: {faces} exposed voxel faces, over the limit of {MAX_FACES} for a mesh "
             f"(a noisy grid?); smooth or crop the shape first"
         )
-    return _Inputs(g, pitch_mm, mode, hollow, base, magnet_dh, label, depth, name)
+    return _Inputs(g, index, palette, pitch_mm, mode, hollow, base, magnet_dh, label, depth, name)
 
 
-def _solid_grid(g: npt.NDArray[np.bool_], inputs: _Inputs, *, fill: bool, warnings: list[str]) -> npt.NDArray[np.bool_]:
-    """The voxels to print: hollowed, or with enclosed cavities filled; warn about thin walls."""
+def _solid_grid(
+    g: npt.NDArray[np.bool_], inputs: _Inputs, *, fill: bool, warnings: list[str]
+) -> tuple[npt.NDArray[np.bool_], npt.NDArray[np.uint8] | None]:
+    """The voxels to print, hollowed or with enclosed cavities filled, and their colour indices; warn
+    about thin walls.  A filled cavity takes the colour of its nearest voxel."""
+    index = inputs.index
     if inputs.hollow:
+        _check_wall(g, inputs)
         hollowed = hollow_out(g, inputs.hollow)
-        g = crop(hollowed)
+        lo, hi = bounding_box(hollowed)
+        box = tuple(slice(a, b) for a, b in zip(lo, hi))
+        g = hollowed[box].copy()
         if g.shape != hollowed.shape:
             # Only a drain through a one-voxel foot empties the bottom layer (see hollow_out).
             warnings.append("a drain hole goes through the voxel the print stood on; it stands one voxel higher")
+        if index is not None:
+            index = np.where(g, index[box], 0).astype(np.uint8)
     elif fill:
-        g = _fill_cavities(g)
+        filled_g = _fill_cavities(g)
+        if index is not None and filled_g.sum() != g.sum():
+            from voxfab.shape import VoxelColours
+
+            index = VoxelColours(index, inputs.palette).fitted(filled_g).index
+        g = filled_g
     w = thin_wall_warning(g, inputs.pitch)
     if w:
         warnings.append(w)
-    return g
+    return g, index
+
+
+def _check_wall(g: npt.NDArray[np.bool_], inputs: _Inputs) -> None:
+    """Refuse a hollowing that would leave no cavity: the print would be solid, the option without effect.
+
+    :func:`hollow_out` keeps every voxel within ``hollow`` (Chebyshev distance) of
+    the outside, so a cavity is left only when some voxel lies deeper than that.
+    """
+    from scipy import ndimage
+
+    depth = int(ndimage.distance_transform_cdt(np.pad(fill_cavities(g), 1), metric="chessboard").max())
+    if inputs.hollow < depth:
+        return
+    if depth <= 1:
+        raise InvalidShapeError(f"hollow: {inputs.name} is nowhere thicker than 2 voxels; a wall of "
+                                f"{inputs.hollow} leaves no cavity (the print would be solid; use 0)")
+    raise InvalidShapeError(f"hollow: walls of {inputs.hollow} voxels leave no cavity in {inputs.name} (the print "
+                            f"would be solid); at most {depth - 1} leaves one")
 
 
 def _checked_contacts(g: npt.NDArray[np.bool_], inputs: _Inputs) -> Contacts:
@@ -379,16 +434,20 @@ def _checked_contacts(g: npt.NDArray[np.bool_], inputs: _Inputs) -> Contacts:
 
 
 def _voxel_surface(
-    g: npt.NDArray[np.bool_], found: Contacts, inputs: _Inputs, *, bridge_width: float | None, merge: bool,
-    warnings: list[str],
+    g: npt.NDArray[np.bool_], index: npt.NDArray[np.uint8] | None, found: Contacts, inputs: _Inputs, *,
+    bridge_width: float | None, merge: bool, warnings: list[str],
 ) -> _Surface:
-    """Mesh and check the voxels' surface, with contact bridges as grid cells where they fit."""
+    """Mesh and check the voxels' surface, with contact bridges as grid cells where they fit.
+
+    With colour indices, each triangle takes its voxel's (a bridge, its box's neighbour's).
+    """
     from scipy import ndimage
 
     pitch_mm, name = inputs.pitch, inputs.name
     do_bridge = inputs.mode is ContactMode.BRIDGE and found.count > 0
     bounds = np.stack([np.zeros(3), np.array(g.shape) * pitch_mm])
     boxes = np.zeros((0, 2, 3))
+    colour = {} if index is None else {"colour": index, "palette": inputs.palette}
     if do_bridge:
         width = _bridge_width(bridge_width, pitch_mm, warnings)
         boxes = bridge_boxes(found, pitch=pitch_mm, width=width)
@@ -400,6 +459,8 @@ def _voxel_surface(
         if refined is not None:
             # Bridges as cells of a rectilinear grid: meshed and checked exactly, no CAD kernel.
             cells, coords, labels_r = refined
+            if index is not None:
+                colour["colour"] = bridged_colours(index, boxes, coords, pitch=pitch_mm)
             sizes = [np.diff(c) for c in coords]
             exact_volume = float(sizes[0] @ (cells.astype(np.float64) @ sizes[2]) @ sizes[1]) * pitch_mm**3
             expect = dict(
@@ -408,30 +469,38 @@ def _voxel_surface(
             try:
                 # Bridges close every edge contact: no contact midpoints to look for.
                 mesh = voxel_mesh(cells, pitch=pitch_mm, merge=merge, part_labels=labels_r, coords=coords,
-                                  contacts=NO_CONTACTS)
+                                  contacts=NO_CONTACTS, **colour)
                 report = check_mesh(mesh, **expect)
             except FabricationError:
                 # An edge contact left between bridges: mesh again with its midpoints.
-                mesh = voxel_mesh(cells, pitch=pitch_mm, merge=merge, part_labels=labels_r, coords=coords)
+                mesh = voxel_mesh(cells, pitch=pitch_mm, merge=merge, part_labels=labels_r, coords=coords, **colour)
                 report = check_mesh(mesh, **expect)
             return _Surface(mesh, report, boxes, False, exact_volume)
     elif bridge_width is not None:
         check_positive(bridge_width, name="bridge_width")
     labels6 = ndimage.label(g, structure=ndimage.generate_binary_structure(3, 1))[0]
-    mesh = voxel_mesh(g, pitch=pitch_mm, merge=merge, part_labels=labels6, contacts=found)
+    mesh = voxel_mesh(g, pitch=pitch_mm, merge=merge, part_labels=labels6, contacts=found, **colour)
     exact_volume = float(g.sum()) * pitch_mm**3
     report = check_mesh(mesh, what=name, expected_volume=exact_volume, expected_bounds=bounds)
     return _Surface(mesh, report, boxes, do_bridge, exact_volume)
 
 
 def _cad_features(
-    g: npt.NDArray[np.bool_], surface: _Surface, inputs: _Inputs, *, warnings: list[str]
+    g: npt.NDArray[np.bool_], index: npt.NDArray[np.uint8] | None, surface: _Surface, inputs: _Inputs, *,
+    warnings: list[str],
 ) -> tuple[MeshData, MeshReport]:
-    """Add bridges and the base, cut the magnet pocket and the label with the CAD kernel; check again."""
+    """Add bridges and the base, cut the magnet pocket and the label with the CAD kernel; check again.
+
+    The voxel surface's colours go through the kernel as face ids; what the kernel
+    adds (bridges, the base, pocket and label walls) takes its nearest voxel's colour.
+    """
     from . import _cad
 
     pitch_mm, base = inputs.pitch, inputs.base
-    solid = _cad.to_manifold(surface.mesh)
+    if index is None:
+        solid = _cad.to_manifold(surface.mesh)
+    else:
+        solid, source = _cad.to_manifold_traced(surface.mesh, surface.mesh.colour)
     added: list[Any] = []
     added_volume = 0.0
     boxes = surface.boxes
@@ -458,9 +527,14 @@ def _cad_features(
                 if base else
                 f"{inputs.name}: a magnet pocket {d:g} mm wide and {h:g} mm deep cuts the print in pieces; "
                 "make it shallower or narrower, or add --base")
-    out = _cad.from_manifold(solid)
+    if index is None:
+        out = _cad.from_manifold(solid)
+    else:
+        out, faces = _cad.from_manifold_traced(solid, source)
+        out = dataclasses.replace(out, colour=_traced_colours(out, faces, index, pitch_mm),
+                                  palette=surface.mesh.palette)
     shift = -out.vertices.min(axis=0)
-    out = MeshData(vertices=out.vertices + shift, triangles=out.triangles, part=out.part)
+    out = dataclasses.replace(out, vertices=out.vertices + shift)
     return out, _final_check(out, solid, g, inputs, surface.volume, added_volume, removed_volume)
 
 
@@ -539,6 +613,30 @@ def _final_check(
             f"{name}: mesh check failed: volume {checked.volume:.6g} mm³ differs from the CAD kernel's {solid.volume():.6g}"
         )
     return checked
+
+
+def _traced_colours(
+    mesh: MeshData, faces: npt.NDArray[np.int64], index: npt.NDArray[np.uint8], pitch: float
+) -> npt.NDArray[np.int64]:
+    """The colour of each triangle the CAD kernel gave back (in the voxels' frame).
+
+    A triangle of the voxel surface kept its colour as its face id; any other
+    takes the colour of the voxel just inside it, or of the filled voxel nearest to
+    that (a bridge over an empty voxel, the base plate under the footprint).
+    """
+    from scipy import ndimage
+
+    missing = faces < 0
+    colour = faces.copy()
+    if missing.any():
+        tri = mesh.vertices[mesh.triangles[missing]]
+        normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+        normal /= np.maximum(np.linalg.norm(normal, axis=1, keepdims=True), 1e-300)
+        inside = tri.mean(axis=1) - normal * (1e-3 * pitch)
+        v = np.clip(np.floor(inside / pitch).astype(np.int64), 0, np.array(index.shape) - 1)
+        _, nearest = ndimage.distance_transform_edt(index == 0, return_indices=True)
+        colour[missing] = index[tuple(nearest[a][v[:, 0], v[:, 1], v[:, 2]] for a in range(3))]
+    return colour
 
 
 def _parts_warning(report: MeshReport) -> list[str]:

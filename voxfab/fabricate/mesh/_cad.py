@@ -30,10 +30,31 @@ def _m3d() -> Any:
 
 def to_manifold(mesh: MeshData) -> Any:
     """A manifold3d solid from a checked mesh (positions kept in float64)."""
+    return _manifold(mesh, {})
+
+
+def to_manifold_traced(mesh: MeshData, faces: npt.NDArray[np.integer]) -> tuple[Any, int]:
+    """A manifold3d solid whose triangles keep an id (a colour) through every boolean.
+
+    ``faces`` is a non-negative id per triangle: ``simplify`` never merges
+    triangles of different ids, and :func:`from_manifold_traced` gives them back.
+    Returns the solid and its own mesh id, which tells its triangles from those
+    of the solids combined with it.
+    """
+    m3d = _m3d()
+    source = int(m3d.Manifold.reserve_ids(1))
+    extra = {"face_id": np.array(faces, dtype=np.uint64, order="C"),
+             "run_index": np.array([0, 3 * len(mesh.triangles)], dtype=np.uint64),
+             "run_original_id": np.array([source], dtype=np.uint32)}
+    return _manifold(mesh, extra), source
+
+
+def _manifold(mesh: MeshData, extra: dict[str, Any]) -> Any:
     m3d = _m3d()
     mm = m3d.Mesh64(
         vert_properties=np.array(mesh.vertices, dtype=np.float64, order="C"),
         tri_verts=np.array(mesh.triangles, dtype=np.uint64, order="C"),
+        **extra,
     )
     solid = m3d.Manifold(mm)
     if solid.status() != m3d.Error.NoError:
@@ -41,8 +62,8 @@ def to_manifold(mesh: MeshData) -> Any:
     return solid
 
 
-def from_manifold(solid: Any) -> MeshData:
-    """Back to a :class:`MeshData`, parts found from shells.
+def _mesh_out(solid: Any) -> tuple[Any, MeshData]:
+    """manifold3d's mesh of ``solid`` after ``simplify``, and it as a :class:`MeshData`.
 
     Booleans of touching boxes can leave zero-area slivers; ``simplify`` with a
     1 nm tolerance collapses them (and merges coplanar triangles) without
@@ -58,7 +79,24 @@ def from_manifold(solid: Any) -> MeshData:
     used[t.ravel()] = True
     remap = np.cumsum(used) - 1
     v, t = v[used], remap[t]
-    return MeshData(vertices=v, triangles=t, part=parts_from_shells(v, t))
+    return out, MeshData(vertices=v, triangles=t, part=parts_from_shells(v, t))
+
+
+def from_manifold(solid: Any) -> MeshData:
+    """Back to a :class:`MeshData`, parts found from shells."""
+    return _mesh_out(solid)[1]
+
+
+def from_manifold_traced(solid: Any, source: int) -> tuple[MeshData, npt.NDArray[np.int64]]:
+    """Back to a :class:`MeshData`, with the face id of each triangle that came from the solid
+    ``source`` (see :func:`to_manifold_traced`) and -1 for the others."""
+    out, mesh = _mesh_out(solid)
+    faces = np.asarray(out.face_id, dtype=np.int64).copy()
+    runs = np.asarray(out.run_index, dtype=np.int64)
+    ids = np.asarray(out.run_original_id, dtype=np.int64)
+    owner = np.repeat(ids, np.diff(runs) // 3)  # run_index counts triangle vertices
+    faces[owner != source] = -1
+    return mesh, faces
 
 
 def box_solids(boxes: npt.NDArray[np.float64]) -> list[Any]:

@@ -93,3 +93,29 @@ def fill_boxes(cells, lab, lo, hi):  # pragma: no cover - compiled
                 for z in range(lo[b, 2], hi[b, 2]):
                     cells[x, y, z] = True
                     lab[x, y, z] = m
+
+
+@njit(cache=True)
+def paint_boxes(colour, lo, hi):  # pragma: no cover - compiled
+    """Give the empty cells (colour 0) of each box ``lo[b] .. hi[b]`` the colour most of its other cells have.
+
+    Ties go to the smaller colour; a box with no coloured cell stays as it is.
+    """
+    count = np.zeros(256, dtype=np.int64)
+    for b in range(lo.shape[0]):
+        count[:] = 0
+        for x in range(lo[b, 0], hi[b, 0]):
+            for y in range(lo[b, 1], hi[b, 1]):
+                for z in range(lo[b, 2], hi[b, 2]):
+                    count[colour[x, y, z]] += 1
+        m = 0
+        for c in range(1, 256):
+            if count[c] > 0 and (m == 0 or count[c] > count[m]):
+                m = c
+        if m == 0:
+            continue
+        for x in range(lo[b, 0], hi[b, 0]):
+            for y in range(lo[b, 1], hi[b, 1]):
+                for z in range(lo[b, 2], hi[b, 2]):
+                    if colour[x, y, z] == 0:
+                        colour[x, y, z] = m

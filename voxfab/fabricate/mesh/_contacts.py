@@ -239,17 +239,46 @@ def bridged_grid(
         if len(c) - 1 > max_side:
             return None
         coords.append(c)
-    centres = [(c[:-1] + c[1:]) / 2 for c in coords]
-    idx = [np.minimum(np.floor(m).astype(np.int64), grid.shape[a] - 1) for a, m in enumerate(centres)]
-    # Gathering one axis at a time is much faster than fancy indexing with np.ix_.
-    parts = grid.astype(np.int64) if labels is None else np.where(grid, labels, 0).astype(np.int64)
-    for a in range(3):
-        parts = parts.take(idx[a], axis=a)
-    parts = np.ascontiguousarray(parts)
+    parts = _refine(grid.astype(np.int64) if labels is None else np.where(grid, labels, 0).astype(np.int64), coords)
     cells = parts > 0
-    lo = np.stack([np.searchsorted(coords[a], np.round(box_v[:, 0, a], 9)) for a in range(3)], axis=1)
-    hi = np.stack([np.searchsorted(coords[a], np.round(box_v[:, 1, a], 9)) for a in range(3)], axis=1)
-    fill_boxes(cells, parts, lo.astype(np.int64), hi.astype(np.int64))  # one slab per bridge box
+    lo, hi = _box_cells(box_v, coords)
+    fill_boxes(cells, parts, lo, hi)  # one slab per bridge box
     if labels is None:
         return cells, tuple(coords)
     return cells, tuple(coords), parts
+
+
+def _refine(values: npt.NDArray[np.int64], coords: list[npt.NDArray[np.float64]] | tuple[npt.NDArray[np.float64], ...]
+            ) -> npt.NDArray[np.int64]:
+    """A voxel grid's values on the cells of a refined rectilinear grid (each cell takes its voxel's)."""
+    for a, c in enumerate(coords):
+        centres = (c[:-1] + c[1:]) / 2
+        # Gathering one axis at a time is much faster than fancy indexing with np.ix_.
+        values = values.take(np.minimum(np.floor(centres).astype(np.int64), values.shape[a] - 1), axis=a)
+    return np.ascontiguousarray(values)
+
+
+def _box_cells(box_v: npt.NDArray[np.float64], coords: list[npt.NDArray[np.float64]] | tuple[npt.NDArray[np.float64], ...]
+               ) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64]]:
+    """The cell ranges ``lo .. hi`` (exclusive) of boxes given in voxels, on the refined grid ``coords``."""
+    lo = np.stack([np.searchsorted(coords[a], np.round(box_v[:, 0, a], 9)) for a in range(3)], axis=1)
+    hi = np.stack([np.searchsorted(coords[a], np.round(box_v[:, 1, a], 9)) for a in range(3)], axis=1)
+    return lo.astype(np.int64), hi.astype(np.int64)
+
+
+def bridged_colours(
+    index: npt.NDArray[np.integer], boxes: npt.NDArray[np.float64], coords: tuple[npt.NDArray[np.float64], ...], *,
+    pitch: float,
+) -> npt.NDArray[np.uint8]:
+    """The colour index of every cell of :func:`bridged_grid`'s refined grid.
+
+    A cell inside a voxel takes the voxel's colour; the cells a bridge box adds
+    over empty voxels take the colour most of the box's voxel cells have (the
+    smaller index on a tie), so a bridge is one colour of the voxels it joins.
+    """
+    from ._contact_scan import paint_boxes
+
+    colour = _refine(index.astype(np.int64), coords)
+    lo, hi = _box_cells(boxes / pitch, coords)
+    paint_boxes(colour, lo, hi)
+    return colour.astype(np.uint8)  # the voxels' own type: one compiled mesher for both

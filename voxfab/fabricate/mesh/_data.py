@@ -22,14 +22,24 @@ class MeshData:
     part : (T,) int64 ndarray
         Part of each triangle, ``0..P-1``: one part is one solid (its outer
         shell and the shells of its enclosed cavities).
+    colour : (T,) int64 ndarray or None
+        For a coloured mesh, the row of ``palette`` of each triangle: the colour
+        of the voxel whose face it lies on.
+    palette : (K, 4) uint8 ndarray or None
+        For a coloured mesh, the RGBA of each colour (for a print, one row per
+        filament in extruder order).
     """
 
     vertices: npt.NDArray[np.float64]
     triangles: npt.NDArray[np.int64]
     part: npt.NDArray[np.int64]
+    colour: npt.NDArray[np.int64] | None = None
+    palette: npt.NDArray[np.uint8] | None = None
 
     def __post_init__(self) -> None:
-        for name in ("vertices", "triangles", "part"):
+        for name in ("vertices", "triangles", "part", "colour", "palette"):
+            if getattr(self, name) is None:
+                continue
             a = np.ascontiguousarray(getattr(self, name))
             a.flags.writeable = False
             object.__setattr__(self, name, a)
@@ -44,6 +54,11 @@ class MeshData:
         tris = self.triangles[self.part == p]
         used = np.unique(tris)
         return self.vertices[used], np.searchsorted(used, tris)
+
+    @property
+    def coloured(self) -> bool:
+        """Whether the triangles carry colours."""
+        return self.colour is not None and self.palette is not None
 
     def bounds(self) -> npt.NDArray[np.float64]:
         """``(2, 3)`` minimum and maximum corner in mm."""

@@ -106,8 +106,12 @@ _FAN: tuple[npt.NDArray[np.int64], npt.NDArray[np.int64]] | None = None
 _PLANE_VU = [(0, 2, 1), (1, 0, 2), (2, 1, 0)]
 
 
-def face_rectangles(grid: npt.NDArray[np.bool_], *, merge: bool = True) -> npt.NDArray[np.int64]:
-    """Exposed faces grouped into rectangles of one plane and direction.
+def face_rectangles(grid: npt.NDArray[np.bool_], *, merge: bool = True,
+                    colour: npt.NDArray[np.integer] | None = None) -> npt.NDArray[np.int64]:
+    """Exposed faces grouped into rectangles of one plane and direction (and one colour).
+
+    ``colour``, an integer grid like ``grid`` (a colour index per voxel), keeps
+    faces of voxels of different colours in different rectangles.
 
     Returns
     -------
@@ -119,13 +123,27 @@ def face_rectangles(grid: npt.NDArray[np.bool_], *, merge: bool = True) -> npt.N
     from ._rectangles import stack_runs
 
     out = []
+    no_colour = np.zeros(0, dtype=np.uint8)
     for a in range(3):
         t = np.ascontiguousarray(grid.transpose(_PLANE_VU[a]))
+        ct = None if colour is None else np.ascontiguousarray(colour.transpose(_PLANE_VU[a])).ravel()
         beside = np.zeros((t.shape[0] + 2, *t.shape[1:]), dtype=bool)
         beside[1:-1] = t
         for d, nb in ((2 * a, beside[2:]), (2 * a + 1, beside[:-2])):
-            out.append(stack_runs(np.flatnonzero(t & ~nb), t.shape[2], t.shape[1], d, merge))
+            faces = np.flatnonzero(t & ~nb)
+            out.append(stack_runs(faces, t.shape[2], t.shape[1], d, merge, no_colour if ct is None else ct[faces]))
     return np.concatenate(out)
+
+
+def rectangle_voxels(rects: npt.NDArray[np.int64]) -> npt.NDArray[np.int64]:
+    """``(R, 3)`` the first voxel ``(x, y, z)`` of each rectangle of :func:`face_rectangles`."""
+    a = rects[:, 0] // 2
+    rows = np.arange(rects.shape[0])
+    vox = np.empty((rects.shape[0], 3), dtype=np.int64)
+    vox[rows, a] = rects[:, 1]
+    vox[rows, (a + 1) % 3] = rects[:, 2]
+    vox[rows, (a + 2) % 3] = rects[:, 3]
+    return vox
 
 
 def contact_keys(contacts: Contacts, shape: tuple[int, ...]) -> npt.NDArray[np.int64]:
@@ -180,6 +198,8 @@ def voxel_mesh(
     part_labels: npt.NDArray[np.int64] | None = None,
     coords: tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64]] | None = None,
     contacts: Contacts | None = None,
+    colour: npt.NDArray[np.integer] | None = None,
+    palette: npt.NDArray[np.uint8] | None = None,
 ) -> MeshData:
     """Mesh of the exposed faces of a voxel grid.
 
@@ -203,6 +223,12 @@ def voxel_mesh(
         caller knows them (:func:`find_contacts`, or none at all for a bridged
         grid); found here otherwise.  Missing edge contacts give edges in four
         triangles, which :func:`check_mesh` refuses.
+    colour : (X, Y, Z) int ndarray, optional
+        A colour index per filled voxel: faces of different colours are never
+        merged, and each triangle gets the colour of the voxel its face belongs to
+        (:attr:`MeshData.colour`, rows of ``palette``).
+    palette : (K, 4) uint8 ndarray, optional
+        The RGBA of each colour index (with ``colour``).
 
     Returns
     -------
@@ -218,7 +244,7 @@ def voxel_mesh(
     g = as_grid(grid)
     if contacts is None:
         contacts = find_contacts(g)
-    rects = face_rectangles(g, merge=merge)
+    rects = face_rectangles(g, merge=merge, colour=colour)
     padded = np.pad(g, 1)
     lattice = (padded, point_configs(padded), fan, fan_count, _half_steps(g.shape, coords, pitch))
     tables = (CORNER_OFFSETS, EDGE_OUT, DIRECTIONS, _ALONG_U, _ASCENDING, _AT_MAX)
@@ -228,13 +254,11 @@ def voxel_mesh(
         from voxfab.shape import label_components
 
         part_labels, _ = label_components(g)
-    # The part of a rectangle is that of its first voxel; triangles come rectangle by rectangle.
-    a = rects[:, 0] // 2
-    rows = np.arange(rects.shape[0])
-    vox = np.empty((rects.shape[0], 3), dtype=np.int64)
-    vox[rows, a] = rects[:, 1]
-    vox[rows, (a + 1) % 3] = rects[:, 2]
-    vox[rows, (a + 2) % 3] = rects[:, 3]
+    # The part (and colour) of a rectangle is that of its first voxel; triangles come rectangle by rectangle.
+    vox = rectangle_voxels(rects)
     rect_lab = np.asarray(part_labels)[vox[:, 0], vox[:, 1], vox[:, 2]].astype(np.int64)
     part = first_appearance(rect_lab[tri_rect])
-    return MeshData(vertices=vertices, triangles=triangles, part=part)
+    if colour is None:
+        return MeshData(vertices=vertices, triangles=triangles, part=part)
+    rect_colour = colour[vox[:, 0], vox[:, 1], vox[:, 2]].astype(np.int64)
+    return MeshData(vertices=vertices, triangles=triangles, part=part, colour=rect_colour[tri_rect], palette=palette)

@@ -6,6 +6,8 @@ import dataclasses
 
 from voxfab._shared.options import Options, option
 
+from ._colours import MAX_FILAMENTS
+
 #: Longest print side accepted, mm (a room-sized object is a typo, not a print).
 MAX_SIZE = 10_000.0
 
@@ -33,7 +35,7 @@ class MeshOptions(Options):
     """
 
     format: str = option("3mf", help="file format of the recipe output mesh.FORMAT",
-                         choices=("3mf", "stl", "obj", "glb"), cli=False)
+                         choices=("3mf", "stl", "obj", "glb", "ply"), cli=False)
     size: float | None = option(None, help="length of the longest side, instead of the shape's pitch",
                                 unit="mm", low=0.0, low_open=True, high=MAX_SIZE)
     contacts: str = option("bridge", help="voxels touching only along an edge or at a corner: bridge them, "
@@ -56,6 +58,9 @@ class MeshOptions(Options):
                          flag_help="two triangles per voxel face (no coplanar merging)")
     infill: float = option(20.0, help="sparse infill the filament, mass and print-time estimates assume "
                            "(PLA, 0.3 mm layers, 3 perimeters)", unit="%", low=0.0, high=100.0)
+    colours: int | None = option(None, help="filaments of a coloured print: merge the shape's colours to N perceptually "
+                                 "(CIELAB, weighted by visible area); default one per colour, at most 16 in a 3MF",
+                                 unit="filaments", low=1, high=MAX_FILAMENTS, metavar="N")
     spin: bool = option(False, help="check the print as a spinning top: a single tip under the centre of mass, "
                         "wide rather than tall in its mass")
 

@@ -26,18 +26,22 @@ def _border_corner(d, k, u0, v0, u1, v1, step, along_u_t, asc_t, at_max_t):  # p
 
 
 @njit(cache=True)
-def stack_runs(faces, nu, nv, d, merge):  # pragma: no cover - compiled
+def stack_runs(faces, nu, nv, d, merge, colour):  # pragma: no cover - compiled
     """Rectangles of the exposed faces of one direction ``d``.
 
     ``faces`` are sorted flat indices into a ``(planes, nv, nu)`` array (u
     fastest).  Each row is cut into runs along u, and a run with the same ends as
     a rectangle's last row, just below it, extends that rectangle.  Returns
     ``(R, 6)`` rows ``(d, plane, u0, v0, u1, v1)``, exclusive ends, ordered by
-    ``(plane, v0, u0)``; without ``merge`` every face is a rectangle.
+    ``(plane, v0, u0)``; without ``merge`` every face is a rectangle.  ``colour``
+    is empty, or the colour of each face: then a run and a rectangle hold faces
+    of one colour only.
     """
+    coloured = colour.size > 0
     nf = faces.size
     out = np.empty((nf, 6), dtype=np.int64)
     last = np.empty(nu, dtype=np.int64)  # rectangle whose last run starts at u
+    rect_colour = np.empty(nf if coloured else 0, dtype=colour.dtype)
     plane_now = -1
     row_start = 0
     row_end = 0
@@ -54,14 +58,17 @@ def stack_runs(faces, nu, nv, d, merge):  # pragma: no cover - compiled
                 last[:] = -1
                 plane_now = plane
         u0 = f - row_start
+        c = colour[i] if coloured else 0
         j = i + 1
         if merge:
             while j < nf and faces[j] == faces[j - 1] + 1 and faces[j] < row_end:
+                if coloured and colour[j] != c:
+                    break
                 j += 1
         u1 = u0 + (j - i)
         i = j
         r = last[u0]
-        if merge and r >= 0 and out[r, 5] == v and out[r, 4] == u1:
+        if merge and r >= 0 and out[r, 5] == v and out[r, 4] == u1 and (not coloured or rect_colour[r] == c):
             out[r, 5] = v + 1
             continue
         out[n, 0] = d
@@ -70,6 +77,8 @@ def stack_runs(faces, nu, nv, d, merge):  # pragma: no cover - compiled
         out[n, 3] = v
         out[n, 4] = u1
         out[n, 5] = v + 1
+        if coloured:
+            rect_colour[n] = c
         last[u0] = n
         n += 1
     return out[:n]

@@ -113,19 +113,34 @@ def __getattr__(name: str) -> Any:
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-def draw_net(grid: Any, net: Net, *, options: DrawingOptions | None = None, name: str = "") -> NetDrawing:
-    """Lay ``net`` (a net of ``grid``) out on sheets; see :func:`._drawing.draw_net`."""
+def shape_colours(shape: Any, filled: bool = False) -> tuple[Any, Any]:
+    """``(grid, colours)`` of a :class:`~voxfab.shape.VoxelShape` (its colours, None when uncoloured) or of a
+    bool grid (None); with ``filled``, the grid's enclosed cavities filled (a net of the outer surface)."""
+    from voxfab.shape import fill_cavities
+
+    grid, colours = (shape.grid, shape.colours) if isinstance(shape, VoxelShape) else (shape, None)
+    if not filled:
+        return grid, colours
+    grid = fill_cavities(grid)
+    return grid, (None if colours is None else colours.fitted(grid))
+
+
+def draw_net(shape: Any, net: Net, *, options: DrawingOptions | None = None, name: str = "") -> NetDrawing:
+    """Lay ``net`` (a net of ``shape``, a VoxelShape or a bool grid) out on sheets, each face in its voxel's
+    colour when the shape has colours; see :func:`._drawing.draw_net`."""
     from ._drawing import draw_net as _draw
 
-    return _draw(grid, net, options=options, name=name)
+    grid, colours = shape_colours(shape)
+    return _draw(grid, net, options=options, name=name, colours=colours)
 
 
-def draw_pieces(grid: Any, pieces: list[Net], *, options: DrawingOptions | None = None, name: str = "",
+def draw_pieces(shape: Any, pieces: list[Net], *, options: DrawingOptions | None = None, name: str = "",
                 placement: Any = None) -> NetDrawing:
     """Pack the pieces of a net on as few sheets as possible (or as ``placement`` puts them); see :func:`._drawing.draw_pieces`."""
     from ._drawing import draw_pieces as _draw
 
-    return _draw(grid, pieces, options=options, name=name, placement=placement)
+    grid, colours = shape_colours(shape)
+    return _draw(grid, pieces, options=options, name=name, placement=placement, colours=colours)
 
 
 def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str = "one", count: int = 1,
@@ -172,7 +187,7 @@ class DrawingResult:
     seams_without_tab: int = 0
 
 
-def write_net_drawing(grid: Any, nets: Net | list[Net], path: str | Path, options: DrawingOptions, *,
+def write_net_drawing(shape: Any, nets: Net | list[Net], path: str | Path, options: DrawingOptions, *,
                       title: str = "") -> DrawingResult:
     """Draw a net (or the pieces of one, packed) of ``grid`` and write it to ``path``.
 
@@ -182,8 +197,9 @@ def write_net_drawing(grid: Any, nets: Net | list[Net], path: str | Path, option
 
     Parameters
     ----------
-    grid : (X, Y, Z) bool array_like
-        The shape the net unfolds.
+    shape : VoxelShape or (X, Y, Z) bool array_like
+        The shape the net unfolds (cavities filled for a net of the outer surface); a coloured
+        shape prints each face in its voxel's colour.
     nets : Net or list of Net
         A net, or the pieces of a several-piece unfolding.
     path : str or Path
@@ -205,7 +221,8 @@ def write_net_drawing(grid: Any, nets: Net | list[Net], path: str | Path, option
     if Path(path).suffix.lower() not in FORMATS:
         raise UnknownFormatError(f"{path}: unknown drawing format {Path(path).suffix or '(none)'!r}; "
                                  f"expected one of {', '.join(FORMATS)}")
-    drawing = _draw_any(grid, nets, options, title)
+    grid, colours = shape_colours(shape)
+    drawing = _draw_any(grid, nets, options, title, colours=colours)
     return _result(drawing, write(drawing, Path(path), options))
 
 
@@ -221,7 +238,7 @@ def save_drawing(drawing: NetDrawing, path: str | Path, options: DrawingOptions)
 
 
 def _draw_any(grid: Any, nets: Net | list[Net], options: DrawingOptions, title: str,
-              placement: Any = None) -> NetDrawing:
+              placement: Any = None, colours: Any = None) -> NetDrawing:
     from ._drawing import draw_net as _draw_one
     from ._drawing import draw_pieces as _draw_many
 
@@ -233,10 +250,10 @@ def _draw_any(grid: Any, nets: Net | list[Net], options: DrawingOptions, title: 
         where = placement if isinstance(placement, Placement) else Placement.from_dict(placement)
         # A one-piece net where the drawing puts it by itself is drawn as the CLI draws it, byte for byte.
         if not (len(pieces) == 1 and where == placement_for(grid, pieces, options)):
-            return _draw_many(grid, pieces, options=options, name=title, placement=where)
+            return _draw_many(grid, pieces, options=options, name=title, placement=where, colours=colours)
     if len(pieces) == 1:
-        return _draw_one(grid, pieces[0], options=options, name=title)
-    return _draw_many(grid, pieces, options=options, name=title)
+        return _draw_one(grid, pieces[0], options=options, name=title, colours=colours)
+    return _draw_many(grid, pieces, options=options, name=title, colours=colours)
 
 
 def _result(drawing: NetDrawing, files: list[str]) -> DrawingResult:
@@ -245,14 +262,26 @@ def _result(drawing: NetDrawing, files: list[str]) -> DrawingResult:
 
 
 _PURPOSES = {
-    "svg": "net for laser cutters and Inkscape (mm): cut red, mountain folds blue dashed, valley folds "
+    "svg": "net for laser cutters and Inkscape (mm): cut red, mountain folds magenta dashed, valley folds "
            "green dash-dot, seam labels black; one layer per line type",
     "dxf": "net for CAD and laser shops (mm): layers CUT, MOUNTAIN, VALLEY, GRID, LABEL, straight lines only",
     "pdf": "net to print at 100 % (no fit to page) on card and cut by hand: cut along the red lines, "
-           "fold blue dashed lines away from you and green dash-dot lines towards you, glue each tab under "
+           "fold magenta dashed lines away from you and green dash-dot lines towards you, glue each tab under "
            "the other edge of the same label (each label stands on its edge)",
     "png": "preview of the net sheets to look at: visible lines, shaded tabs, a legend",
 }
+
+
+#: What a coloured net's print files are for (DXF stays lines).
+_COLOURED = {
+    "svg": "coloured net (mm): each face in its voxel's colour with a bleed past the cut, folds dashed "
+           "(mountain) and dash-dot (valley) and seam labels in black or white, whichever reads on the face",
+    "pdf": "coloured net to print at 100 % (no fit to page) and cut along the outline: each face in its voxel's "
+           "colour, running a little past the cut; glue each tinted tab under the face of its colour",
+    "png": "preview of the coloured net sheets",
+}
+_CUT_PURPOSE = ("the cut lines alone, for the print-then-cut cutter: in register with the print, the same "
+                "registration marks at the same place")
 
 
 def fabricate_net(shape: VoxelShape, net: NetOptions, drawing: DrawingOptions, outdir: str | Path, *, name: str,
@@ -290,7 +319,6 @@ def fabricate_net(shape: VoxelShape, net: NetOptions, drawing: DrawingOptions, o
     """
     from voxfab._shared.atomic import write_text
     from voxfab.fabricate._outputs import Artefact
-    from voxfab.shape import fill_cavities
 
     from ._pipeline import search_nets, validate_net
 
@@ -301,13 +329,13 @@ def fabricate_net(shape: VoxelShape, net: NetOptions, drawing: DrawingOptions, o
     else:
         nets = list(chosen) if isinstance(chosen, (list, tuple)) else [chosen]
         fitted, notes = drawing, []
-    grid = fill_cavities(shape.grid) if nets[0].filled else shape.grid
+    grid, colours = shape_colours(shape, nets[0].filled)
     validate_net(shape.grid, nets, constraints=constraints)
     outdir = Path(outdir)
     files = []
     for i, piece in enumerate(nets):
         json_name = "net.json" if len(nets) == 1 else f"net.piece-{i + 1}.json"
-        write_text(outdir / json_name, piece.to_json())
+        write_text(outdir / json_name, piece.to_json(colours))
         files.append(OutputFile(json_name, "the net as voxfab-net/1 JSON: each face's voxel, normal, 3D and 2D "
                                            "corners, and the folds"))
     if chosen is not None and not net.formats:
@@ -316,10 +344,12 @@ def fabricate_net(shape: VoxelShape, net: NetOptions, drawing: DrawingOptions, o
                         gives={"net": tuple(nets)})
     from ._writers import write
 
-    drawing = _draw_any(grid, nets, fitted, name, placement)
+    drawing = _draw_any(grid, nets, fitted, name, placement, colours)
     for f in net.formats:
         written = write(drawing, outdir / f"net.{f}", fitted)
-        files += [OutputFile(Path(p).relative_to(outdir).as_posix(), _PURPOSES[f]) for p in written]
+        purpose = _COLOURED.get(f, _PURPOSES[f]) if drawing.coloured else _PURPOSES[f]
+        files += [OutputFile(Path(p).relative_to(outdir).as_posix(),
+                             _CUT_PURPOSE if ".cut." in Path(p).name else purpose) for p in written]
     result = _result(drawing, [])
     report = {"face_size_mm": result.face_size, "faces": sum(n.face_count for n in nets), "pieces": len(nets),
               "sheets": len(result.fill),

@@ -14,6 +14,8 @@ import numpy.typing as npt
 
 from voxfab.drawing import Page, Polylines, text_polylines, text_width
 
+from ._tabs import TabPlan
+
 #: Height of the text lines of the assembly page, mm.
 ASSEMBLY_TEXT = 3.5
 
@@ -165,6 +167,25 @@ def _on_cells(lo: npt.NDArray[np.float64], hi: npt.NDArray[np.float64], origin: 
             cell = np.floor((pt - origin) / pitch).astype(np.int64)
             ok &= np.array([(int(a), int(b)) in keys for a, b in cell.tolist()], dtype=bool)
     return ok
+
+
+def ink_under(centre: npt.NDArray[np.float64], s: int, fs: npt.NDArray[np.int64], pos: npt.NDArray[np.float64],
+              ink: npt.NDArray[np.int64], paper: int) -> int:
+    """The ink of the face under ``centre`` on sheet ``s`` (a piece number on its piece), else ``paper``'s."""
+    lo, hi = pos.min(axis=1), pos.max(axis=1)
+    under = np.flatnonzero((fs == s) & (lo <= centre).all(axis=1) & (hi >= centre).all(axis=1))
+    return int(ink[under[0]]) if under.size else paper
+
+
+def paper_boxes(pos: npt.NDArray[np.float64], fs: npt.NDArray[np.int64], sides: npt.NDArray[np.int64],
+                 tabs: TabPlan) -> dict[int, tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]]:
+    """Per sheet, the boxes ``(lo, hi)`` of every face and glue tab: the paper a number beside its piece must keep off."""
+    seam_face = sides[np.arange(sides.shape[0]), np.maximum(tabs.side, 0), 0]
+    poly = tabs.polygon[tabs.placed]
+    lo = np.concatenate([pos.min(axis=1), poly.min(axis=1)])
+    hi = np.concatenate([pos.max(axis=1), poly.max(axis=1)])
+    sheets = np.concatenate([fs, fs[seam_face[tabs.placed]]])
+    return {int(s): (lo[sheets == s], hi[sheets == s]) for s in np.unique(sheets).tolist()}
 
 
 def number_text(names: list[str], centres: npt.NDArray[np.float64], heights: npt.NDArray[np.float64]) -> Polylines:

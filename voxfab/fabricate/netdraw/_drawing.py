@@ -7,17 +7,29 @@ import dataclasses
 import numpy as np
 import numpy.typing as npt
 
-from voxfab.drawing import LAYERS, Fill, Page, Polylines, text_polylines, text_width
+from voxfab.drawing import (
+    LAYERS,
+    Cutter,
+    Fill,
+    Ink,
+    Page,
+    Polylines,
+    registration_marks,
+    text_polylines,
+    text_width,
+)
 from voxfab.drawing import Drawing as Document
 from voxfab.errors import InvalidShapeError
-from voxfab.shape import SurfaceGraph, surface_graph
+from voxfab.shape import SurfaceGraph, VoxelColours, surface_graph
 from voxfab.unfold import Net
 
 from ._assembly import (
     assembly_page,
     gluing_order,
+    ink_under,
     number_faces,
     number_text,
+    paper_boxes,
     piece_joins,
     piece_name,
     place_numbers,
@@ -26,6 +38,7 @@ from ._geometry import NetEdges, check_net, classify_edges, merge_unit_segments,
 from ._labels import label_length, seam_labels
 from ._legible import LABEL_ADVANCE, NUMBER_INSET, legibility_problem, number_height, number_start
 from ._options import DrawingOptions, Perforate
+from ._paint import INKS, Paint, net_paint, sheet_fills, tint
 from ._placement import Placement, placement_of, plan_placement
 from ._sheets import SheetPlan, pack_pieces, plan_sheets
 from ._tabs import TabPlan, place_tabs, tab_heights
@@ -58,6 +71,12 @@ class Sheet:
         Number of separate paper pieces (closed outlines) on this sheet.
     fill : float
         Share of the sheet's area covered by paper (faces and tabs), 0 to 1.
+    colour_fills : tuple of Fill
+        A coloured net's bleed, tab tints and faces (:mod:`._paint`); empty otherwise.
+    inks : tuple of Ink
+        A coloured net's folds and labels in black or white over the fills.
+    marks : Polylines
+        The cutter's registration marks (empty without a cutter).
     """
 
     number: int
@@ -69,12 +88,25 @@ class Sheet:
     tabs: npt.NDArray[np.float64]
     pieces: int
     fill: float
+    colour_fills: tuple[Fill, ...] = ()
+    inks: tuple[Ink, ...] = ()
+    marks: Polylines = dataclasses.field(default_factory=Polylines.empty)
 
-    def page(self, title: str = "") -> Page:
-        """This sheet as a drawing page; glue tabs are shaded in previews and prints."""
+    def page(self, title: str = "", part: str = "all") -> Page:
+        """This sheet as a drawing page; glue tabs are shaded in previews and prints.
+
+        ``part`` is ``all`` (the sheet), ``print`` (without the cut lines: a cutter cuts them) or ``cut``
+        (the cut lines alone); the registration marks are on all three, at the same place.
+        """
+        if part == "cut":
+            return Page(self.width, self.height, {"CUT": self.layers["CUT"]}, marks=self.marks, title=title)
+        layers = self.layers if part == "all" else {k: v for k, v in self.layers.items() if k != "CUT"}
+        if self.colour_fills:
+            return Page(self.width, self.height, layers, fills=self.colour_fills, title=title, inks=self.inks,
+                        marks=self.marks, artwork=True)
         tabs = self.tabs[np.isfinite(self.tabs).all(axis=(1, 2))]
         fills = (Fill(Polylines.from_list(list(tabs), [True] * len(tabs)), TAB_FILL),) if len(tabs) else ()
-        return Page(self.width, self.height, self.layers, fills=fills, title=title)
+        return Page(self.width, self.height, layers, fills=fills, title=title, marks=self.marks)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -150,13 +182,13 @@ class NetDrawing:
     order: tuple[int, ...]
     number_at: tuple[tuple[int, npt.NDArray[np.float64]], ...]
 
-    def document(self, *, assembly: bool = False) -> Document:
+    def document(self, *, assembly: bool = False, part: str = "all") -> Document:
         """The sheets as a :class:`voxfab.drawing.Drawing` for the backends.
 
         With ``assembly`` (printed nets of several pieces), an assembly page
-        (:meth:`assembly_page`) comes first.
+        (:meth:`assembly_page`) comes first.  ``part``: see :meth:`Sheet.page`.
         """
-        pages = tuple(s.page(self.title) for s in self.sheets)
+        pages = tuple(s.page(self.title, part) for s in self.sheets)
         if assembly and self.pieces > 1:
             pages = (self.assembly_page(),) + pages
         return Document(pages, self.title)
@@ -171,6 +203,11 @@ class NetDrawing:
                          [(p, c) for p, (ps, c) in enumerate(self.number_at) if ps == s]))
         size = (self.sheets[0].width, self.sheets[0].height)
         return assembly_page(maps, list(self.joins), list(self.order), size, margin, self.title)
+
+    @property
+    def coloured(self) -> bool:
+        """The faces are printed in their voxels' colours."""
+        return any(s.colour_fills for s in self.sheets)
 
     @property
     def seam_labels(self) -> list[str]:
@@ -269,7 +306,8 @@ def _edge_points(pos: npt.NDArray[np.float64], fe: npt.NDArray[np.int64]) -> tup
     return pos[fe[:, 0], fe[:, 1]], pos[fe[:, 0], _NEXT[fe[:, 1]]]
 
 
-def draw_net(grid: npt.ArrayLike, net: Net, *, options: DrawingOptions | None = None, name: str = "") -> NetDrawing:
+def draw_net(grid: npt.ArrayLike, net: Net, *, options: DrawingOptions | None = None, name: str = "",
+             colours: VoxelColours | None = None) -> NetDrawing:
     """Lay a net out on sheets with cut outlines, folds, glue tabs, seam labels and a title.
 
     Parameters
@@ -283,6 +321,9 @@ def draw_net(grid: npt.ArrayLike, net: Net, *, options: DrawingOptions | None = 
     name : str
         The shape's name, printed in the title of every sheet with the pitch,
         the net's seed and, when there are several, the sheet number.
+    colours : VoxelColours, optional
+        The voxels' colours: each face is printed in its voxel's colour
+        (:mod:`._paint`).  None draws lines only.
 
     Returns
     -------
@@ -302,11 +343,12 @@ def draw_net(grid: npt.ArrayLike, net: Net, *, options: DrawingOptions | None = 
     graph = surface_graph(grid)
     check_net(graph, net)
     return _draw(graph, net, plan_sheets(net.corners2d, opts), opts, name=name,
-                 face_piece=np.zeros(net.face_count, dtype=np.int64))
+                 face_piece=np.zeros(net.face_count, dtype=np.int64), colours=colours)
 
 
 def draw_pieces(grid: npt.ArrayLike, pieces: list[Net], *, options: DrawingOptions | None = None,
-                name: str = "", placement: Placement | None = None) -> NetDrawing:
+                name: str = "", placement: Placement | None = None,
+                colours: VoxelColours | None = None) -> NetDrawing:
     """Pack the pieces of a several-piece unfolding on as few sheets as possible and draw them.
 
     Seams between pieces are labelled on both edges and get a tab on one side,
@@ -323,6 +365,8 @@ def draw_pieces(grid: npt.ArrayLike, pieces: list[Net], *, options: DrawingOptio
         The shape's name for the title.
     placement : Placement, optional
         Where each piece goes (the studio's layout), instead of packing them.
+    colours : VoxelColours, optional
+        The voxels' colours, as for :func:`draw_net`.
 
     Returns
     -------
@@ -340,7 +384,7 @@ def draw_pieces(grid: npt.ArrayLike, pieces: list[Net], *, options: DrawingOptio
     opts = options or DrawingOptions()
     graph = surface_graph(grid)
     net, plan, swap, face_piece, _, _ = _packed(graph, pieces, opts, placement)
-    return _draw(graph, net, plan, opts, name=name, face_piece=face_piece, swap=swap)
+    return _draw(graph, net, plan, opts, name=name, face_piece=face_piece, swap=swap, colours=colours)
 
 
 def sheet_plan(graph: SurfaceGraph, pieces: list[Net], options: DrawingOptions) -> SheetPlan:
@@ -461,10 +505,12 @@ def _tab_sides(corners: npt.NDArray[np.int64], sides: npt.NDArray[np.int64]
 
 
 def _draw(graph: SurfaceGraph, net: Net, plan: SheetPlan, opts: DrawingOptions, *, name: str,
-          face_piece: npt.NDArray[np.int64], swap: npt.NDArray[np.bool_] | None = None) -> NetDrawing:
+          face_piece: npt.NDArray[np.int64], swap: npt.NDArray[np.bool_] | None = None,
+          colours: VoxelColours | None = None) -> NetDrawing:
     """Draw ``net`` (a whole net, a piece, or pieces side by side, ``face_piece`` saying which) on ``plan``.
 
-    ``swap`` (one per seam) puts a seam's second side first, so its tab goes there when it has room.
+    ``swap`` (one per seam) puts a seam's second side first, so its tab goes there when it has room;
+    ``colours`` paints the faces.
     """
     pieces = int(face_piece.max(initial=0)) + 1
     edges = classify_edges(graph, net, plan.corners2d)
@@ -507,15 +553,24 @@ def _draw(graph: SurfaceGraph, net: Net, plan: SheetPlan, opts: DrawingOptions, 
     joins = piece_joins(face_piece, sides)
     order = gluing_order(np.bincount(face_piece, minlength=pieces).tolist(), joins)
     labels = seam_labels(numbers.tolist(), chars)
-    names = [str(i + 1) for i in range(pieces)] if pieces > 1 else []
+    paint = net_paint(graph, net, colours, opts.bleed) if colours is not None else None
+    ink = paint.ink if paint is not None else np.zeros(net.face_count, dtype=np.int64)
+    firsts = np.searchsorted(face_piece, face_piece)  # each face's piece starts here in the joined net
+    local = np.arange(net.face_count) - firsts
+    names = [f"face-{i}" if pieces == 1 else f"piece-{p + 1}-face-{i}"
+             for p, i in zip(face_piece.tolist(), local.tolist())]
+    piece_names = [str(i + 1) for i in range(pieces)] if pieces > 1 else []
     # Each piece's number, boxed, clear of every seam label and tape mark and of the other numbers.
-    spots = place_numbers(names, face_piece, fs, pos, number_faces(face_piece, joined), p, label_h,
+    spots = place_numbers(piece_names, face_piece, fs, pos, number_faces(face_piece, joined), p, label_h,
                           _mark_boxes(pos, fs, sides, labels, tabs, elsewhere, p, label_h, opts.numbers),
-                          _paper_boxes(pos, fs, sides, tabs), plan.area) if names else []
+                          paper_boxes(pos, fs, sides, tabs), plan.area) if piece_names else []
     number_at = tuple((s, c) for s, c, _ in spots)
+    paper_ink = 0 if paint is None else min(INKS)  # the ink of the bare paper, as the heading's
+    number_ink = [ink_under(c, s, fs, pos, ink, paper_ink) for s, c, _ in spots]
     sheets = tuple(
         _draw_sheet(s, plan, edges, joined, sides, seam_type, tabs, opts, label_h, title, pos, shared,
-                    labels, elsewhere, [(names[i], c, h) for i, (ps, c, h) in enumerate(spots) if ps == s])
+                    labels, elsewhere, [(piece_names[i], c, h, number_ink[i]) for i, (ps, c, h) in enumerate(spots)
+                                        if ps == s], paint, names)
         for s in range(plan.count)
     )
     return NetDrawing(
@@ -534,7 +589,8 @@ def _draw_sheet(
     s: int, plan: SheetPlan, edges: NetEdges, joined: npt.NDArray[np.bool_], sides: npt.NDArray[np.int64],
     seam_type: npt.NDArray[np.int64], tabs: TabPlan, opts: DrawingOptions, label_h: float, title: str,
     pos: npt.NDArray[np.float64], shared: npt.NDArray[np.bool_], labels: list[str],
-    elsewhere: npt.NDArray[np.bool_], piece_numbers: list[tuple[str, npt.NDArray[np.float64], float]],
+    elsewhere: npt.NDArray[np.bool_], piece_numbers: list[tuple[str, npt.NDArray[np.float64], float, int]],
+    paint: Paint | None = None, names: list[str] | None = None,
 ) -> Sheet:
     p = plan.pitch
     fs = plan.face_sheet
@@ -559,33 +615,54 @@ def _draw_sheet(
         return np.concatenate(starts), np.concatenate(ends)
 
     layers: dict[str, list[Polylines]] = {name: [] for name in LAYERS}
-    lines_by_type: dict[int, tuple[np.ndarray, np.ndarray]] = {}
-    for t in (1, -1, 0):
-        lines_by_type[t] = runs(joined & canon & on_e & (edges.fold_type == t))
+    # Lines are drawn per ink (:mod:`._paint`): one group in the layers' own colours without colours.
+    face_ink = paint.ink if paint is not None else np.zeros(fs.shape[0], dtype=np.int64)
+    edge_ink = paint.edge_ink(edges.partner_face) if paint is not None else np.zeros(joined.shape, np.int64)
+    inks: dict[tuple[str, int], list[Polylines]] = {}
+
+    def by_ink(layer: str, ink: npt.NDArray[np.int64], make) -> None:  # noqa: ANN001 - mask -> Polylines
+        for i in np.unique(ink).tolist():
+            lines = make(ink == i)
+            layers[layer].append(lines)
+            inks.setdefault((layer, i), []).append(lines)
+
+    folds = joined & canon & on_e
+    ink_values = np.unique(edge_ink[folds]).tolist() or [0]
+    lines_by_type = {(t, i): runs(folds & (edges.fold_type == t) & (edge_ink == i))
+                     for t in ((1, -1, 0) if opts.grid_lines else (1, -1)) for i in ink_values}
     # Tab folds on this sheet, typed like the seam they close (coplanar: a full fold, mountain).
     seam_face = sides[np.arange(sides.shape[0]), np.maximum(tabs.side, 0), 0]
     tab_here = tabs.placed & (fs[seam_face] == s)
     tab_poly = tabs.polygon[tab_here]
     tab_kind = np.where(seam_type[tab_here] == -1, -1, 1)
+    tab_edge = sides[np.arange(sides.shape[0]), np.maximum(tabs.side, 0)]
+    tab_ink = edge_ink[tab_edge[tab_here, 0], tab_edge[tab_here, 1]]
     perf = Perforate(opts.perforate)
     perf_type = {Perforate.MOUNTAIN: 1, Perforate.VALLEY: -1}.get(perf)
     for t, layer in ((1, "MOUNTAIN"), (-1, "VALLEY")):
-        a, b = lines_by_type[t]
-        ta, tb = tab_poly[tab_kind == t, 0], tab_poly[tab_kind == t, 1]
-        a, b = np.concatenate([a, ta]), np.concatenate([b, tb])
+        groups = []
+        for i in ink_values + sorted(set(tab_ink[tab_kind == t].tolist()) - set(ink_values)):
+            a, b = lines_by_type.get((t, i), (np.zeros((0, 2)), np.zeros((0, 2))))
+            tab = (tab_kind == t) & (tab_ink == i)
+            groups.append((i, np.concatenate([a, tab_poly[tab, 0]]), np.concatenate([b, tab_poly[tab, 1]])))
         if t == perf_type:
+            a, b = np.concatenate([g[1] for g in groups]), np.concatenate([g[2] for g in groups])
             layers["CUT"].append(_perforate(a, b, opts.perf_cut, opts.perf_bridge))
-        else:
-            layers[layer].append(Polylines.from_segments(a, b))
+            continue
+        for i, a, b in groups:
+            lines = Polylines.from_segments(a, b)
+            layers[layer].append(lines)
+            inks.setdefault((layer, i), []).append(lines)
     if opts.grid_lines:
-        layers["GRID"].append(Polylines.from_segments(*lines_by_type[0]))
+        flat = [lines_by_type[(0, i)] for i in ink_values]
+        layers["GRID"].append(Polylines.from_segments(np.concatenate([f[0] for f in flat]),
+                                                      np.concatenate([f[1] for f in flat])))
     # Slits: cut edges between faces that sit side by side in the plane.
     cut_e = ~joined & on_e
     slit_a, slit_b = runs(cut_e & shared)
     # Closed outlines round the faces and their tabs, one outer ring per piece.
     boundary = cut_e & ~shared
     detour = np.full(joined.shape + (4, 2), np.nan)
-    tab_edge = sides[np.arange(sides.shape[0]), np.maximum(tabs.side, 0)]
     fe = tab_edge[tab_here]
     # Going along the edge with the face on the left, the tab is on the right: a, top a, top b, b.
     detour[fe[:, 0], fe[:, 1]] = tab_poly[:, [0, 3, 2, 1]]
@@ -606,9 +683,12 @@ def _draw_sheet(
     org: list[np.ndarray] = []
     dirs: list[np.ndarray] = []
     marks: list[tuple[np.ndarray, np.ndarray]] = []
+    text_ink: list[np.ndarray] = []
+    mark_ink: list[np.ndarray] = []
     for side in (0, 1):
         fe = sides[:, side]
         here = (fe[:, 0] >= 0) & (fs[np.maximum(fe[:, 0], 0)] == s)
+        text_ink.append(face_ink[fe[here, 0]])
         p0, p1 = _edge_points(pos, fe[here])
         d = (p1 - p0) / p
         inward = np.stack([-d[:, 1], d[:, 0]], axis=1)
@@ -618,27 +698,43 @@ def _draw_sheet(
         org.append(start)
         dirs.append(d)
         marks.append(_tape_bar(p0, p1, d, inward, ~tabs.placed[here] & ~elsewhere[here], p))
+        mark_ink.append(text_ink[-1][~tabs.placed[here] & ~elsewhere[here]])
     if texts and opts.numbers:
-        layers["LABEL"].append(text_polylines(texts, np.concatenate(org), np.concatenate(dirs), label_h,
-                                              advance=LABEL_ADVANCE))
-    layers["LABEL"].append(Polylines.from_segments(np.concatenate([m[0] for m in marks]),
-                                                   np.concatenate([m[1] for m in marks])))
+        all_org, all_dirs = np.concatenate(org), np.concatenate(dirs)
+        by_ink("LABEL", np.concatenate(text_ink), lambda m: text_polylines(
+            [t for t, k in zip(texts, m.tolist()) if k], all_org[m], all_dirs[m], label_h, advance=LABEL_ADVANCE))
+    mark_a, mark_b = np.concatenate([m[0] for m in marks]), np.concatenate([m[1] for m in marks])
+    by_ink("LABEL", np.concatenate(mark_ink) if len(mark_a) else np.zeros(1, np.int64),
+           lambda m: Polylines.from_segments(mark_a[m[:len(mark_a)]], mark_b[m[:len(mark_a)]]))
     if piece_numbers:
-        layers["LABEL"].append(number_text([t for t, _, _ in piece_numbers], np.array([c for _, c, _ in piece_numbers]),
-                                           np.array([h for _, _, h in piece_numbers])))
+        by_ink("LABEL", np.array([k for *_, k in piece_numbers]), lambda m: number_text(
+            [t for (t, *_), k in zip(piece_numbers, m.tolist()) if k],
+            np.array([c for _, c, _, _ in piece_numbers])[m], np.array([h for _, _, h, _ in piece_numbers])[m]))
     heading = title + (f"  SHEET {s + 1}/{plan.count}" if plan.count > 1 else "")
     if heading and opts.heading:
         x0, _, x1, _ = plan.area
         # The left 60 % of the band: printed PDFs put a legend on the right.
         th = min(opts.title_height, 0.6 * (x1 - x0) / max(text_width(heading, 1.0), 1e-9))
-        layers["LABEL"].append(
-            text_polylines([heading], [(x0, float(opts.margin) + 1.0)], [(1.0, 0.0)], th)
-        )
+        by_ink("LABEL", np.array([0 if paint is None else min(INKS)]),
+               lambda m: text_polylines([heading], [(x0, opts.edge + 1.0)], [(1.0, 0.0)], th))
+    colour_fills: tuple[Fill, ...] = ()
+    ink_list: tuple[Ink, ...] = ()
+    if paint is not None:
+        here = np.flatnonzero(on)
+        tab_rgb = tint(paint.across[tab_edge[tab_here, 0], tab_edge[tab_here, 1]])
+        face_names = [names[f] if names else f"face-{f}" for f in here.tolist()]
+        colour_fills = sheet_fills(pos[here], paint.face[here], face_names, boundary[here], tab_poly, tab_rgb,
+                                   paint.bleed)
+        halo = ("MOUNTAIN", "VALLEY")  # lines between two faces: clear of both
+        ink_list = tuple(Ink(layer, Polylines.concat(v), INKS[i][0], INKS[i][1] if layer in halo else "")
+                         for (layer, i), v in sorted(inks.items()) if i in INKS)
     return Sheet(
         number=s + 1, width=plan.size[0], height=plan.size[1],
         layers={k: Polylines.concat(v) for k, v in layers.items()},
         faces=pos[on], face_index=np.flatnonzero(on), tabs=tab_poly, pieces=pieces,
         fill=(int(on.sum()) * p * p + _polygon_area(tab_poly)) / (plan.size[0] * plan.size[1]),
+        colour_fills=colour_fills, inks=ink_list,
+        marks=registration_marks(Cutter(opts.cutter), plan.size, float(opts.margin)),
     )
 
 
@@ -686,17 +782,6 @@ def _mark_boxes(pos: npt.NDArray[np.float64], fs: npt.NDArray[np.int64], sides: 
         sheet.append(on[no_tab])
     los, his, sheets = np.concatenate(lo), np.concatenate(hi), np.concatenate(sheet)
     return {int(s): (los[sheets == s], his[sheets == s]) for s in np.unique(sheets).tolist()}
-
-
-def _paper_boxes(pos: npt.NDArray[np.float64], fs: npt.NDArray[np.int64], sides: npt.NDArray[np.int64],
-                 tabs: TabPlan) -> dict[int, tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]]:
-    """Per sheet, the boxes ``(lo, hi)`` of every face and glue tab: the paper a number beside its piece must keep off."""
-    seam_face = sides[np.arange(sides.shape[0]), np.maximum(tabs.side, 0), 0]
-    poly = tabs.polygon[tabs.placed]
-    lo = np.concatenate([pos.min(axis=1), poly.min(axis=1)])
-    hi = np.concatenate([pos.max(axis=1), poly.max(axis=1)])
-    sheets = np.concatenate([fs, fs[seam_face[tabs.placed]]])
-    return {int(s): (lo[sheets == s], hi[sheets == s]) for s in np.unique(sheets).tolist()}
 
 
 def _polygon_area(polys: npt.NDArray[np.float64]) -> float:

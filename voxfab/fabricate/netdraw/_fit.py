@@ -27,6 +27,7 @@ from typing import Any, TypeVar
 import numpy as np
 
 from voxfab.errors import InvalidShapeError, UnfoldError
+from voxfab.shape import component_count, describe_parts
 from voxfab.unfold import Net
 from voxfab.unfold._search import MAX_FIT_SIDE
 
@@ -216,7 +217,15 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     faces = _surface_faces(grid, bool(search.get("fill", False)))
     chars = label_chars(faces, pieces)
     notes: list[str] = []
-    if options.pitch is None:
+    if options.pitch is None and pieces == "auto":
+        _check_pieces_sheet_at_smallest(faces, options, chars)
+    if options.pitch is None and pieces == "auto" and component_count(grid) > 1:
+        # Parts joined only by edges or corners (voxel art) have no one-piece net to size the faces by.
+        need = smallest_face_size(options, chars)
+        options = dataclasses.replace(options, pitch=need)
+        notes.append(f"face size {need:g} mm: the smallest with legible marks; one net per part, as the "
+                     f"shape is in {describe_parts(grid)} (--join makes it one piece)")
+    elif options.pitch is None:
         options, auto_notes, auto_net = _auto_face_size(grid, options, rng=rng, pieces=pieces, chars=chars,
                                                         search=search)
         notes += auto_notes
@@ -268,6 +277,21 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     return SheetNets([[n] for n in found], options, notes)
 
 
+def _check_pieces_sheet_at_smallest(faces: int, options: DrawingOptions, chars: int) -> None:
+    """Refuse a hopeless sheet for pieces before the search that chooses the face size.
+
+    The smallest face size with legible marks needs the fewest sheets: a sheet hopeless there is hopeless
+    at every face size that search could choose (a one-piece net that fits at a larger one fits one sheet),
+    and the face size it ends with, when only pieces fit, is that smallest one; so the refusal is the one
+    after the search, in the same words, with no search run and no compiled kernel loaded.
+    """
+    need = smallest_face_size(options, chars)
+    smallest = dataclasses.replace(options, pitch=need)
+    fit = sheet_room(smallest, faces, "auto")
+    if faces > fit[0] * fit[1]:
+        check_pieces_sheet(faces, smallest, need, need)
+
+
 def sheet_room(options: DrawingOptions, faces: int, pieces: str) -> tuple[int, int]:
     """The sheet's cells at the face size of ``options`` for a surface of ``faces`` faces, once its marks are
     legible and a face fits: the checks before any search, shared by :func:`find_sheet_nets` and the
@@ -283,9 +307,11 @@ def sheet_room(options: DrawingOptions, faces: int, pieces: str) -> tuple[int, i
 def _nets(grid: Any, count: int, rng: int, budget: float, progress: Callable[[int, int], None] | None,
           search: dict[str, Any]) -> list[Net]:
     """One-piece nets: the net of seed ``rng`` (``voxfab net``), or ``count`` distinct ones (``--count``)."""
-    from voxfab.unfold import unfold, unfold_many
+    from voxfab.unfold import unfold
 
     if count > 1:
+        from voxfab.unfold import unfold_many
+
         return unfold_many(grid, count=count, rng=rng, budget=budget, progress=progress, **search)
     found = [unfold(grid, rng=rng, **search)]
     if progress is not None:

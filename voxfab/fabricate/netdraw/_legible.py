@@ -17,15 +17,18 @@ from ._options import DrawingOptions
 from ._tabs import tab_heights
 
 #: Gap between the face edge and the baseline of its label, as a fraction of the face size.
-NUMBER_INSET = 0.06
-#: Clear gap between a label's end and the next corner, as a fraction of the face size.
-NUMBER_GAP = 0.04
+NUMBER_INSET = 0.04
+#: Clear gap between a label's end and the next corner, as a fraction of the face size.  With the inset,
+#: 0.06 of the face: what the letter-wide gap between labels (:data:`LABEL_GAP`) takes from them, so
+#: labels of up to three characters are as tall on a face as with half that gap.
+NUMBER_GAP = 0.02
 #: Font units from one character of a label to the next: with glyphs 4 wide, a letter gap of a
 #: sixth of the cap height (ordinary letter spacing), so a label reads as one word.
 LABEL_ADVANCE = 5.0
 #: Clear gap between the labels of neighbouring edges at a corner, as a fraction of the label height:
-#: three letter gaps, so two labels meeting at a corner never read as one.
-LABEL_GAP = 0.5
+#: a letter's width, four letter gaps, so two labels meeting at a corner never read as one ("0R" "1A",
+#: not "0R1A").
+LABEL_GAP = GLYPH_WIDTH / CAP_HEIGHT
 #: Largest label height as a fraction of the face size (larger ones look shouty).
 NUMBER_MAX = 0.3
 

@@ -6,7 +6,16 @@ import dataclasses
 from enum import Enum
 
 from voxfab._shared.options import OptionError, Options, option
-from voxfab.drawing import SHEETS, LayerStyle, Lines, parse_colors, parse_sheet, sheet_problem
+from voxfab.drawing import (
+    CUTTERS,
+    SHEETS,
+    Cutter,
+    LayerStyle,
+    Lines,
+    parse_colors,
+    parse_sheet,
+    sheet_problem,
+)
 from voxfab.drawing.dxf import dxf_version_option
 from voxfab.errors import InvalidShapeError
 
@@ -71,6 +80,11 @@ class DrawingOptions(Options):
     numbers: bool = option(True, help="draw the seam labels (--no-numbers for faces too small to carry them)")
     tabs: bool = option(True, help="draw glue tabs (--no-tabs: seams are marked for tape)")
     heading: bool = option(True, help="print the title line", cli=False, recipe=False)
+    bleed: float = option(1.0, help="coloured nets: the face colours run this far past the cut lines, so a print "
+                          "cut a little off shows no white edge", unit="mm", low=0.0, high=10.0)
+    cutter: str = option("none", help="print-then-cut files for this cutter: its registration marks on the print, which "
+                         "has no cut lines; the cut lines alone in NAME.cut.svg, in register",
+                         choices=tuple(c.value for c in Cutter))
 
     def check(self) -> None:
         """Rules between options: tabs and labels at least their minimum, room inside the margin."""
@@ -81,8 +95,14 @@ class DrawingOptions(Options):
             raise OptionError("label_height", f"{self.label_height:g} mm is under the {self.min_label_height:g} "
                               "mm smallest number (min_label_height)")
         w, h = self.sheet_size
-        if min(w, h) <= 2 * self.margin + self.title_height + 4:
-            raise OptionError("sheet", f"{self.sheet} leaves no room inside a {self.margin:g} mm margin")
+        if min(w, h) <= 2 * self.edge + self.title_height + 4:
+            raise OptionError("sheet", f"{self.sheet} leaves no room inside a {self.edge:g} mm margin")
+
+    @property
+    def edge(self) -> float:
+        """The sheet's empty border, mm: the margin, or the room the cutter's registration marks need."""
+        marks = CUTTERS.get(Cutter(self.cutter))
+        return max(float(self.margin), marks.margin) if marks else float(self.margin)
 
     @property
     def sheet_size(self) -> tuple[float, float]:

@@ -24,14 +24,14 @@ from ._fit import SheetNets
 from ._net_options import NetOptions
 from ._options import DrawingOptions
 
-_BOX = re.compile(r"^\s*(\d+(?:\.\d*)?)\s*[xX×]\s*(\d+(?:\.\d*)?)\s*$")
+_BOX = re.compile(r"\s*([0-9]+(?:\.[0-9]*)?)\s*[xX×]\s*([0-9]+(?:\.[0-9]*)?)\s*")  # ASCII digits, matched whole
 
 
 def parse_box(text: str | None, face_size: float | None) -> tuple[int, int] | None:
     """A ``WxH`` box for JSON nets in faces: voxels, or mm when the face size is known (``--fit``/``--box``)."""
     if text is None:
         return None
-    m = _BOX.match(text)
+    m = _BOX.fullmatch(text)
     if not m:
         raise InvalidShapeError(f"--fit: expected WxH such as 40x30, got {text!r}")
     w, h = float(m.group(1)), float(m.group(2))
@@ -46,11 +46,19 @@ def parse_box(text: str | None, face_size: float | None) -> tuple[int, int] | No
     return int(w), int(h)
 
 
-def check_request(net: NetOptions, outputs: Sequence[str | Path], *, box: bool) -> list[Path]:
+#: Drawing options that only some formats read, by the suffixes of those formats.
+FORMAT_OPTIONS: dict[str, tuple[str, ...]] = {"dxf_version": (".dxf",), "svg_lines": (".svg",)}
+
+
+def check_request(net: NetOptions, outputs: Sequence[str | Path], *, box: bool,
+                  drawing_given: Sequence[str] = ()) -> list[Path]:
     """Refuse bad outputs and option combinations before any search (the CLI's words); the drawings named.
 
     Every output's folder must exist, a drawing must have a known extension, and
     ``zipper``, ``min_box``, ``count`` and a box must make sense together.
+    ``drawing_given`` names the :class:`DrawingOptions` the user set: each must be
+    read by an output (a DXF version needs a .dxf, any of them a drawing), or it
+    is refused by its flag rather than ignored.
     """
     from voxfab._shared.atomic import check_output
     from voxfab.drawing import FORMATS
@@ -71,6 +79,18 @@ def check_request(net: NetOptions, outputs: Sequence[str | Path], *, box: bool) 
         raise InvalidShapeError("--count: several nets need --pieces one")
     if drawings and box:
         raise InvalidShapeError("--fit: drawings fit their sheet (--sheet); --fit is for JSON nets only")
+    from voxfab._shared.options import option_specs
+
+    suffixes = {p.suffix.lower() for p in drawings}
+    flags = {s.name: s.flag for s in option_specs(DrawingOptions)}
+    for name in drawing_given:
+        flag = flags[name]
+        if not drawings:
+            raise InvalidShapeError(f"{flag}: for drawings (-o with .svg, .dxf, .pdf or .png); a JSON net has none")
+        wanted = FORMAT_OPTIONS.get(name)
+        if wanted is not None and not suffixes & set(wanted):
+            raise InvalidShapeError(f"{flag}: for {' and '.join(wanted)} drawings; none of -o is one "
+                                    f"({', '.join(sorted(suffixes))})")
     return drawings
 
 
@@ -99,7 +119,7 @@ def search_nets(grid: Any, net: NetOptions, drawing: DrawingOptions | None, *, s
     SheetNets
         The nets (each as its pieces), the drawing options settled, report notes.
     """
-    from voxfab.unfold import unfold, unfold_many
+    from voxfab.unfold import unfold
 
     search: dict[str, Any] = dict(strategy=net.strategy, timeout=net.timeout, fill=net.fill, compact=net.compact,
                                   constraints=constraints)
@@ -110,6 +130,8 @@ def search_nets(grid: Any, net: NetOptions, drawing: DrawingOptions | None, *, s
                                progress=progress, **search)
     notes: list[str] = []
     if net.count > 1:
+        from voxfab.unfold import unfold_many
+
         found = unfold_many(grid, count=net.count, rng=seed, budget=net.budget, fit=box, progress=progress,
                             **search)
         if len(found) < net.count:
@@ -162,7 +184,7 @@ def _named(path: Path, *tags: str) -> Path:
     return path.with_name(f"{path.stem}-{'-'.join(tags)}{path.suffix}")
 
 
-def net_files(grid: Any, net: NetOptions, drawing: DrawingOptions, outputs: Sequence[str | Path], *, title: str,
+def net_files(shape: Any, net: NetOptions, drawing: DrawingOptions, outputs: Sequence[str | Path], *, title: str,
               seed: int, constraints: EdgeConstraints | None = None,
               box: tuple[int, int] | None = None) -> NetFiles:
     """Search, validate and write the nets of ``grid`` to ``outputs`` (``voxfab net``).
@@ -174,7 +196,8 @@ def net_files(grid: Any, net: NetOptions, drawing: DrawingOptions, outputs: Sequ
 
     Parameters
     ----------
-    grid : (X, Y, Z) bool array_like
+    shape : VoxelShape or (X, Y, Z) bool array_like
+        A coloured shape prints each face in its voxel's colour and writes it in the JSON.
     net, drawing : NetOptions, DrawingOptions
         ``drawing.pitch`` is the face size (None: the largest at which the net fits).
     outputs : sequence of path
@@ -190,17 +213,21 @@ def net_files(grid: Any, net: NetOptions, drawing: DrawingOptions, outputs: Sequ
     NetFiles
     """
     from voxfab._shared.atomic import atomic_files, write_text
-    from voxfab.shape import fill_cavities
 
-    from . import write_net_drawing
+    from . import shape_colours, write_net_drawing
 
+    grid, colours = shape_colours(shape)
     paths = [Path(p) for p in outputs]
     drawings = check_request(net, paths, box=box is not None)
     found = search_nets(grid, net, drawing if drawings else None, seed=seed, constraints=constraints, box=box)
     results, notes = found.nets, list(found.notes)
     if drawings:
         drawing = found.options  # the face size settled
-    g = fill_cavities(grid) if results[0][0].filled else grid
+    g, gc = shape_colours(shape, results[0][0].filled)
+    if gc is not None:
+        from voxfab.shape import VoxelShape
+
+        g = VoxelShape(g, shape.pitch, gc)
     summary, warnings, report = [], [], []
     with atomic_files(*paths) as fileset:
         for t, pieces in enumerate(results):
@@ -223,6 +250,6 @@ def net_files(grid: Any, net: NetOptions, drawing: DrawingOptions, outputs: Sequ
                                  if w not in warnings]
                     continue
                 for q, piece in enumerate(pieces):
-                    write_text(_named(target, f"piece{q + 1}" if len(pieces) > 1 else ""), piece.to_json())
+                    write_text(_named(target, f"piece{q + 1}" if len(pieces) > 1 else ""), piece.to_json(colours))
             summary.append(record)
     return NetFiles([str(p) for p in fileset.written], summary, warnings, notes, report)

@@ -214,10 +214,13 @@ def pieces_sheet(faces: int, options: DrawingOptions, pitch: float) -> str | Non
 
 def drawable_area(options: DrawingOptions, size: tuple[float, float] | None = None) -> tuple[float, float, float, float]:
     """``(x0, y0, x1, y1)`` of the sheet inside the margin, above the title band, mm."""
+    from voxfab.drawing import cutter_area
+
     w, h = options.sheet_size if size is None else size
-    m = float(options.margin)
     band = options.title_height + 2.0 if options.heading else 0.0
-    return (m, m + band, w - m, h - m)
+    x0, y0, x1, y1 = cutter_area(options.cutter, (w, h), float(options.margin))
+    # The title band lies under the art, inside the margin (a Cricut's area may leave room below it).
+    return (x0, max(y0, options.edge + band), x1, y1)
 
 
 @dataclasses.dataclass(frozen=True)

@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
-from voxfab.drawing import FORMATS, Legend, Lines, WriteOptions, write_drawing
+from voxfab.drawing import FORMATS, Cutter, Legend, Lines, WriteOptions, write_drawing
 
 from ._drawing import NetDrawing
 from ._options import DrawingOptions
@@ -20,10 +21,30 @@ def write(drawing: NetDrawing, path: Path, options: DrawingOptions) -> list[str]
 
     SVG and DXF pages are laser files (hairlines; SVG with visible lines when
     ``options.svg_lines`` is ``preview``); PDF and PNG are for people, with
-    visible lines, shaded tabs and a legend.
+    visible lines, shaded tabs and a legend.  A coloured net's faces are
+    filled in SVG, PDF and PNG.  With a ``cutter``, SVG, PDF and PNG are the
+    print (registration marks, no cut lines) and ``NAME.cut.svg`` the cut.
     """
-    opts = WriteOptions(styles=options.styles, lines=Lines(options.svg_lines), dxf_version=options.dxf_version,
-                        legend=Legend(y=float(options.margin) + 1.0), creator="voxfab net")
+    ext = path.suffix.lower()
+    styles = options.styles
+    if ext in (".pdf", ".png") and drawing.coloured:
+        # The folds print in black or white over the colours: the legend shows them black.
+        styles = {k: dataclasses.replace(v, color="#000000") if k in ("MOUNTAIN", "VALLEY") else v
+                  for k, v in styles.items()}
+    opts = WriteOptions(styles=styles, lines=Lines(options.svg_lines), dxf_version=options.dxf_version,
+                        legend=Legend(y=options.edge + 1.0), creator="voxfab net")
     # A printed net of several pieces opens with its assembly page; laser files hold sheets only.
-    assembly = path.suffix.lower() == ".pdf"
-    return write_drawing(drawing.document(assembly=assembly), path, opts)
+    assembly = ext == ".pdf"
+    if Cutter(options.cutter) is Cutter.NONE or ext == ".dxf":
+        return write_drawing(drawing.document(assembly=assembly), path, opts)
+    # Print then cut: the print without the cut lines, and (SVG) the cut lines alone in a file of their
+    # own, both with the cutter's registration marks at the same place.
+    written = write_drawing(drawing.document(assembly=assembly, part="print"), path, opts)
+    if ext == ".svg":
+        written += write_drawing(drawing.document(part="cut"), cut_path(path), opts)
+    return written
+
+
+def cut_path(path: Path) -> Path:
+    """The cut file beside a print file: ``NAME.cut.svg`` for ``NAME.svg``."""
+    return path.with_name(f"{path.stem}.cut{path.suffix}")

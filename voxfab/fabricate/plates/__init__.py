@@ -33,6 +33,7 @@ from voxfab.fabricate._outputs import Artefact, OutputFile
 from voxfab.shape import VoxelShape
 
 from ._assembly import assembly_3mf, write_assembly_3mf
+from ._colour import PlateColour, construction_colours, nest_by_colour, stack_colours
 from ._dowels import Dowel, Joint, find_joints
 from ._labels import Label, text_strokes
 from ._nest import PlacedPart, PlateSheet, nest_plates
@@ -65,6 +66,7 @@ __all__ = [
     "construction_pdf",
     "construction_warnings",
     "make_construction_report",
+    "make_construction",
     "make_interlocked",
     "make_radial",
     "write_assembly_3mf",
@@ -72,6 +74,7 @@ __all__ = [
     "Dowel",
     "Joint",
     "Label",
+    "PlateColour",
     "Piece",
     "PlacedPart",
     "Plate",
@@ -89,6 +92,7 @@ __all__ = [
     "nest_plates",
     "plate_warnings",
     "sheet_dxf",
+    "sheet_stem",
     "sheet_svg",
     "slice_layers",
     "stack_compound",
@@ -107,13 +111,15 @@ __all__ = [
 class Slices:
     """A plate stack or a slotted construction, its sheets and its report.
 
-    ``stack`` is set for the stacked style, ``construction`` for the others.
+    ``stack`` is set for the stacked style, ``construction`` for the others;
+    ``colours`` holds the main colour of each plate (in plate order) when the shape has colours.
     """
 
     stack: PlateStack | None
     sheets: tuple[PlateSheet, ...]
     report: PlatesReport | ConstructionReport
     construction: Construction | None = None
+    colours: tuple[PlateColour | None, ...] | None = None
 
     @property
     def plates(self) -> tuple[Plate, ...]:
@@ -151,6 +157,7 @@ def make_slices(
     interval: float = _DEFAULTS.interval,
     radial_plates: int = _DEFAULTS.radial_plates,
     clearance: float = _DEFAULTS.clearance,
+    by_colour: bool = _DEFAULTS.by_colour,
 ) -> Slices:
     """Slice a shape into plates and nest them onto sheets.
 
@@ -169,27 +176,27 @@ def make_slices(
         Interlocked plates, see :func:`make_interlocked`.
     radial_plates, clearance
         Radial plates, see :func:`make_radial`.
+    by_colour : bool
+        Nest the plates of each main colour on sheets of their own (a shape with colours).
 
     Returns
     -------
     Slices
     """
     if isinstance(shape, VoxelShape):
-        grid, default_pitch = shape.grid, shape.pitch
+        grid, default_pitch, colours = shape.grid, shape.pitch, shape.colours
     else:
-        grid, default_pitch = np.asarray(shape), 1.0
+        grid, default_pitch, colours = np.asarray(shape), 1.0, None
+    nest = {"sheet": sheet, "margin": margin, "spacing": spacing, "kerf": kerf}
     pitch = default_pitch if pitch is None else pitch
     if style in ("interlocked", "radial"):
-        if style == "interlocked":
-            construction = make_interlocked(grid, pitch=pitch, thickness=thickness, axes=axes, count=count,
-                                            interval=interval, clearance=clearance,
-                                            min_width=max(min_width, 2.0 * kerf))
-        else:
-            construction = make_radial(grid, pitch=pitch, thickness=thickness, count=radial_plates,
-                                       clearance=clearance, min_width=max(min_width, 2.0 * kerf))
-        sheets = nest_plates(construction.plates, sheet=sheet, margin=margin, spacing=spacing, kerf=kerf)
+        construction = make_construction(grid, pitch=pitch, style=style, thickness=thickness, axes=axes, count=count,
+                                         interval=interval, radial_plates=radial_plates, clearance=clearance,
+                                         min_width=min_width, kerf=kerf)
+        plate_colours = construction_colours(construction, colours) if colours is not None else None
+        sheets = _nest(construction.plates, plate_colours, by_colour, nest)
         report = make_construction_report(construction, sheets, kerf=kerf, min_width=min_width)
-        return Slices(None, sheets, report, construction)
+        return Slices(None, sheets, report, construction, plate_colours)
     if style != "stacked":
         from voxfab.errors import InvalidShapeError
 
@@ -206,8 +213,28 @@ def make_slices(
         min_width=min_width,
         kerf=kerf,
     )
-    sheets = nest_plates(stack.plates, sheet=sheet, margin=margin, spacing=spacing, kerf=kerf)
-    return Slices(stack, sheets, make_report(stack, sheets, kerf=kerf))
+    plate_colours = stack_colours(stack, colours) if colours is not None else None
+    sheets = _nest(stack.plates, plate_colours, by_colour, nest)
+    return Slices(stack, sheets, make_report(stack, sheets, kerf=kerf), colours=plate_colours)
+
+
+def _nest(plates: tuple[Plate, ...], plate_colours: tuple[PlateColour | None, ...] | None, by_colour: bool,
+          nest: dict) -> tuple[PlateSheet, ...]:
+    if by_colour and plate_colours is not None:
+        return nest_by_colour(plates, plate_colours, **nest)
+    return nest_plates(plates, **nest)
+
+
+def make_construction(grid: npt.ArrayLike, *, pitch: float, style: str, thickness: float, axes: str, count: int,
+                      interval: float, radial_plates: int, clearance: float, min_width: float,
+                      kerf: float) -> Construction:
+    """The interlocked or radial construction of :func:`make_slices` (strips under ``min_width`` or two kerfs go)."""
+    width = max(min_width, 2.0 * kerf)
+    if style == "interlocked":
+        return make_interlocked(grid, pitch=pitch, thickness=thickness, axes=axes, count=count, interval=interval,
+                                clearance=clearance, min_width=width)
+    return make_radial(grid, pitch=pitch, thickness=thickness, count=radial_plates, clearance=clearance,
+                       min_width=width)
 
 
 def _r(v: float) -> float:
@@ -244,10 +271,40 @@ def _slotted_json(result: Slices, name: str) -> dict:
             "crossings": [list(c) for c in result.construction.crossings]}
 
 
+def sheet_stem(sheet: PlateSheet, count: int) -> str:
+    """File name stem of a sheet among ``count``: ``sheet-01``, or ``sheet-01-c83232`` for a sheet of one colour."""
+    stem = f"sheet-{sheet.index:0{max(2, len(str(count)))}d}"
+    return f"{stem}-{sheet.colour.lstrip('#')}" if sheet.colour else stem
+
+
+def _colours_json(result: Slices, data: dict) -> dict:
+    """Each plate's main colour, the plates and sheets of each colour, and each sheet's colour and file."""
+    if result.colours is None:
+        return data
+    for record, colour in zip(data["plates_list"], result.colours):
+        record["colour"] = colour.to_json() if colour is not None else None
+    sheet_of = {part.plate.number: sheet.index for sheet in result.sheets for part in sheet.parts}
+    groups: dict[str, list[Plate]] = {}
+    for p, colour in zip(result.plates, result.colours):
+        groups.setdefault(colour.hex if colour is not None else "", []).append(p)
+    data["colours"] = [{"colour": hex_ or None, "plates": [p.number for p in group],
+                        "area": _r(sum(p.area for p in group)),
+                        "sheets": sorted({sheet_of[p.number] for p in group})} for hex_, group in groups.items()]
+    data["by_colour"] = any(sheet.colour for sheet in result.sheets)
+    data["sheets_list"] = [{"index": sheet.index, "colour": sheet.colour or None,
+                            "file": sheet_stem(sheet, len(result.sheets)) + ".dxf",
+                            "plates": [part.plate.number for part in sheet.parts]} for sheet in result.sheets]
+    return data
+
+
 def plates_json(result: Slices, *, name: str = "") -> dict:
-    """The report plus one record per plate (where it is cut) and per dowel (stacked) or slot."""
+    """The report plus one record per plate (where it is cut) and per dowel (stacked) or slot.
+
+    For a shape with colours, also each plate's main colour, the plates and sheets of each colour
+    and each sheet's colour.
+    """
     if result.stack is None:
-        return _slotted_json(result, name)
+        return _colours_json(result, _slotted_json(result, name))
     where = {part.plate.number: (sheet.index, part) for sheet in result.sheets for part in sheet.parts}
     plates = []
     for p in result.stack.plates:
@@ -276,7 +333,8 @@ def plates_json(result: Slices, *, name: str = "") -> dict:
         {"x": _r(d.x), "y": _r(d.y), "lower": d.lower, "upper": d.upper, "clearance": _r(d.clearance)}
         for d in result.stack.dowels
     ]
-    return {**result.report.to_json(), "name": name, "plates_list": plates, "dowels_list": dowels}
+    return _colours_json(result, {**result.report.to_json(), "name": name, "plates_list": plates,
+                                  "dowels_list": dowels})
 
 
 def write_slices(result: Slices, folder: PathLike, *, name: str = "", step: bool = False,
@@ -290,14 +348,14 @@ def write_slices(result: Slices, folder: PathLike, *, name: str = "", step: bool
     """
     folder = Path(folder)
     files: list[OutputFile] = []
-    digits = max(2, len(str(len(result.sheets))))
     for sheet in result.sheets:
-        stem = f"sheet-{sheet.index:0{digits}d}"
+        stem = sheet_stem(sheet, len(result.sheets))
+        material = f", material {sheet.colour}" if sheet.colour else ""
         write_dxf(sheet, folder / f"{stem}.dxf", version=dxf_version)
         files.append(OutputFile(f"{stem}.dxf", f"sheet {sheet.index} for laser cutting (DXF {dxf_version}, mm: "
-                                               "CUT, SCORE, LABEL)"))
+                                               f"CUT, SCORE, LABEL{material})"))
         write_svg(sheet, folder / f"{stem}.svg")
-        files.append(OutputFile(f"{stem}.svg", f"sheet {sheet.index} for laser cutting (SVG, mm)"))
+        files.append(OutputFile(f"{stem}.svg", f"sheet {sheet.index} for laser cutting (SVG, mm{material})"))
     if result.stack is not None:
         write_assembly_pdf(result.stack, folder / "assembly.pdf", title=name)
         files.append(OutputFile("assembly.pdf", "assembly instructions: stack order as a grid of layers"))
@@ -356,9 +414,17 @@ def fabricate_plates(shape: VoxelShape, options: PlateOptions, folder: PathLike,
         spacing=options.spacing, kerf=options.kerf, dowel=options.dowel, dowel_margin=options.dowel_margin,
         dowels_per_joint=options.dowels_per_joint, score=options.score, min_width=options.min_width,
         style=options.style, axes=options.axes, count=options.count, interval=options.interval,
-        radial_plates=options.radial_plates, clearance=options.clearance,
+        radial_plates=options.radial_plates, clearance=options.clearance, by_colour=options.by_colour,
     )
+    if result.construction is not None and result.construction.left_out:
+        from ._ways import ways_to_keep
+
+        ways, tried = ways_to_keep(shape.grid, shape.pitch, options)
+        result = dataclasses.replace(result, report=dataclasses.replace(
+            result.report, ways_to_keep=tuple(str(w) for w in ways), ways_tried=tried))
     with atomic_dir(folder, marker="plates.json") as tmp:
         files = write_slices(result, tmp, name=name, step=options.step, dxf_version=options.dxf_version)
     warnings = plate_warnings(result.report) if result.stack is not None else construction_warnings(result.report)
+    if options.by_colour and shape.colours is None:
+        warnings.append("by_colour: the shape has no colours; the plates are nested together")
     return Artefact(tuple(files), tuple(warnings), result.report.to_json())

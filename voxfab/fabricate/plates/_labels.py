@@ -3,7 +3,10 @@
 Labels are engraved as open polylines (one laser pass, no fonts needed by the
 shop).  A label goes where the next plate of the stack covers it, so it is
 hidden in the finished sculpture; when no such place is big enough it goes
-anywhere on the plate, and at worst it is shrunk to the smallest size.
+anywhere on the plate, and at worst it is shrunk to the smallest size,
+:data:`MIN_HEIGHT` (the nets' smallest label).  A label is engraved whole or
+not at all: a clipped one could read as another plate's ("5-1." of "25-1.1"),
+so a plate too small for its label is named on the assembly plan instead.
 """
 
 from __future__ import annotations
@@ -17,8 +20,8 @@ from voxfab.drawing import text_polylines, text_width
 
 #: Label heights tried, as fractions of the pitch, largest first.
 _HEIGHTS = (0.6, 0.45, 0.32, 0.22)
-#: Smallest label height in mm that is still engraved legibly.
-MIN_HEIGHT = 0.8
+#: Smallest label height in mm that is still engraved legibly: the nets' smallest seam label.
+MIN_HEIGHT = 2.0
 
 
 def full_height(pitch: float) -> float:
@@ -70,8 +73,8 @@ class Label:
     hidden : bool
         Whether the next plate of the stack covers the label.
     complete : bool
-        False when the plate was too small even for the smallest label and
-        the strokes were clipped to the plate.
+        False when the plate is too small even for the smallest label: nothing is
+        engraved (no strokes), and the plate is named on the assembly plan.
     origin : (float, float)
         Lower-left corner of the text box on the plate (mm).
     turned : bool
@@ -157,11 +160,11 @@ def place_label(text: str, plate: object, hidden_region: object, *, pitch: float
     clearance : float
         Distance in mm kept between the label and any edge of its region.
     sizes : tuple of float, optional
-        Heights in mm to try, largest first (default: fractions of the pitch).
+        Heights in mm to try, largest first (default: fractions of the pitch); none under :data:`MIN_HEIGHT`.
     upright : bool
         Only horizontal text, never turned.
     fallback : bool
-        When nothing fits: the smallest size clipped to the plate (True), or None.
+        When nothing fits: a label with no strokes, ``complete`` False (True), or None.
 
     Returns
     -------
@@ -170,9 +173,8 @@ def place_label(text: str, plate: object, hidden_region: object, *, pitch: float
     """
     from shapely.ops import polylabel
 
-    heights = sorted(set(sizes if sizes is not None else [full_height(pitch)] + [max(MIN_HEIGHT, f * pitch)
-                                                                                 for f in _HEIGHTS[1:]]),
-                     reverse=True)
+    asked = sizes if sizes is not None else [f * pitch for f in _HEIGHTS]
+    heights = sorted({max(MIN_HEIGHT, h) for h in asked}, reverse=True)
     tight = min(clearance, 0.1)
     passes = ((hidden_region, True, clearance), (hidden_region, True, tight), (plate, False, clearance), (plate, False, tight))
     for region, hidden, clear in passes:
@@ -196,20 +198,5 @@ def place_label(text: str, plate: object, hidden_region: object, *, pitch: float
                         return Label(text, _render(text, h, at, turned), h, hidden, origin=at, turned=turned)
     if not fallback:
         return None
-    # Nothing fits: smallest size centred on the plate's pole, clipped to the
-    # plate so that no stroke can reach a neighbouring part on the sheet.
-    import shapely
-
-    h = heights[-1]
-    w, _ = text_size(text, h)
-    parts = getattr(plate, "geoms", [plate])
-    c = polylabel(max(parts, key=lambda p: p.area), tolerance=0.05 * pitch)
-    at = (c.x - w / 2, c.y - h / 2)
-    lines = [shapely.LineString(s + at) for s in text_strokes(text, h)]
-    inside = shapely.intersection(lines, plate.buffer(-min(clearance, 0.25 * pitch)))
-    strokes = []
-    for g in inside:
-        for part in getattr(g, "geoms", [g]):
-            if part.geom_type == "LineString" and not part.is_empty:
-                strokes.append(np.asarray(part.coords, dtype=np.float64))
-    return Label(text, tuple(strokes), h, False, complete=False)
+    # Nothing fits whole: nothing is engraved (a clipped label could read as another plate's).
+    return Label(text, (), heights[-1], False, complete=False)

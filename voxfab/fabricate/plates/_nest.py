@@ -89,12 +89,15 @@ class PlateSheet:
         Sheet size in mm.
     parts : tuple of PlacedPart
         By plate number.
+    colour : str
+        ``"#rrggbb"`` of the material when the plates are nested by colour, else ``""``.
     """
 
     index: int
     width: float
     height: float
     parts: tuple[PlacedPart, ...]
+    colour: str = ""
 
     @property
     def material_area(self) -> float:

@@ -8,6 +8,13 @@ from voxfab._shared.options import Options, option
 from voxfab.drawing import sheet_problem
 from voxfab.drawing.dxf import dxf_version_option
 
+#: The options only some styles read (every other one is read by all three).
+STYLE_OPTIONS: dict[str, tuple[str, ...]] = {
+    "axis": ("stacked",), "dowel": ("stacked",), "dowel_margin": ("stacked",), "dowels_per_joint": ("stacked",),
+    "score": ("stacked",), "axes": ("interlocked",), "count": ("interlocked",), "interval": ("interlocked",),
+    "radial_plates": ("radial",), "clearance": ("interlocked", "radial"),
+}
+
 
 @dataclasses.dataclass(frozen=True)
 class PlateOptions(Options):
@@ -35,6 +42,8 @@ class PlateOptions(Options):
                         check=sheet_problem, metavar="WxH")
     margin: float = option(5.0, help="empty border of the sheet", unit="mm", low=0.0, high=1000.0)
     spacing: float = option(2.0, help="gap between parts on a sheet", unit="mm", low=0.0, high=1000.0)
+    by_colour: bool = option(False, help="nest the plates of each main colour on sheets of their own, one colour "
+                             "of material per sheet (a coloured shape)")
     kerf: float = option(0.0, help="laser kerf; outlines grow and holes shrink by half of it", unit="mm",
                          low=0.0, high=5.0)
     dowel: float = option(3.0, help="dowel hole diameter (0: no dowels)", unit="mm", low=0.0, high=100.0)
@@ -48,10 +57,17 @@ class PlateOptions(Options):
     step: bool = option(False, help="also write the plate stack as STEP and STL (needs voxfab[cad])")
 
     def check(self) -> None:
-        """The margins must leave room on the sheet; STEP is for the stacked style."""
+        """The margins must leave room on the sheet; an option of another style than the chosen one
+        (``radial_plates`` of a stacked construction) is refused, not ignored; STEP is for the stacked style."""
         from voxfab._shared.options import OptionError
         from voxfab.drawing import parse_sheet
 
+        defaults = PlateOptions.__dataclass_fields__
+        for name, styles in STYLE_OPTIONS.items():
+            value = getattr(self, name)
+            if self.style not in styles and value != defaults[name].default:
+                raise OptionError(name, f"for the {' and '.join(styles)} style{'s' if len(styles) > 1 else ''}, "
+                                        f"not {self.style}; it would change nothing (got {value!r})")
         if self.step and self.style != "stacked":
             raise OptionError("step", f"STEP and STL are written for the stacked style only, not {self.style}; "
                                       "assembly.3mf holds the plates of every style")

@@ -27,5 +27,5 @@ def sheet_page(sheet: PlateSheet) -> Page:
             "LABEL": Polylines.from_list(labels, [False] * len(labels)),
         },
         circles={"CUT": np.concatenate(circles) if circles else np.zeros((0, 3))},
-        title=f"sheet {sheet.index}",
+        title=f"sheet {sheet.index}" + (f", {sheet.colour}" if sheet.colour else ""),
     )

@@ -10,9 +10,8 @@ import math
 import numpy as np
 import numpy.typing as npt
 
-from voxfab._shared.validate import as_grid, check_positive
+from voxfab._shared.validate import check_positive
 from voxfab.errors import FabricationError, InvalidShapeError
-from voxfab.shape import crop
 
 from ._outline import cells_outline, label_layer, scaled
 from ._slotted import (
@@ -22,13 +21,17 @@ from ._slotted import (
     Slot,
     band_span,
     connected_plates,
+    engagement,
     finish_plate,
+    give_way,
+    holds,
     largest_part,
     open_narrow,
     radial_box,
     slab_section,
     slot_box,
     slot_end,
+    solid_grid,
     still_joined,
 )
 
@@ -97,7 +100,7 @@ def make_radial(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.0, co
     thickness = check_positive(thickness, name="thickness")
     if int(count) != count or not 2 <= count <= MAX_RADIAL_PLATES:
         raise InvalidShapeError(f"radial_plates: expected an integer from 2 to {MAX_RADIAL_PLATES}, got {count!r}")
-    g = crop(as_grid(grid, name="shape"))
+    g, filled = solid_grid(grid)
     nx, ny, nz = g.shape
     centre = (nx * pitch / 2, ny * pitch / 2)
     reach = math.hypot(nx, ny) * pitch / 2 + pitch
@@ -110,7 +113,7 @@ def make_radial(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.0, co
     hub_box = shapely.box(-half, -1.0, half, nz * pitch + 1.0)
     if not any(p.intersects(hub_box) for sec in sections for p in getattr(sec, "geoms", [sec]) if not p.is_empty):
         # the axis runs through no solid (a ring, a torus): a flat ring plate locks the radial pieces
-        return _ring_radial(g, sections, centre, reach, pitch=pitch, thickness=thickness, clearance=clearance,
+        return _ring_radial(g, filled, sections, centre, reach, pitch=pitch, thickness=thickness, clearance=clearance,
                             min_width=min_width)
     for k, section in enumerate(sections):
         angle = 180.0 * k / count
@@ -129,23 +132,32 @@ def make_radial(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.0, co
     spans = [band_span(d.body, 0, -half, half) for d in drafts]
     if any(s is None for s in spans):
         raise FabricationError("radial: the axis through the middle of the footprint runs through no solid")
+    width = 2 * half
     z0, z1 = max(s[0] for s in spans), min(s[1] for s in spans)
     if z1 - z0 <= 1e-9:
         raise FabricationError("radial: the plates share no stretch of the axis to join at")
-    tiers = np.linspace(z0, z1, count + 1)
-    width = 2 * half
     advice = _hub_advice(drafts, z0, z1, pitch, thickness, clearance, min_width, count, width)
-    for k, (d, (lo, hi)) in enumerate(zip(drafts, spans)):
-        if k < count - 1:
+    weak: list[str] = []
+    hub = _holding(drafts, spans, width, min_width, weak)
+    if len(hub) < 2:
+        raise FabricationError("radial: no two plates hold each other at the hub (they engage over less than half "
+                               f"their height); {advice[0] if advice else 'use fewer or thinner plates'}")
+    spans = [band_span(d.body, 0, -half, half) for d in hub]
+    z0, z1 = max(s[0] for s in spans), min(s[1] for s in spans)
+    n = len(hub)
+    tiers = np.linspace(z0, z1, n + 1)
+    for k, (d, (lo, hi)) in enumerate(zip(hub, spans)):
+        if k < n - 1:
             d.body = shapely.difference(d.body, slot_box(0, 0.0, width, float(tiers[k + 1]), hi))
             d.slots.append(Slot(0.0, width, hi, float(tiers[k + 1]), hi - float(tiers[k + 1]), "top",
-                                drafts[k + 1].text))
+                                hub[k + 1].text))
         if k > 0:
             d.body = shapely.difference(d.body, slot_box(0, 0.0, width, lo, float(tiers[k])))
             d.slots.append(Slot(0.0, width, lo, float(tiers[k]), float(tiers[k]) - lo, "bottom",
-                                drafts[k - 1].text))
-        d.body, d.trimmed = largest_part(d.body)
-    joints = [(drafts[k], drafts[k + 1], float(tiers[k + 1]), 0.0) for k in range(count - 1)]
+                                hub[k - 1].text))
+        d.body, lost = largest_part(d.body)
+        d.trimmed |= lost
+    joints = [(hub[k], hub[k + 1], float(tiers[k + 1]), 0.0) for k in range(n - 1)]
     held = still_joined(drafts, joints, width, min_width)
     keep, dropped = connected_plates(drafts, held)
     if len(keep) < 2:
@@ -160,7 +172,29 @@ def make_radial(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.0, co
     crossings = tuple((a, b) for a, b in held if a in kept and b in kept)
     return Construction("radial", pitch, thickness, clearance, plates, crossings, (), tuple(left_out),
                         tuple(d.text for d in keep if d.trimmed), tuple(float(s * pitch) for s in g.shape), steps,
-                        advice=advice)
+                        weak=tuple(weak), advice=advice, filled=filled)
+
+
+def _holding(drafts: list[Draft], spans: list[tuple[float, float]], width: float, margin: float,
+             weak: list[str]) -> list[Draft]:
+    """The plates that join at the hub: every two of them engage over half the shorter one's height.
+
+    Every two plates cross in the hub, each through the other's slot, so the interlocked
+    rule holds for every pair: where a pair engages less, the plate with less material in
+    the hub gives way (its hub column is cut out: it joins nothing, and is left out) and
+    the pair is listed in ``weak``.
+    """
+    column = slot_box(0, 0.0, width, -1e9, 1e9)
+    # every pair is judged on the plates as sectioned, before any gives way
+    failing = [(a, b) for i, (a, sa) in enumerate(zip(drafts, spans)) for b, sb in zip(drafts[i + 1:], spans[i + 1:])
+               if not holds(engagement(a, 0, 0.0, b, 0, 0.0, width, margin), sa, sb)]
+    out = set()
+    for a, b in failing:
+        weak.append(f"{a.text}/{b.text}")
+        if a.text not in out and b.text not in out:
+            cut = give_way([(a, column), (b, column)])
+            out.add(cut.text if cut is not None else b.text)
+    return [d for d in drafts if d.text not in out]
 
 
 def hub_slot_width(count: int, thickness: float, clearance: float) -> float:
@@ -202,7 +236,7 @@ def _hub_advice(drafts: list[Draft], z0: float, z1: float, pitch: float, thickne
             f"are left out; use {', or '.join(ways)}",)
 
 
-def _ring_radial(g: npt.NDArray[np.bool_], sections: list[object], centre: tuple[float, float], reach: float, *,
+def _ring_radial(g: npt.NDArray[np.bool_], filled: int, sections: list[object], centre: tuple[float, float], reach: float, *,
                  pitch: float, thickness: float, clearance: float, min_width: float) -> Construction:
     """Radial pieces locked by a flat ring, for a shape with no solid on its axis.
 
@@ -289,4 +323,5 @@ def _ring_radial(g: npt.NDArray[np.bool_], sections: list[object], centre: tuple
              f"slide {' '.join(labels)} onto H1 towards the axis: the slot of each piece over the ring "
              "at the ring slot engraved with its label")
     return Construction("radial", pitch, thickness, clearance, plates, tuple(held), tuple(moved), tuple(left_out),
-                        tuple(d.text for d in keep if d.trimmed), tuple(float(v * pitch) for v in g.shape), steps)
+                        tuple(d.text for d in keep if d.trimmed), tuple(float(v * pitch) for v in g.shape), steps,
+                        filled=filled)

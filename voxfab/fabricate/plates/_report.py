@@ -49,8 +49,9 @@ class PlatesReport:
         Length of one dowel: it goes through the plates of two layers.
     labels_hidden : int
         Labels placed where the next plate covers them.
-    labels_clipped : int
-        Labels clipped because the plate is too small for them.
+    labels_on_plan : tuple of str
+        Plates too small for a whole label of the smallest height: not engraved,
+        named on the assembly plan instead (a label is never clipped).
     unsupported : tuple of str
         Pieces sharing no area with a neighbouring layer.
     thin : tuple of str
@@ -83,7 +84,7 @@ class PlatesReport:
     kerf: float
     min_width: float
     labels_hidden: int
-    labels_clipped: int
+    labels_on_plan: tuple[str, ...]
     unsupported: tuple[str, ...]
     thin: tuple[str, ...]
     undowelled: tuple[str, ...]
@@ -91,7 +92,7 @@ class PlatesReport:
     def to_json(self) -> dict[str, Any]:
         """The report as a JSON-ready dict (with a ``format`` key)."""
         data = dataclasses.asdict(self)
-        for key in ("unsupported", "thin", "undowelled"):
+        for key in ("labels_on_plan", "unsupported", "thin", "undowelled"):
             data[key] = list(data[key])
         return {"format": FORMAT, **data}
 
@@ -138,7 +139,7 @@ def make_report(stack: PlateStack, sheets: tuple[PlateSheet, ...], *, kerf: floa
         kerf=_r(kerf),
         min_width=_r(stack.min_width),
         labels_hidden=sum(p.label.hidden for p in stack.plates),
-        labels_clipped=sum(not p.label.complete for p in stack.plates),
+        labels_on_plan=tuple(p.label.text for p in stack.plates if not p.label.complete),
         unsupported=stack.unsupported,
         thin=stack.thin,
         undowelled=stack.undowelled,
@@ -168,8 +169,19 @@ def plate_warnings(report: PlatesReport) -> list[str]:
     if report.thin:
         out.append(f"{len(report.thin)} piece(s) narrower than {report.min_width:g} mm somewhere: "
                    f"{_ids(report.thin)}")
-    if report.labels_clipped:
-        out.append(f"{report.labels_clipped} plate label(s) clipped: the plate is too small for the text")
+    out += _label_warnings(report.labels_on_plan)
+    return out
+
+
+def _label_warnings(on_plan: tuple[str, ...], left_off: tuple[str, ...] = ()) -> list[str]:
+    from ._labels import MIN_HEIGHT
+
+    out = []
+    if on_plan:
+        out.append(f"{len(on_plan)} plate(s) too small for a whole {MIN_HEIGHT:g} mm label, not engraved: "
+                   f"find them by the assembly plan: {_ids(on_plan)}")
+    if left_off:
+        out.append(f"{len(left_off)} slot(s) without their partner's label (no room for it whole): {_ids(left_off)}")
     return out
 
 
@@ -200,9 +212,20 @@ class ConstructionReport:
     thin : tuple of str
         Plates with a part narrower than ``min_width`` (a strip beside a slot, a thin wall).
     min_width : float
-    labels_clipped : int
+    labels_on_plan : tuple of str
+        Plates too small for a whole label: not engraved, named on the plan.
+    marks_left_off : tuple of str
+        ``"plate/partner"`` slots without the partner's label, for want of room for it whole.
     steps : tuple of str
         The assembly order.
+    filled_voxels : int
+        Voxels of the shape's closed cavities that the plates run through, so that no plate
+        has a hole whose scrap is cut but not assembled.
+    ways_to_keep : tuple of str
+        When sections are left out: other options (a finer pitch, thinner plates) that keep
+        them all, each checked by making the construction with them.
+    ways_tried : tuple of str
+        The options tried for that, as ``voxfab slices`` options.
     """
 
     style: str
@@ -225,15 +248,20 @@ class ConstructionReport:
     trimmed: tuple[str, ...]
     thin: tuple[str, ...]
     min_width: float
-    labels_clipped: int
+    labels_on_plan: tuple[str, ...]
+    marks_left_off: tuple[str, ...]
     steps: tuple[str, ...]
     weak: tuple[str, ...] = ()
     advice: tuple[str, ...] = ()
+    filled_voxels: int = 0
+    ways_to_keep: tuple[str, ...] = ()
+    ways_tried: tuple[str, ...] = ()
 
     def to_json(self) -> dict[str, Any]:
         """The report as a JSON-ready dict (with a ``format`` key)."""
         data = dataclasses.asdict(self)
-        for key in ("size", "moved", "left_out", "trimmed", "thin", "steps", "weak", "advice"):
+        for key in ("size", "moved", "left_out", "trimmed", "thin", "labels_on_plan", "marks_left_off", "steps",
+                    "weak", "advice", "ways_to_keep", "ways_tried"):
             data[key] = list(data[key])
         return {"format": FORMAT, **data}
 
@@ -274,10 +302,12 @@ def make_construction_report(construction: Any, sheets: tuple[PlateSheet, ...], 
         thin=tuple(p.text for p in construction.plates if narrow > 0 and _is_thin(p.outline, narrow)),
         min_width=_r(narrow),
         # the plates' own labels and the partners' labels beside their slots
-        labels_clipped=sum((not p.label.complete) + p.marks_clipped for p in construction.plates),
+        labels_on_plan=tuple(p.label.text for p in construction.plates if not p.label.complete),
+        marks_left_off=tuple(f"{p.text}/{m}" for p in construction.plates for m in p.marks_left_off),
         steps=construction.steps,
         weak=construction.weak,
         advice=construction.advice,
+        filled_voxels=construction.filled,
     )
 
 
@@ -293,9 +323,11 @@ def construction_warnings(report: ConstructionReport) -> list[str]:
         out.append(f"{len(report.weak)} crossing(s) dropped, the plates would engage over less than half their "
                    f"height there: {_ids(report.weak)}")
     if report.left_out:
-        out.append(f"{len(report.left_out)} section(s) left out, they cross no other plate: {_ids(report.left_out)}")
+        ways = (f"; to keep them: {', or '.join(report.ways_to_keep)}" if report.ways_to_keep else
+                f"; no finer pitch or thinner plates tried keeps them ({'; '.join(report.ways_tried)})")
+        out.append(f"{len(report.left_out)} section(s) left out, they cross no other plate: {_ids(report.left_out)}"
+                   + ways)
     if report.thin:
         out.append(f"{len(report.thin)} plate(s) narrower than {report.min_width:g} mm somewhere: {_ids(report.thin)}")
-    if report.labels_clipped:
-        out.append(f"{report.labels_clipped} plate label(s) clipped: the plate is too small for the text")
+    out += _label_warnings(report.labels_on_plan, report.marks_left_off)
     return out

@@ -26,7 +26,7 @@ import numpy.typing as npt
 
 from voxfab._shared.validate import as_grid, check_positive
 from voxfab.errors import FabricationError, InvalidShapeError
-from voxfab.shape import crop
+from voxfab.shape import crop, fill_cavities
 
 from ._labels import full_height, place_label
 from ._outline import cells_outline, label_layer, scaled
@@ -101,8 +101,8 @@ class SlottedPlate(Plate):
     v_dir: tuple[float, float, float] = (0.0, 0.0, 1.0)
     slots: tuple[Slot, ...] = ()
     text: str = ""
-    #: Partner labels beside slots that had to be clipped (or found no room at all).
-    marks_clipped: int = 0
+    #: Partners whose labels found no room for a whole label beside their slots (none is clipped).
+    marks_left_off: tuple[str, ...] = ()
 
     @property
     def id(self) -> str:
@@ -150,6 +150,8 @@ class Construction:
     advice : tuple of str
         What went wrong with the options asked for, and the ways out (a radial hub
         slot wider than the solid's neck: fewer or thinner plates).
+    filled : int
+        Voxels of the shape's closed cavities, which the plates run through (see :func:`solid_grid`).
     """
 
     style: str
@@ -165,6 +167,19 @@ class Construction:
     steps: tuple[str, ...]
     weak: tuple[str, ...] = ()
     advice: tuple[str, ...] = ()
+    filled: int = 0
+
+
+def solid_grid(grid: npt.ArrayLike) -> tuple[npt.NDArray[np.bool_], int]:
+    """The shape cropped with its closed cavities filled, and how many voxels that filled.
+
+    A section through a closed cavity (a hollow vase) would be a plate with a hole, whose
+    scrap the laser cuts out: a loose piece the assembly does not use.  The cavity is out of
+    sight inside the shell, so the plates run through it whole: what is cut is what is assembled.
+    """
+    g = as_grid(grid, name="shape")
+    full = fill_cavities(g)
+    return crop(full), int(full.sum() - g.sum())
 
 
 def _unit(axis: int) -> tuple[float, float, float]:
@@ -275,7 +290,7 @@ def band_span(geometry: object, along: int, lo: float, hi: float) -> tuple[float
     return (b[1], b[3]) if along == 0 else (b[0], b[2])
 
 
-def _full_width(geometry: object, along: int, lo: float, hi: float) -> list[tuple[float, float]]:
+def full_width(geometry: object, along: int, lo: float, hi: float) -> list[tuple[float, float]]:
     """Intervals of the other frame axis over which ``geometry`` fills the whole band ``lo..hi`` of axis ``along``.
 
     A slot holds its partner only where the plate has material on both sides of it
@@ -305,7 +320,7 @@ def _full_width(geometry: object, along: int, lo: float, hi: float) -> list[tupl
     return out
 
 
-def _engaged(lower: list[tuple[float, float]], upper: list[tuple[float, float]]) -> tuple[float, float] | None:
+def engaged(lower: list[tuple[float, float]], upper: list[tuple[float, float]]) -> tuple[float, float] | None:
     """The longest interval where both plates fill the crossing's column, or None."""
     best = None
     for a0, a1 in lower:
@@ -314,6 +329,45 @@ def _engaged(lower: list[tuple[float, float]], upper: list[tuple[float, float]])
             if hi - lo > 1e-9 and (best is None or hi - lo > best[1] - best[0]):
                 best = (lo, hi)
     return best
+
+
+def engagement(first: Draft, first_along: int, first_at: float, second: Draft, second_along: int,
+               second_at: float, width: float, margin: float) -> tuple[float, float] | None:
+    """The longest stretch where two crossing plates both fill the band of the crossing, or None.
+
+    Each plate runs through a band ``width`` wide about the other's plane (``first_at`` along
+    ``first_along`` of the first plate's frame, and so on); it holds its partner only where it
+    fills that band and ``margin`` beside it.
+    """
+    return engaged(full_width(first.body, first_along, first_at - width / 2 - margin, first_at + width / 2 + margin),
+                   full_width(second.body, second_along, second_at - width / 2 - margin,
+                              second_at + width / 2 + margin))
+
+
+def holds(held: tuple[float, float] | None, first: tuple[float, float], second: tuple[float, float]) -> bool:
+    """Whether plates spanning ``first`` and ``second`` at a crossing, engaged over ``held``, make a joint.
+
+    They must engage over half the shorter one's height at least, or they touch without holding.
+    """
+    return held is not None and held[1] - held[0] >= 0.5 * min(first[1] - first[0], second[1] - second[0]) - 1e-6
+
+
+def give_way(sides: list[tuple[Draft, object]]) -> Draft | None:
+    """At a crossing that does not hold, cut its band out of the plate with less material in it; that plate.
+
+    ``sides`` pairs each plate with its band (a shapely polygon in its frame).  A plate
+    lying wholly in its band keeps it: the other gives way.  The plate keeps its largest
+    part, so the two never share volume.
+    """
+    import shapely
+
+    for plate, band in sorted(sides, key=lambda c: shapely.intersection(c[0].body, c[1]).area):
+        rest = shapely.difference(plate.body, band)
+        if not rest.is_empty and rest.area > 0:
+            plate.body, lost = largest_part(rest)
+            plate.trimmed |= lost
+            return plate
+    return None
 
 
 def slot_box(along: int, centre: float, width: float, a: float, b: float) -> object:
@@ -368,7 +422,6 @@ def _join_interlocked(fam_a: list[Draft], fam_b: list[Draft], width: float, pitc
     keys : dict
         Plate label → its place in the assembly order.
     """
-    import shapely
 
     w = 3 - fam_a[0].axis - fam_b[0].axis if fam_a and fam_b else 2
     keys = {d.text: (round(_height(d, w), 6), f, i) for f, fam in enumerate((fam_a, fam_b)) for i, d in enumerate(fam)}
@@ -386,23 +439,14 @@ def _join_interlocked(fam_a: list[Draft], fam_b: list[Draft], width: float, pitc
             z0, z1 = max(zl[0], zu[0]), min(zl[1], zu[1])
             if z1 - z0 <= 1e-9:
                 continue
-            held = _engaged(_full_width(lower.body, lo_along, upper.offset - width / 2 - margin,
-                                        upper.offset + width / 2 + margin),
-                            _full_width(upper.body, up_along, lower.offset - width / 2 - margin,
-                                        lower.offset + width / 2 + margin))
-            if held is None or held[1] - held[0] < 0.5 * min(zl[1] - zl[0], zu[1] - zu[0]) - 1e-6:
+            held = engagement(lower, lo_along, upper.offset, upper, up_along, lower.offset, width, margin)
+            if not holds(held, zl, zu):
                 # No joint here; the plate with less material in the crossing gives way (its part
                 # in the partner's slot is cut away), so the two never share volume.
                 if weak is not None:
                     weak.append(f"{lower.text}/{upper.text}")
-                sides = [(lower, lo_along, upper.offset), (upper, up_along, lower.offset)]
-                sides.sort(key=lambda c: shapely.intersection(c[0].body, slot_box(c[1], c[2], width, -1e9, 1e9)).area)
-                for plate, along, at in sides:  # a plate that lies wholly in the band keeps it: the other gives way
-                    rest = shapely.difference(plate.body, slot_box(along, at, width, -1e9, 1e9))
-                    if not rest.is_empty and rest.area > 0:
-                        plate.body, lost = largest_part(rest)
-                        plate.trimmed |= lost
-                        break
+                give_way([(lower, slot_box(lo_along, upper.offset, width, -1e9, 1e9)),
+                          (upper, slot_box(up_along, lower.offset, width, -1e9, 1e9))])
                 continue
             z0, z1 = held
             # The slots' boxes for a slot end (called by slot_end at once, so the loop's names hold).
@@ -536,7 +580,7 @@ def finish_plate(d: Draft, number: int, style: str, thickness: float, pitch: flo
     strokes = list(label.strokes)
     taken = shapely.union_all([shapely.box(*shapely.LineString(s).bounds).buffer(clearance) for s in strokes
                                if len(s) > 1]) if strokes else shapely.Polygon()
-    clipped = 0
+    left_off = []
     full = (full_height(pitch),)
     for s in slots:
         # The partner's label, in parentheses so it never reads as this plate's own: beside the slot, at
@@ -551,11 +595,11 @@ def finish_plate(d: Draft, number: int, style: str, thickness: float, pitch: flo
                 mark = place_label(text, where, shapely.Polygon(), pitch=pitch, clearance=clearance,
                                    sizes=full, upright=True, fallback=False)
         if mark is None and not region.is_empty and region.area > 0:
-            mark = place_label(text, largest_part(region)[0], shapely.Polygon(), pitch=pitch, clearance=clearance)
+            mark = place_label(text, largest_part(region)[0], shapely.Polygon(), pitch=pitch, clearance=clearance,
+                               fallback=False)
         if mark is None:
-            clipped += 1  # no room at all: the slot goes unlabelled, and the report says so
+            left_off.append(s.partner)  # no room for it whole: the slot goes unlabelled, and the report says so
             continue
-        clipped += not mark.complete
         strokes.extend(mark.strokes)
         if mark.strokes:
             taken = shapely.union(taken, shapely.box(*shapely.MultiLineString(
@@ -566,7 +610,7 @@ def finish_plate(d: Draft, number: int, style: str, thickness: float, pitch: flo
         outline=shapely.orient_polygons(d.body), holes=np.zeros((0, 2)), hole_diameter=0.0, z=0.0,
         thickness=thickness, label=label, score=(), cells=d.cells, style=style, family=d.family,
         axis=_AXES[d.axis], offset=d.offset, angle=d.angle, origin=d.origin, u_dir=d.u_dir, v_dir=d.v_dir,
-        slots=slots, text=d.text, marks_clipped=clipped,
+        slots=slots, text=d.text, marks_left_off=tuple(left_off),
     )
 
 
@@ -603,7 +647,7 @@ def make_interlocked(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.
     thickness = check_positive(thickness, name="thickness")
     if len(axes) != 2 or axes[0] == axes[1] or any(a not in _AXES for a in axes):
         raise InvalidShapeError(f"axes: expected two different axes of x, y, z such as 'xy', got {axes!r}")
-    g = crop(as_grid(grid, name="shape"))
+    g, filled = solid_grid(grid)
     fam_a, fam_b = _interlocked_drafts(g, axes, pitch, thickness, count, interval)
     if len(fam_a) + len(fam_b) > MAX_SLOTTED_PLATES:
         raise InvalidShapeError(f"count: {len(fam_a) + len(fam_b)} plates, over the limit of {MAX_SLOTTED_PLATES}; "
@@ -629,4 +673,4 @@ def make_interlocked(grid: npt.ArrayLike, *, pitch: float, thickness: float = 3.
     return Construction("interlocked", pitch, thickness, clearance, plates, kept_crossings,
                         tuple(m for m in moved if set(m.split("/")) <= kept), tuple(left_out),
                         tuple(d.text for d in keep if d.trimmed), tuple(float(s * pitch) for s in g.shape), steps,
-                        tuple(weak))
+                        tuple(weak), filled=filled)

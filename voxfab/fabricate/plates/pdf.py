@@ -58,13 +58,23 @@ def _per_layer(stack: PlateStack) -> str:
     return f"{lo} PLATE(S)" if lo == hi else f"{lo}-{hi} PLATE(S)"
 
 
+#: Plate names per heading line of the plates left unengraved.
+NAMES_PER_LINE = 10
+
+
 def _heading(stack: PlateStack, title: str) -> list[str]:
     n = len(stack.layers)
-    return [
+    lines = [
         f"{title + ': ' if title else ''}STACK ORDER LAYER 1 (BOTTOM) TO {n} (TOP) - AXIS {stack.axis} - "
         f"{_per_layer(stack)} OF {stack.thickness:g} MM PER LAYER",
         "SHADED: THIS LAYER WITH ITS PIECE NUMBERS - DOTTED: THE LAYER BELOW - CIRCLES: DOWEL HOLES",
     ]
+    # A plate too small for a whole label carries none: the plan names it, by its layer and piece.
+    bare = [p.label.text for p in stack.plates if not p.label.complete]
+    for k in range(0, len(bare), NAMES_PER_LINE):
+        head = "NOT ENGRAVED (TOO SMALL FOR A LABEL): " if k == 0 else ""
+        lines.append(head + " ".join(bare[k:k + NAMES_PER_LINE]))
+    return lines
 
 
 def _page(stack: PlateStack, start: int, unions: list, lo: np.ndarray, size: np.ndarray, title: str) -> Page:
@@ -75,14 +85,15 @@ def _page(stack: PlateStack, start: int, unions: list, lo: np.ndarray, size: np.
     rows = math.ceil(count / cols)
     gap = 0.15 * float(np.max(size))
     cell = size + gap
-    top = PAGE[1] - MARGIN - 2.5 * HEADING * 2
+    heading = _heading(stack, title.upper())
+    top = PAGE[1] - MARGIN - HEADING * (2 * len(heading) + 1)
     k = min((PAGE[0] - 2 * MARGIN) / (cols * cell[0]), (top - MARGIN) / (rows * cell[1]))
     pitch = stack.pitch
     cut: list[np.ndarray] = []
     below: list[np.ndarray] = []
     label: list[Polylines] = []
     holes: list[tuple[float, float, float]] = []
-    for i, line in enumerate(_heading(stack, title.upper())):
+    for i, line in enumerate(heading):
         _text(label, line, MARGIN, PAGE[1] - MARGIN - HEADING - i * 2 * HEADING, HEADING, width=PAGE[0] - 2 * MARGIN)
     for i in range(count):
         layer = start + i

@@ -13,6 +13,7 @@ from starlette.requests import Request
 from starlette.responses import FileResponse, Response
 from starlette.routing import Route
 
+from voxfab._shared.numbers import is_digits, parse_int
 from voxfab.errors import InvalidShapeError
 
 from .._http import download_type
@@ -26,9 +27,9 @@ async def status(session: Session, request: Request) -> dict[str, Any]:
     if since is None:
         return job.status()
     # The items the page has not drawn yet: a gallery's nets, each as soon as it is made.
-    if not since.isdigit() or len(since) > 6:
+    if not is_digits(since) or len(since) > 6:
         raise InvalidShapeError(f"since: expected the number of items already read, got {since[:20]!r}")
-    return job.status(since=int(since))
+    return job.status(since=parse_int(since))
 
 
 async def cancel(session: Session, request: Request) -> dict[str, Any]:

@@ -16,6 +16,7 @@ from starlette.requests import Request
 from starlette.responses import Response
 from starlette.routing import Route
 
+from voxfab._shared.numbers import is_digits, parse_int
 from voxfab.errors import InvalidShapeError
 
 from .. import _bodies, _grid
@@ -43,7 +44,8 @@ async def listing(session: Session, request: Request) -> dict[str, Any]:
         after = shape_name(request, "after")
     text = request.query_params.get("limit", "120")
     # at most 4 digits read: int() of a 5000-digit string would be an error of its own
-    limit = _bodies.whole(int(text) if text.isdigit() and len(text) <= 4 else text, name="limit", lo=1, hi=500)
+    limit = _bodies.whole(parse_int(text) if is_digits(text) and len(text) <= 4 else text, name="limit", lo=1,
+                          hi=500)
 
     def run() -> dict[str, Any]:
         if not session.settings.repo.exists():

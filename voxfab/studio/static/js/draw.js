@@ -1,6 +1,14 @@
 // Drawing inputs: a 2D curve source (freehand or polyline strokes, an expression, or a bitmap),
 // a spine drawn in top view, and foci placed by clicking.
 
+// The spine presets of the tube's menu: x(t), y(t), z(t) for t from 0 to 1.
+export const SPINES = {
+  circle: ['cos(2*pi*t)', 'sin(2*pi*t)', '0'],
+  trefoil: ['sin(2*pi*t) + 2*sin(4*pi*t)', 'cos(2*pi*t) - 2*cos(4*pi*t)', '-sin(6*pi*t)'],
+  helix: ['cos(6*pi*t)', 'sin(6*pi*t)', '2*t'],
+  wave: ['4*t', '0', '0.6*sin(4*pi*t)'],
+};
+
 const AXIS_X = 20; // the generatrix canvas's axis, in canvas pixels from the left
 
 function el(tag, attrs = {}, ...children) {

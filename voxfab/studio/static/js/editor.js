@@ -1,8 +1,10 @@
 // Layer-by-layer voxel editing with undo and redo (one step per stroke).
 
 export class LayerEditor {
-  constructor(canvas, {onEdit}) {
-    this.canvas = canvas; this.onEdit = onEdit;
+  // tag(): what the page attaches to each undo step (its state of the shape then), given back as `this.tag`
+  // when the step is restored.
+  constructor(canvas, {onEdit, tag = () => null}) {
+    this.canvas = canvas; this.onEdit = onEdit; this.tagOf = tag;
     this.grid = null; this.layer = 12; this.undoStack = []; this.redoStack = []; this.tag = null;
     let painting = null; // 1: adding, 0: removing, null: idle
     const cellAt = (e) => {
@@ -41,9 +43,9 @@ export class LayerEditor {
     this.paint();
   }
 
-  // Each undo step keeps the grid and a `tag` the page attaches to it (the drawing's shape then),
-  // restored with it: the page knows which hand edits each step had.
-  entry(grid) { return {grid: grid.clone(), tag: this.tag}; }
+  // Each undo step keeps the grid and the page's tag of it (the drawing's shape then, the shape's names),
+  // restored with it: the page knows which hand edits each step had, and what the shape was called.
+  entry(grid) { return {grid: grid.clone(), tag: this.tagOf()}; }
 
   // Keep a shape that is about to be replaced (by a new drawing, an opened shape) one Undo away.
   remember(grid, tag) {

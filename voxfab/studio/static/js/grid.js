@@ -40,6 +40,16 @@ export class Grid {
   }
 }
 
+// The hand edits (voxels where `shape` differs from `base`) laid on `fresh`; returns [grid, count].
+export function carryEdits(base, shape, fresh) {
+  const out = fresh.clone();
+  let n = 0;
+  for (let i = 0; i < out.data.length; i++) {
+    if (shape.data[i] !== base.data[i]) { out.data[i] = shape.data[i]; n++; }
+  }
+  return [out, n];
+}
+
 // The six face directions: normal, and the two in-plane axes (counter-clockwise seen from outside).
 export const DIRS = [
   {n: [1, 0, 0], u: [0, 1, 0], v: [0, 0, 1]}, {n: [-1, 0, 0], u: [0, 0, 1], v: [0, 1, 0]},

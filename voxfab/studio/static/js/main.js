@@ -1,11 +1,11 @@
 // voxfab studio: wiring of the tabs, the shape being worked on, and the server calls.
 
 import {Cancelled, cancelJob, fileUrl, get, post, saveBlob, waitJob, waitingJobs} from './api.js';
-import {CurveSource, FociInput, SpineDrawing} from './draw.js';
+import {CurveSource, FociInput, SPINES, SpineDrawing} from './draw.js';
 import {LayerEditor} from './editor.js';
 import {MakerForms} from './makers.js';
-import {Grid} from './grid.js';
-import {drawNet} from './nets.js';
+import {carryEdits, Grid} from './grid.js';
+import {drawThumb} from './nets.js';
 import {NetView} from './netview.js';
 import {placedLayout, SheetBoard} from './sheets.js';
 import {Viewer} from './viewer.js';
@@ -13,19 +13,13 @@ import {Viewer} from './viewer.js';
 const $ = (sel) => document.querySelector(sel);
 const $$ = (sel) => [...document.querySelectorAll(sel)];
 
-const SPINES = {
-  circle: ['cos(2*pi*t)', 'sin(2*pi*t)', '0'],
-  trefoil: ['sin(2*pi*t) + 2*sin(4*pi*t)', 'cos(2*pi*t) - 2*cos(4*pi*t)', '-sin(6*pi*t)'],
-  helix: ['cos(6*pi*t)', 'sin(6*pi*t)', '2*t'],
-  wave: ['4*t', '0', '0.6*sin(4*pi*t)'],
-};
-
 const state = {
   shape: new Grid(), // the current 25³ shape
   drawn: null, // the drawing that made it, while unedited (for the recipe)
   base: null, // the drawing's own shape (the last preview): hand edits are what differs from it
+  baseMaker: null, // the maker of that drawing: hand edits on one maker's shape do not go onto another's
   opened: false, // the shape came from the repository or the command line, not from the drawing
-  parked: null, // {shape, base}: hand edits set aside while the drawing has an error
+  parked: null, // {shape, base, maker}: hand edits set aside while the drawing has an error
   stroking: false, // a stroke is being drawn: its previews after the first add no undo step
   edited: false,
   name: null, // repository name once saved
@@ -98,35 +92,42 @@ function setShape(grid, facts, {drawn = null, name = null, label = null, keepHis
   viewer.stop();
   viewer.setGrid(grid, currentTab() === 'edit' ? editor.layer : null);
   editor.setGrid(grid, {keepHistory});
-  editor.tag = state.base;
   showFacts(facts);
   recipeNote();
   netNote();
 }
 
-// The hand edits (voxels where `shape` differs from `base`) laid on `fresh`; returns [grid, count].
-function carryEdits(base, shape, fresh) {
-  const out = fresh.clone();
-  let n = 0;
-  for (let i = 0; i < out.data.length; i++) {
-    if (shape.data[i] !== base.data[i]) { out.data[i] = shape.data[i]; n++; }
-  }
-  return [out, n];
+// What the page knows of the shape besides its voxels, kept with each undo step and restored with it: the
+// drawing's shape and maker (hand edits are what differs from it) and the names it was opened or saved under.
+function shapeTag() {
+  return {base: state.base, maker: state.baseMaker, name: state.name, label: state.label,
+    heading: $('#shape-name').textContent};
 }
 
 // A new preview of the drawing: hand edits are kept on it, and a shape it replaces stays one Undo away.
 // `remember`: false for the previews of a stroke after its first, so that one stroke is one undo step.
 function drawingChanged(fresh, facts, spec, remember = true) {
-  const before = state.shape, beforeBase = state.base;
+  const before = state.shape, beforeBase = state.base, was = shapeTag();
   // the edits on the shape now, or those set aside while the drawing had an error
-  const carry = state.edited && beforeBase ? {shape: before, base: beforeBase} : state.parked;
+  const carry = state.edited && beforeBase ? {shape: before, base: beforeBase, maker: state.baseMaker} : state.parked;
   state.parked = null;
+  if (carry && carry.maker !== spec.maker) {
+    // Another maker: voxels edited on its shape (the egg) mean nothing on this one's (the vase). This shape
+    // starts clean; the edited one stays one Undo away.
+    const n = carryEdits(carry.base, carry.shape, carry.base)[1];
+    state.base = fresh.clone(); state.baseMaker = spec.maker; state.opened = false;
+    if (remember) editor.remember(before, was);
+    setShape(fresh, facts, {drawn: spec, keepHistory: true});
+    say(`A new maker (${makers.label(spec.maker)}): its shape starts clean; your ${n} hand-edited voxel${n === 1 ? ' stays' : 's stay'} `
+      + `on the ${makers.label(carry.maker)} shape (Undo in Edit brings it back).`, true);
+    return;
+  }
   if (carry) {
     // the drawing still gives the same shape: the edits stand as they are
     if (carry.shape === before && carry.base.equals(fresh)) return;
     const [kept, n] = carryEdits(carry.base, carry.shape, fresh);
-    state.base = fresh;
-    if (remember) editor.remember(before, beforeBase);
+    state.base = fresh; state.baseMaker = spec.maker;
+    if (remember) editor.remember(before, was);
     setShape(kept, facts, {keepHistory: true});
     state.edited = true; $('#shape-name').textContent = 'unsaved';
     check();
@@ -134,8 +135,8 @@ function drawingChanged(fresh, facts, spec, remember = true) {
     return;
   }
   const replacing = (state.opened || state.edited) && before.count() > 0;
-  state.base = fresh.clone(); state.opened = false;
-  if (replacing && remember) editor.remember(before, beforeBase);
+  state.base = fresh.clone(); state.baseMaker = spec.maker; state.opened = false;
+  if (replacing && remember) editor.remember(before, was);
   setShape(fresh, facts, {drawn: spec, keepHistory: replacing});
   if (replacing) say('The drawing replaced the opened shape (Undo in Edit brings it back).', true);
 }
@@ -143,10 +144,11 @@ function drawingChanged(fresh, facts, spec, remember = true) {
 // The drawing cannot make a shape: show none rather than the last one under its old badge.
 function drawingFailed(remember = true) {
   if (state.shape.count() === 0 && !state.edited) { showFacts(NO_FACTS); viewer.setGrid(state.shape); return; }
-  const before = state.shape, beforeBase = state.base;
-  if (state.edited && beforeBase) state.parked = {shape: before.clone(), base: beforeBase}; // back when it is fixed
-  state.base = null;
-  if (remember) editor.remember(before, beforeBase);
+  const before = state.shape, beforeBase = state.base, was = shapeTag();
+  // back when it is fixed
+  if (state.edited && beforeBase) state.parked = {shape: before.clone(), base: beforeBase, maker: state.baseMaker};
+  state.base = null; state.baseMaker = null;
+  if (remember) editor.remember(before, was);
   setShape(new Grid(), NO_FACTS, {keepHistory: true});
 }
 
@@ -313,7 +315,7 @@ function edited() {
   check();
 }
 
-const editor = new LayerEditor($('#layer-canvas'), {onEdit: () => edited()});
+const editor = new LayerEditor($('#layer-canvas'), {onEdit: () => edited(), tag: shapeTag});
 
 function setLayer(z) {
   editor.setLayer(z);
@@ -323,16 +325,26 @@ function setLayer(z) {
 $('#layer').addEventListener('input', () => setLayer(Number($('#layer').value)));
 $('#layer-up').addEventListener('click', () => setLayer(editor.layer + 1));
 $('#layer-down').addEventListener('click', () => setLayer(editor.layer - 1));
-// Undo and redo also step back over a drawing change or a refused drawing: the base goes with the shape.
-function stepped() { state.base = editor.tag; edited(); }
-$('#undo').addEventListener('click', () => { if (editor.undo()) stepped(); });
-$('#redo').addEventListener('click', () => { if (editor.redo()) stepped(); });
+// Undo and redo also step back over a drawing change, a refused drawing or an opened shape: the base and
+// its maker go with the shape, and so do the names the shape had (an opened file, a kept shape), for its files.
+function stepped() {
+  const t = editor.tag || {};
+  state.base = t.base || null; state.baseMaker = t.maker || null;
+  edited();
+  if (t.name || t.label) {
+    state.name = t.name; state.label = t.label; $('#shape-name').textContent = t.heading;
+  }
+}
+function undo() { if (editor.undo()) stepped(); else say('Nothing to undo.', true); }
+function redo() { if (editor.redo()) stepped(); else say('Nothing to redo.', true); }
+$('#undo').addEventListener('click', undo);
+$('#redo').addEventListener('click', redo);
 $('#clear-layer').addEventListener('click', () => { editor.clearLayer(); edited(); });
 $('#fill-layer').addEventListener('click', () => { editor.copyBelow(); edited(); });
 document.addEventListener('keydown', (e) => {
   if (currentTab() !== 'edit' || !(e.ctrlKey || e.metaKey)) return;
-  if (e.key === 'z' && !e.shiftKey) { e.preventDefault(); if (editor.undo()) stepped(); }
-  if (e.key === 'y' || (e.key === 'z' && e.shiftKey)) { e.preventDefault(); if (editor.redo()) stepped(); }
+  if (e.key === 'z' && !e.shiftKey) { e.preventDefault(); undo(); }
+  if (e.key === 'y' || (e.key === 'z' && e.shiftKey)) { e.preventDefault(); redo(); }
 });
 
 // --- Keep ---------------------------------------------------------------------------------------
@@ -395,9 +407,9 @@ $('#repo-more').addEventListener('click', () => refreshRepo($('#repo-more').data
 async function openShape(name) {
   try {
     const r = await get(`/api/repo/shape?name=${encodeURIComponent(name)}`);
-    const before = state.shape, beforeBase = state.base;
-    state.base = null; state.opened = true;
-    editor.remember(before, beforeBase); // Undo in Edit returns to the shape it replaced
+    const before = state.shape, was = shapeTag();
+    state.base = null; state.baseMaker = null; state.opened = true;
+    editor.remember(before, was); // Undo in Edit returns to the shape it replaced, under its name
     setShape(Grid.unpack(r.grid), r.facts, {name, keepHistory: true});
     say(`Opened ${name}`, true);
   } catch (e) { say(e); }
@@ -405,7 +417,8 @@ async function openShape(name) {
 
 // --- Net ----------------------------------------------------------------------------------------
 
-const marker = new NetView($('#net-canvas'), {viewer, shape: () => state.shape, say, fold: $('#net-fold'), play: $('#net-fold-play'), undo: $('#net-undo'), onChange: () => {
+const marker = new NetView($('#net-canvas'), {viewer, shape: () => state.shape, say, fold: $('#net-fold'), play: $('#net-fold-play'), undo: $('#net-undo'),
+  pieces: $('#net-view-pieces'), onChange: () => {
   const c = marker.constraints();
   $('#marks-count').textContent = `${c.cut.length} cut, ${c.keep.length} kept`;
   $('#marks-count').dataset.constraints = JSON.stringify(c);
@@ -550,8 +563,10 @@ function galleryFigure(n, i) {
   fig.dataset.testid = 'net-gallery-item';
   fig.setAttribute('data-testid', 'net-gallery-item');
   fig.dataset.index = String(i);
-  const cv = Object.assign(document.createElement('canvas'), {width: 356, height: 356});
-  drawNet(cv, placedLayout(n.layout, n.placement));
+  // the first sheet large, the others in a strip below it: every sheet squeezed into one row left faces a pixel wide
+  const strip = n.placement && n.placement.sheets > 1;
+  const cv = Object.assign(document.createElement('canvas'), {width: 420, height: strip ? 540 : 420});
+  cv.dataset.facePx = drawThumb(cv, placedLayout(n.layout, n.placement), n.placement).toFixed(2);
   const f = n.fit;
   const cap = document.createElement('figcaption');
   cap.innerHTML = '<b></b> <span class="fits"></span>';
@@ -595,11 +610,16 @@ async function gallery(withMarks) {
     };
     let s;
     try { s = await waitJob(job, progress, 150, show); } catch (e) {
-      if (!(e instanceof Cancelled) || !g.nets.length) { // a cancelled gallery keeps the nets it showed
-        state.gallery = null; state.chosen = null; netNote();
-        const st = await get(`/api/jobs/${job}`);
-        showWaysOut(st.ways_out);
+      if (e instanceof Cancelled && g.nets.length) { // a cancelled gallery keeps the nets it showed, and says so
+        const n = g.nets.length, kept = `Cancelled: ${n} net${n === 1 ? '' : 's'} kept`;
+        $('#net-summary').textContent = `${kept} of the ${body.count} asked, faces ${g.options.face_size} mm.`;
+        $('#net-summary').dataset.found = String(n);
+        say(`${kept}: pick one to lay it out and make its files.`, true);
+        return;
       }
+      state.gallery = null; state.chosen = null; netNote();
+      const st = await get(`/api/jobs/${job}`);
+      showWaysOut(st.ways_out);
       throw e;
     }
     const r = s.result;
@@ -765,6 +785,7 @@ function currentTab() { return $('#tabs .active').dataset.tab; }
 
 $$('#tabs button').forEach((b) => b.addEventListener('click', () => {
   $$('#tabs button').forEach((x) => x.classList.toggle('active', x === b));
+  document.body.dataset.tab = b.dataset.tab; // the page's columns follow the tab (studio.css)
   $$('.pane').forEach((p) => p.classList.toggle('active', p.id === `pane-${b.dataset.tab}`));
   if (b.dataset.tab === 'edit') { editor.setGrid(state.shape, {keepHistory: true}); viewer.setLayer(editor.layer); }
   else viewer.setLayer(null);

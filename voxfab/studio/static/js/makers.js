@@ -67,9 +67,12 @@ export class MakerForms {
   setTable(makers) {
     this.rows = new Map(makers.map((m) => [m.name, m]));
     this.select.replaceChildren(...makers.map((m) =>
-      el('option', {value: m.name, title: m.help}, MAKER_LABELS[m.name] || m.name)));
+      el('option', {value: m.name, title: m.help}, this.label(m.name))));
     this.show();
   }
+
+  // The words the Maker menu shows for a maker ("focal": its option's).
+  label(maker) { return MAKER_LABELS[maker] || maker; }
 
   // The table's row of the chosen maker (none before the table is read).
   row(maker = this.select.value) { return this.rows.get(maker) || {name: maker, params: []}; }

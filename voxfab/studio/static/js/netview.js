@@ -13,11 +13,15 @@ import {post} from './api.js';
 import {edgeKey, faceName} from './viewer.js';
 
 const FOLD_STYLE = {
-  1: {color: '#0000ff', dash: [5, 3]}, // mountain
+  1: {color: '#ff00ff', dash: [5, 3]}, // mountain
   '-1': {color: '#00a000', dash: [6, 2, 1.5, 2]}, // valley
   0: {color: '#c8c8c8', dash: []}, // flat
 };
 const GAP = 2; // faces between pieces side by side
+const ROOM_BELOW = 230;
+// A face at least this wide on screen, px: its edges can be clicked (a quarter face either side of them).
+// A net smaller than that at its full view opens on its first piece, fitted; a piece at most MAX_FACE_PX.
+const MIN_FACE_PX = 12, MAX_FACE_PX = 48; // px of the window the editor's canvas leaves for the page's header and its own controls
 
 // --- 3×3 matrices, row-major arrays of 9 ---
 const I3 = [1, 0, 0, 0, 1, 0, 0, 0, 1];
@@ -64,9 +68,11 @@ function partTurn(q, t) {
   return turn([q[1] / s, q[2] / s, q[3] / s], 2 * half * t);
 }
 
-// Where each piece sits in the 2D view and in the flat fold: side by side in number order, GAP faces
-// apart, each from its own frame. {shift: [[dx, dy] per piece], width, height} in faces.
-export function pieceOffsets(layout) {
+// Where each piece sits in the 2D view and in the flat fold: in number order, GAP faces apart, each from
+// its own frame, in rows from the top; with `aspect` (the view's width over its height) the rows are as
+// wide as makes the faces largest in such a view, else one row. {shift: [[dx, dy] per piece], width,
+// height} in faces.
+export function pieceOffsets(layout, aspect = 0) {
   const F = layout.faces.length, c = layout.corners, piece = layout.piece || new Array(F).fill(0);
   const pieces = Math.max(...piece) + 1, box = Array.from({length: pieces}, () => [Infinity, Infinity, -Infinity, -Infinity]);
   for (let i = 0; i < F; i++) {
@@ -76,9 +82,27 @@ export function pieceOffsets(layout) {
       b[2] = Math.max(b[2], c[8 * i + 2 * k]); b[3] = Math.max(b[3], c[8 * i + 2 * k + 1]);
     }
   }
-  let x = 0;
-  const shift = box.map((b) => { const s = [x - b[0], -b[1]]; x += b[2] - b[0] + GAP; return s; });
-  return {shift, width: x - GAP, height: Math.max(...box.map((b) => b[3] - b[1]))};
+  const ext = box.map((b) => [b[2] - b[0], b[3] - b[1]]);
+  const rows = (most) => { // shelves at most `most` faces wide: each piece's top-left corner (y down), the extent
+    let x = 0, y = 0, row = 0, width = 0;
+    const at = ext.map(([w, h]) => {
+      if (x && x + w > most) { y += row + GAP; x = 0; row = 0; }
+      const spot = [x, y];
+      width = Math.max(width, x + w); x += w + GAP; row = Math.max(row, h);
+      return spot;
+    });
+    return {at, width, height: y + row};
+  };
+  let best = rows(Infinity);
+  if (aspect > 0) {
+    const scale = (r) => Math.min(aspect / r.width, 1 / r.height);
+    for (let most = Math.max(...ext.map((e) => e[0])); most < best.width; most++) {
+      const r = rows(most);
+      if (scale(r) > scale(best)) best = r;
+    }
+  }
+  const shift = box.map((b, q) => [best.at[q][0] - b[0], best.height - best.at[q][1] - ext[q][1] - b[1]]);
+  return {shift, width: best.width, height: best.height};
 }
 
 // Everything the fold-up needs, computed once per net: each face's pose from the sheet (z = 0) to the
@@ -86,7 +110,7 @@ export function pieceOffsets(layout) {
 // The first piece's root stays where it is on the surface, as in voxfab/render/_fold.py; every other
 // piece's root moves from beside it in its plane (flat, as the 2D view lays the pieces out) to the
 // surface, turning about its centre (`flat`), so that at 0 all the pieces lie flat together.
-export function foldPlan(layout) {
+export function foldPlan(layout, offsets = pieceOffsets(layout).shift) {
   const F = layout.faces.length, c2 = layout.corners, c3 = layout.corners3d;
   const rot = [], shift = [];
   for (let i = 0; i < F; i++) {
@@ -120,7 +144,7 @@ export function foldPlan(layout) {
     hinge[c] = {point: a, axis: ax};
     angle[c] = Math.atan2(skew[0] * ax[0] + skew[1] * ax[1] + skew[2] * ax[2], (rel[0] + rel[4] + rel[8] - 1) / 2);
   }
-  const piece = layout.piece || new Array(F).fill(0), offsets = pieceOffsets(layout).shift;
+  const piece = layout.piece || new Array(F).fill(0);
   const roots = order.filter((c) => parent[c] < 0), base = roots.find((c) => piece[c] === 0) ?? roots[0];
   const flat = new Array(F).fill(null);
   for (const c of roots) {
@@ -173,11 +197,21 @@ export function foldCorners(plan, t) {
 
 function pairKey(i, j) { return i < j ? `${i}-${j}` : `${j}-${i}`; }
 
+// {lo, hi}: the box of 3D corners (x, y, z in a row).
+function bounds3d(c) {
+  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < c.length; i += 3) {
+    for (let j = 0; j < 3; j++) { lo[j] = Math.min(lo[j], c[i + j]); hi[j] = Math.max(hi[j], c[i + j]); }
+  }
+  return {lo, hi};
+}
+
 export class NetView {
   // canvas: the net-2d canvas; viewer: the 3D Viewer; shape(): the current Grid; say(text, ok): status;
   // onChange(): the marks changed.
-  constructor(canvas, {viewer, shape, say, onChange, fold = null, play = null, undo = null}) {
-    Object.assign(this, {canvas, viewer, shape, say, onChange, foldInput: fold, playButton: play});
+  // pieces: the box of the buttons that show the whole net or one piece of it, fitted.
+  constructor(canvas, {viewer, shape, say, onChange, fold = null, play = null, undo = null, pieces = null}) {
+    Object.assign(this, {canvas, viewer, shape, say, onChange, foldInput: fold, playButton: play, piecesBox: pieces});
     this.layout = null; this.job = null; this.index = 0; this.marks = {cut: [], keep: []};
     this.view = null; this.hover = null; this.busy = false; this.version = 0; this.undos = 0;
     this._drag = null;
@@ -224,6 +258,20 @@ export class NetView {
     if (undo) undo.addEventListener('click', () => this.undo());
     window.voxfabFold = (t = 1) => this.foldState(t);
     window.voxfabNetView = this; // for scripts driving the page: toScreen, layout, hit
+    // The canvas takes the size its column shows it at, in its own pixels (see resize).
+    new ResizeObserver(() => this.resize()).observe(canvas);
+    window.addEventListener('resize', () => this.resize());
+  }
+
+  // As wide as the column shows the canvas, and as tall as the window leaves room for: a face is as big as
+  // it can be. The net is fitted again to the new size.
+  resize() {
+    const c = this.canvas, w = Math.round(c.clientWidth);
+    if (!w) return; // hidden (another tab)
+    const h = Math.round(Math.max(280, Math.min(1.25 * w, window.innerHeight - ROOM_BELOW)));
+    if (c.width === w && c.height === h) return;
+    c.width = w; c.height = h;
+    if (this.layout) this.setNet(this.job, this.index, this.layout); else this.draw();
   }
 
   _pixel(e) {
@@ -245,10 +293,11 @@ export class NetView {
     this.version += 1;
     const ds = this.canvas.dataset;
     ds.version = String(this.version); ds.job = job || ''; ds.faces = layout ? String(layout.faces.length) : '0';
-    if (!layout) { this.view = null; this.draw(); return; }
+    if (!layout) { this.view = null; this.pieceButtons(0); this.draw(); return; }
     const F = layout.faces.length, c = layout.corners, piece = layout.piece || new Array(F).fill(0);
-    // pieces side by side, each in its own frame
-    const {shift, width: w, height: h} = pieceOffsets(layout);
+    // pieces in rows shaped as the canvas is, each in its own frame
+    const W = this.canvas.width, H = this.canvas.height;
+    const {shift, width: w, height: h} = pieceOffsets(layout, W / H);
     this.shift = shift;
     this.pts = new Float64Array(8 * F);
     this.cells = new Map(); this.names = new Map(); this.foldsSet = new Set();
@@ -263,11 +312,58 @@ export class NetView {
       this.names.set(faceName(layout.faces[i]), i);
     }
     for (let t = 0; t < layout.folds.length; t += 2) this.foldsSet.add(pairKey(layout.folds[t], layout.folds[t + 1]));
-    const W = this.canvas.width, H = this.canvas.height;
-    const fit = Math.min((W - 16) / w, (H - 16) / h);
-    if (!keepView || !this.view) this.view = {s: fit, fit, ox: (W - fit * w) / 2, oy: H - (H - fit * h) / 2};
+    const fit = Math.min((W - 16) / w, (H - 16) / h), pieces = Math.max(...piece) + 1;
+    this.pieceButtons(pieces);
+    if (!keepView || !this.view) {
+      this.view = {s: fit, fit, ox: (W - fit * w) / 2, oy: H - (H - fit * h) / 2};
+      // zoomed to fit what can be worked on: the whole net, or its first piece when the whole is too small to click
+      if (fit * this._cssPerPixel() < MIN_FACE_PX && pieces > 1) this.fitTo(0, false);
+      else this.fitted(null);
+    }
     this.draw();
     if (this.foldInput && Number(this.foldInput.value) > 0) this.fold(Number(this.foldInput.value) / 100);
+  }
+
+  // The buttons "whole net", "piece 1", ... of a net in pieces (none for a net in one piece).
+  pieceButtons(pieces) {
+    const box = this.piecesBox;
+    if (!box || Number(box.dataset.pieces || 0) === pieces) return;
+    box.dataset.pieces = String(pieces);
+    const button = (text, q) => {
+      const b = Object.assign(document.createElement('button'), {type: 'button', textContent: text});
+      b.dataset.piece = q === null ? 'all' : String(q + 1);
+      b.addEventListener('click', () => this.fitTo(q));
+      return b;
+    };
+    box.replaceChildren(...(pieces > 1 ? [button('whole net', null), ...Array.from({length: pieces}, (_, q) => button(`piece ${q + 1}`, q))] : []));
+  }
+
+  // Fit the view to piece q (null: the whole net), centred.
+  fitTo(q, redraw = true) {
+    if (!this.layout) return;
+    const P = this.pts, F = this.layout.faces.length, piece = this.layout.piece || new Array(F).fill(0);
+    let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
+    for (let i = 0; i < F; i++) {
+      if (q !== null && piece[i] !== q) continue;
+      for (let k = 8 * i; k < 8 * i + 8; k += 2) {
+        x0 = Math.min(x0, P[k]); x1 = Math.max(x1, P[k]); y0 = Math.min(y0, P[k + 1]); y1 = Math.max(y1, P[k + 1]);
+      }
+    }
+    const W = this.canvas.width, H = this.canvas.height;
+    let s = Math.min((W - 16) / (x1 - x0), (H - 16) / (y1 - y0));
+    if (q !== null) s = Math.min(s, MAX_FACE_PX / this._cssPerPixel());
+    Object.assign(this.view, {s, ox: (W - s * (x1 - x0)) / 2 - x0 * s, oy: H - (H - s * (y1 - y0)) / 2 + y0 * s});
+    this.fitted(q);
+    if (redraw) this.draw();
+  }
+
+  // Screen px per canvas pixel (1 while the canvas is hidden: resize() keeps the two alike).
+  _cssPerPixel() { return (this.canvas.getBoundingClientRect().width || this.canvas.width) / this.canvas.width; }
+
+  fitted(q) {
+    const name = q === null ? 'all' : String(q + 1);
+    this.canvas.dataset.fitted = name;
+    if (this.piecesBox) for (const b of this.piecesBox.children) b.classList.toggle('active', b.dataset.piece === name);
   }
 
   toScreen(x, y) { const v = this.view; return [v.ox + x * v.s, v.oy - y * v.s]; }
@@ -405,7 +501,10 @@ export class NetView {
     await this._send({[kind]: [L.faces[i], L.faces[j]], ...split}, kind);
   }
 
-  async undo() { if (this.job && this.undos > 0) await this._send({undo: true}, 'undo'); }
+  async undo() {
+    if (this.job && this.undos > 0) await this._send({undo: true}, 'undo');
+    else if (this.say) this.say(this.job ? 'Nothing to undo: this net has no edit left to take back.' : 'Nothing to undo: choose a net first.', true);
+  }
 
   async _send(change, kind) {
     this.busy = true;
@@ -435,26 +534,17 @@ export class NetView {
   constraints() { return {cut: this.marks.cut.slice(), keep: this.marks.keep.slice()}; }
 
   // Fold-up at t in [0, 1] in the 3D view.
-  _planned() { if (!this._plan && this.layout) this._plan = foldPlan(this.layout); return this._plan; }
-
-  _frame(plan) {
-    if (!plan.frame) { // over flat and folded, so the animation keeps one framing
-      const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
-      for (const t of [0, 0.5, 1]) {
-        const c = foldCorners(plan, t);
-        for (let i = 0; i < c.length; i += 3) for (let j = 0; j < 3; j++) { lo[j] = Math.min(lo[j], c[i + j]); hi[j] = Math.max(hi[j], c[i + j]); }
-      }
-      plan.frame = {lo, hi};
-    }
-    return plan.frame;
-  }
+  // the flat fold lays the pieces out as the 2D view does
+  _planned() { if (!this._plan && this.layout) this._plan = foldPlan(this.layout, this.shift); return this._plan; }
 
   fold(t) {
     const plan = this._planned();
     if (!plan || !this.viewer) return null;
     const t0 = performance.now();
     const corners = foldCorners(plan, t);
-    this.viewer.setQuads(corners, this._frame(plan), this.layout.faces.map(faceName));
+    // Framed on the net as it is at t: folded, the shape fills the view (framed on the flat net too, it
+    // came out small and off centre); the bounds move smoothly with t, so the animation does not jump.
+    this.viewer.setQuads(corners, bounds3d(corners), this.layout.faces.map(faceName));
     const ms = performance.now() - t0;
     this.canvas.dataset.foldMs = ms.toFixed(1);
     return ms;

@@ -14,11 +14,19 @@ export function turn(x, y, turns) {
 
 function copyPlacement(p) { return JSON.parse(JSON.stringify(p)); }
 
+// Sheets side by side in faces, two faces apart: where sheet k starts across.
+function sheetStride(placement) { return placement.sheet[0] / placement.face_size + 2; }
+
+// Sheet k as [x0, y0, x1, y1] in the cells of placedLayout.
+export function sheetRect(placement, k) {
+  const f = placement.face_size, [W, H] = placement.sheet, x = k * sheetStride(placement);
+  return [x, 0, x + W / f, H / f];
+}
+
 // The layout with every face where its piece sits, in cells; sheets side by side (for the net views).
 export function placedLayout(layout, placement) {
   if (!placement) return layout; // a net that does not fit the sheet has no place on it: as unfolded
-  const f = placement.face_size, [W] = placement.sheet;
-  const stride = W / f + 2;
+  const f = placement.face_size, stride = sheetStride(placement);
   const corners = layout.corners.slice();
   for (let i = 0; i < layout.faces.length; i++) {
     const p = placement.pieces[layout.piece ? layout.piece[i] : 0];

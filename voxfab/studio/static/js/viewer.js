@@ -83,8 +83,8 @@ export class Viewer {
     this.draw();
   }
 
-  // Show a net folding: `corners` F*12 numbers (4 corners per face in 3D), framed by `frame`
-  // ({lo, hi} over the whole animation so it does not jump); null goes back to the shape.
+  // Show a net folding: `corners` F*12 numbers (4 corners per face in 3D), framed by `frame` ({lo, hi}: the
+  // box fitted in the view, centred); null goes back to the shape.
   setQuads(corners, frame = null, names = null) {
     this.quads = corners ? {corners, frame: frame || this.quads?.frame, names} : null;
     this.draw();
