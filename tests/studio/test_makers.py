@@ -94,9 +94,9 @@ def test_the_studio_lists_the_new_maker_with_its_keys(superellipsoid, client):
     row = makers["superellipsoid"]
     assert row["help"] == ROW.help
     assert row["params"] == [
-        {"name": "p", "help": ROW.params[0].help, "type": "float", "low": 0.5, "high": 8, "default": 2.0,
+        {"name": "p", "label": "p", "help": ROW.params[0].help, "type": "float", "low": 0.5, "high": 8, "default": 2.0,
          "required": False, "kind": "number", "choices": [], "input": "form"},
-        {"name": "size", "help": "side of the voxel grid", "type": "int", "low": 2, "high": 256, "default": 25,
+        {"name": "size", "label": "size", "help": "side of the voxel grid", "type": "int", "low": 2, "high": 256, "default": 25,
          "required": False, "kind": "integer", "choices": [], "input": "form"},
     ]
 

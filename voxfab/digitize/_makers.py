@@ -50,6 +50,13 @@ class Param:
     hint: Any = None
     required: bool = False
     default: Any = None
+    #: Plain words for a form's field, where the key's own name is not (``curve_threshold``).
+    label: str = ""
+
+    @property
+    def words(self) -> str:
+        """What a form calls the key: its label, else its name in words (``t_min`` is ``t min``)."""
+        return self.label or self.name.replace("_", " ")
 
     def problem(self, value: Any) -> str | None:
         """Why ``value`` (a TOML or JSON value) does not fit this key, or None when it does."""
@@ -148,10 +155,10 @@ class Maker:
 _K = Param("k", "flake: 0 gives tunnel-free surfaces, 1 and 2 thinner ones", 0, 2)
 _MODE = Param("mode", '"solid" (the region) or "surface" (its boundary)')
 _SIZE = Param("size", "side of the voxel grid", 2, 256)
-_SCALE = Param("scale", "voxels per model unit; without it the shape is fitted to the grid and centred")
-_CENTER = Param("center", "[x, y, z]: the model point at the grid's middle (with scale): a fixed placement")
-_ARC = Param("arc", "[start, end], degrees: keep only that open part of the curve (mode surface)")
-_AT = Param("at", "a 4D field's last coordinate at the 3D slice (default its middle)")
+_SCALE = Param("scale", "voxels per model unit; without it the shape is fitted to the grid and centred", label="voxels per unit")
+_CENTER = Param("center", "[x, y, z]: the model point at the grid's middle (with scale): a fixed placement", label="centre point")
+_ARC = Param("arc", "[start, end], degrees: keep only that open part of the curve (mode surface)", label="open arc (degrees)")
+_AT = Param("at", "a 4D field's last coordinate at the 3D slice (default its middle)", label="4D slice at w")
 _COMMON = (_K, _MODE, _SIZE, _SCALE)
 
 #: Maker name → row.
@@ -163,15 +170,15 @@ MAKERS: dict[str, Maker] = {m.name: m for m in (
             Param("generatrix", "the profile in the (radius, height) half-plane: an expression, a drawing or a "
                                 "bitmap; x = g(y) is the solid under a radius function"),
             Param("curve", "the curve of revolution: an expression in x, y (or x, y, z), a drawing or a bitmap"),
-            Param("axis", "x of the axis in a drawn or bitmap generatrix (default its leftmost point)"),
-            Param("curve_threshold", "grey level between inside and outside of a bitmap curve (between 0 and 1)"),
-            Param("generatrix_threshold", "grey level between inside and outside of a bitmap generatrix (between 0 and 1)"),
+            Param("axis", "x of the axis in a drawn or bitmap generatrix (default its leftmost point)", label="axis position"),
+            Param("curve_threshold", "grey level between inside and outside of a bitmap curve (between 0 and 1)", label="curve grey level"),
+            Param("generatrix_threshold", "grey level between inside and outside of a bitmap generatrix (between 0 and 1)", label="generatrix grey level"),
             *_COMMON,
             _AT,
-            Param("z_range", "[low, high]: the heights an explicit generatrix x = g(y) spans (default [-1, 1])"),
+            Param("z_range", "[low, high]: the heights an explicit generatrix x = g(y) spans (default [-1, 1])", label="heights of g(y)"),
             _ARC,
             _CENTER,
-            Param("curve_open", "take a drawn curve as the open stroke it is: the surface between its ends"),
+            Param("curve_open", "take a drawn curve as the open stroke it is: the surface between its ends", label="open curve (a surface between its ends)"),
         ),
         random="voxfab.digitize._recipes:random_revolution",
     ),
@@ -184,18 +191,18 @@ MAKERS: dict[str, Maker] = {m.name: m for m in (
             Param("radius", "largest radius of the profile, in model units"),
             Param("twist", "total rotation of the profile along the spine, degrees"),
             Param("phase", "constant rotation of the profile, degrees"),
-            Param("frame", '"rmf" (rotation-minimising) or "frenet": how the profile turns along the spine'),
+            Param("frame", '"rmf" (rotation-minimising) or "frenet": how the profile turns along the spine', label="profile frame"),
             Param("cap", '"flat" or "round": the ends of an open spine'),
             Param("closed", "force the spine closed or open (default: closed when its ends meet)"),
-            Param("t_min", "first value of t of an expression spine"),
-            Param("t_max", "last value of t of an expression spine"),
-            Param("samples", "samples of t along an expression spine", 2, MAX_SAMPLES),
-            Param("threshold", "grey level between inside and outside of a bitmap profile (between 0 and 1)"),
-            Param("stroke", "full width of the open strokes of a drawn profile (default 1/100 of its diagonal)"),
+            Param("t_min", "first value of t of an expression spine", label="first t"),
+            Param("t_max", "last value of t of an expression spine", label="last t"),
+            Param("samples", "samples of t along an expression spine", 2, MAX_SAMPLES, label="samples along the spine"),
+            Param("threshold", "grey level between inside and outside of a bitmap profile (between 0 and 1)", label="grey level"),
+            Param("stroke", "full width of the open strokes of a drawn profile (default 1/100 of its diagonal)", label="stroke width"),
             *_COMMON,
             _ARC,
             _CENTER,
-            Param("profile_open", "take a drawn profile as the open stroke it is: a ribbon between its ends"),
+            Param("profile_open", "take a drawn profile as the open stroke it is: a ribbon between its ends", label="open profile (a ribbon)"),
         ),
         random="voxfab.digitize._recipes:random_tube",
     ),
@@ -215,7 +222,7 @@ MAKERS: dict[str, Maker] = {m.name: m for m in (
         "an expression in x, y, z (or x, y, z, w: a 3D slice of a 4D object)",
         (
             Param("expression", "the region expression <= 0 (or an equation), in x, y, z and optionally w"),
-            Param("bounds", "[x0, x1, y0, y1, z0, z1(, w0, w1)]: the model box, instead of the sampled estimate"),
+            Param("bounds", "[x0, x1, y0, y1, z0, z1(, w0, w1)]: the model box, instead of the sampled estimate", label="model box"),
             _AT,
             *_COMMON,
         ),

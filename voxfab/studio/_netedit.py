@@ -60,6 +60,36 @@ def net_item(grid: np.ndarray, net: Any, marks: Any, *, history: int, extra: dic
     }
 
 
+_NORMALS = {"+x": (1, 0, 0), "-x": (-1, 0, 0), "+y": (0, 1, 0), "-y": (0, -1, 0), "+z": (0, 0, 1), "-z": (0, 0, -1)}
+
+
+def piece_of(pieces: list[Any], face: tuple) -> int | None:
+    """The 1-based number of the piece holding ``face`` (``(x, y, z, "+z")``), as the nets print it, or None."""
+    x, y, z, d = face
+    n = np.asarray(_NORMALS[d])
+    for i, net in enumerate(pieces):
+        if bool(((net.voxel == (x, y, z)).all(axis=1) & (net.normal == n).all(axis=1)).any()):
+            return i + 1
+    return None
+
+
+def refusal_words(message: str, pieces: list[Any], a: tuple, b: tuple) -> str:
+    """A refused join in the pieces' own numbers (the edge's faces stay in brackets at the end, for the tooltip).
+
+    The library names an edge by its two faces, ``[14,13,7,+x]-[15,13,6,+z]``; the page shows
+    pieces by their printed numbers, so the artist reads which pieces would not join and why.
+    """
+    pa, pb = piece_of(pieces, a), piece_of(pieces, b)
+    if pa is None or pb is None or "no room to join" not in message:
+        return message
+    if pa != pb:
+        said = f"pieces {min(pa, pb)} and {max(pa, pb)} cannot be joined along that edge: the joined piece would overlap itself"
+    else:
+        said = (f"that edge of piece {pa} cannot be closed: every way to open the loop it closes makes faces "
+                "overlap or opens a seam that is cut")
+    return f"{said} ({message})"
+
+
 def _edge(value: Any, name: str) -> tuple[tuple, tuple]:
     from voxfab.unfold._constraints import _edge as parse_edge
 
@@ -121,7 +151,12 @@ def apply_edit(job: Any, data: dict[str, Any]) -> dict[str, Any]:
         if kind == "cut":
             result = cut_edge(grid, _pieces(net), a, b, constraints=known, split=split)
         else:
-            result = join_edge(grid, _pieces(net), a, b, constraints=known)
+            from voxfab.errors import UnfoldError
+
+            try:
+                result = join_edge(grid, _pieces(net), a, b, constraints=known)
+            except UnfoldError as exc:
+                raise UnfoldError(refusal_words(str(exc), _pieces(net), a, b)) from None
         history = (history + [(net, marks)])[-MAX_UNDO:]
         net = result.pieces[0] if len(result.pieces) == 1 else result.pieces
         marks = result.marks

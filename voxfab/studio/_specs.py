@@ -239,7 +239,7 @@ def form_keys(maker: str) -> tuple[str, ...]:
 def maker_table() -> list[dict[str, Any]]:
     """The makers table as the page reads it (``/api/info``): per maker its name, summary and keys.
 
-    Each key has its name, help, type in words, range, default and requirement from the table,
+    Each key has its name, its ``label`` in plain words (:attr:`voxfab.digitize.Param.words`), help, type in words, range, default and requirement from the table,
     its form ``kind`` and ``choices`` (:attr:`voxfab.digitize.Param.kind`), and ``input``: ``"drawn"``
     when the page's drawing gives it, ``"form"`` when a form field does, None when the studio cannot.
     """
@@ -249,7 +249,7 @@ def maker_table() -> list[dict[str, Any]]:
     for name, row in MAKERS.items():
         drawn, form = drawn_keys(name), form_keys(name)
         table.append({"name": name, "help": row.help, "params": [
-            {"name": p.name, "help": p.help, "type": p.type_words, "low": p.low, "high": p.high,
+            {"name": p.name, "label": p.words, "help": p.help, "type": p.type_words, "low": p.low, "high": p.high,
              "default": p.default, "required": p.required, "kind": p.kind, "choices": list(p.choices),
              "input": "drawn" if p.name in drawn else "form" if p.name in form else None}
             for p in maker_params(name).values()]})

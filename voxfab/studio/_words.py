@@ -44,6 +44,10 @@ _PLAIN: tuple[tuple[re.Pattern[str], str | Callable[[re.Match[str]], str]], ...]
     (re.compile(r"\(--([a-z][a-z-]*)(?: ([^()\s]+))?\)"),
      lambda m: _choose(m.group(1).replace("-", "_"), m.group(2)) if m.group(2) else f"(choose {m.group(1).replace('-', ' ')})"),
     (re.compile(r"\bk-flake\b"), "wall"),
+    # a refused edit in the pieces' numbers, its technical line (the edge's faces) kept for the tooltip
+    (re.compile(r" \(no room to join edge \[[^()]*\)$"), ""),
+    # the marks' names on the page: the checkbox says "seam labels"
+    (re.compile(r"\bedge labels\b"), "seam labels"),
     # "exact search": the search that tries every net in a box until one fits or none can
     (re.compile(r"\b(?:the )?exact search\b"), "the complete search"),
     # a failure of the server itself: its exception's name and text stay in the tooltip

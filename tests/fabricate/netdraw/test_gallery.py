@@ -13,11 +13,13 @@ from voxfab.fabricate.netdraw import (
     NetOptions,
     draw_net,
     draw_pieces,
+    find_sheet_nets,
     gallery_json,
     gallery_options,
     net_gallery,
     net_layout,
 )
+from voxfab.fabricate.netdraw._sheets import extent_of
 from voxfab.shape import examples, surface_graph
 from voxfab.unfold import outline_key, unfold, validate
 
@@ -154,7 +156,13 @@ def test_the_queen_on_a4_says_what_would_work() -> None:
         # The face size offered is too small for the marks: it comes without them.
         small = ways[("face_size", "numbers", "tabs")]
         assert small["numbers"] is False and small["tabs"] is False
-        assert fit["extent"][0] * small["face_size"] <= 277 or fit["extent"][1] * small["face_size"] <= 277
+        # ... the face size measured for the shape (a one-piece net was found to fit A4 at it), named by the words
+        assert small["face_size"] == fit["largest_face_size"] and f"up to {small['face_size']:g} mm" in fit["message"]
+    bare = drawing.replace(pitch=gallery.nets[0].fit["largest_face_size"], numbers=False, tabs=False)
+    (found,) = find_sheet_nets(grid, bare, rng=0).nets[0]
+    ex, ey = extent_of(found.corners2d)
+    # A4 less its 10 mm margins and the title band: 190 x 272 mm
+    assert min(ex, ey) * bare.pitch <= 190 and max(ex, ey) * bare.pitch <= 272
     order = [(i.fit["extent"][0] * i.fit["extent"][1]) for i in gallery.nets]
     assert order == sorted(order)
 

@@ -63,3 +63,61 @@ def test_piece_numbers_are_at_least_as_tall_as_the_seam_labels(tmp_path: Path) -
             assert height >= seam_height - 1e-3, (s + 1, c, height, seam_height)
             measured += 1
     assert measured == len(pieces)
+
+
+def _number_boxes_and_strokes(path: str) -> tuple[np.ndarray, np.ndarray, list[np.ndarray]]:
+    """The LABEL layer of a written DXF sheet: the piece numbers' boxes (its closed rectangles, as lo and hi
+    corners) and every other stroke."""
+    import ezdxf
+
+    boxes, strokes = [], []
+    for _, pts, closed in polylines(ezdxf.readfile(path), "LABEL"):
+        if closed and len(pts) == 4:
+            boxes.append((pts.min(axis=0), pts.max(axis=0)))
+        else:
+            strokes.append(pts)
+    lo = np.array([b[0] for b in boxes]).reshape(-1, 2)
+    hi = np.array([b[1] for b in boxes]).reshape(-1, 2)
+    return lo, hi, strokes
+
+
+@pytest.mark.parametrize(("shape", "sheet", "cut", "box"), [
+    ("queen", "A5", "flat", None), ("queen", "A4", "auto", None), ("queen", "80x80", "flat", None),
+    ("ball", "A4", "auto", (2, 1)),  # dozens of one-face pieces, packed side by side
+])
+def test_piece_numbers_are_boxed_apart_from_each_other_and_from_the_seam_labels(tmp_path: Path, shape, sheet, cut,
+                                                                                box) -> None:
+    """Measured from the written DXF sheets: each number's box is taller than a seam label, no two boxes
+    meet, and every other stroke of the labels layer lies wholly inside a box (the number's own) or
+    wholly outside every box, one-face pieces included."""
+    from voxfab.fabricate.netdraw import DrawingOptions, write_net_drawing
+    from voxfab.fabricate.netdraw._sheets import sheet_cells
+    from voxfab.recipe import load_recipe
+    from voxfab.recipe._build import make_shape
+    from voxfab.shape import examples
+    from voxfab.unfold import unfold
+
+    grid = make_shape(load_recipe(ROOT / "recipes" / "chess" / "queen.toml")).grid if shape == "queen" else \
+        examples.ball(2)
+    options = DrawingOptions(sheet=sheet, pitch=8.6)
+    pieces = unfold(grid, rng=0, pieces=cut, fit=box or sheet_cells(options, 8.6), timeout=60.0)
+    written = write_net_drawing(grid, pieces, tmp_path / "net.dxf", options, title=shape)
+    boxes = 0
+    for path in written.files:
+        lo, hi, strokes = _number_boxes_and_strokes(path)
+        boxes += len(lo)
+        seam = [s for s in strokes if len(s) >= 3]  # glyph strokes (a tape mark is a bar of 2 points)
+        seam_height = max(float(np.ptp(s[:, 1])) for s in seam) if seam else 0.0
+        for a in range(len(lo)):
+            assert hi[a, 1] - lo[a, 1] > seam_height + 1e-6
+            for b in range(a + 1, len(lo)):
+                apart = (hi[a] < lo[b]).any() or (hi[b] < lo[a]).any()
+                assert apart, (path, lo[a], hi[a], lo[b], hi[b])
+        for s in strokes:
+            s_lo, s_hi = s.min(axis=0), s.max(axis=0)
+            inside = ((s_lo >= lo - 1e-6) & (s_hi <= hi + 1e-6)).all(axis=1)
+            meets = ((s_lo <= hi) & (s_hi >= lo)).all(axis=1)
+            assert inside.sum() == 1 or not meets.any(), (path, s_lo, s_hi)
+    assert boxes == len(pieces) > 1
+    if shape == "ball":
+        assert sum(p.face_count == 1 for p in pieces) >= 10

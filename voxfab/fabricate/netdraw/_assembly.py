@@ -14,14 +14,15 @@ import numpy.typing as npt
 
 from voxfab.drawing import Page, Polylines, text_polylines, text_width
 
-from ._legible import NUMBER_INSET
+from ._tabs import TabPlan
 
 #: Height of the text lines of the assembly page, mm.
 ASSEMBLY_TEXT = 3.5
 
 
 def piece_name(number: int) -> str:
-    """How piece ``number`` (1-based) is printed: ``(3)``; brackets are no seam label's characters."""
+    """How piece ``number`` (1-based) is named on the assembly page: ``(3)``; brackets are no seam label's
+    characters.  On the sheets it is boxed instead (:func:`number_text`)."""
     return f"({number})"
 
 
@@ -61,26 +62,150 @@ def number_faces(face_piece: npt.NDArray[np.int64], joined: npt.NDArray[np.bool_
     return out
 
 
-def number_text(names: list[str], centres: npt.NDArray[np.float64], pitch: float, label_h: float,
-                free: npt.NDArray[np.bool_] | None = None) -> Polylines:
-    """Piece names centred on their faces, clear of the seam labels along the edges, never smaller than those.
+#: Piece-number heights tried, over the seam labels' height: the largest that finds room is drawn.
+NUMBER_SCALES = (1.6, 1.4, 1.25)
+#: Room between a number and its box, over the number's height; the box's clear paper to any label, mm.
+BOX_PAD = 0.3
+NUMBER_CLEAR = 0.3
+#: Where a number may stand on a face, in face sizes from its middle (the nearest first).
+_OFFSETS = sorted(((dx, dy) for dx in (-0.5, -0.25, 0.0, 0.25, 0.5) for dy in (-0.5, -0.25, 0.0, 0.25, 0.5)),
+                  key=lambda o: (o[0] ** 2 + o[1] ** 2, o))
+#: Where a number may stand beside its piece, in face sizes from a face's middle (the nearest first).
+_BESIDE = sorted(((dx / 4, dy / 4) for dx in range(-20, 21) for dy in range(-20, 21) if max(abs(dx), abs(dy)) >= 2),
+                 key=lambda o: (o[0] ** 2 + o[1] ** 2, o))
 
-    ``free`` marks the faces with no seam label (all four edges folded): the whole face is
-    room for the name.  Elsewhere the seam labels keep to a strip inset + label height
-    deep along each edge.  A name is at least ``label_h`` tall, as tall as the seam labels
-    a maker reads beside it, even where that takes it over a label strip.
+
+def number_box(name: str, centre: npt.ArrayLike, height: float) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """Lower and upper corners, mm, of the box drawn round piece number ``name`` of ``height`` mm at ``centre``."""
+    half = np.array([text_width(name, height) / 2, height / 2]) + BOX_PAD * height
+    c = np.asarray(centre, dtype=np.float64)
+    return c - half, c + half
+
+
+Boxes = tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]
+
+
+def place_numbers(names: list[str], face_piece: npt.NDArray[np.int64], face_sheet: npt.NDArray[np.int64],
+                  pos: npt.NDArray[np.float64], prefer: npt.NDArray[np.int64], pitch: float, label_h: float,
+                  blocked: dict[int, Boxes], paper: dict[int, Boxes], area: tuple[float, float, float, float],
+                  ) -> list[tuple[int, npt.NDArray[np.float64], float]]:
+    """Where each piece's number stands: ``(sheet, centre mm, height mm)``, boxed on its own piece's faces.
+
+    The number is taller than the seam labels (:data:`NUMBER_SCALES` times them, the largest that
+    finds room), and its box lies on faces of its piece, clear of every box of ``blocked`` (per sheet:
+    the seam labels and tape marks, ``(lo, hi)`` arrays) and of the numbers placed before, so numbers
+    never run into labels or into each other, as two one-face pieces side by side would.  Faces are
+    tried from ``prefer`` (per piece, the face with most folded edges) outwards by folded edges, each
+    from its middle outwards.  A piece whose faces have no such room (a one-face piece: its four
+    labels fill it) has its number on the free paper beside it, inside ``area`` and clear of all
+    ``paper`` (per sheet: the faces and tabs), nearest first; with no room there either, its
+    preferred face's middle at the smallest scale.
     """
+    out: list[tuple[int, npt.NDArray[np.float64], float]] = []
+    placed: dict[int, list[tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]]] = {}
+    lows = pos.min(axis=1)  # (F, 2) each face's lower corner
+    for i, name in enumerate(names):
+        faces = np.flatnonzero(face_piece == i)
+        first = int(prefer[i])
+        sheet = int(face_sheet[first])
+        faces = faces[face_sheet[faces] == sheet]
+        faces = np.concatenate([[first], faces[faces != first]])
+        origin = lows[first]
+        keys = {(int(a), int(b)) for a, b in np.rint((lows[faces] - origin) / pitch).astype(np.int64).tolist()}
+        centres = (lows[faces][:, None, :] + pitch / 2 + np.array(_OFFSETS)[None] * pitch).reshape(-1, 2)
+        lo_b, hi_b = blocked.get(sheet, (np.zeros((0, 2)), np.zeros((0, 2))))
+        mine = placed.setdefault(sheet, [])
+        if mine:
+            lo_b = np.concatenate([lo_b, np.array([b[0] for b in mine])])
+            hi_b = np.concatenate([hi_b, np.array([b[1] for b in mine])])
+        spot = None
+        for scale in NUMBER_SCALES:
+            h = scale * label_h
+            lo, hi = number_box(name, np.zeros(2), h)
+            lo, hi = centres + lo, centres + hi
+            ok = _on_cells(lo, hi, origin, pitch, keys)
+            ok &= ~_meets(lo, hi, lo_b, hi_b).any(axis=1)
+            if ok.any():
+                spot = (centres[int(np.argmax(ok))], h)
+                break
+        if spot is None:  # beside the piece, on free paper
+            # the nearest spots to any face of the piece first, so the number reads as its piece's
+            near = (lows[faces][None, :, :] + pitch / 2 + np.array(_BESIDE)[:, None, :] * pitch).reshape(-1, 2)
+            lo_p, hi_p = paper.get(sheet, (np.zeros((0, 2)), np.zeros((0, 2))))
+            lo_all, hi_all = np.concatenate([lo_b, lo_p]), np.concatenate([hi_b, hi_p])
+            for scale in NUMBER_SCALES:
+                h = scale * label_h
+                lo, hi = number_box(name, np.zeros(2), h)
+                lo, hi = near + lo, near + hi
+                ok = (lo[:, 0] >= area[0]) & (lo[:, 1] >= area[1]) & (hi[:, 0] <= area[2]) & (hi[:, 1] <= area[3])
+                ok &= ~_meets(lo, hi, lo_all, hi_all).any(axis=1)
+                if ok.any():
+                    spot = (near[int(np.argmax(ok))], h)
+                    break
+        if spot is None:
+            spot = (lows[first] + pitch / 2, NUMBER_SCALES[-1] * label_h)
+        mine.append(number_box(name, spot[0], spot[1]))
+        out.append((sheet, spot[0], spot[1]))
+    return out
+
+
+def _meets(lo: npt.NDArray[np.float64], hi: npt.NDArray[np.float64], lo_b: npt.NDArray[np.float64],
+           hi_b: npt.NDArray[np.float64]) -> npt.NDArray[np.bool_]:
+    """``(n, m)``: which of boxes ``lo``-``hi`` come within :data:`NUMBER_CLEAR` of which of ``lo_b``-``hi_b``."""
+    return ((lo[:, None, 0] < hi_b[None, :, 0] + NUMBER_CLEAR) & (hi[:, None, 0] > lo_b[None, :, 0] - NUMBER_CLEAR)
+            & (lo[:, None, 1] < hi_b[None, :, 1] + NUMBER_CLEAR) & (hi[:, None, 1] > lo_b[None, :, 1] - NUMBER_CLEAR))
+
+
+def _on_cells(lo: npt.NDArray[np.float64], hi: npt.NDArray[np.float64], origin: npt.NDArray[np.float64],
+              pitch: float, keys: set[tuple[int, int]]) -> npt.NDArray[np.bool_]:
+    """Which boxes (at most two faces across) lie wholly on the cells ``keys`` counted from ``origin``."""
+    ok = np.ones(lo.shape[0], dtype=bool)
+    eps = 1e-6 * pitch
+    for fx in (0.0, 0.5, 1.0):
+        for fy in (0.0, 0.5, 1.0):
+            pt = lo + (hi - lo) * (fx, fy) + np.where(np.array([fx, fy]) == 0.0, eps, np.where(np.array([fx, fy]) == 1.0, -eps, 0.0))
+            cell = np.floor((pt - origin) / pitch).astype(np.int64)
+            ok &= np.array([(int(a), int(b)) in keys for a, b in cell.tolist()], dtype=bool)
+    return ok
+
+
+def ink_under(centre: npt.NDArray[np.float64], s: int, fs: npt.NDArray[np.int64], pos: npt.NDArray[np.float64],
+              ink: npt.NDArray[np.int64], paper: int) -> int:
+    """The ink of the face under ``centre`` on sheet ``s`` (a piece number on its piece), else ``paper``'s."""
+    lo, hi = pos.min(axis=1), pos.max(axis=1)
+    under = np.flatnonzero((fs == s) & (lo <= centre).all(axis=1) & (hi >= centre).all(axis=1))
+    return int(ink[under[0]]) if under.size else paper
+
+
+def paper_boxes(pos: npt.NDArray[np.float64], fs: npt.NDArray[np.int64], sides: npt.NDArray[np.int64],
+                 tabs: TabPlan) -> dict[int, tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]]:
+    """Per sheet, the boxes ``(lo, hi)`` of every face and glue tab: the paper a number beside its piece must keep off."""
+    seam_face = sides[np.arange(sides.shape[0]), np.maximum(tabs.side, 0), 0]
+    poly = tabs.polygon[tabs.placed]
+    lo = np.concatenate([pos.min(axis=1), poly.min(axis=1)])
+    hi = np.concatenate([pos.max(axis=1), poly.max(axis=1)])
+    sheets = np.concatenate([fs, fs[seam_face[tabs.placed]]])
+    return {int(s): (lo[sheets == s], hi[sheets == s]) for s in np.unique(sheets).tolist()}
+
+
+def number_text(names: list[str], centres: npt.NDArray[np.float64], heights: npt.NDArray[np.float64]) -> Polylines:
+    """Piece numbers in bold (each stroke twice, a hair apart), each in its box (:func:`number_box`)."""
     if not names:
         return Polylines.empty()
-    clear = np.zeros(len(names), dtype=bool) if free is None else np.asarray(free, dtype=bool)
-    heights = []
-    for t, whole in zip(names, clear.tolist()):
-        room = pitch * (1 - 2 * NUMBER_INSET) - (0.0 if whole else 2 * label_h) - 0.1 * pitch
-        fit = min(2 * label_h, 0.9 * room / max(text_width(t, 1.0), 1e-9), 0.8 * room)
-        heights.append(max(label_h, fit))
-    heights = np.array(heights)
+    centres = np.asarray(centres, dtype=np.float64).reshape(-1, 2)
+    heights = np.asarray(heights, dtype=np.float64).reshape(-1)
     origins = centres - np.stack([np.zeros(len(names)), heights / 2], axis=1)
-    return text_polylines(names, origins, np.tile([1.0, 0.0], (len(names), 1)), heights, center=True)
+    right = np.tile([1.0, 0.0], (len(names), 1))
+    bold = (0.07 * heights)[:, None] * np.array([1.0, 0.0])
+    boxes = []
+    for name, c, h in zip(names, centres, heights.tolist()):
+        lo, hi = number_box(name, c, h)
+        boxes.append(np.array([[lo[0], lo[1]], [hi[0], lo[1]], [hi[0], hi[1]], [lo[0], hi[1]]]))
+    return Polylines.concat([
+        text_polylines(names, origins - bold, right, heights, center=True),
+        text_polylines(names, origins + bold, right, heights, center=True),
+        Polylines.from_list(boxes, [True] * len(boxes)),
+    ])
 
 
 def assembly_page(sheets: list[tuple[float, float, Polylines, list[tuple[int, npt.NDArray[np.float64]]]]],

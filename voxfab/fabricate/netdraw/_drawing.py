@@ -23,7 +23,17 @@ from voxfab.errors import InvalidShapeError
 from voxfab.shape import SurfaceGraph, VoxelColours, surface_graph
 from voxfab.unfold import Net
 
-from ._assembly import assembly_page, gluing_order, number_faces, number_text, piece_joins, piece_name
+from ._assembly import (
+    assembly_page,
+    gluing_order,
+    ink_under,
+    number_faces,
+    number_text,
+    paper_boxes,
+    piece_joins,
+    piece_name,
+    place_numbers,
+)
 from ._geometry import NetEdges, check_net, classify_edges, merge_unit_segments, trace_outlines
 from ._labels import label_length, seam_labels
 from ._legible import LABEL_ADVANCE, NUMBER_INSET, legibility_problem, number_height, number_start
@@ -542,20 +552,25 @@ def _draw(graph: SurfaceGraph, net: Net, plan: SheetPlan, opts: DrawingOptions, 
     title = f"{name}  FACES {p:g} MM  SEED {net.seed}".strip()
     joins = piece_joins(face_piece, sides)
     order = gluing_order(np.bincount(face_piece, minlength=pieces).tolist(), joins)
-    at = number_faces(face_piece, joined)
-    number_at = tuple((int(fs[f]), pos[f].mean(axis=0)) for f in at.tolist())
-    free = joined[at].all(axis=1).tolist()  # a number's face without seam labels: all of it is room
+    labels = seam_labels(numbers.tolist(), chars)
     paint = net_paint(graph, net, colours, opts.bleed) if colours is not None else None
     ink = paint.ink if paint is not None else np.zeros(net.face_count, dtype=np.int64)
     firsts = np.searchsorted(face_piece, face_piece)  # each face's piece starts here in the joined net
     local = np.arange(net.face_count) - firsts
     names = [f"face-{i}" if pieces == 1 else f"piece-{p + 1}-face-{i}"
              for p, i in zip(face_piece.tolist(), local.tolist())]
+    piece_names = [str(i + 1) for i in range(pieces)] if pieces > 1 else []
+    # Each piece's number, boxed, clear of every seam label and tape mark and of the other numbers.
+    spots = place_numbers(piece_names, face_piece, fs, pos, number_faces(face_piece, joined), p, label_h,
+                          _mark_boxes(pos, fs, sides, labels, tabs, elsewhere, p, label_h, opts.numbers),
+                          paper_boxes(pos, fs, sides, tabs), plan.area) if piece_names else []
+    number_at = tuple((s, c) for s, c, _ in spots)
+    paper_ink = 0 if paint is None else min(INKS)  # the ink of the bare paper, as the heading's
+    number_ink = [ink_under(c, s, fs, pos, ink, paper_ink) for s, c, _ in spots]
     sheets = tuple(
         _draw_sheet(s, plan, edges, joined, sides, seam_type, tabs, opts, label_h, title, pos, shared,
-                    seam_labels(numbers.tolist(), chars), elsewhere,
-                    [(piece_name(i + 1), c, free[i], int(ink[at[i]])) for i, (ps, c) in enumerate(number_at)
-                     if ps == s] if pieces > 1 else [], paint, names)
+                    labels, elsewhere, [(piece_names[i], c, h, number_ink[i]) for i, (ps, c, h) in enumerate(spots)
+                                        if ps == s], paint, names)
         for s in range(plan.count)
     )
     return NetDrawing(
@@ -574,7 +589,7 @@ def _draw_sheet(
     s: int, plan: SheetPlan, edges: NetEdges, joined: npt.NDArray[np.bool_], sides: npt.NDArray[np.int64],
     seam_type: npt.NDArray[np.int64], tabs: TabPlan, opts: DrawingOptions, label_h: float, title: str,
     pos: npt.NDArray[np.float64], shared: npt.NDArray[np.bool_], labels: list[str],
-    elsewhere: npt.NDArray[np.bool_], piece_numbers: list[tuple[str, npt.NDArray[np.float64], bool, int]],
+    elsewhere: npt.NDArray[np.bool_], piece_numbers: list[tuple[str, npt.NDArray[np.float64], float, int]],
     paint: Paint | None = None, names: list[str] | None = None,
 ) -> Sheet:
     p = plan.pitch
@@ -679,16 +694,11 @@ def _draw_sheet(
         inward = np.stack([-d[:, 1], d[:, 0]], axis=1)
         here_texts = [labels[i] for i in np.flatnonzero(here).tolist()]
         texts += here_texts
-        # Centred on the edge, or pushed along it just clear of the label on the previous edge.
-        width = np.array([text_width(t, label_h, LABEL_ADVANCE) for t in here_texts]).reshape(-1)
-        along = np.maximum((p - width) / 2, number_start(p, label_h))
-        org.append(p0 + d * along[:, None] + inward * (NUMBER_INSET * p))
+        start, _ = _label_span(p0, d, inward, here_texts, p, label_h)
+        org.append(start)
         dirs.append(d)
-        no_tab = ~tabs.placed[here] & ~elsewhere[here]
-        # A seam without a tab gets a bar along both its edges: tape or glue it edge to edge.
-        off = inward[no_tab] * (0.015 * p)
-        marks.append((p0[no_tab] + d[no_tab] * 0.2 * p + off, p1[no_tab] - d[no_tab] * 0.2 * p + off))
-        mark_ink.append(text_ink[-1][no_tab])
+        marks.append(_tape_bar(p0, p1, d, inward, ~tabs.placed[here] & ~elsewhere[here], p))
+        mark_ink.append(text_ink[-1][~tabs.placed[here] & ~elsewhere[here]])
     if texts and opts.numbers:
         all_org, all_dirs = np.concatenate(org), np.concatenate(dirs)
         by_ink("LABEL", np.concatenate(text_ink), lambda m: text_polylines(
@@ -699,8 +709,7 @@ def _draw_sheet(
     if piece_numbers:
         by_ink("LABEL", np.array([k for *_, k in piece_numbers]), lambda m: number_text(
             [t for (t, *_), k in zip(piece_numbers, m.tolist()) if k],
-            np.array([c for _, c, _, _ in piece_numbers])[m], p, label_h,
-            np.array([f for _, _, f, _ in piece_numbers])[m]))
+            np.array([c for _, c, _, _ in piece_numbers])[m], np.array([h for _, _, h, _ in piece_numbers])[m]))
     heading = title + (f"  SHEET {s + 1}/{plan.count}" if plan.count > 1 else "")
     if heading and opts.heading:
         x0, _, x1, _ = plan.area
@@ -727,6 +736,52 @@ def _draw_sheet(
         colour_fills=colour_fills, inks=ink_list,
         marks=registration_marks(Cutter(opts.cutter), plan.size, float(opts.margin)),
     )
+
+
+def _label_span(p0: npt.NDArray[np.float64], d: npt.NDArray[np.float64], inward: npt.NDArray[np.float64],
+                texts: list[str], p: float, label_h: float) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """Where seam labels on edges from ``p0`` along ``d`` start (their baseline's start), and their widths, mm:
+    centred on the edge, or pushed along it just clear of the label on the previous edge."""
+    width = np.array([text_width(t, label_h, LABEL_ADVANCE) for t in texts]).reshape(-1)
+    along = np.maximum((p - width) / 2, number_start(p, label_h))
+    return p0 + d * along[:, None] + inward * (NUMBER_INSET * p), width
+
+
+def _tape_bar(p0: npt.NDArray[np.float64], p1: npt.NDArray[np.float64], d: npt.NDArray[np.float64],
+              inward: npt.NDArray[np.float64], no_tab: npt.NDArray[np.bool_], p: float
+              ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """A seam without a tab gets a bar along both its edges: tape or glue it edge to edge (its two ends)."""
+    off = inward[no_tab] * (0.015 * p)
+    return p0[no_tab] + d[no_tab] * 0.2 * p + off, p1[no_tab] - d[no_tab] * 0.2 * p + off
+
+
+def _mark_boxes(pos: npt.NDArray[np.float64], fs: npt.NDArray[np.int64], sides: npt.NDArray[np.int64],
+                labels: list[str], tabs: TabPlan, elsewhere: npt.NDArray[np.bool_], p: float, label_h: float,
+                numbers: bool) -> dict[int, tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]]:
+    """Per sheet, the boxes ``(lo, hi)`` of every seam label and tape mark drawn: where no piece number may go."""
+    lo: list[npt.NDArray[np.float64]] = []
+    hi: list[npt.NDArray[np.float64]] = []
+    sheet: list[npt.NDArray[np.int64]] = []
+    for side in (0, 1):
+        fe = sides[:, side]
+        here = fe[:, 0] >= 0
+        p0, p1 = _edge_points(pos, fe[here])
+        d = (p1 - p0) / p
+        inward = np.stack([-d[:, 1], d[:, 0]], axis=1)
+        on = fs[fe[here, 0]]
+        if numbers:
+            start, width = _label_span(p0, d, inward, [labels[i] for i in np.flatnonzero(here).tolist()], p, label_h)
+            end = start + d * width[:, None] + inward * label_h
+            lo.append(np.minimum(start, end))
+            hi.append(np.maximum(start, end))
+            sheet.append(on)
+        no_tab = ~tabs.placed[here] & ~elsewhere[here]
+        a, b = _tape_bar(p0, p1, d, inward, no_tab, p)
+        lo.append(np.minimum(a, b))
+        hi.append(np.maximum(a, b))
+        sheet.append(on[no_tab])
+    los, his, sheets = np.concatenate(lo), np.concatenate(hi), np.concatenate(sheet)
+    return {int(s): (los[sheets == s], his[sheets == s]) for s in np.unique(sheets).tolist()}
 
 
 def _polygon_area(polys: npt.NDArray[np.float64]) -> float:

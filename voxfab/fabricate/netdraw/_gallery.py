@@ -193,7 +193,7 @@ def net_gallery(grid: Any, net: NetOptions, drawing: DrawingOptions, *, count: i
     for pieces in found.nets:  # one surface graph for the whole gallery
         if pieces[0].filled not in graphs:
             graphs[pieces[0].filled] = surface_graph(fill_cavities(grid) if pieces[0].filled else grid)
-    items = [GalleryNet(pieces, *fit_and_placement(pieces, options, graphs[pieces[0].filled]))
+    items = [GalleryNet(pieces, *fit_and_placement(pieces, options, graphs[pieces[0].filled], found.best_extent))
              for pieces in found.nets]
     items.sort(key=lambda g: fit_order(g.fit))
     if on_item is not None:
@@ -284,8 +284,8 @@ def fit_order(fit: dict[str, Any]) -> tuple[Any, ...]:
     return (not fit["fits"], fit.get("sheets") or 1 << 30, -round(sum(fill) / len(fill), 6), ex * ey, max(ex, ey))
 
 
-def fit_and_placement(pieces: list[Net], options: DrawingOptions, graph: Any
-                      ) -> tuple[dict[str, Any], dict[str, Any] | None]:
+def fit_and_placement(pieces: list[Net], options: DrawingOptions, graph: Any,
+                      best_extent: tuple[int, int] | None = None) -> tuple[dict[str, Any], dict[str, Any] | None]:
     """The net's fit to the sheet and the PLACEMENT of its pieces on the sheets (None when it does not fit).
 
     ``graph`` is the surface graph of the shape the pieces unfold; the sheets are the drawing's own
@@ -299,12 +299,15 @@ def fit_and_placement(pieces: list[Net], options: DrawingOptions, graph: Any
         ``largest_face_size`` (the largest at which the largest piece fits one sheet) and,
         when it does not fit, ``message`` (the CLI's words) and ``ways_out``.
     placement : dict or None
+
+    ``best_extent`` is the extent of the net measured to fit the sheet at the largest face size
+    (:attr:`._fit.SheetNets.best_extent`): a net that does not fit names that face size.
     """
-    fit, placement, _ = _laid_out(pieces, options, graph)
+    fit, placement, _ = _laid_out(pieces, options, graph, best_extent)
     return fit, placement
 
 
-def _laid_out(pieces: list[Net], options: DrawingOptions, graph: Any
+def _laid_out(pieces: list[Net], options: DrawingOptions, graph: Any, best_extent: tuple[int, int] | None = None
               ) -> tuple[dict[str, Any], dict[str, Any] | None, int]:
     """:func:`fit_and_placement` from one packing, and the seams it leaves without room for a tab."""
     from ._drawing import _packed
@@ -332,8 +335,12 @@ def _laid_out(pieces: list[Net], options: DrawingOptions, graph: Any
             _, plan, _, _, tabs, seams = _packed(graph, pieces, options)
             untabbed = seams - tabs
     except SheetFitError:
-        err = fit_error(extent, options, pitch, what="the net" if len(pieces) == 1 else "a piece")
-        fit.update(fits=False, sheets=None, fill=[], message=str(err),
+        from ._fit import split_checked
+
+        one = len(pieces) == 1
+        err = fit_error(extent, options, pitch, what="the net" if one else "a piece", found=best_extent if one else None,
+                        split=one and split_checked(pieces[0].face_count, options, pitch))
+        fit.update(fits=False, sheets=None, fill=[], message=str(err), largest_face_size=err.largest_face_size,
                    ways_out=legible_ways_out(err.ways_out, options, pieces))
         return fit, None, untabbed
     faces = np.bincount(plan.face_sheet, minlength=plan.count)
@@ -353,7 +360,7 @@ def legible_ways_out(ways: list[dict[str, Any]], options: DrawingOptions, pieces
         size = way["options"].get("face_size")
         if size is not None and legibility_problem(options, float(size), chars):
             off = {k: False for k in ("numbers", "tabs") if getattr(options, k)}
-            way = {"label": f"{way['label']} and draw without edge labels and glue tabs",
+            way = {"label": f"{way['label']} and draw without seam labels and glue tabs",
                    "options": {**way["options"], **off}}
         out.append(way)
     return out

@@ -37,21 +37,23 @@ class SheetFitError(UnfoldError):
     """
 
     def __init__(self, message: str, *, extent: tuple[int, int], largest_face_size: float,
-                 smallest_sheet: str | None) -> None:
+                 smallest_sheet: str | None, split: bool = True) -> None:
         super().__init__(message)
         self.extent = extent
         self.largest_face_size = largest_face_size
         self.smallest_sheet = smallest_sheet
+        self.split = split
 
     @property
     def ways_out(self) -> list[dict[str, object]]:
         """The choices that would work, in plain words: ``[{"label": ..., "options": {NAME: VALUE}}]``."""
-        return ways_out(self.largest_face_size, self.smallest_sheet)
+        return ways_out(self.largest_face_size, self.smallest_sheet, split=self.split)
 
 
-def ways_out(largest: float, sheet: str | None) -> list[dict[str, object]]:
-    """Ways out of a net too large for its sheet: pieces, the smallest sheet that takes it, smaller faces."""
-    out: list[dict[str, object]] = [{"label": "split it into pieces", "options": {"pieces": "auto"}}]
+def ways_out(largest: float, sheet: str | None, *, split: bool = True) -> list[dict[str, object]]:
+    """Ways out of a net too large for its sheet: pieces (when ``split``: checked by the caller), the
+    smallest sheet that takes it, smaller faces."""
+    out: list[dict[str, object]] = [{"label": "split it into pieces", "options": {"pieces": "auto"}}] if split else []
     if sheet:
         out.append({"label": f"use a larger sheet ({sheet})", "options": {"sheet": sheet}})
     if largest > 0:
@@ -138,7 +140,7 @@ class HopelessSheetError(UnfoldError):
     @property
     def ways_out(self) -> list[dict[str, object]]:
         """A larger sheet, smaller faces: the same ways out as a net too large for one sheet, less the split."""
-        return ways_out(self.largest_face_size, self.smallest_sheet)[1:]
+        return ways_out(self.largest_face_size, self.smallest_sheet, split=False)
 
 
 def pieces_sheets_at_least(faces: int, options: DrawingOptions, pitch: float,
@@ -159,8 +161,10 @@ def pieces_sheets_at_least(faces: int, options: DrawingOptions, pitch: float,
     return math.ceil(paper / usable - 1e-9) if usable > 0 else math.inf
 
 
-def _pieces_problem(faces: int, options: DrawingOptions, pitch: float,
-                    size: tuple[float, float] | None = None) -> str | None:
+def pieces_problem(faces: int, options: DrawingOptions, pitch: float,
+                   size: tuple[float, float] | None = None) -> str | None:
+    """Why the sheet (or one of ``size`` mm) is hopeless for a net in pieces of ``faces`` faces of ``pitch``
+    mm, or None when it is not."""
     cells = sheet_cells(options, pitch, size)
     if min(cells) < PIECES_LEAST_ACROSS:
         return (f"it takes {cells[0]} x {cells[1]} faces of {pitch:g} mm with their tabs, fewer than "
@@ -182,25 +186,30 @@ def check_pieces_sheet(faces: int, options: DrawingOptions, pitch: float, smalle
     ------
     HopelessSheetError
     """
-    problem = _pieces_problem(faces, options, pitch)
+    problem = pieces_problem(faces, options, pitch)
     if problem is None:
         return
-    sheet = next((name for name, size in sorted(SHEETS.items(), key=lambda kv: (kv[1][0] * kv[1][1], kv[0]))
-                  if _pieces_problem(faces, options, pitch, size) is None), None)
+    sheet = pieces_sheet(faces, options, pitch)
     best = 0.0
     p = math.floor(pitch * 10.0 - 1e-6) / 10.0
     while p >= smallest - 1e-9 and p > 0:
-        if _pieces_problem(faces, options, p) is None:
+        if pieces_problem(faces, options, p) is None:
             best = p
             break
         p = round(p - 0.1, 1)
-    outs = [f"use a larger sheet ({sheet}, --sheet)"] if sheet else []
+    outs = [f"use a larger sheet, {sheet} (--sheet)"] if sheet else []
     if best > 0:
         outs.append(f"make the faces {best:g} mm (--face-size)")
     raise HopelessSheetError(
         f"sheet {options.sheet} is too small for a net in pieces: {problem}; "
         + ("; or ".join(outs) if outs else "no standard sheet takes it at this face size"),
         largest_face_size=best, smallest_sheet=sheet)
+
+
+def pieces_sheet(faces: int, options: DrawingOptions, pitch: float) -> str | None:
+    """The smallest standard sheet that is not hopeless for a net in pieces at ``pitch`` (:func:`pieces_problem`)."""
+    return next((name for name, size in sorted(SHEETS.items(), key=lambda kv: (kv[1][0] * kv[1][1], kv[0]))
+                 if pieces_problem(faces, options, pitch, size) is None), None)
 
 
 def drawable_area(options: DrawingOptions, size: tuple[float, float] | None = None) -> tuple[float, float, float, float]:
@@ -318,16 +327,27 @@ def extent_of(corners2d: npt.NDArray[np.int64]) -> tuple[int, int]:
     return int(ex), int(ey)
 
 
-def fit_error(extent: tuple[int, int], options: DrawingOptions, pitch: float, *, what: str) -> SheetFitError:
-    """The error for a net of ``extent`` faces that does not fit the sheet at ``pitch``."""
+def fit_error(extent: tuple[int, int], options: DrawingOptions, pitch: float, *, what: str,
+              found: tuple[int, int] | None = None, split: bool = True) -> SheetFitError:
+    """The error for a net of ``extent`` faces that does not fit the sheet at ``pitch``.
+
+    ``found`` is the extent of the net the search of the automatic face size found to fit at the
+    largest face size (:func:`._fit.largest_fitting`): the face size and sheet named are measured from
+    it when it fits better, so every refusal agrees with that search.  ``split``: offer pieces (the
+    caller checked that pieces pass at ``pitch``).
+    """
     best = largest_face_size(extent, options)
     sheet = smallest_sheet(extent, options, pitch)
+    fits_at = f"it fits {options.sheet} at faces up to {best:g} mm"
+    if found is not None and largest_face_size(found, options) > best:
+        best = largest_face_size(found, options)
+        sheet = sheet or smallest_sheet(found, options, pitch)
+        fits_at = f"a one-piece net was found that fits {options.sheet} at faces up to {best:g} mm"
     needs = f"at {pitch:g} mm it needs {sheet}" if sheet else f"at {pitch:g} mm it is larger than every standard sheet"
     return SheetFitError(
         f"{what} spans {extent[0]} x {extent[1]} faces and does not fit sheet {options.sheet} at {pitch:g} mm "
-        f"faces: it fits {options.sheet} at faces up to {best:g} mm, and {needs} (--sheet); or split it "
-        "into pieces (--pieces auto)",
-        extent=extent, largest_face_size=best, smallest_sheet=sheet,
+        f"faces: {fits_at}, and {needs} (--sheet)" + ("; or split it into pieces (--pieces auto)" if split else ""),
+        extent=extent, largest_face_size=best, smallest_sheet=sheet, split=split,
     )
 
 
@@ -644,7 +664,7 @@ def _pack_pieces(pieces: list[npt.NDArray[np.int64]], options: DrawingOptions,
     pitch = auto_face_size(max(extents, key=lambda e: e[0] * e[1]), options)
     for e in extents:
         if fits(e, options, pitch) is None:
-            raise fit_error(e, options, pitch, what="a piece")
+            raise fit_error(e, options, pitch, what="a piece", split=False)
     if tab_edges is None:
         tab_edges = [np.zeros((0, 2), dtype=np.int64) for _ in pieces]
     sheet = paper(options, pitch)

@@ -82,7 +82,7 @@ function showFacts(f) {
 function forgetShapeState() {
   $('#save-result').textContent = ''; delete $('#save-result').dataset.name;
   forgetNet();
-  $('#net-fits-answer').textContent = ''; delete $('#net-fits-answer').dataset.answer;
+  clearAnswers();
   if (marker.marks && (marker.marks.cut.length || marker.marks.keep.length)) marker.clear();
 }
 
@@ -534,6 +534,14 @@ function setNetOptions(options) {
 }
 
 // One button per way out of a net that does not fit: it sets all its options and searches again.
+// A new question of the Net tab (a gallery, "does one piece fit?"): the last answer and its ways out go,
+// so that the answer on screen is always the latest one's.
+function clearAnswers() {
+  const out = $('#net-fits-answer');
+  out.textContent = ''; delete out.dataset.answer; out.removeAttribute('title');
+  showWaysOut([]);
+}
+
 function showWaysOut(ways) {
   $('#net-ways').replaceChildren(...(ways || []).map((w) => {
     const b = Object.assign(document.createElement('button'), {type: 'button', textContent: w.label});
@@ -579,7 +587,7 @@ async function gallery(withMarks) {
   const options = netOptions();
   const body = {grid: state.shape.pack(), count: Number($('#net-count').value), seed: Number($('#net-seed').value),
     options, constraints: withMarks ? marker.constraints() : null};
-  forgetNet(); showWaysOut([]);
+  forgetNet(); clearAnswers();
   try {
     $('#net-go').disabled = true; $('#net-regen').disabled = true;
     const t0 = performance.now();
@@ -637,7 +645,8 @@ function choose(i) {
   $$('#net-gallery figure').forEach((f, j) => f.classList.toggle('chosen', i === j));
   marker.setNet(g.job, i, g.nets[i].layout);
   board.setNet(g.nets[i].layout, g.placement);
-  $('#net-chosen-label').textContent = `#${i + 1} (seed ${g.nets[i].seed})`;
+  // a gallery's net is found again by its seed; the net that fits a sheet has no seed worth naming
+  $('#net-chosen-label').textContent = g.fits ? `the one-piece net that fits ${g.fits}` : `#${i + 1} (seed ${g.nets[i].seed})`;
   $('#net-chosen-label').dataset.index = String(i);
   netNote();
   makeNetFiles();
@@ -690,7 +699,7 @@ $('#net-go').addEventListener('click', () => gallery(false));
 // "Does one piece fit this sheet?": the exact strategy's yes (with the net), no (proved) or undecided.
 $('#net-fits').addEventListener('click', async () => {
   const out = $('#net-fits-answer');
-  out.textContent = ''; delete out.dataset.answer;
+  clearAnswers();
   try {
     // the options the question reads: one piece, cavities filled, so pieces, fill and compact are the gallery's
     const {sheet, face_size, numbers, tabs, timeout} = netOptions();
@@ -708,7 +717,8 @@ $('#net-fits').addEventListener('click', async () => {
 // A "yes": the net the search found becomes the chosen net, in the editor and on the sheets, with its files.
 function openFound(job, r) {
   forgetNet(); showWaysOut([]);
-  state.gallery = {job, nets: [r.net], options: {...netOptions(), face_size: r.face_size}, placement: null};
+  state.gallery = {job, nets: [r.net], options: {...netOptions(), face_size: r.face_size}, placement: null,
+    fits: `${r.sheet} at ${r.face_size} mm faces`};
   $('#net-gallery').replaceChildren();
   $('#net-summary').textContent = `The one-piece net found for ${r.sheet} at ${r.face_size} mm faces is open below.`;
   choose(0);

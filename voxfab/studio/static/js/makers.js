@@ -85,7 +85,7 @@ export class MakerForms {
   show() {
     const row = this.row(), own = this.own(row.name);
     const fields = row.params.filter((p) => p.input === 'form' && !own.includes(p.name)).map((p) =>
-      el('label', {title: tooltip(p), 'data-testid': `param-${p.name}`}, `${p.name} `, field(p)));
+      el('label', {title: tooltip(p), 'data-testid': `param-${p.name}`}, `${p.label || p.name} `, field(p)));
     this.box.replaceChildren(...fields);
     this.box.dataset.maker = row.name;
   }
