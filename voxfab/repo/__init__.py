@@ -11,8 +11,9 @@ on request), are stored once, found through indexed canonical keys.
 Only this package touches :mod:`sqlite3`.  See :class:`Repository`.
 """
 
-from importlib import import_module
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from voxfab._shared.lazy import lazy_names
 
 from ._load import LoadedShape, load_shape
 from ._records import (
@@ -35,17 +36,7 @@ if TYPE_CHECKING:
 _LAZY = {"RangeInfo": "_ranges", "DEFAULT_PATH": "_repository", "AddResult": "_repository", "Entry": "_repository",
          "Repository": "_repository", "SCHEMA_VERSION": "_sqlite"}
 
-
-def __getattr__(name: str) -> Any:
-    if name not in _LAZY:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(import_module(f"{__name__}.{_LAZY[name]}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LAZY))
+__getattr__, __dir__ = lazy_names(__name__, _LAZY, globals())
 
 __all__ = [
     "Repository",

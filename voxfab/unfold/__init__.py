@@ -9,9 +9,9 @@ one-piece net and a zipper net, ``solve_with_nogoods`` runs CP-SAT with
 no-goods added lazily (the zipper search's and the census's loop).
 """
 
-from importlib import import_module
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
+from voxfab._shared.lazy import lazy_names
 from voxfab.errors import NoNetExistsError
 
 from ._constraints import EdgeConstraints
@@ -34,17 +34,7 @@ _LAZY = {"solve_with_nogoods": "_cpsat", "EditResult": "_edit", "cut_edge": "_ed
          "HUNT_NET": "_hunt", "HUNT_ZIPPER": "_hunt", "HuntOutcome": "_hunt", "hunt_shape": "_hunt",
          "unfold_many": "_many"}
 
-
-def __getattr__(name: str) -> Any:
-    if name not in _LAZY:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(import_module(f"{__name__}.{_LAZY[name]}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LAZY))
+__getattr__, __dir__ = lazy_names(__name__, _LAZY, globals())
 
 __all__ = [
     "fold_tree",
