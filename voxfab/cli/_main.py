@@ -52,7 +52,9 @@ class _Parser(argparse.ArgumentParser):
 
 def build_parser() -> argparse.ArgumentParser:
     """Return the argument parser with every available subcommand."""
-    parser = _Parser(prog="voxfab", description="Fabrication CAD for voxel shapes.")
+    from voxfab.cli._reference import help_link
+
+    parser = _Parser(prog="voxfab", description="Fabrication CAD for voxel shapes.", epilog=help_link(""))
     parser.add_argument("--version", action="version", version=f"voxfab {__version__}")
     parser.add_argument("--debug", action="store_true", help="show tracebacks on errors")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
@@ -63,7 +65,7 @@ def build_parser() -> argparse.ArgumentParser:
             if exc.name == module_name:
                 continue  # a command whose module is not installed is left out
             raise
-        p = sub.add_parser(name, help=module.HELP, description=module.HELP)
+        p = sub.add_parser(name, help=module.HELP, description=module.HELP, epilog=help_link(name))
         p.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
                        help="show tracebacks on errors")
         module.add_arguments(p)
