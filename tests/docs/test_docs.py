@@ -189,3 +189,21 @@ def test_every_help_ends_with_its_reference():
         assert last == f"Documentation: docs/cli.md#{anchor}", (command, last)
         heading = f"voxfab {command}".strip()
         assert re.search(rf"^#+ {re.escape(heading)}$", cli, re.M), heading
+
+
+def test_benchmark_tables_are_the_benches_saved_output(tmp_path):
+    """A bench's --save keeps the table it printed; the page's table is made from that file; every saved
+    table is on a page."""
+    from voxfab.cli._reference import bench_table
+
+    r = subprocess.run([sys.executable, str(ROOT / "bench" / "bench_exact.py"), "--smoke", "--save", str(tmp_path)],
+                       cwd=tmp_path, env=_env(), capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    printed = [line for line in r.stdout.splitlines() if line.startswith("|")]
+    made = bench_table("exact", tmp_path)
+    assert made.splitlines()[: len(printed)] == printed and len(printed) == 4  # header, rule, the cube's 2 questions
+    assert "`python bench/bench_exact.py --smoke` wrote this table" in made
+    text = "\n".join(p.read_text(encoding="utf-8") for p in PAGES)
+    saved = sorted(p.stem for p in (DOCS / "data" / "bench").glob("*.json"))
+    assert saved and all(f"<!-- gen:bench:{name} -->" in text for name in saved), saved
+    assert set(re.findall(r"<!-- gen:bench:([\w-]+) -->", text)) == set(saved)
