@@ -207,3 +207,15 @@ def test_benchmark_tables_are_the_benches_saved_output(tmp_path):
     saved = sorted(p.stem for p in (DOCS / "data" / "bench").glob("*.json"))
     assert saved and all(f"<!-- gen:bench:{name} -->" in text for name in saved), saved
     assert set(re.findall(r"<!-- gen:bench:([\w-]+) -->", text)) == set(saved)
+
+
+def test_the_readme_is_short_its_links_resolve_and_ci_runs_its_test_command():
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    assert len(readme.splitlines()) < 150
+    links = re.findall(r"\]\(([^)#]+)(?:#[^)]*)?\)", readme)
+    assert len(links) >= 15 and not [link for link in links if not (ROOT / link).exists()]
+    pictures = [ROOT / link for link in links if link.endswith(".png")]
+    assert len(pictures) >= 5 and all(p.stat().st_size < 300_000 for p in pictures)
+    commands = re.findall(r"^```sh\n(python -m venv .*)\n```", readme, re.M)
+    assert len(commands) == 2 and "voxfab build recipes/chess/queen.toml -o output" in commands[0]
+    assert commands[1] in (ROOT / ".ci" / "run").read_text(encoding="utf-8")
