@@ -219,3 +219,18 @@ def test_the_readme_is_short_its_links_resolve_and_ci_runs_its_test_command():
     commands = re.findall(r"^```sh\n(python -m venv .*)\n```", readme, re.M)
     assert len(commands) == 2 and "voxfab build recipes/chess/queen.toml -o output" in commands[0]
     assert commands[1] in (ROOT / ".ci" / "run").read_text(encoding="utf-8")
+
+
+def test_the_census_results_are_a_census_json_as_voxfab_census_writes_it(tmp_path):
+    """The page's census table is made from a census.json's rows: a run of 1..5 cubes now gives, in the same
+    table, the first five rows the stored n = 9 run gave."""
+    from voxfab.cli._reference import census_table
+
+    r = subprocess.run([sys.executable, "-m", "voxfab", "census", "5", "-o", str(tmp_path / "c"), "--workers", "0"],
+                       cwd=tmp_path, env=_env(), capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    now = census_table(tmp_path / "c" / "census.json").splitlines()
+    stored = census_table(DOCS / "data" / "census" / "census-9.json").splitlines()
+    assert len(now) == 2 + 5 and len(stored) == 2 + 9
+    assert now == stored[:7]
+    assert "<!-- gen:census:census-9 -->" in (DOCS / "open-questions.md").read_text(encoding="utf-8")

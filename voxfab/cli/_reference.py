@@ -5,7 +5,8 @@ The pages under ``docs/`` hold empty blocks ``<!-- gen:NAME -->`` ... ``<!-- /ge
 never committed: the argparse parsers give the CLI reference, the one options declaration
 (:func:`voxfab._shared.options.option_specs` through the outputs table) the option tables, the
 makers table the makers' keys, ``voxfab/_shared/limits.py`` the limits, and the benches' saved
-output (``docs/data/bench/*.json``) the benchmark tables.
+output (``docs/data/bench/*.json``) the benchmark tables, and a census's own ``census.json`` rows
+(``docs/data/census/*.json``) the census results.
 """
 
 from __future__ import annotations
@@ -150,6 +151,30 @@ def bench_table(name: str, folder: Path) -> str:
     return "\n".join(rows) + note
 
 
+#: The census table's columns: heading, and the row keys whose counts it shows (found / none / undecided).
+CENSUS_COLUMNS = (
+    ("n", ("n",)),
+    ("one-sided polycubes (A000162)", ("one_sided",)),
+    ("up to reflection (A038119)", ("free",)),
+    ("unfold: found / none / undecided", ("unfold_found", "unfold_none", "unfold_undecided")),
+    ("manifold, genus 0", ("manifold",)),
+    ("unzip: found / none / undecided", ("unzip_found", "unzip_none", "unzip_undecided")),
+    ("edge touching", ("edge_touching",)),
+    ("vertex touching", ("vertex_touching",)),
+    ("handle", ("handle",)),
+)
+
+
+def census_table(path: Path) -> str:
+    """The rows of a ``census.json`` (``voxfab-census/2``, as ``voxfab census`` writes it), one line per n."""
+    rows = json.loads(path.read_text(encoding="utf-8"))["rows"]
+    lines = ["| " + " | ".join(h for h, _ in CENSUS_COLUMNS) + " |", "|" + "---|" * len(CENSUS_COLUMNS)]
+    for row in rows:
+        cells = [" / ".join(f"{row[k]:,}" for k in keys) for _, keys in CENSUS_COLUMNS]
+        lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
 def block(name: str, data: Path) -> str:
     """The generated markdown of the block ``name`` (``data``: the folder of the benches' saved tables)."""
     if name == "cli":
@@ -160,6 +185,8 @@ def block(name: str, data: Path) -> str:
         return outputs_table()
     if name == "limits":
         return limits_table()
+    if name.startswith("census:"):
+        return census_table(data / "census" / f"{name.partition(':')[2]}.json")
     if name.startswith("bench:"):
         return bench_table(name.partition(":")[2], data / "bench")
     tables = option_tables()
