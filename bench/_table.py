@@ -35,11 +35,21 @@ class Table:
         self.rows.append(dict(zip(self.columns, cells, strict=True)))
         print("| " + " | ".join(cells) + " |", flush=True)
 
-    def save(self, folder: Path | None) -> None:
-        """Write the table to ``folder/NAME.json`` under a temporary name (nothing when ``folder`` is None)."""
+    def save(self, folder: Path | None, *, merge: bool = False) -> None:
+        """Write the table to ``folder/NAME.json`` under a temporary name (nothing when ``folder`` is None).
+
+        ``merge``: a table of one row per run (``bench_hunt``) keeps the saved rows of other runs, a row
+        of the same first cell being replaced.
+        """
         if folder is None:
             return
         folder.mkdir(parents=True, exist_ok=True)
+        target = folder / f"{self.name}.json"
+        if merge and target.exists():
+            saved = json.loads(target.read_text(encoding="utf-8"))
+            if saved["columns"] == self.columns:
+                mine = {row[self.columns[0]] for row in self.rows}
+                self.rows = [r for r in saved["rows"] if r[self.columns[0]] not in mine] + self.rows
         args, rest = [], iter(sys.argv[1:])
         for a in rest:  # the command that made the table, less where it was kept
             if a == "--save":
@@ -51,7 +61,6 @@ class Table:
         data = {"command": " ".join(["python", "bench/" + Path(sys.argv[0]).name, *args]),
                 "machine": f"{os.cpu_count()} cores, {platform.machine()}, Python {platform.python_version()}",
                 "columns": self.columns, "rows": self.rows}
-        target = folder / f"{self.name}.json"
         tmp = target.with_name(f".{target.name}.{os.getpid()}.part")
         tmp.write_text(json.dumps(data, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
         tmp.replace(target)

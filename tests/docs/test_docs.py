@@ -234,3 +234,21 @@ def test_the_census_results_are_a_census_json_as_voxfab_census_writes_it(tmp_pat
     assert len(now) == 2 + 5 and len(stored) == 2 + 9
     assert now == stored[:7]
     assert "<!-- gen:census:census-9 -->" in (DOCS / "open-questions.md").read_text(encoding="utf-8")
+
+
+def test_a_run_table_keeps_the_other_runs_rows(tmp_path, capsys):
+    """bench_hunt saves one row per run: a saved run of another name stays, one of the same name is replaced."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("bench_table", ROOT / "bench" / "_table.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    for label, found in (("a", 1), ("b", 2), ("a", 3)):
+        table = module.Table("hunt", ["run", "found"])
+        table.row(label, found)
+        table.save(tmp_path, merge=True)
+    import json
+
+    assert json.loads((tmp_path / "hunt.json").read_text())["rows"] == [{"run": "b", "found": "2"},
+                                                                      {"run": "a", "found": "3"}]
+    assert "| a | 3 |" in capsys.readouterr().out
