@@ -19,6 +19,7 @@ import argparse
 import time
 
 import numpy as np
+from _table import Table, add_save_option
 
 from voxfab.errors import NoNetExistsError, UnfoldError
 from voxfab.shape import examples, surface_graph
@@ -65,16 +66,18 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--timeout", type=float, default=60.0, help="seconds per question (default 60)")
     parser.add_argument("--smoke", action="store_true", help="the unit cube's questions only, 10 s each")
+    add_save_option(parser)
     args = parser.parse_args()
     questions = QUESTIONS[:1] if args.smoke else QUESTIONS
     timeout = min(args.timeout, 10.0) if args.smoke else args.timeout
-    print("| surface | faces | question | answer | time |\n|---|---|---|---|---|")
+    table = Table("exact", ["surface", "faces", "question", "answer", "time"])
     for name, grid, asked in questions:
         faces = surface_graph(grid).face_count
         for q in asked:
             start = time.monotonic()
             answer = ask(grid, q, timeout)
-            print(f"| {name} | {faces} | {q} | {answer} | {time.monotonic() - start:.1f} s |", flush=True)
+            table.row(name, faces, q, answer, f"{time.monotonic() - start:.1f} s")
+    table.save(args.save)
 
 
 if __name__ == "__main__":

@@ -21,6 +21,8 @@ import tempfile
 import time
 from pathlib import Path
 
+from _table import Table, add_save_option
+
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -34,6 +36,8 @@ def main() -> None:
     parser.add_argument("--out", type=Path, help="keep the batch folder here (default: a temporary one)")
     parser.add_argument("--index", action="store_true", help="draw the thumbnails and write the index page")
     parser.add_argument("--smoke", action="store_true", help="4 shapes, 1 worker, short budgets")
+    parser.add_argument("--label", help="the run's name in the saved table (default: its zipper limit)")
+    add_save_option(parser)
     args = parser.parse_args()
     if args.smoke:
         args.shapes, args.workers, args.timeout, args.exact_timeout, args.zipper_timeout = 4, 1, 2.0, 2.0, 0.5
@@ -75,6 +79,11 @@ def main() -> None:
     print(f"zipper net: found {zipper['found']}, proved none {zipper['none']}, undecided {zipper['undecided']}")
     print(f"total {total:.1f} s ({60 * report.hunt.shapes / total:.0f} shapes/min); per shape "
           f"{statistics.mean(tasks):.2f} s mean, {max(tasks):.2f} s max (the whole folder's build)")
+    table = Table("hunt", ["run", "random engine", "only exact", "no net (proved)", "undecided", "zipper found",
+                           "no zipper (proved)", "zipper undecided", "time"])
+    table.row(args.label or f"zipper limit {args.zipper_timeout:g} s", net["random"], net["exact"], net["none"],
+              net["undecided"], zipper["found"], zipper["none"], zipper["undecided"], f"{total:.0f} s")
+    table.save(args.save, merge=True)
 
 
 if __name__ == "__main__":

@@ -91,10 +91,13 @@ def test_images_are_checked_from_their_header(tmp_path):
     assert Image.MAX_IMAGE_PIXELS is not None
 
 
-def test_limits_are_documented_in_the_readme():
+def test_limits_are_documented_in_the_docs():
     from pathlib import Path
 
-    readme = (Path(__file__).parents[2] / "README.md").read_text()
+    from voxfab.cli._reference import fill
+
+    docs = Path(__file__).parents[2] / "docs"
+    readme = fill((docs / "limits.md").read_text(), docs / "data")
     for name in ("MAX_EXPRESSION_CHARS", "MAX_NESTING", "MAX_PIXELS", "MAX_SAMPLES", "MAX_FOCI", "MAX_TRIANGLES"):
         value = getattr(limits, name)
         assert f"{value:,}" in readme, name

@@ -1,11 +1,10 @@
-"""The options framework: checks, front ends and the README's tables, all from one declaration."""
+"""The options framework: checks, front ends and the documentation's tables, all from one declaration."""
 
 from __future__ import annotations
 
 import argparse
 import dataclasses
 import math
-import re
 from pathlib import Path
 
 import pytest
@@ -23,7 +22,7 @@ from voxfab._shared.options import (
 )
 from voxfab.cli._options import add_option_arguments, options_from_args
 
-README = Path(__file__).resolve().parents[2] / "README.md"
+DOCS = Path(__file__).resolve().parents[2] / "docs"
 
 
 @dataclasses.dataclass(frozen=True)
@@ -115,35 +114,13 @@ def test_specs_and_table():
     assert "| `views` | - | [\"iso\"] | iso, x | views |" in table
 
 
-def readme_tables() -> dict[str, str]:
-    """The README's option tables as the code declares them, by marker name: the shape's, every output's, every maker's."""
-    from voxfab.digitize import MAKERS, maker_markdown
-    from voxfab.fabricate import outputs
-    from voxfab.fabricate._table import resolve
-    from voxfab.shape import ShapeOptions
+def test_every_options_table_has_its_place_in_the_docs():
+    """The pages hold an empty block per table, which the docs build fills from the dataclasses (voxfab.cli._reference)."""
+    from voxfab.cli._reference import fill, option_tables
 
-    tables = {"shape": markdown_table(ShapeOptions)}
-    for output in outputs().values():
-        for t in output.options:
-            tables[t.readme] = markdown_table(resolve(t.cls), exclude=t.exclude)
-    tables.update({f"maker-{name}": maker_markdown(name) for name in MAKERS})
-    return tables
-
-
-def rewrite_readme(text: str) -> str:
-    """``text`` with each ``<!-- options:NAME -->`` block replaced by the current table."""
-    for name, table in readme_tables().items():
-        pattern = re.compile(rf"(<!-- options:{name} -->\n).*?(<!-- /options:{name} -->)", re.S)
-        assert pattern.search(text), f"README has no options:{name} block"
-        text = pattern.sub(lambda m, t=table: m.group(1) + t + m.group(2), text)
-    return text
-
-
-def test_readme_option_tables_are_current():
-    """The tables are generated from the dataclasses; ``python tests/_shared/test_options.py`` rewrites them."""
-    text = README.read_text(encoding="utf-8")
-    assert rewrite_readme(text) == text, "README option tables are stale: run python tests/_shared/test_options.py"
-
-
-if __name__ == "__main__":  # pragma: no cover - rewrites the README's tables
-    README.write_text(rewrite_readme(README.read_text(encoding="utf-8")), encoding="utf-8")
+    text = "\n".join(p.read_text(encoding="utf-8") for p in DOCS.glob("*.md"))
+    tables = option_tables()
+    assert {"options:shape", "options:mesh", "options:net", "options:slices", "options:maker-tube"} <= set(tables)
+    for name, table in tables.items():
+        assert f"<!-- gen:{name} -->" in text, f"docs pages have no gen:{name} block"
+        assert table in fill(text, DOCS / "data")

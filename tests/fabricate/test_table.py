@@ -38,11 +38,14 @@ def test_the_surfaces_list_what_the_table_lists():
     from voxfab.cli import COMMANDS
 
     assert {row.command for row in outputs().values()} <= set(COMMANDS)
-    readme = (RECIPES.parent / "README.md").read_text(encoding="utf-8")
+    from voxfab.cli._reference import fill
+
+    docs = RECIPES.parent / "docs"
+    pages = fill("\n".join(p.read_text(encoding="utf-8") for p in docs.glob("*.md")), docs / "data")
     for row in outputs().values():
-        assert f"[outputs.{row.name}]" in readme, row.name
+        assert f"[outputs.{row.name}]" in pages, row.name
         for table in row.options:
-            assert f"<!-- options:{table.readme} -->" in readme
+            assert f"<!-- gen:options:{table.readme} -->" in pages
 
 
 @pytest.mark.parametrize("recipe", ["tubes/interlaced.toml"])

@@ -57,7 +57,9 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     arguments added; the others are bare names, so a command loads what it runs and
     no other command's options (their classes pull in the plates, the pictures, the census).
     """
-    parser = _Parser(prog="voxfab", description="Fabrication CAD for voxel shapes.")
+    from voxfab.cli._reference import help_link
+
+    parser = _Parser(prog="voxfab", description="Fabrication CAD for voxel shapes.", epilog=help_link(""))
     parser.add_argument("--version", action="version", version=f"voxfab {__version__}")
     parser.add_argument("--debug", action="store_true", help="show tracebacks on errors")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
@@ -71,7 +73,7 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
             if exc.name == module_name:
                 continue  # a command whose module is not installed is left out
             raise
-        p = sub.add_parser(name, help=module.HELP, description=module.HELP)
+        p = sub.add_parser(name, help=module.HELP, description=module.HELP, epilog=help_link(name))
         p.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
                        help="show tracebacks on errors")
         module.add_arguments(p)

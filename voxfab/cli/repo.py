@@ -16,7 +16,9 @@ HELP = "manage the shape repository (add, list, stats, show, export, remove, che
 
 
 def _subparser(sub: argparse._SubParsersAction, name: str, help_text: str) -> argparse.ArgumentParser:
-    p = sub.add_parser(name, help=help_text, description=help_text)
+    from voxfab.cli._reference import help_link
+
+    p = sub.add_parser(name, help=help_text, description=help_text, epilog=help_link(f"repo {name}"))
     p.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help="show tracebacks on errors")
     add_repository_option(p)
     return p
