@@ -5,7 +5,8 @@ Run: python bench/bench_density.py [--sheet A4] [--face-size 8.6] [--shapes quee
 
 Each shape (cavities filled) is cut as ``voxfab net SHAPE --pieces auto --sheet A4 --face-size 8.6``
 cuts it, in the box of the sheet's cells: once from flat patches (``pieces="flat"``, today's default
-cut) and once as the few large pieces of ``pieces="auto"``.  Both cuts are refolded
+cut) and once as the few large pieces of ``pieces="auto"``, then as the pipeline cuts it by default
+(the flat patches, or the large pieces where those take fewer sheets).  Each cut is refolded
 (:func:`voxfab.unfold.validate`) and packed as the drawing packs them (:func:`sheets_needed`).  Per cut:
 the sheets, the fill (paper of faces and tabs over the sheets' usable area), the pieces, the seams (cut
 edges glued shut) and those without room for a tab, and the seconds the cut took.  ``goal`` is
@@ -24,7 +25,7 @@ from pathlib import Path
 import numpy as np
 
 ROOT = Path(__file__).parents[1]
-CUTS = ("flat", "auto")
+CUTS = ("flat", "auto", "default")
 
 
 def _blob() -> np.ndarray:
@@ -48,7 +49,10 @@ def shapes() -> dict[str, object]:
 
 
 def measure(grid: np.ndarray, cut: str, face: float, sheet: str, seed: int = 0) -> dict[str, float]:
-    """One cut of ``grid`` packed on ``sheet``: sheets, goal, fill, pieces, seams, untabbed, seconds."""
+    """One cut of ``grid`` packed on ``sheet``: sheets, goal, fill, pieces, seams, untabbed, seconds.
+
+    ``cut`` "default" is the cut ``voxfab net --pieces auto`` makes (:func:`._fit._cut_pieces`).
+    """
     from voxfab.fabricate.netdraw import DrawingOptions, drawable_area
     from voxfab.fabricate.netdraw._drawing import sheets_needed
     from voxfab.fabricate.netdraw._fit import sheet_room
@@ -59,7 +63,12 @@ def measure(grid: np.ndarray, cut: str, face: float, sheet: str, seed: int = 0) 
 
     t = time.perf_counter()
     fit = sheet_room(opts, surface_graph(grid).face_count, "auto")
-    pieces = list(unfold(grid, rng=seed, fit=fit, pieces=cut, timeout=60.0))
+    if cut == "default":
+        from voxfab.fabricate.netdraw._fit import _cut_pieces
+
+        pieces = _cut_pieces(grid, fit, seed, {"timeout": 60.0}, opts)
+    else:
+        pieces = list(unfold(grid, rng=seed, fit=fit, pieces=cut, timeout=60.0))
     seconds = time.perf_counter() - t
     validate(grid, pieces if len(pieces) > 1 else pieces[0])
     faces = sum(p.face_count for p in pieces)
@@ -91,14 +100,14 @@ def main() -> None:
     names = ["ball"] if args.smoke else args.shapes.split(",")
     print(f"sheet {args.sheet}, faces {args.face_size:g} mm; per cut: sheets, fill %, pieces, seams, "
           f"seams without tab room, seconds to cut")
-    head = "".join(f"  {c + ' sheets':>11}{'fill':>5}{'pcs':>4}{'seams':>6}{'notab':>6}{'s':>5}" for c in CUTS)
+    head = "".join(f"  {c + ' sheets':>14}{'fill':>5}{'pcs':>4}{'seams':>6}{'notab':>6}{'s':>5}" for c in CUTS)
     print(f"{'shape':<7}{'faces':>6}{'goal':>5}" + head)
     for name in names:
         grid = fill_cavities(np.asarray(makers[name](), dtype=bool))
         got = [measure(grid, cut, args.face_size, args.sheet) for cut in CUTS]
         line = f"{name:<7}{got[0]['faces']:>6}{got[0]['goal']:>5}"
         for m in got:
-            line += (f"  {m['sheets']:>11}{m['fill']:>5.0f}{m['pieces']:>4}{m['seams']:>6}{m['untabbed']:>6}"
+            line += (f"  {m['sheets']:>14}{m['fill']:>5.0f}{m['pieces']:>4}{m['seams']:>6}{m['untabbed']:>6}"
                      f"{m['seconds']:>5.0f}")
         print(line, flush=True)
     print("goal: ceil(1.25 A / U) of the flat cut; fill: faces and tabs over the sheets' usable area")
