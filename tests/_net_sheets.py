@@ -30,8 +30,8 @@ def read_pieces(folder: Path, grid: np.ndarray) -> list[Net]:
 
 def pieces_of(rings: list[np.ndarray]) -> list:
     """Polygons of the pieces on a sheet from its closed CUT rings: outer rings run counter-clockwise,
-    holes clockwise, and each hole belongs to the smallest outer ring round it (a piece may lie in a
-    hole of another)."""
+    holes clockwise, and each hole belongs to the smallest outer ring round all of it (a piece may lie in
+    a hole of another, and a point of the hole may then lie in that piece)."""
     import shapely
 
     outers = [shapely.Polygon(r) for r in rings if shapely.LinearRing(r).is_ccw]
@@ -40,6 +40,6 @@ def pieces_of(rings: list[np.ndarray]) -> list:
         if shapely.LinearRing(r).is_ccw:
             continue
         hole = shapely.Polygon(r)
-        around = [i for i, o in enumerate(outers) if o.contains(hole.representative_point())]
+        around = [i for i, o in enumerate(outers) if o.covers(hole)]
         holes[min(around, key=lambda i: outers[i].area)].append(r)
     return [shapely.Polygon(o.exterior.coords, h) for o, h in zip(outers, holes)]

@@ -81,3 +81,28 @@ def test_quarter_turns_pack_two_pieces_on_one_sheet() -> None:
     x0, y0, x1, y1 = plan.area
     assert pos[..., 0].min() >= x0 - 1e-9 and pos[..., 0].max() <= x1 + 1e-9
     assert pos[..., 1].min() >= y0 - 1e-9 and pos[..., 1].max() <= y1 + 1e-9
+
+
+def test_tab_bands_cover_the_drawn_tabs_and_narrow_with_them() -> None:
+    import shapely
+
+    from voxfab.fabricate.netdraw._sheets import paper, piece_mask
+    from voxfab.fabricate.netdraw._tabs import tab_heights, trapezoids
+
+    opts = DrawingOptions(pitch=8.6, sheet="A4", label_height=2.0)
+    face = np.array([[[0, 0], [1, 0], [1, 1], [0, 1]]])
+    mask, start = piece_mask(face, np.array([[0, k] for k in range(4)]), opts, 8.6)
+    p = paper(opts, 8.6)
+    covered = shapely.union_all([shapely.box((start[0] + i) * p.step, (start[1] + j) * p.step,
+                                             (start[0] + i + 1) * p.step, (start[1] + j + 1) * p.step)
+                                 for i, j in zip(*np.nonzero(mask))])
+    inset, height = tab_heights(8.6, opts.tab_width, opts.tab_angle)
+    corners = face[0] * 8.6
+    tabs = trapezoids(corners.astype(float), np.roll(corners, -1, axis=0).astype(float), np.full(4, height), inset,
+                      opts.tab_angle)
+    for tab in tabs:
+        assert covered.buffer(1e-9).contains(shapely.Polygon(tab))
+    # The face and four full bands would take (k + 2 depth)^2 less the four corners; the outer rows are shorter.
+    k, depth = p.per_cell, p.tab_steps
+    assert depth >= 2
+    assert int(mask.sum()) < (k + 2 * depth) ** 2 - 4 * depth**2

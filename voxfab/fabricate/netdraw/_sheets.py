@@ -21,6 +21,7 @@ from voxfab.errors import InvalidShapeError, UnfoldError
 
 from ._legible import tab_depth
 from ._options import SHEETS, DrawingOptions
+from ._tabs import tab_heights
 
 
 class SheetFitError(UnfoldError):
@@ -250,6 +251,9 @@ class Paper:
         The drawable area in steps.
     tab_steps : int
         Steps a tab band takes beyond its edge on the raster.
+    tab_trim : tuple of int
+        Per row of a tab band (from the edge out), the steps left off at each end: a tab narrows as it
+        leaves its edge, so two pieces' tabs nest at their corners.
     """
 
     pitch: float
@@ -262,6 +266,7 @@ class Paper:
     clear: int
     raster: tuple[int, int]
     tab_steps: int
+    tab_trim: tuple[int, ...] = ()
 
 
 def paper(options: DrawingOptions, pitch: float, size: tuple[float, float] | None = None) -> Paper:
@@ -279,8 +284,13 @@ def _paper(options: DrawingOptions, pitch: float, size: tuple[float, float] | No
     step = pitch / k
     clear = max(1, int(math.ceil(_CLEARANCE_MM / step - 1e-9)))
     raster = (int(math.floor((x1 - x0) / step + 1e-9)), int(math.floor((y1 - y0) / step + 1e-9)))
+    depth = int(math.ceil(pad / step - 1e-9))
+    inset = tab_heights(pitch, options.tab_width, options.tab_angle)[0]
+    run = 1.0 / math.tan(math.radians(options.tab_angle))
+    # Row j's near side is the tab's widest there: it starts inset + j step / tan(angle) along the edge.
+    trim = tuple(min(int(math.floor((inset + j * step * run) / step - 1e-9)), (k - 1) // 2) for j in range(depth))
     return Paper(float(pitch), options.sheet_size if size is None else size, area, pad, cells, k, step, clear,
-                 raster, int(math.ceil(pad / step - 1e-9)))
+                 raster, depth, trim)
 
 
 def sheet_cells(options: DrawingOptions, pitch: float, size: tuple[float, float] | None = None) -> tuple[int, int]:
@@ -429,8 +439,10 @@ def _edge_normals(corners: npt.NDArray[np.int64], edges: npt.NDArray[np.int64]
     return p0, p1, np.stack([d[:, 1], -d[:, 0]], axis=1)
 
 
-def _shape(corners: npt.NDArray[np.int64], tab_edges: npt.NDArray[np.int64], k: int, depth: int) -> _Shape:
-    """The raster of a piece at ``k`` steps per cell: its faces and a band ``depth`` steps deep per tab edge."""
+def _shape(corners: npt.NDArray[np.int64], tab_edges: npt.NDArray[np.int64], k: int, depth: int,
+           trim: tuple[int, ...] = ()) -> _Shape:
+    """The raster of a piece at ``k`` steps per cell: its faces and a band ``depth`` steps deep per tab edge,
+    its row ``j`` out from the edge ``trim[j]`` steps shorter at both ends (the tab's trapezoid, covered)."""
     lo = corners.reshape(-1, 2).min(axis=0)
     c = corners - lo
     w, h = (c.reshape(-1, 2).max(axis=0) + 2) * k  # a cell of room all round for tabs
@@ -441,12 +453,15 @@ def _shape(corners: npt.NDArray[np.int64], tab_edges: npt.NDArray[np.int64], k: 
         p0, p1, n = _edge_normals(c + 1, tab_edges)
         a = np.minimum(p0, p1) * k
         b = np.maximum(p0, p1) * k
-        out = n * depth
-        lo_b = np.minimum(a, a + out)
-        hi_b = np.maximum(b, b + out)
-        # A band on a vertical edge spans the edge's steps across and depth steps out, and so on.
-        for (x0, y0), (x1, y1) in zip(lo_b.tolist(), hi_b.tolist()):
-            m[x0:x1, y0:y1] = True
+        along = np.sign(b - a)
+        # Row j of a band on a vertical edge spans the edge's steps less trim[j] at each end, one step
+        # wide, j steps out; and so on.
+        for j in range(depth):
+            t = trim[j] if j < len(trim) else 0
+            lo_b = np.minimum(a + n * j, a + n * (j + 1)) + along * t
+            hi_b = np.maximum(b + n * j, b + n * (j + 1)) - along * t
+            for (x0, y0), (x1, y1) in zip(lo_b.tolist(), hi_b.tolist()):
+                m[x0:x1, y0:y1] = True
     xs, ys = np.nonzero(m)
     x0, y0 = int(xs.min()), int(ys.min())
     return _Shape(c, m[x0:xs.max() + 1, y0:ys.max() + 1], (x0 - k, y0 - k))
@@ -585,7 +600,7 @@ def piece_mask(corners: npt.NDArray[np.int64], tab_edges: npt.NDArray[np.int64],
     """A piece (its corners in cells, as it lies) as the packer sees it: its raster mask of faces and tab
     bands, and the step of the mask's (0, 0) from the piece's lowest cell corner."""
     p = paper(options, pitch)
-    shape = _shape(corners, tab_edges, p.per_cell, p.tab_steps)
+    shape = _shape(corners, tab_edges, p.per_cell, p.tab_steps, p.tab_trim)
     return shape.mask, shape.start
 
 
@@ -671,7 +686,8 @@ def _pack_pieces(pieces: list[npt.NDArray[np.int64]], options: DrawingOptions,
     step, clear, raster = sheet.step, sheet.clear, sheet.raster
     x0, y0, x1, y1 = sheet.area
     # A quarter turn keeps each face's corner order, so the tab edges stay the same pairs.
-    shapes = [[_Spectra(_shape(_quarter_turns(c, t), tab_edges[i], sheet.per_cell, sheet.tab_steps), raster)
+    shapes = [[_Spectra(_shape(_quarter_turns(c, t), tab_edges[i], sheet.per_cell, sheet.tab_steps,
+                                  sheet.tab_trim), raster)
                for t in range(4)]
               for i, c in enumerate(pieces)]
     area = [sh[0].size for sh in shapes]

@@ -1,0 +1,117 @@
+"""Benchmark: how densely nets in pieces fill their sheets, cut by flat patches and as large pieces, side by side.
+
+Run: python bench/bench_density.py [--sheet A4] [--face-size 8.6] [--shapes queen,ball,torus,blob,vase] [--smoke]
+(--smoke: the ball alone.)
+
+Each shape (cavities filled) is cut as ``voxfab net SHAPE --pieces auto --sheet A4 --face-size 8.6``
+cuts it, in the box of the sheet's cells: once from flat patches (``pieces="flat"``, today's default
+cut) and once as the few large pieces of ``pieces="auto"``, then as the pipeline cuts it by default
+(the flat patches, or the large pieces where those take fewer sheets).  Each cut is refolded
+(:func:`voxfab.unfold.validate`) and packed as the drawing packs them (:func:`sheets_needed`).  Per cut:
+the sheets, the fill (paper of faces and tabs over the sheets' usable area), the pieces, the seams (cut
+edges glued shut) and those without room for a tab, and the seconds the cut took.  ``goal`` is
+``ceil(1.25 A / U)`` of the flat cut, A the paper and U a sheet's drawable area.  A goal to measure,
+not a test.
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import math
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).parents[1]
+CUTS = ("flat", "auto", "default")
+
+
+def _blob() -> np.ndarray:
+    """Three overlapping balls of different sizes: a lumpy solid with no flat side to speak of."""
+    x, y, z = np.ogrid[:25, :25, :25]
+    g = np.zeros((25, 25, 25), dtype=bool)
+    for (cx, cy, cz), r in (((10, 11, 9), 6.5), ((15, 13, 14), 5.5), ((9, 14, 16), 4.5)):
+        g |= (x - cx) ** 2 + (y - cy) ** 2 + (z - cz) ** 2 <= r * r
+    return g
+
+
+def shapes() -> dict[str, object]:
+    from voxfab.recipe import load_recipe, make_shape
+    from voxfab.shape import examples
+
+    return {"queen": lambda: make_shape(load_recipe(ROOT / "recipes/chess/queen.toml")).grid,
+            "ball": lambda: examples.ball(7),
+            "torus": lambda: examples.torus(7.0, 3.0),
+            "blob": _blob,
+            "vase": lambda: make_shape(load_recipe(ROOT / "recipes/vase.toml")).grid}
+
+
+def measure(grid: np.ndarray, cut: str, face: float, sheet: str, seed: int = 0) -> dict[str, float]:
+    """One cut of ``grid`` packed on ``sheet``: sheets, goal, fill, pieces, seams, untabbed, seconds.
+
+    ``cut`` "default" is the cut ``voxfab net --pieces auto`` makes (:func:`._fit._cut_pieces`).
+    """
+    from voxfab.fabricate.netdraw import DrawingOptions, drawable_area
+    from voxfab.fabricate.netdraw._drawing import sheets_needed
+    from voxfab.fabricate.netdraw._fit import sheet_room
+    from voxfab.unfold import unfold, validate
+
+    opts = DrawingOptions(pitch=face, sheet=sheet, label_height=2.0)
+    from voxfab.shape import surface_graph
+
+    t = time.perf_counter()
+    fit = sheet_room(opts, surface_graph(grid).face_count, "auto")
+    if cut == "default":
+        from voxfab.fabricate.netdraw._fit import _cut_pieces
+
+        pieces = _cut_pieces(grid, fit, seed, {"timeout": 60.0}, opts)
+    else:
+        pieces = list(unfold(grid, rng=seed, fit=fit, pieces=cut, timeout=60.0))
+    seconds = time.perf_counter() - t
+    validate(grid, pieces if len(pieces) > 1 else pieces[0])
+    faces = sum(p.face_count for p in pieces)
+    # Each face has four edges; a fold joins two of them inside a piece, a seam two across a cut.
+    seams = (4 * faces - 2 * sum(len(p.folds) for p in pieces)) // 2
+    count, goal, untabbed = sheets_needed(grid, pieces, dataclasses.replace(opts))
+    x0, y0, x1, y1 = drawable_area(opts)
+    # goal = ceil(1.25 A / U): A back from it is not exact, so the fill is measured from the faces and seams.
+    from voxfab.fabricate.netdraw._tabs import tab_heights
+
+    inset, h = tab_heights(face, opts.tab_width, opts.tab_angle)
+    base = face - 2 * inset
+    top = max(base - 2 * h / math.tan(math.radians(opts.tab_angle)), 0.0)
+    paper = faces * face * face + (seams - untabbed) * (base + top) / 2 * h
+    return {"sheets": count, "goal": goal, "fill": 100 * paper / (count * (x1 - x0) * (y1 - y0)),
+            "pieces": len(pieces), "seams": seams, "untabbed": untabbed, "seconds": seconds, "faces": faces}
+
+
+def main() -> None:
+    from voxfab.shape import fill_cavities
+
+    makers = shapes()
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--sheet", default="A4")
+    ap.add_argument("--face-size", type=float, default=8.6)
+    ap.add_argument("--shapes", default=",".join(makers), help=f"of {', '.join(makers)}")
+    ap.add_argument("--smoke", action="store_true", help="the ball alone: the whole path in seconds")
+    args = ap.parse_args()
+    names = ["ball"] if args.smoke else args.shapes.split(",")
+    print(f"sheet {args.sheet}, faces {args.face_size:g} mm; per cut: sheets, fill %, pieces, seams, "
+          f"seams without tab room, seconds to cut")
+    head = "".join(f"  {c + ' sheets':>14}{'fill':>5}{'pcs':>4}{'seams':>6}{'notab':>6}{'s':>5}" for c in CUTS)
+    print(f"{'shape':<7}{'faces':>6}{'goal':>5}" + head)
+    for name in names:
+        grid = fill_cavities(np.asarray(makers[name](), dtype=bool))
+        got = [measure(grid, cut, args.face_size, args.sheet) for cut in CUTS]
+        line = f"{name:<7}{got[0]['faces']:>6}{got[0]['goal']:>5}"
+        for m in got:
+            line += (f"  {m['sheets']:>14}{m['fill']:>5.0f}{m['pieces']:>4}{m['seams']:>6}{m['untabbed']:>6}"
+                     f"{m['seconds']:>5.0f}")
+        print(line, flush=True)
+    print("goal: ceil(1.25 A / U) of the flat cut; fill: faces and tabs over the sheets' usable area")
+
+
+if __name__ == "__main__":
+    main()
