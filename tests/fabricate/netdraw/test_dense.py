@@ -46,8 +46,6 @@ CASES = [
     ("torus", lambda: examples.torus(7.0, 3.0), 10.0, "mat12", 1),
     ("tunnel cube", lambda: examples.tunnel_cube(9), 10.0, "A4", 2),
     ("queen", queen, 8.6, "mat12", 1),
-    # Flat patches pack the queen on 4 A4 sheets; the large pieces, kept as they pack on fewer, on 3.
-    ("queen A4", queen, 8.6, "A4", 1),
 ]
 
 

@@ -48,9 +48,6 @@ from ._sheets import (
 #: Budget of the search that measures a net when the sheet search gave no extent, seconds.
 MEASURE_TIMEOUT = 20.0
 
-#: The largest ``ceil(1.25 A / U)`` at which the few large pieces are tried beside the flat patches.
-_LARGE_PIECES_GOAL = 2
-
 #: What :func:`distinct_cuts` keeps of each distinct net.
 Kept = TypeVar("Kept")
 
@@ -245,7 +242,7 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     room = faces <= fit[0] * fit[1]
     if pieces == "auto" and not room:
         check_pieces_sheet(faces, options, float(options.pitch), smallest_face_size(options, chars))
-        return SheetNets(_piece_nets(grid, rng, fit, count, budget, progress, search, notes, options), options,
+        return SheetNets(_piece_nets(grid, rng, fit, count, budget, progress, search, notes), options,
                          notes)
     found: list[Net] | None = None
     failed: UnfoldError | None = None
@@ -257,7 +254,7 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     if found is None:
         if pieces == "auto":
             check_pieces_sheet(faces, options, float(options.pitch), smallest_face_size(options, chars))
-            return SheetNets(_piece_nets(grid, rng, fit, count, budget, progress, search, notes, options),
+            return SheetNets(_piece_nets(grid, rng, fit, count, budget, progress, search, notes),
                              options, notes)
         if failed is not None and not isinstance(failed, NoFitError):
             raise failed  # out of time, or marks that leave no net: not a question of the sheet
@@ -324,10 +321,10 @@ def _nets(grid: Any, count: int, rng: int, budget: float, progress: Callable[[in
 
 def _piece_nets(grid: Any, rng: int, fit: tuple[int, int], count: int, budget: float,
                 progress: Callable[[int, int], None] | None, search: dict[str, Any],
-                notes: list[str], options: DrawingOptions | None = None) -> list[list[Net]]:
+                notes: list[str]) -> list[list[Net]]:
     """Nets in pieces, one per seed: seed ``rng`` for one net, seeds drawn from it for several."""
     if count == 1:
-        return [_cut_pieces(grid, fit, rng, search, options)]
+        return [_cut_pieces(grid, fit, rng, search)]
     gen = np.random.default_rng(rng)
     timeout = float(search.pop("timeout", 60.0))
 
@@ -381,42 +378,21 @@ def distinct_cuts(cut: Callable[[float], list[Net]], keep: Callable[[list[Net]],
     return out
 
 
-def _cut_pieces(grid: Any, fit: tuple[int, int], rng: int, search: dict[str, Any],
-                options: DrawingOptions | None = None) -> list[Net]:
+def _cut_pieces(grid: Any, fit: tuple[int, int], rng: int, search: dict[str, Any]) -> list[Net]:
     """The pieces, cut once, before any packing: from flat patches, or the few large pieces of ``"auto"``
-    when flat patches give none or, packed on the sheets of ``options``, take fewer sheets.
+    when flat patches give none.
 
     Measured at 8.6 mm faces: pieces from flat patches pack on fewer pages than Blender's Paper Model
     on every bundled shape (A4: queen 4 against 5, pawn 4 against 6, egg 10 against 18), in about a
     third of the time the few large pieces take to cut; those win a sheet only on a surface of about
-    one sheet and a third (the queen on A4: 3 sheets against 4, at twice the time).  So the large
-    pieces are cut only when the flat patches pack on more sheets than ``ceil(1.25 A / U)`` on a surface
-    of at most :data:`_LARGE_PIECES_GOAL` sheets by that bound (the ball, torus and blob of
-    ``bench/bench_density.py`` gain no sheet from them, at up to ten times the time), and kept
-    only on fewer sheets with no more seams left without a tab (the packing is kept for the drawing).
+    one sheet and a third (the queen on A4: 3 sheets against 4, at twice the time).
     """
     from voxfab.unfold import unfold
 
     try:
-        flat = list(unfold(grid, rng=rng, fit=fit, pieces="flat", **search))
+        return list(unfold(grid, rng=rng, fit=fit, pieces="flat", **search))
     except UnfoldError:
         return list(unfold(grid, rng=rng, fit=fit, pieces="auto", **search))
-    if options is None or options.pitch is None:
-        return flat
-    from voxfab.shape import fill_cavities
-
-    from ._drawing import sheets_needed
-
-    g = fill_cavities(grid) if flat[0].filled else grid
-    sheets, goal, untabbed = sheets_needed(g, flat, options)
-    if sheets <= goal or goal > _LARGE_PIECES_GOAL:
-        return flat
-    try:
-        large = list(unfold(grid, rng=rng, fit=fit, pieces="auto", **search))
-    except UnfoldError:
-        return flat
-    fewer, _, left = sheets_needed(g, large, options)
-    return large if fewer < sheets and left <= untabbed else flat
 
 
 def largest_fitting(grid: Any, options: DrawingOptions, *, rng: int, search: dict[str, Any],
