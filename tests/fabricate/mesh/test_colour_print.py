@@ -148,8 +148,9 @@ def test_more_than_16_colours_in_a_3mf_are_merged_with_a_warning(tmp_path):
     (v, t, colour, mmu, _), = read_3mf(tmp_path / "a" / "mesh.3mf")
     assert len(set(colour)) == 16 and set(mmu) == {painting_code(e) for e in range(1, 17)}
     # A viewer's file keeps every colour; asking for 16 is no warning.
-    _, glb = _print(tmp_path / "b", shape, fmt="glb")
+    glb_made, glb = _print(tmp_path / "b", shape, fmt="glb")
     assert len(glb["colours"]["filaments"]) == 20
+    assert not [w for w in glb_made.warnings if "merged" in w]  # nothing was merged, so nothing says so
     made16, _ = _print(tmp_path / "c", shape, colours=16)
     assert not [w for w in made16.warnings if "colours" in w]
 
