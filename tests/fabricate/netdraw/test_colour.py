@@ -276,6 +276,27 @@ def test_silhouette_print_and_cut_files_register(silhouette, tmp_path) -> None:
     assert red.sum() == 0
 
 
+def test_a_pdf_print_alone_comes_with_its_cut_file(tmp_path, silhouette) -> None:
+    # The print is made to be cut: asked for as a PDF alone, it still gets the cut lines beside it.
+    r = _cli(*_hero_vox(tmp_path), "-o", "n.pdf", "--face-size", "8", "--cutter", "silhouette", "--seed", "1",
+             cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert json.loads(r.stdout)["written"] == ["n.pdf", "n.cut.svg"]
+    gc = groups(tmp_path / "n.cut.svg")
+    assert set(gc) == {"CUT", "REGISTRATION"} and len(list(gc["CUT"].iter(f"{SVG}path"))) > 0
+    # The same cut as the one beside the SVG print, and the library lists it once for its SVG and PDF prints.
+    assert (tmp_path / "n.cut.svg").read_bytes() == (silhouette / "net.cut.svg").read_bytes()
+    both = make(tmp_path / "both", cutter="silhouette", formats=("pdf", "svg"))
+    assert sorted(p.name for p in both.iterdir()) == ["net.cut.svg", "net.json", "net.pdf", "net.svg"]
+
+
+def _hero_vox(tmp: Path) -> list[str]:
+    from voxfab.io import write
+
+    write(hero(), tmp / "hero.vox")
+    return ["hero.vox"]
+
+
 def test_cricut_art_keeps_inside_its_print_then_cut_area(tmp_path) -> None:
     folder = make(tmp_path, cutter="cricut", formats=("svg",))
     gp, gc = groups(folder / "net.svg"), groups(folder / "net.cut.svg")
