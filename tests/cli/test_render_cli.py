@@ -5,6 +5,7 @@ import sys
 import numpy as np
 import pytest
 from _handnets import tree_net
+from _voxart import write_animated_character
 from PIL import Image
 
 from voxfab.cli import main
@@ -184,34 +185,10 @@ def test_render_is_the_pictures_pipeline_with_one_picture(tmp_path, capsys):
     assert (summary["kind"], summary["width"], summary["frames"]) == ("turntable", 400, 2)
 
 
-def _animated_character(path):
-    """A two-frame .vox (a PACK of models): the character, then the character mirrored left to right."""
-    import struct
-
-    from _voxart import character
-
-    from voxfab import io
-
-    chunks = []
-    for k, shape in enumerate((character(), character().mirror("x"))):
-        io.write(shape, path.with_name(f"f{k}.vox"))
-        data = path.with_name(f"f{k}.vox").read_bytes()
-        found, at = {}, 20
-        while at < len(data):
-            cid, n, m = data[at:at + 4], *struct.unpack("<ii", data[at + 4:at + 12])
-            found[cid] = data[at:at + 12 + n + m]
-            at += 12 + n + m
-        chunks.append(found)
-    assert chunks[0][b"RGBA"] == chunks[1][b"RGBA"]  # one palette serves both frames
-    body = (b"PACK" + struct.pack("<iii", 4, 0, 2) + b"".join(c[b"SIZE"] + c[b"XYZI"] for c in chunks)
-            + chunks[0][b"RGBA"])
-    path.write_bytes(b"VOX " + struct.pack("<i", 150) + b"MAIN" + struct.pack("<ii", 0, len(body)) + body)
-
-
 def test_render_reads_the_frame_asked_of_an_animation(tmp_path):
     from voxfab import io
 
-    _animated_character(tmp_path / "anim.vox")
+    write_animated_character(tmp_path / "anim.vox")
     for k in (1, 2):
         r = voxfab("render", tmp_path / "anim.vox", "--frame", k, "-o", tmp_path / f"f{k}.png", "--size", "120")
         assert r.returncode == 0, r.stderr
