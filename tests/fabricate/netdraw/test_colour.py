@@ -297,6 +297,16 @@ def _hero_vox(tmp: Path) -> list[str]:
     return ["hero.vox"]
 
 
+def test_the_title_keeps_clear_of_the_silhouette_corner_mark(silhouette) -> None:
+    # The bottom-left L fills x, y = 10..30 mm from the corner: the title line under the art starts past it,
+    # 3 mm clear (SVG y runs down the 297 mm page).
+    label = [r for name, g in groups(silhouette / "net.svg").items() if name.startswith("LABEL")
+             for p in g.iter(f"{SVG}path") for r in rings_of(p.get("d"))]
+    title = np.concatenate([r for r in label if r[:, 1].min() > 297 - 18 - 1 - 3.0 - 1e-6])
+    assert title[:, 0].min() >= 30 + 3 - 1e-6
+    assert title[:, 1].max() <= 297 - 18 - 1 + 1e-6 and len(title) > 20  # the whole title, on its baseline
+
+
 def test_cricut_art_keeps_inside_its_print_then_cut_area(tmp_path) -> None:
     folder = make(tmp_path, cutter="cricut", formats=("svg",))
     gp, gc = groups(folder / "net.svg"), groups(folder / "net.cut.svg")
