@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from _voxart import write_animated_character
+from _voxart import character, write_animated_character
 
 from voxfab import io
 from voxfab.cli import main
@@ -121,6 +121,16 @@ def test_show_text_and_list_text(tmp_path: Path, files: dict[str, Path], capsys)
     assert f"name: {names[0]}\n" in text
     assert "rank: 1\n" in text and "draft: no\n" in text
     assert f"meta.source: {files['b']}\n" in text
+    assert "colours: 0\n" in text  # stored without colours
+
+
+def test_show_text_counts_the_stored_colours(tmp_path: Path, capsys) -> None:
+    io.write(character(), tmp_path / "char.vox")
+    repo = str(tmp_path / "r.sqlite")
+    assert main(["repo", "add", "--draft", str(tmp_path / "char.vox"), "--repo", repo]) == 0
+    name = capsys.readouterr().out.split()[0]
+    assert main(["repo", "show", name, "--repo", repo]) == 0
+    assert "colours: 12\n" in capsys.readouterr().out
 
 
 def test_default_repository_in_the_working_folder(tmp_path: Path, files: dict[str, Path]) -> None:

@@ -220,6 +220,7 @@ def _show(repo: Repository, name: str, *, as_json: bool) -> None:
     print(f"rank: {info['rank'] if info['rank'] is not None else '-'}")
     print(f"extents: {'x'.join(map(str, info['extents']))}")
     print(f"draft: {'yes' if info['draft'] else 'no'}")
+    print(f"colours: {info['colours']}")  # 0: stored without colours
     for reason in info["reasons"]:
         print(f"reason: {reason}")
     print(f"key: {info['key']}")
