@@ -307,6 +307,19 @@ def test_the_title_keeps_clear_of_the_silhouette_corner_mark(silhouette) -> None
     assert title[:, 1].max() <= 297 - 18 - 1 + 1e-6 and len(title) > 20  # the whole title, on its baseline
 
 
+def test_the_png_print_says_its_size_in_mm(silhouette) -> None:
+    # A cutter's program sizes an imported picture by its resolution: the print must come out A4, so the
+    # marks land where the cut file has them.
+    from PIL import Image
+
+    with Image.open(silhouette / "net.png") as im:
+        dpi, size, pixels = im.info["dpi"], im.size, np.asarray(im.convert("RGB")).astype(int)
+    assert np.allclose(np.array(size) / np.array(dpi) * 25.4, (210, 297), atol=0.1)
+    px = size[0] / 210
+    for x, y in [(12.5, 12.5), (210 - 20, 10.25), (10.25, 297 - 20)]:
+        assert (pixels[int(y * px), int(x * px)] < 40).all()  # the marks, black, where the SVG has them
+
+
 def test_cricut_art_keeps_inside_its_print_then_cut_area(tmp_path) -> None:
     folder = make(tmp_path, cutter="cricut", formats=("svg",))
     gp, gc = groups(folder / "net.svg"), groups(folder / "net.cut.svg")
