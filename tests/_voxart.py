@@ -95,3 +95,24 @@ def read_vox_independently(path: str | Path) -> tuple[tuple[int, int, int], dict
     assert size is not None and voxels is not None and palette is not None
     # The file's RGBA entry i is the colour of index i + 1.
     return size, {(x, y, z): palette[c - 1] for x, y, z, c in voxels}
+
+
+def write_animated_character(path: Path) -> None:
+    """A two-frame .vox (a PACK of models): the character, then the character mirrored left to right."""
+    from voxfab import io
+
+    chunks = []
+    for k, shape in enumerate((character(), character().mirror("x"))):
+        io.write(shape, path.with_name(f"f{k}.vox"))
+        data = path.with_name(f"f{k}.vox").read_bytes()
+        found, at = {}, 20
+        while at < len(data):
+            cid, n, m = data[at:at + 4], *struct.unpack("<ii", data[at + 4:at + 12])
+            found[cid] = data[at:at + 12 + n + m]
+            at += 12 + n + m
+        chunks.append(found)
+    assert chunks[0][b"RGBA"] == chunks[1][b"RGBA"]  # one palette serves both frames
+    body = (b"PACK" + struct.pack("<iii", 4, 0, 2) + b"".join(c[b"SIZE"] + c[b"XYZI"] for c in chunks)
+            + chunks[0][b"RGBA"])
+    path.write_bytes(b"VOX " + struct.pack("<i", 150) + b"MAIN" + struct.pack("<ii", 0, len(body)) + body)
+

@@ -5,6 +5,7 @@ import sys
 import numpy as np
 import pytest
 from _handnets import tree_net
+from _voxart import write_animated_character
 from PIL import Image
 
 from voxfab.cli import main
@@ -182,3 +183,19 @@ def test_render_is_the_pictures_pipeline_with_one_picture(tmp_path, capsys):
     assert main(["render", str(tmp_path / "c.npy"), "-o", str(tmp_path / "t.gif"), "--frames", "2"]) == 0
     summary = json.loads(capsys.readouterr().out)
     assert (summary["kind"], summary["width"], summary["frames"]) == ("turntable", 400, 2)
+
+
+def test_render_reads_the_frame_asked_of_an_animation(tmp_path):
+    from voxfab import io
+
+    write_animated_character(tmp_path / "anim.vox")
+    for k in (1, 2):
+        r = voxfab("render", tmp_path / "anim.vox", "--frame", k, "-o", tmp_path / f"f{k}.png", "--size", "120")
+        assert r.returncode == 0, r.stderr
+        alone = tmp_path / f"alone{k}.png"
+        io.write(io.read(tmp_path / "anim.vox", frame=k).shape(), tmp_path / f"alone{k}.vox")
+        assert voxfab("render", tmp_path / f"alone{k}.vox", "-o", alone, "--size", "120").returncode == 0
+        assert (tmp_path / f"f{k}.png").read_bytes() == alone.read_bytes()
+    assert (tmp_path / "f1.png").read_bytes() != (tmp_path / "f2.png").read_bytes()
+    r = voxfab("render", tmp_path / "anim.vox", "--frame", 3, "-o", tmp_path / "f3.png")
+    assert r.returncode != 0 and r.stderr.strip().endswith("frame 3: the file holds 2 frames")

@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from _voxart import character, write_animated_character
 
 from voxfab import io
 from voxfab.cli import main
@@ -120,6 +121,16 @@ def test_show_text_and_list_text(tmp_path: Path, files: dict[str, Path], capsys)
     assert f"name: {names[0]}\n" in text
     assert "rank: 1\n" in text and "draft: no\n" in text
     assert f"meta.source: {files['b']}\n" in text
+    assert "colours: 0\n" in text  # stored without colours
+
+
+def test_show_text_counts_the_stored_colours(tmp_path: Path, capsys) -> None:
+    io.write(character(), tmp_path / "char.vox")
+    repo = str(tmp_path / "r.sqlite")
+    assert main(["repo", "add", "--draft", str(tmp_path / "char.vox"), "--repo", repo]) == 0
+    name = capsys.readouterr().out.split()[0]
+    assert main(["repo", "show", name, "--repo", repo]) == 0
+    assert "colours: 12\n" in capsys.readouterr().out
 
 
 def test_default_repository_in_the_working_folder(tmp_path: Path, files: dict[str, Path]) -> None:
@@ -272,3 +283,20 @@ def test_explore_and_listing_errors(tmp_path: Path, argv: list[str], message: st
     r = voxfab(*argv, "--repo", repo)
     assert r.returncode != 0
     assert r.stderr.startswith("voxfab: error: ") and message in r.stderr and "Traceback" not in r.stderr
+
+
+def test_add_stores_the_frame_asked_of_an_animation(tmp_path: Path, capsys) -> None:
+    write_animated_character(tmp_path / "anim.vox")
+    db = str(tmp_path / "r.sqlite")
+    for k in (1, 2):
+        assert main(["repo", "add", "--repo", db, "--draft", "--frame", str(k), str(tmp_path / "anim.vox")]) == 0
+    assert capsys.readouterr().out.split() == ["draft-1", "created", "draft-2", "created"]
+    with Repository(db) as repo:
+        for k in (1, 2):
+            want = io.read(tmp_path / "anim.vox", frame=k).shape()
+            got = repo.shape(f"draft-{k}")
+            box = tuple(slice(a.min(), a.max() + 1) for a in np.nonzero(want.grid))  # stored cropped
+            assert np.array_equal(got.grid, want.grid[box])
+            assert np.array_equal(got.colours.rgba, want.colours.rgba[box])
+    assert main(["repo", "add", "--repo", db, "--frame", "3", str(tmp_path / "anim.vox")]) != 0
+    assert capsys.readouterr().err.strip().endswith("frame 3: the file holds 2 frames")

@@ -26,7 +26,10 @@ def _striped_box() -> trimesh.Trimesh:
 @pytest.mark.parametrize("ext", [".ply", ".glb", ".obj"])
 def test_face_colours_give_each_voxel_its_nearest_face(tmp_path, ext):
     path = tmp_path / f"box{ext}"
-    _striped_box().export(path)
+    box = _striped_box()
+    if ext == ".glb":  # glTF is y-up: the box stands on its end as a glTF viewer shows it
+        box.apply_transform(trimesh.transformations.rotation_matrix(-np.pi / 2, [1, 0, 0]))
+    box.export(path)
     result = io.read(path)
     assert result.colours is not None and result.colours.count == 2
     rgba = result.colours.rgba
@@ -81,3 +84,19 @@ def test_a_mesh_without_colours_reads_uncoloured(tmp_path):
     path = tmp_path / "plain.stl"
     trimesh.creation.box(extents=(5, 5, 5)).export(path)
     assert io.read(path).colours is None
+
+
+def test_a_glb_is_read_upright_in_millimetres(tmp_path):
+    # voxfab's own GLB of the character (y-up, in metres) reads back as its STL does: the same voxels, the
+    # same pitch in mm, and the colours of the print.
+    from _voxart import character
+
+    from voxfab.fabricate.mesh import MeshOptions, fabricate_mesh
+
+    for ext in ("glb", "stl", "ply"):
+        fabricate_mesh(character(pitch=2.0), MeshOptions(contacts="split"), tmp_path / f"c.{ext}", name="c")
+    glb, stl = io.read(tmp_path / "c.glb"), io.read(tmp_path / "c.stl")
+    assert np.array_equal(glb.grid, stl.grid) and glb.pitch == pytest.approx(stl.pitch, rel=1e-6)
+    assert glb.grid.shape[2] == max(glb.grid.shape)  # the figure stands: its height is its longest side
+    ply = io.read(tmp_path / "c.ply")  # the same colours, to the glTF's linear rounding
+    assert np.abs(glb.colours.rgba[glb.grid].astype(int) - ply.colours.rgba[ply.grid].astype(int)).max() <= 3

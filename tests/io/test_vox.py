@@ -289,3 +289,21 @@ def test_frame_on_the_command_line(tmp_path, capsys):
     assert json.loads(capsys.readouterr().out)["volume"] == 2
     assert main(["info", str(path), "--frame", "3"]) != 0
     assert "frame 3: the file holds 2 frames" in capsys.readouterr().err
+
+
+def test_a_palette_of_alpha_0_reads_opaque_and_survives_png_slices(tmp_path):
+    # Some editors leave the palette's alpha at 0; MagicaVoxel draws those voxels all the same.
+    from _voxart import character
+
+    shape = character()
+    io.write(shape, tmp_path / "c.vox")
+    data = bytearray((tmp_path / "c.vox").read_bytes())
+    at = data.index(b"RGBA") + 12
+    data[at + 3:at + 1024:4] = bytes(256)
+    (tmp_path / "clear.vox").write_bytes(bytes(data))
+    read = io.read(tmp_path / "clear.vox").shape()
+    assert np.array_equal(read.grid, shape.grid)
+    assert np.array_equal(read.colours.rgba, shape.colours.rgba)  # the character's colours, all opaque
+    io.write(read, f"{tmp_path}/slices/")
+    back = io.read(tmp_path / "slices")
+    assert np.array_equal(back.grid, shape.grid)

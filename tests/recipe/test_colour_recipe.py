@@ -58,6 +58,8 @@ def test_paint_colours_by_an_expression_and_moves_with_the_shape(recipe):
     ('op = "paint"', "needs 'colour"),
     ('op = "paint"\ncolour = "#12"', "operations\\[0\\].colour"),
     ('op = "paint"\ncolour = "red"\nwhere = "z +* 2"', "operations\\[0\\].where"),
+    # Paint of alpha 00 is no paint: the voxel would read back as empty from every RGBA file.
+    ('op = "paint"\ncolour = "#ff000000"', "operations\\[0\\].colour: .*transparent"),
 ])
 def test_bad_paint_is_refused_by_key(tmp_path, op, message):
     path = tmp_path / "bad.toml"

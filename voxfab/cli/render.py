@@ -6,7 +6,7 @@ import argparse
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from voxfab.cli._common import add_repository_option, load_command_shape, print_json
+from voxfab.cli._common import add_frame_option, add_repository_option, load_command_shape, print_json
 from voxfab.cli._options import integer_argument
 from voxfab.errors import InvalidShapeError, UnknownFormatError
 
@@ -28,6 +28,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("shape", metavar="SHAPE", nargs="?",
                         help="a shape file, or a repository name such as 00797.001")
     add_repository_option(parser)
+    add_frame_option(parser)
     parser.add_argument("-o", "--output", type=Path, required=True, metavar="OUT",
                         help="picture to write: .png, .gif (turntable), or .pdf (with --triptych)")
     mode = parser.add_mutually_exclusive_group()

@@ -6,7 +6,14 @@ import argparse
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from voxfab.cli._common import add_repository_option, open_repository_for_writing, print_json, print_notes
+from voxfab.cli._common import (
+    add_frame_option,
+    add_repository_option,
+    open_repository_for_writing,
+    print_json,
+    print_notes,
+    reader_options,
+)
 from voxfab.cli._options import integer_argument
 
 if TYPE_CHECKING:
@@ -31,6 +38,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
     p = _subparser(sub, "add", "store shapes and print their names (NAME created / NAME exists)")
     p.add_argument("shapes", nargs="+", metavar="SHAPE", type=Path, help="shape files to add")
+    add_frame_option(p)
     p.add_argument("--symmetric", action="store_true",
                    help="treat rotated and mirrored copies (48 cube symmetries) as the same shape")
     p.add_argument("--draft", action="store_true",
@@ -111,7 +119,7 @@ def _add(args: argparse.Namespace) -> int:
 
     with open_repository_for_writing(args.repo) as repo:
         for path in progress(args.shapes, total=len(args.shapes), desc="adding"):
-            result = io.read(path)
+            result = io.read(path, **reader_options(args))
             print_notes([f"{path}: {n}" for n in result.notes])
             meta: dict[str, object] = {"source": str(path)}
             if result.pitch is not None:
@@ -214,6 +222,7 @@ def _show(repo: Repository, name: str, *, as_json: bool) -> None:
     print(f"rank: {info['rank'] if info['rank'] is not None else '-'}")
     print(f"extents: {'x'.join(map(str, info['extents']))}")
     print(f"draft: {'yes' if info['draft'] else 'no'}")
+    print(f"colours: {info['colours']}")  # 0: stored without colours
     for reason in info["reasons"]:
         print(f"reason: {reason}")
     print(f"key: {info['key']}")

@@ -25,7 +25,7 @@ from pathlib import Path
 
 from voxfab.errors import UnknownFormatError
 
-from ._cutters import CUTTERS, Cutter, CutterMarks, cutter_area, registration_marks
+from ._cutters import CUTTERS, Cutter, CutterMarks, clear_of_marks, cutter_area, registration_marks
 from ._font import text_polylines, text_width
 from ._layers import (
     DASH_PATTERNS,
@@ -48,6 +48,7 @@ __all__ = [
     "CUTTERS",
     "Cutter",
     "CutterMarks",
+    "clear_of_marks",
     "cutter_area",
     "registration_marks",
     "DASH_PATTERNS",

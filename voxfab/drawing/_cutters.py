@@ -24,7 +24,7 @@ import numpy as np
 
 from ._polylines import Polylines
 
-__all__ = ["CUTTERS", "Cutter", "CutterMarks", "cutter_area", "registration_marks"]
+__all__ = ["CUTTERS", "Cutter", "CutterMarks", "clear_of_marks", "cutter_area", "registration_marks"]
 
 
 class Cutter(Enum):
@@ -119,3 +119,20 @@ def registration_marks(cutter: Cutter | str, size: tuple[float, float], margin: 
         rings = [_l_mark(x0 - g, y1 + g, 1, -1, L, t), _l_mark(x1 + g, y1 + g, -1, -1, L, t),
                  _l_mark(x0 - g, y0 - g, 1, 1, L, t), _l_mark(x1 + g, y0 - g, -1, 1, L, t)]
     return Polylines.from_list(rings, [True] * len(rings))
+
+
+#: Least gap between a registration mark and anything else printed, mm: the sensor reads the marks
+#: by the blank paper round them.
+MARK_CLEARANCE = 3.0
+
+
+def clear_of_marks(cutter: Cutter | str, size: tuple[float, float], margin: float, x0: float,
+                   band: tuple[float, float]) -> float:
+    """The least x at or after ``x0`` where a line of text in heights ``band`` (mm, y up) starts clear of
+    the marks in the sheet's left half (a Silhouette's bottom-left L reaches 30 mm in, past the margin)."""
+    marks = registration_marks(cutter, size, margin)
+    for ring in marks.lines():
+        lo, hi = ring.min(axis=0), ring.max(axis=0)
+        if lo[0] < size[0] / 2 and lo[1] - MARK_CLEARANCE < band[1] and band[0] < hi[1] + MARK_CLEARANCE:
+            x0 = max(x0, float(hi[0]) + MARK_CLEARANCE)
+    return x0

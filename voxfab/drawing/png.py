@@ -260,17 +260,22 @@ def page_image(page: Page, *, scale: float, styles: Mapping[str, LayerStyle] | N
     return image
 
 
-def png_bytes(image: Image.Image) -> bytes:
-    """PNG bytes of ``image`` with no text or time chunks."""
+def png_bytes(image: Image.Image, *, dpi: float | None = None) -> bytes:
+    """PNG bytes of ``image`` with no text or time chunks; with ``dpi``, its physical resolution (pHYs)."""
     import io
 
     buf = io.BytesIO()
-    image.save(buf, format="PNG", optimize=False, compress_level=6)
+    extra = {} if dpi is None else {"dpi": (dpi, dpi)}
+    image.save(buf, format="PNG", optimize=False, compress_level=6, **extra)
     return buf.getvalue()
 
 
 def write_png(page: Page, path: Path, *, scale: float, styles: Mapping[str, LayerStyle] | None = None,
               legend: Legend | None = None) -> list[str]:
-    """Write ``page`` rasterized at ``scale`` px/mm as PNG (atomically); returns the path written."""
-    write_bytes(path, png_bytes(page_image(page, scale=scale, styles=styles, legend=legend)))
+    """Write ``page`` rasterized at ``scale`` px/mm as PNG (atomically); returns the path written.
+
+    The file says its resolution, so that it prints (and a cutter's program imports it) at the page's
+    size in mm, in register with the cut file."""
+    image = page_image(page, scale=scale, styles=styles, legend=legend)
+    write_bytes(path, png_bytes(image, dpi=image.width / page.width * 25.4))
     return [str(path)]

@@ -13,7 +13,7 @@ A mesh is voxelized so that its longest side spans ``resolution`` voxels:
    voxelized again, so that the kept piece spans ``resolution`` voxels.
 
 ``pitch`` is the voxel size in the mesh's units (millimetres for STL and 3MF as
-usually written).  trimesh is imported only when a mesh is read.
+usually written; a glTF's metres and y-up are turned into millimetres and z-up).  trimesh is imported only when a mesh is read.
 """
 
 from __future__ import annotations
@@ -34,7 +34,8 @@ from voxfab.errors import FormatError, InvalidShapeError, LimitError, VoxfabErro
 
 from ._registry import ReadResult, register
 
-__all__ = ["read_mesh_shape", "voxelize", "mesh_grid", "MESH_EXTENSIONS", "DEFAULT_RESOLUTION"]
+__all__ = ["read_mesh_shape", "voxelize", "mesh_grid", "from_y_up", "to_y_up", "MESH_EXTENSIONS",
+           "DEFAULT_RESOLUTION"]
 
 #: Extensions read as triangle meshes.
 MESH_EXTENSIONS = (".stl", ".obj", ".ply", ".3mf", ".glb")
@@ -367,6 +368,16 @@ def ray_tests(vertices: npt.ArrayLike, faces: npt.ArrayLike, *, resolution: int)
     return int(total.sum())
 
 
+def to_y_up(v: np.ndarray) -> np.ndarray:
+    """``(x, y, z)`` z-up → glTF's ``(x, z, -y)`` y-up (a quarter turn about x)."""
+    return np.column_stack([v[:, 0], v[:, 2], -v[:, 1]])
+
+
+def from_y_up(v: np.ndarray) -> np.ndarray:
+    """glTF's ``(X, Y, Z)`` y-up → ``(X, -Z, Y)`` z-up, the inverse of :func:`to_y_up`."""
+    return np.column_stack([v[:, 0], -v[:, 2], v[:, 1]])
+
+
 def _load(path: PathLike, file_type: str) -> tuple[np.ndarray, np.ndarray, bool, Any]:
     """Load vertices, faces, watertightness and the loaded mesh (its colours) with trimesh; any parser
     failure is a FormatError."""
@@ -385,6 +396,9 @@ def _load(path: PathLike, file_type: str) -> tuple[np.ndarray, np.ndarray, bool,
             resolver = trimesh.resolvers.FilePathResolver(str(path)) if file_type == "obj" else None
             loaded = trimesh.load(fh, file_type=file_type, force="mesh", process=False, resolver=resolver)
         vertices = np.asarray(loaded.vertices, dtype=np.float64)
+        if file_type == "glb" and vertices.ndim == 2 and vertices.shape[1:] == (3,):
+            # glTF is y-up in metres; a shape is z-up and its pitch in mm, as STL and 3MF give it.
+            vertices = from_y_up(vertices) * 1000.0
         faces = np.asarray(loaded.faces, dtype=np.int64)
     except VoxfabError:
         raise

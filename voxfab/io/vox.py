@@ -266,6 +266,9 @@ def read_vox(path: PathLike, *, frame: int | None = None) -> ReadResult:
     else:
         # The file's entry i is colour index i + 1; entry 255 (index 256) does not exist.
         palette = np.roll(np.frombuffer(data, dtype=np.uint8, count=1024, offset=rgba).reshape(256, 4), 1, axis=0)
+        # MagicaVoxel draws every voxel whatever its entry's alpha, and alpha 0 marks an empty voxel in
+        # voxfab's RGBA grids and files: a voxel of an alpha-0 entry is read opaque, not lost on the way.
+        palette[1:, 3] = np.where(palette[1:, 3] == 0, 255, palette[1:, 3])
     # Every model is checked, so that corruption anywhere is reported.
     models = [_model(data, s, x, path) for s, x in zip(sizes, xyzis)]
     if frame is not None and frame < 1:

@@ -67,7 +67,7 @@ def default_palette() -> npt.NDArray[np.uint8]:
 
 
 def parse_colour(text: str, *, name: str = "colour") -> tuple[int, int, int, int]:
-    """An RGBA colour from ``"#rrggbb"``, ``"#rrggbbaa"`` or a plain colour name.
+    """An RGBA colour from ``"#rrggbb"``, ``"#rrggbbaa"`` (alpha above 00) or a plain colour name.
 
     Raises
     ------
@@ -84,6 +84,8 @@ def parse_colour(text: str, *, name: str = "colour") -> tuple[int, int, int, int
         )
     rgb = bytes.fromhex(m.group(1))
     alpha = int(m.group(2), 16) if m.group(2) else 255
+    if alpha == 0:  # alpha 0 marks an empty voxel in every RGBA grid and file: the colour would erase it
+        raise InvalidShapeError(f"{name}: {text!r} is fully transparent: alpha 00 marks an empty voxel")
     return rgb[0], rgb[1], rgb[2], alpha
 
 

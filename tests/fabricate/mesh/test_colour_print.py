@@ -148,8 +148,9 @@ def test_more_than_16_colours_in_a_3mf_are_merged_with_a_warning(tmp_path):
     (v, t, colour, mmu, _), = read_3mf(tmp_path / "a" / "mesh.3mf")
     assert len(set(colour)) == 16 and set(mmu) == {painting_code(e) for e in range(1, 17)}
     # A viewer's file keeps every colour; asking for 16 is no warning.
-    _, glb = _print(tmp_path / "b", shape, fmt="glb")
+    glb_made, glb = _print(tmp_path / "b", shape, fmt="glb")
     assert len(glb["colours"]["filaments"]) == 20
+    assert not [w for w in glb_made.warnings if "merged" in w]  # nothing was merged, so nothing says so
     made16, _ = _print(tmp_path / "c", shape, colours=16)
     assert not [w for w in made16.warnings if "colours" in w]
 
@@ -336,3 +337,21 @@ def test_a_colour_only_inside_takes_the_nearest_filament(tmp_path):
     (only,) = report["colours"]["filaments"]
     assert only["colour"] == "#c81e1e" and only["merged"] == ["#1e3cc8"] and only["voxels"] == 27
     assert report["colours"]["shape_colours"] == 2 and report["colours"]["visible_colours"] == 1
+
+
+def test_bridges_take_the_same_colours_whatever_the_palette_order():
+    # The sword's hilt touches the hand at one corner: its bridge ties between two colours, and the tie goes
+    # by colour, not by where the palette happens to list them (a .vox and the repository order them apart).
+    c = character()
+    used = np.unique(c.colours.index[c.grid])
+    new_of_old = np.zeros(256, np.int64)
+    new_of_old[used] = np.arange(len(used), 0, -1)  # the palette reversed
+    palette = np.zeros((len(used) + 1, 4), np.uint8)
+    palette[new_of_old[used]] = c.colours.palette[used]
+    reordered = VoxelShape(c.grid, c.pitch, VoxelColours(new_of_old[c.colours.index], palette))
+    assert reordered.colours == c.colours
+    meshes = [build_mesh(s, colours=None).mesh for s in (c, reordered)]
+    assert np.array_equal(meshes[0].vertices, meshes[1].vertices)
+    assert np.array_equal(meshes[0].triangles, meshes[1].triangles)
+    hexes = [[tuple(m.palette[k][:3]) for k in m.colour] for m in meshes]
+    assert hexes[0] == hexes[1]

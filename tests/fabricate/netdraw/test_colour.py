@@ -276,6 +276,50 @@ def test_silhouette_print_and_cut_files_register(silhouette, tmp_path) -> None:
     assert red.sum() == 0
 
 
+def test_a_pdf_print_alone_comes_with_its_cut_file(tmp_path, silhouette) -> None:
+    # The print is made to be cut: asked for as a PDF alone, it still gets the cut lines beside it.
+    r = _cli(*_hero_vox(tmp_path), "-o", "n.pdf", "--face-size", "8", "--cutter", "silhouette", "--seed", "1",
+             cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert json.loads(r.stdout)["written"] == ["n.pdf", "n.cut.svg"]
+    gc = groups(tmp_path / "n.cut.svg")
+    assert set(gc) == {"CUT", "REGISTRATION"} and len(list(gc["CUT"].iter(f"{SVG}path"))) > 0
+    # The same cut as the one beside the SVG print, and the library lists it once for its SVG and PDF prints.
+    assert (tmp_path / "n.cut.svg").read_bytes() == (silhouette / "net.cut.svg").read_bytes()
+    both = make(tmp_path / "both", cutter="silhouette", formats=("pdf", "svg"))
+    assert sorted(p.name for p in both.iterdir()) == ["net.cut.svg", "net.json", "net.pdf", "net.svg"]
+
+
+def _hero_vox(tmp: Path) -> list[str]:
+    from voxfab.io import write
+
+    write(hero(), tmp / "hero.vox")
+    return ["hero.vox"]
+
+
+def test_the_title_keeps_clear_of_the_silhouette_corner_mark(silhouette) -> None:
+    # The bottom-left L fills x, y = 10..30 mm from the corner: the title line under the art starts past it,
+    # 3 mm clear (SVG y runs down the 297 mm page).
+    label = [r for name, g in groups(silhouette / "net.svg").items() if name.startswith("LABEL")
+             for p in g.iter(f"{SVG}path") for r in rings_of(p.get("d"))]
+    title = np.concatenate([r for r in label if r[:, 1].min() > 297 - 18 - 1 - 3.0 - 1e-6])
+    assert title[:, 0].min() >= 30 + 3 - 1e-6
+    assert title[:, 1].max() <= 297 - 18 - 1 + 1e-6 and len(title) > 20  # the whole title, on its baseline
+
+
+def test_the_png_print_says_its_size_in_mm(silhouette) -> None:
+    # A cutter's program sizes an imported picture by its resolution: the print must come out A4, so the
+    # marks land where the cut file has them.
+    from PIL import Image
+
+    with Image.open(silhouette / "net.png") as im:
+        dpi, size, pixels = im.info["dpi"], im.size, np.asarray(im.convert("RGB")).astype(int)
+    assert np.allclose(np.array(size) / np.array(dpi) * 25.4, (210, 297), atol=0.1)
+    px = size[0] / 210
+    for x, y in [(12.5, 12.5), (210 - 20, 10.25), (10.25, 297 - 20)]:
+        assert (pixels[int(y * px), int(x * px)] < 40).all()  # the marks, black, where the SVG has them
+
+
 def test_cricut_art_keeps_inside_its_print_then_cut_area(tmp_path) -> None:
     folder = make(tmp_path, cutter="cricut", formats=("svg",))
     gp, gc = groups(folder / "net.svg"), groups(folder / "net.cut.svg")

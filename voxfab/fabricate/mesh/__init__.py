@@ -234,7 +234,7 @@ def fabricate_mesh(
         fill=options.solid, hollow=options.hollow, label=label, engrave_depth=options.engrave_depth,
         base=options.base, magnet=options.magnet, merge=options.merge, name=name, colours=limit,
     )
-    if result.filaments is not None and options.colours is None and result.filaments.visible > MAX_FILAMENTS:
+    if options.colours is None and limit is not None and result.filaments.visible > MAX_FILAMENTS:
         merged = (f"the shape shows {result.filaments.visible} colours, more than the {MAX_FILAMENTS} filaments a "
                   f"printer holds: merged to {MAX_FILAMENTS} (set colours, --colours N, to choose how many)")
         result = dataclasses.replace(result, warnings=(*result.warnings, merged))

@@ -460,7 +460,7 @@ def _voxel_surface(
             # Bridges as cells of a rectilinear grid: meshed and checked exactly, no CAD kernel.
             cells, coords, labels_r = refined
             if index is not None:
-                colour["colour"] = bridged_colours(index, boxes, coords, pitch=pitch_mm)
+                colour["colour"] = bridged_colours(index, boxes, coords, pitch=pitch_mm, palette=inputs.palette)
             sizes = [np.diff(c) for c in coords]
             exact_volume = float(sizes[0] @ (cells.astype(np.float64) @ sizes[2]) @ sizes[1]) * pitch_mm**3
             expect = dict(

@@ -268,17 +268,23 @@ def _box_cells(box_v: npt.NDArray[np.float64], coords: list[npt.NDArray[np.float
 
 def bridged_colours(
     index: npt.NDArray[np.integer], boxes: npt.NDArray[np.float64], coords: tuple[npt.NDArray[np.float64], ...], *,
-    pitch: float,
+    pitch: float, palette: npt.NDArray[np.uint8],
 ) -> npt.NDArray[np.uint8]:
     """The colour index of every cell of :func:`bridged_grid`'s refined grid.
 
     A cell inside a voxel takes the voxel's colour; the cells a bridge box adds
-    over empty voxels take the colour most of the box's voxel cells have (the
-    smaller index on a tie), so a bridge is one colour of the voxels it joins.
+    over empty voxels take the colour most of the box's voxel cells have (on a
+    tie the smaller RGBA in ``palette``, so that the same colours in another
+    palette order bridge alike), so a bridge is one colour of the voxels it joins.
     """
     from ._contact_scan import paint_boxes
 
-    colour = _refine(index.astype(np.int64), coords)
+    # Paint with ranks of the colours' values, not the palette's order, then go back to indices.
+    rgba = np.asarray(palette, dtype=np.int64)[1:, :4]
+    by_value = np.lexsort(rgba.T[::-1]) + 1  # indices 1..N in ascending (r, g, b, a)
+    rank = np.zeros(len(rgba) + 1, dtype=np.int64)
+    rank[by_value] = np.arange(1, len(rgba) + 1)
+    colour = _refine(rank[index.astype(np.int64)], coords)
     lo, hi = _box_cells(boxes / pitch, coords)
     paint_boxes(colour, lo, hi)
-    return colour.astype(np.uint8)  # the voxels' own type: one compiled mesher for both
+    return np.concatenate([[0], by_value])[colour].astype(np.uint8)  # the voxels' own type: one mesher

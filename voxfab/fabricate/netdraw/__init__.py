@@ -349,7 +349,8 @@ def fabricate_net(shape: VoxelShape, net: NetOptions, drawing: DrawingOptions, o
         written = write(drawing, outdir / f"net.{f}", fitted)
         purpose = _COLOURED.get(f, _PURPOSES[f]) if drawing.coloured else _PURPOSES[f]
         files += [OutputFile(Path(p).relative_to(outdir).as_posix(),
-                             _CUT_PURPOSE if ".cut." in Path(p).name else purpose) for p in written]
+                             _CUT_PURPOSE if ".cut." in Path(p).name else purpose) for p in written
+                  if Path(p).relative_to(outdir).as_posix() not in {o.path for o in files}]  # one cut file
     result = _result(drawing, [])
     report = {"face_size_mm": result.face_size, "faces": sum(n.face_count for n in nets), "pieces": len(nets),
               "sheets": len(result.fill),

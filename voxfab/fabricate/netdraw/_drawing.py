@@ -14,6 +14,7 @@ from voxfab.drawing import (
     Ink,
     Page,
     Polylines,
+    clear_of_marks,
     registration_marks,
     text_polylines,
     text_width,
@@ -713,6 +714,9 @@ def _draw_sheet(
     heading = title + (f"  SHEET {s + 1}/{plan.count}" if plan.count > 1 else "")
     if heading and opts.heading:
         x0, _, x1, _ = plan.area
+        # Clear of a cutter's mark in the corner, whose sensor would read the text as part of it.
+        x0 = clear_of_marks(opts.cutter, plan.size, float(opts.margin), x0,
+                            (opts.edge + 1.0, opts.edge + 1.0 + opts.title_height))
         # The left 60 % of the band: printed PDFs put a legend on the right.
         th = min(opts.title_height, 0.6 * (x1 - x0) / max(text_width(heading, 1.0), 1e-9))
         by_ink("LABEL", np.array([0 if paint is None else min(INKS)]),

@@ -23,7 +23,8 @@ def write(drawing: NetDrawing, path: Path, options: DrawingOptions) -> list[str]
     ``options.svg_lines`` is ``preview``); PDF and PNG are for people, with
     visible lines, shaded tabs and a legend.  A coloured net's faces are
     filled in SVG, PDF and PNG.  With a ``cutter``, SVG, PDF and PNG are the
-    print (registration marks, no cut lines) and ``NAME.cut.svg`` the cut.
+    print (registration marks, no cut lines) and ``NAME.cut.svg`` the cut
+    (beside a PDF or PNG print too: a print without its cut file cannot be cut).
     """
     ext = path.suffix.lower()
     styles = options.styles
@@ -37,14 +38,12 @@ def write(drawing: NetDrawing, path: Path, options: DrawingOptions) -> list[str]
     assembly = ext == ".pdf"
     if Cutter(options.cutter) is Cutter.NONE or ext == ".dxf":
         return write_drawing(drawing.document(assembly=assembly), path, opts)
-    # Print then cut: the print without the cut lines, and (SVG) the cut lines alone in a file of their
-    # own, both with the cutter's registration marks at the same place.
+    # Print then cut: the print without the cut lines, and the cut lines alone in an SVG of their own
+    # (the file the cutter's program imports), both with the cutter's registration marks at the same place.
     written = write_drawing(drawing.document(assembly=assembly, part="print"), path, opts)
-    if ext == ".svg":
-        written += write_drawing(drawing.document(part="cut"), cut_path(path), opts)
-    return written
+    return written + write_drawing(drawing.document(part="cut"), cut_path(path), opts)
 
 
 def cut_path(path: Path) -> Path:
-    """The cut file beside a print file: ``NAME.cut.svg`` for ``NAME.svg``."""
-    return path.with_name(f"{path.stem}.cut{path.suffix}")
+    """The cut file beside a print file: ``NAME.cut.svg`` for ``NAME.svg``, ``NAME.pdf`` or ``NAME.png``."""
+    return path.with_name(f"{path.stem}.cut.svg")

@@ -19,6 +19,7 @@ import numpy as np
 
 from voxfab._shared.typing import PathLike
 from voxfab.errors import FormatError
+from voxfab.io.mesh import from_y_up, to_y_up
 
 from .._data import MeshData
 
@@ -33,16 +34,6 @@ _UINT = 5125
 
 def _pad(b: bytes, fill: bytes) -> bytes:
     return b + fill * (-len(b) % 4)
-
-
-def to_y_up(v: np.ndarray) -> np.ndarray:
-    """``(x, y, z)`` z-up → glTF's ``(x, z, -y)`` y-up (a quarter turn about x)."""
-    return np.column_stack([v[:, 0], v[:, 2], -v[:, 1]])
-
-
-def from_y_up(v: np.ndarray) -> np.ndarray:
-    """glTF's ``(X, Y, Z)`` y-up → ``(X, -Z, Y)`` z-up, the inverse of :func:`to_y_up`."""
-    return np.column_stack([v[:, 0], -v[:, 2], v[:, 1]])
 
 
 def srgb_to_linear(rgb: np.ndarray) -> np.ndarray:
