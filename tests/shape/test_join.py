@@ -75,7 +75,7 @@ def test_cli_nets_each_part_or_the_joined_piece(tmp_path, capsys):
     # Every face of every part once, and each piece refolds onto its part's surface.
     assert len(read_pieces(parts, character().grid)) >= 5
     joined = tmp_path / "joined.json"
-    assert main(["net", str(path), "--join", "--sheet", "A2", "-o", str(joined)]) == 0
+    assert main(["net", str(path), "--join", "-o", str(joined)]) == 0
     assert capsys.readouterr().err.count("joined the part of") == 4
     net = Net.from_json(joined.read_text())
     assert validate(character().joined()[0].grid, net).ok

@@ -188,7 +188,8 @@ def writer_for(path: PathLike) -> str:
         For an extension no module writes, listing those that are written.
     """
     _load_all()
-    folder = str(path).endswith(("/", "\\")) or Path(path).is_dir()
+    # An existing folder counts only without an extension: "d.npy/" that is a folder is refused as one.
+    folder = str(path).endswith(("/", "\\")) or (Path(path).is_dir() and not Path(path).suffix)
     ext = "/" if folder else Path(path).suffix.lower()
     if ext not in _WRITERS:
         raise UnknownFormatError(
