@@ -81,3 +81,33 @@ def test_quarter_turns_pack_two_pieces_on_one_sheet() -> None:
     x0, y0, x1, y1 = plan.area
     assert pos[..., 0].min() >= x0 - 1e-9 and pos[..., 0].max() <= x1 + 1e-9
     assert pos[..., 1].min() >= y0 - 1e-9 and pos[..., 1].max() <= y1 + 1e-9
+
+
+def test_the_packer_transforms_on_sizes_of_small_primes_and_keeps_every_overlap_count() -> None:
+    """A5's raster at 8.6 mm is 59 steps wide, a prime: the packer's correlations run on a padded size of
+    small primes, and the overlap counts on the offsets inside the raster are those of a direct count."""
+    from voxfab.fabricate.netdraw._sheets import _best_spots, _shape, _Sheet, _Spectra, paper
+
+    options = DrawingOptions(sheet="A5", pitch=8.6)
+    sheet_paper = paper(options, 8.6)
+    assert 59 in sheet_paper.raster
+    sheet = _Sheet(sheet_paper.raster)
+    rng = np.random.default_rng(0)
+    sheet.blocked[:] = rng.random(sheet.raster) < 0.02
+    sheet.free = int(sheet.blocked.size - np.count_nonzero(sheet.blocked))
+    corners = np.array([[[0, 0], [1, 0], [1, 1], [0, 1]], [[1, 0], [2, 0], [2, 1], [1, 1]]])
+    piece = _Spectra(_shape(corners, np.zeros((0, 2), dtype=np.int64), sheet_paper.per_cell, 1), sheet.raster)
+    for size in (piece.mask.shape, sheet.spectra()[0].shape):
+        n = (size[0], 2 * (size[1] - 1))  # real transforms keep half the last axis
+        for k in n:
+            for p in (2, 3, 5, 7, 11):
+                while k % p == 0:
+                    k //= p
+            assert k == 1, size
+    (found,) = _best_spots(sheet, [piece], touch=False)
+    mask = piece.shape.mask
+    w, h = mask.shape
+    free = [(ox, oy) for oy in range(sheet.raster[1] - h + 1) for ox in range(sheet.raster[0] - w + 1)
+            if not (sheet.blocked[ox:ox + w, oy:oy + h] & mask).any()]
+    ox, oy = min(free, key=lambda o: (o[1] + h, o[0] + w))
+    assert found == (oy + h, ox + w, ox, oy)
