@@ -111,3 +111,34 @@ def test_the_packer_transforms_on_sizes_of_small_primes_and_keeps_every_overlap_
             if not (sheet.blocked[ox:ox + w, oy:oy + h] & mask).any()]
     ox, oy = min(free, key=lambda o: (o[1] + h, o[0] + w))
     assert found == (oy + h, ox + w, ox, oy)
+
+
+def test_a_packing_after_an_edit_transforms_only_the_pieces_it_changed() -> None:
+    """Two packings that share pieces share their turns (the packer's transforms of each piece); a piece
+    that changed is transformed anew, and the packing is that of a packer with nothing kept."""
+    import voxfab.fabricate.netdraw._sheets as sheets
+
+    options = DrawingOptions(sheet="A5", pitch=8.6)
+    square = np.array([[[0, 0], [1, 0], [1, 1], [0, 1]]])
+    bar = np.concatenate([square + (x, 0) for x in range(3)])
+    ell = np.concatenate([bar, square + (0, 1)])
+    made: list[int] = []
+    real = sheets._Spectra
+
+    def counted(*args):  # noqa: ANN002 - the packer's own arguments
+        made.append(1)
+        return real(*args)
+
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(sheets, "_Spectra", counted)
+        sheets._TURNS.clear()
+        first = sheets._pack_pieces([square, bar], options, None)
+        assert len(made) == 8
+        second = sheets._pack_pieces([square, ell], options, None)
+        assert len(made) == 12  # only the changed piece's four turns
+        sheets._TURNS.clear()
+        fresh = sheets._pack_pieces([square, ell], options, None)
+    for a, b in zip(second[1], fresh[1]):
+        assert np.array_equal(a, b)
+    assert np.array_equal(second[0].shift, fresh[0].shift) and np.array_equal(second[0].face_sheet, fresh[0].face_sheet)
+    assert len(first[1]) == 2
