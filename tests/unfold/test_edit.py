@@ -225,3 +225,32 @@ def test_most_cuts_of_the_queen_find_room(queen):
         assert moved_faces(net, r.net) == r.moved <= net.face_count // 2
         done += 1
     assert done >= 9
+
+
+def test_an_edit_of_a_net_in_pieces_counts_tab_room_only_on_pieces_it_changed(monkeypatch):
+    """Cuts of a net in pieces count the seams without tab room of each piece once: a second cut
+    counts only the pieces it made, and every count is that of the piece as it is."""
+    import voxfab.unfold._edit as edit
+    from voxfab.unfold._layout import count_without_tab_room
+
+    grid = examples.ball(4)
+    pieces = list(unfold(grid, rng=0, fit=(6, 6), pieces="flat", timeout=60))
+    assert len(pieces) >= 4
+    counted: list[int] = []
+    real = edit.count_without_tab_room
+    monkeypatch.setattr(edit, "count_without_tab_room", lambda g, n: counted.append(1) or real(g, n))
+    edit._UNTABBED.clear()
+    big = max(pieces, key=lambda n: n.face_count)
+    names = {(1, 0, 0): "+x", (-1, 0, 0): "-x", (0, 1, 0): "+y", (0, -1, 0): "-y", (0, 0, 1): "+z", (0, 0, -1): "-z"}
+
+    def face(i: int) -> tuple:
+        return (*big.voxel[i].tolist(), names[tuple(big.normal[i].tolist())])
+
+    results = []
+    for t in range(2):
+        i, j = big.folds[t * 3].tolist()
+        counted.clear()
+        results.append(cut_edge(grid, pieces, face(i), face(j), split=True))
+        assert len(counted) == (len(pieces) + 1 if t == 0 else 2)
+    for piece in results[1].pieces:
+        assert piece.seams_without_tab_room == count_without_tab_room(grid, piece)

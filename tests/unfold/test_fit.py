@@ -156,3 +156,25 @@ def test_pieces_auto_keeps_every_piece_over_a_tenth_of_the_largest(radius, box, 
     assert report.ok and report.pieces == len(nets)
     assert [n.to_json() for n in unfold(grid, rng=seed, fit=box, pieces="auto", timeout=30)] == \
         [n.to_json() for n in nets]
+
+
+def test_pieces_auto_does_not_cut_branches_that_cannot_beat_the_slabs(monkeypatch):
+    """The queen on A4 at 8.6 mm (21 x 30 cells): 3 slabs, and 2 branch pieces would each fill over two
+    thirds of the box; the free net's branches and their joins (most of the cut's time) are not cut,
+    and the pieces are those of the cut that tries them."""
+    from pathlib import Path
+
+    import voxfab.unfold._pieces as pieces_module
+    from voxfab.recipe import load_recipe, make_shape
+
+    grid = make_shape(load_recipe(Path(__file__).resolve().parents[2] / "recipes" / "chess" / "queen.toml")).grid
+    tree = pieces_module._tree_pieces
+    calls = []
+    monkeypatch.setattr(pieces_module, "_tree_pieces", lambda *a: calls.append(1) or tree(*a))
+    nets = unfold(grid, rng=7, fit=(21, 30), pieces="auto", timeout=120)
+    assert calls == [] and len(nets) == 3
+    validate(grid, nets)
+    monkeypatch.setattr(pieces_module, "_BRANCH_FILL", float("inf"), raising=False)  # branches always cut
+    assert [n.to_json() for n in unfold(grid, rng=7, fit=(21, 30), pieces="auto", timeout=120)] == \
+        [n.to_json() for n in nets]
+    assert calls == [1]

@@ -34,6 +34,10 @@ _JOIN_TRIES = 24
 #: cells left free take the glue tabs (up to four each, one from every side),
 #: so a denser piece leaves seams without room.
 _PIECE_SHARE = 0.5
+#: pieces="auto" in a box: the largest share of the box a piece of a free net's branches fills
+#: after the joins (measured on the bundled shapes at 8.6 mm on A3 to A5: at most 0.58); a split that would need denser
+#: pieces to beat the slabs is not tried.
+_BRANCH_FILL = 0.65
 #: Tries (each a fixed budget of growth steps) to lay one piece in its box
 #: before it is cut in two.
 _PIECE_TRIES = 3
@@ -80,6 +84,12 @@ def _partition(job: Job, faces: npt.NDArray[np.int64]) -> list[tuple[SearchBoard
         # Two ways to cut, the fewer pieces kept: slabs give straight cuts and
         # room for tabs; branches of a free net suit boxes too small for a slab.
         slabs = _sheet_pieces(job, faces)
+        w, h = job.fit
+        # Branches win only with fewer pieces than the slabs, so their largest piece would hold at
+        # least faces / (slabs - 1) of the box's cells: past _BRANCH_FILL of the box (denser than any
+        # branch piece measured) they cannot win, and their joins (most of the cut's time) are skipped.
+        if faces.size > _BRANCH_FILL * (len(slabs) - 1) * w * h:
+            return _balance(job, slabs)
         branches = _tree_pieces(job, faces)
         if branches is not None:
             branches = _merge_small(job, branches)

@@ -106,3 +106,64 @@ def test_tab_bands_cover_the_drawn_tabs_and_narrow_with_them() -> None:
     k, depth = p.per_cell, p.tab_steps
     assert depth >= 2
     assert int(mask.sum()) < (k + 2 * depth) ** 2 - 4 * depth**2
+
+
+def test_the_packer_transforms_on_sizes_of_small_primes_and_keeps_every_overlap_count() -> None:
+    """A5's raster at 8.6 mm is 59 steps wide, a prime: the packer's correlations run on a padded size of
+    small primes, and the overlap counts on the offsets inside the raster are those of a direct count."""
+    from voxfab.fabricate.netdraw._sheets import _best_spots, _shape, _Sheet, _Spectra, paper
+
+    options = DrawingOptions(sheet="A5", pitch=8.6)
+    sheet_paper = paper(options, 8.6)
+    assert 59 in sheet_paper.raster
+    sheet = _Sheet(sheet_paper.raster)
+    rng = np.random.default_rng(0)
+    sheet.blocked[:] = rng.random(sheet.raster) < 0.02
+    sheet.free = int(sheet.blocked.size - np.count_nonzero(sheet.blocked))
+    corners = np.array([[[0, 0], [1, 0], [1, 1], [0, 1]], [[1, 0], [2, 0], [2, 1], [1, 1]]])
+    piece = _Spectra(_shape(corners, np.zeros((0, 2), dtype=np.int64), sheet_paper.per_cell, 1), sheet.raster)
+    for size in (piece.mask.shape, sheet.spectra()[0].shape):
+        n = (size[0], 2 * (size[1] - 1))  # real transforms keep half the last axis
+        for k in n:
+            for p in (2, 3, 5, 7, 11):
+                while k % p == 0:
+                    k //= p
+            assert k == 1, size
+    (found,) = _best_spots(sheet, [piece], touch=False)
+    mask = piece.shape.mask
+    w, h = mask.shape
+    free = [(ox, oy) for oy in range(sheet.raster[1] - h + 1) for ox in range(sheet.raster[0] - w + 1)
+            if not (sheet.blocked[ox:ox + w, oy:oy + h] & mask).any()]
+    ox, oy = min(free, key=lambda o: (o[1] + h, o[0] + w))
+    assert found == (oy + h, ox + w, ox, oy)
+
+
+def test_a_packing_after_an_edit_transforms_only_the_pieces_it_changed() -> None:
+    """Two packings that share pieces share their turns (the packer's transforms of each piece); a piece
+    that changed is transformed anew, and the packing is that of a packer with nothing kept."""
+    import voxfab.fabricate.netdraw._sheets as sheets
+
+    options = DrawingOptions(sheet="A5", pitch=8.6)
+    square = np.array([[[0, 0], [1, 0], [1, 1], [0, 1]]])
+    bar = np.concatenate([square + (x, 0) for x in range(3)])
+    ell = np.concatenate([bar, square + (0, 1)])
+    made: list[int] = []
+    real = sheets._Spectra
+
+    def counted(*args):  # noqa: ANN002 - the packer's own arguments
+        made.append(1)
+        return real(*args)
+
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(sheets, "_Spectra", counted)
+        sheets._TURNS.clear()
+        first = sheets._pack_pieces([square, bar], options, None)
+        assert len(made) == 8
+        second = sheets._pack_pieces([square, ell], options, None)
+        assert len(made) == 12  # only the changed piece's four turns
+        sheets._TURNS.clear()
+        fresh = sheets._pack_pieces([square, ell], options, None)
+    for a, b in zip(second[1], fresh[1]):
+        assert np.array_equal(a, b)
+    assert np.array_equal(second[0].shift, fresh[0].shift) and np.array_equal(second[0].face_sheet, fresh[0].face_sheet)
+    assert len(first[1]) == 2

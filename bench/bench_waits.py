@@ -1,0 +1,172 @@
+"""Benchmark of where the artist waits (issue 46), in CPU seconds, before and after side by side.
+
+Run ``python bench/bench_waits.py [--base DIR] [--runs R] [--smoke]``.  Each row is measured in
+child processes, so a run of the tree under test and one of ``--base`` (a checkout of another commit,
+e.g. ``git worktree add /tmp/base BASE``) alternate on the same loaded machine; the figure is the
+CPU time (``time.process_time`` in the child, or the child's whole ``resource`` usage), not the
+wall clock, which a shared 2-core machine stretches.  Rows:
+
+* **gallery**: the studio's "Net → Generate" for the queen (``recipes/chess/queen.toml``), 8 nets in
+  pieces on A4 at 8.6 mm, ``--timeout`` (60 s) per net (:func:`voxfab.fabricate.netdraw.net_gallery`,
+  after the kernels are loaded).  Goal: at most 7 s of CPU for all eight.
+* **edit**: a cut of a fold (the cut-off side a piece of its own) in the queen's net of 34 flat pieces
+  on A5, and the new layout and packing the studio sends (:func:`voxfab.unfold.cut_edge`,
+  :func:`voxfab.fabricate.netdraw.fit_and_placement`, ``net_layout``): median CPU of 5 cuts.
+  Goal: at most 0.3 s from click to screen.
+* **one piece**: :func:`voxfab.unfold.unfold` (default strategy, seed 0) on balls, a torus, blobs
+  and a vase of up to about 2700 faces (``bench_unfold``'s corpus): median and maximum per shape,
+  and the whole ``voxfab net`` process on the largest blob.  Goal: median under 0.7 s, maximum under 1.5 s.
+
+``--smoke``: one run of the gallery with 2 nets and the one-piece row on two balls.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import resource
+import statistics
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+_GALLERY = """
+import json, sys, time
+from voxfab.fabricate import netdraw
+from voxfab.recipe import load_recipe, make_shape
+from voxfab.studio import warm_gallery_here
+from voxfab.unfold import unfold
+grid = make_shape(load_recipe(sys.argv[1])).grid
+unfold(grid, rng=0, timeout=300)
+warm_gallery_here()
+net, drawing = netdraw.gallery_options({"sheet": "A4", "pieces": "auto", "face_size": 8.6},
+                                       defaults={"timeout": float(sys.argv[4]), "budget": 600.0})
+c0 = time.process_time()
+g = netdraw.net_gallery(grid, net, drawing, count=int(sys.argv[2]), seed=int(sys.argv[3]))
+print(json.dumps({"cpu": time.process_time() - c0, "nets": len(g.nets),
+                  "sheets": [n.fit["sheets"] for n in g.nets]}))
+"""
+
+_EDIT = """
+import json, sys, time
+from voxfab.fabricate import netdraw
+from voxfab.recipe import load_recipe, make_shape
+from voxfab.shape import surface_graph
+from voxfab.unfold import cut_edge, unfold
+grid = make_shape(load_recipe(sys.argv[1])).grid
+pieces = list(unfold(grid, rng=1, fit=(9, 9), pieces="flat", timeout=120))
+net, drawing = netdraw.gallery_options({"sheet": "A5", "pieces": "auto", "face_size": 8.6})
+graph = surface_graph(grid)
+netdraw.fit_and_placement(pieces, drawing, graph)
+names = {(1, 0, 0): "+x", (-1, 0, 0): "-x", (0, 1, 0): "+y", (0, -1, 0): "-y", (0, 0, 1): "+z", (0, 0, -1): "-z"}
+big = max(pieces, key=lambda n: n.face_count)
+face = lambda i: (*big.voxel[i].tolist(), names[tuple(big.normal[i].tolist())])
+out = []
+for t in range(int(sys.argv[2])):
+    i, j = big.folds[(t * 37 + 5) % len(big.folds)].tolist()
+    c0 = time.process_time()
+    cut = cut_edge(grid, pieces, face(i), face(j), split=True)
+    netdraw.fit_and_placement(list(cut.pieces), drawing, graph)
+    netdraw.net_layout(grid, list(cut.pieces), graph=graph)
+    out.append(time.process_time() - c0)
+print(json.dumps({"cpu": sorted(out)[len(out) // 2], "pieces": len(cut.pieces)}))
+"""
+
+_ONE_PIECE = """
+import json, sys, time
+sys.path.insert(0, sys.argv[1])
+from bench_unfold import corpus
+from voxfab.shape import examples
+from voxfab.unfold import unfold
+unfold(examples.ball(4), rng=0)
+only = sys.argv[2:]
+out = {}
+for name, grid in corpus():
+    if only and name not in only:
+        continue
+    c0 = time.process_time()
+    unfold(grid, rng=0)
+    out[name] = time.process_time() - c0
+print(json.dumps(out))
+"""
+
+
+def _child(code: str, args: list[str], path: Path) -> dict:
+    env = dict(os.environ, PYTHONPATH=str(path))
+    # From a neutral directory: ``python -c`` and ``-m`` put the working directory before PYTHONPATH.
+    done = subprocess.run([sys.executable, "-c", code, *args], env=env, capture_output=True, text=True, check=True,
+                          cwd=tempfile.gettempdir())
+    return json.loads(done.stdout.strip().splitlines()[-1])
+
+
+def _process_cpu(cmd: list[str], path: Path) -> float:
+    """CPU seconds (user and system) of a whole child process."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    subprocess.run(cmd, env=dict(os.environ, PYTHONPATH=str(path)), check=True, capture_output=True,
+                   cwd=tempfile.gettempdir())
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--base", type=Path, help="a checkout of the commit to compare with")
+    ap.add_argument("--runs", type=int, default=3)
+    # The studio gives each net 5 s of the clock; on a loaded machine that clock ends the joins early and the
+    # CPU looks small.  A long timeout measures the CPU an idle machine spends before its 5 s run out.
+    ap.add_argument("--timeout", type=float, default=60.0, help="seconds per gallery net")
+    ap.add_argument("--smoke", action="store_true", help="one run, 2 gallery nets, two balls")
+    args = ap.parse_args()
+    nets, shapes = (2, ["ball r=4", "ball r=6"]) if args.smoke else (8, [])
+    if args.smoke:
+        args.runs = 1
+    trees = [("after", ROOT)] + ([("before", args.base.resolve())] if args.base else [])
+    queen = str(ROOT / "recipes" / "chess" / "queen.toml")
+
+    gallery: dict[str, list[float]] = {name: [] for name, _ in trees}
+    for run in range(args.runs):
+        for name, path in trees:
+            got = _child(_GALLERY, [queen, str(nets), str(run), str(args.timeout)], path)
+            gallery[name].append(got["cpu"])
+            print(f"gallery run {run + 1} ({name}, seed {run}): {got['nets']} nets, sheets {got['sheets']}, "
+                  f"{got['cpu']:.2f} s CPU", flush=True)
+    edit: dict[str, dict] = {}
+    for name, path in trees:
+        edit[name] = _child(_EDIT, [queen, "1" if args.smoke else "5"], path)
+    one: dict[str, dict[str, float]] = {}
+    for name, path in trees:
+        one[name] = _child(_ONE_PIECE, [str(ROOT / "bench"), *shapes], path)
+    cli: dict[str, float] = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        import numpy as np
+
+        from voxfab.shape import examples
+
+        shape = Path(tmp) / "blob.npy"
+        np.save(shape, examples.ball(4) if args.smoke else examples.random_shape(1, side=18, fill=0.3))
+        for name, path in trees:
+            cmd = [sys.executable, "-m", "voxfab", "net", str(shape), "-o", str(Path(tmp) / f"{name}.json")]
+            _process_cpu(cmd, path)  # numba's cache filled for this tree
+            cli[name] = statistics.median(_process_cpu(cmd, path) for _ in range(args.runs))
+
+    cols = [name for name, _ in trees]
+    print(f"\n{'row':<52}" + "".join(f"{c:>10}" for c in cols))
+    print(f"{f'gallery: {nets} queen nets, A4, CPU s (median)':<52}"
+          + "".join(f"{statistics.median(gallery[c]):>10.2f}" for c in cols))
+    edited = f"edit: cut + re-layout, {edit[cols[0]]['pieces']} queen pieces, A5, CPU s"
+    print(f"{edited:<52}"
+          + "".join(f"{edit[c]['cpu']:>10.2f}" for c in cols))
+    print(f"{'one piece: unfold CPU s, median of shapes':<52}"
+          + "".join(f"{statistics.median(one[c].values()):>10.2f}" for c in cols))
+    print(f"{'one piece: unfold CPU s, max of shapes':<52}"
+          + "".join(f"{max(one[c].values()):>10.2f}" for c in cols))
+    print(f"{'one piece: voxfab net process CPU s':<52}" + "".join(f"{cli[c]:>10.2f}" for c in cols))
+    print("goals: gallery <= 7 s; edit <= 0.3 s click to screen; one piece median < 0.7 s, max < 1.5 s.  CPU seconds on a shared machine.")
+
+
+if __name__ == "__main__":
+    main()
