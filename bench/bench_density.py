@@ -17,7 +17,6 @@ not a test.
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import math
 import time
 from pathlib import Path
@@ -51,39 +50,31 @@ def shapes() -> dict[str, object]:
 def measure(grid: np.ndarray, cut: str, face: float, sheet: str, seed: int = 0) -> dict[str, float]:
     """One cut of ``grid`` packed on ``sheet``: sheets, goal, fill, pieces, seams, untabbed, seconds.
 
-    ``cut`` "default" is the cut ``voxfab net --pieces auto`` makes (:func:`._fit._cut_pieces`).
+    ``cut`` "default" is the cut ``voxfab net --pieces auto`` makes (:func:`find_sheet_nets`); "flat" and
+    "auto" are :func:`voxfab.unfold.unfold`'s, in a box of the sheet's cells less a face for the tabs.
     """
-    from voxfab.fabricate.netdraw import DrawingOptions, drawable_area
-    from voxfab.fabricate.netdraw._drawing import sheets_needed
-    from voxfab.fabricate.netdraw._fit import sheet_room
+    from voxfab.fabricate.netdraw import DrawingOptions, draw_pieces, drawable_area, find_sheet_nets
     from voxfab.unfold import unfold, validate
 
     opts = DrawingOptions(pitch=face, sheet=sheet, label_height=2.0)
-    from voxfab.shape import surface_graph
-
+    x0, y0, x1, y1 = drawable_area(opts)
     t = time.perf_counter()
-    fit = sheet_room(opts, surface_graph(grid).face_count, "auto")
     if cut == "default":
-        from voxfab.fabricate.netdraw._fit import _cut_pieces
-
-        pieces = _cut_pieces(grid, fit, seed, {"timeout": 60.0}, opts)
+        pieces = list(find_sheet_nets(grid, opts, rng=seed, pieces="auto").nets[0])
     else:
+        fit = (max(1, int((x1 - x0) // face) - 1), max(1, int((y1 - y0) // face) - 1))
         pieces = list(unfold(grid, rng=seed, fit=fit, pieces=cut, timeout=60.0))
     seconds = time.perf_counter() - t
     validate(grid, pieces if len(pieces) > 1 else pieces[0])
     faces = sum(p.face_count for p in pieces)
     # Each face has four edges; a fold joins two of them inside a piece, a seam two across a cut.
     seams = (4 * faces - 2 * sum(len(p.folds) for p in pieces)) // 2
-    count, goal, untabbed = sheets_needed(grid, pieces, dataclasses.replace(opts))
-    x0, y0, x1, y1 = drawable_area(opts)
-    # goal = ceil(1.25 A / U): A back from it is not exact, so the fill is measured from the faces and seams.
-    from voxfab.fabricate.netdraw._tabs import tab_heights
-
-    inset, h = tab_heights(face, opts.tab_width, opts.tab_angle)
-    base = face - 2 * inset
-    top = max(base - 2 * h / math.tan(math.radians(opts.tab_angle)), 0.0)
-    paper = faces * face * face + (seams - untabbed) * (base + top) / 2 * h
-    return {"sheets": count, "goal": goal, "fill": 100 * paper / (count * (x1 - x0) * (y1 - y0)),
+    untabbed = sum(int(p.seams_without_tab_room) for p in pieces)
+    count = len(draw_pieces(grid, pieces, options=opts).sheets)
+    # The paper: the faces, and a 3 mm tab of about three quarters of a face's edge per tabbed seam.
+    paper = faces * face * face + (seams - untabbed) * 0.75 * face * 3.0
+    usable = (x1 - x0) * (y1 - y0)
+    return {"sheets": count, "goal": math.ceil(1.25 * paper / usable), "fill": 100 * paper / (count * usable),
             "pieces": len(pieces), "seams": seams, "untabbed": untabbed, "seconds": seconds, "faces": faces}
 
 

@@ -342,7 +342,12 @@ def test_recipe_net_is_legible_on_its_sheet(built, path):
     signatures: dict[tuple, int] = {}
     heights = []
     for pair in ends.values():
-        assert len(pair) == 2
+        assert len(pair) in (2, 4)
+        if len(pair) == 4:
+            # Two voxels touching along an edge (voxel art joined into one piece): four faces meet
+            # there, and which of them a seam pairs is the surface graph's 6-connectivity rule, which
+            # the validator checks as the net is refolded (test_recipe_nets_refold_onto_the_shape).
+            continue
         (f, k), (g, j) = pair
         if tuple(sorted((f, g))) in folds:
             continue
