@@ -341,9 +341,11 @@ def test_recipe_net_is_legible_on_its_sheet(built, path):
     labels = _edge_labels(pos, layers["LABEL"], face, band=0.08 * face + 2.0)
     signatures: dict[tuple, int] = {}
     heights = []
+    four = 0  # edges where four faces meet: up to two seams each, left to the validator
     for pair in ends.values():
         assert len(pair) in (2, 4)
         if len(pair) == 4:
+            four += 1
             # Two voxels touching along an edge (voxel art joined into one piece): four faces meet
             # there, and which of them a seam pairs is the surface graph's 6-connectivity rule, which
             # the validator checks as the net is refolded (test_recipe_nets_refold_onto_the_shape).
@@ -367,7 +369,7 @@ def test_recipe_net_is_legible_on_its_sheet(built, path):
     assert signatures and set(signatures.values()) == {1}, "two seams share a label"
     assert min(heights) >= 2.0 - 1e-6, min(heights)
     # One tab per seam, but for the few without room (marked for tape and warned about).
-    assert len(signatures) - 10 <= len(tabs) <= len(signatures)
+    assert len(signatures) - 10 <= len(tabs) <= len(signatures) + 2 * four
 
 
 #: Heights of the pieces, mm, from FIDE's Standards of Chess Equipment (2022), tallest first; each may differ
