@@ -42,14 +42,21 @@ def free_port() -> int:
         return s.getsockname()[1]
 
 
-def start_studio(folder: Path, *extra: str, repo: Path | None = None) -> tuple[subprocess.Popen, str]:
-    """``voxfab studio [extra]`` as a real uvicorn process on 127.0.0.1 and a free port, once it answers."""
+def start_studio(folder: Path, *extra: str, repo: Path | None = None, tmpdir: Path | None = None,
+                 apart: bool = False) -> tuple[subprocess.Popen, str]:
+    """``voxfab studio [extra]`` as a real uvicorn process on 127.0.0.1 and a free port, once it answers.
+
+    ``tmpdir`` is its TMPDIR; with ``apart`` its output and errors are read apart, as text.
+    """
     port = free_port()
     env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]))
+    if tmpdir is not None:
+        env["TMPDIR"] = str(tmpdir)
     proc = subprocess.Popen(
         [sys.executable, "-m", "voxfab", "studio", *extra, "--port", str(port), "--repo",
          str(repo or folder / "repo.sqlite"), "--no-browser"],
-        env=env, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+        env=env, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.PIPE if apart else subprocess.STDOUT,
+        text=apart,
     )
     url = f"http://127.0.0.1:{port}"
     end = time.monotonic() + 60
@@ -60,8 +67,10 @@ def start_studio(folder: Path, *extra: str, repo: Path | None = None) -> tuple[s
         except OSError:
             if proc.poll() is not None or time.monotonic() > end:
                 proc.kill()
-                raise AssertionError(f"studio did not start: {proc.communicate()[0].decode()[-2000:]}") from None
-            time.sleep(0.1)
+                said = proc.communicate()[1 if apart else 0]
+                said = said if isinstance(said, str) else said.decode()
+                raise AssertionError(f"studio did not start: {said[-2000:]}") from None
+            time.sleep(0.05)
 
 
 def stop_studio(proc: subprocess.Popen) -> None:

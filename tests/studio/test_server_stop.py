@@ -20,27 +20,12 @@ import pytest
 from voxfab.shape import examples
 from voxfab.studio._grid import centred, pack
 
-from .conftest import ROOT, free_port
+from .conftest import start_studio
 
 
 def _studio(folder: Path, tmp: Path) -> tuple[subprocess.Popen, str]:
-    """``voxfab studio`` with TMPDIR=tmp, once it prints its address (the warm-up has just begun)."""
-    port = free_port()
-    env = dict(os.environ, TMPDIR=str(tmp), PYTHONPATH=os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]))
-    proc = subprocess.Popen([sys.executable, "-m", "voxfab", "studio", "--host", "127.0.0.1", "--port", str(port),
-                             "--repo", str(folder / "repo.sqlite"), "--no-browser"],
-                            env=env, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    url = f"http://127.0.0.1:{port}"
-    end = time.monotonic() + 60
-    while True:
-        try:
-            with urllib.request.urlopen(f"{url}/api/info", timeout=1):
-                return proc, url
-        except OSError:
-            if proc.poll() is not None or time.monotonic() > end:
-                proc.kill()
-                raise AssertionError(f"studio did not start: {proc.communicate()[1][-2000:]}") from None
-            time.sleep(0.05)
+    """``voxfab studio`` with TMPDIR=tmp, once it answers (the warm-up has just begun)."""
+    return start_studio(folder, "--host", "127.0.0.1", tmpdir=tmp, apart=True)
 
 
 def _interrupt(proc: subprocess.Popen, sig: int = signal.SIGINT) -> tuple[str, str]:
