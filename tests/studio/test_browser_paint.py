@@ -252,12 +252,8 @@ def _two_colour_column(tmp_path: Path) -> Path:
 def test_the_net_editor_gallery_and_3d_views_show_the_faces_colours(server, browser, tmp_path):
     open_page(browser, server)
     open_file(browser, _two_colour_column(tmp_path))
-    red_or_blue = """
-        const [r, g, b] = arguments[0];
-        return r > 1.8 * Math.max(g, b) ? 'red' : b > 1.8 * Math.max(r, g) ? 'blue' : 'other';"""
-
-    # the shape in the 3D view: each visible face in its voxel's colour, times its shade
-    faces = browser.execute_script("""
+    # each face the 3D view shows whole at its centre, and the pixel there
+    visible_face_pixels = """
         const v = window.voxfabPaint.viewer, ctx = v.canvas.getContext('2d'), out = [];
         for (const p of v._polys) {
           const x = p.pts.reduce((a, q) => a + q[0], 0) / 4, y = p.pts.reduce((a, q) => a + q[1], 0) / 4;
@@ -265,7 +261,13 @@ def test_the_net_editor_gallery_and_3d_views_show_the_faces_colours(server, brow
           if (!hit || hit.face !== p.name) continue;
           out.push([p.name, Array.from(ctx.getImageData(Math.round(x), Math.round(y), 1, 1).data)]);
         }
-        return out;""")
+        return out;"""
+    red_or_blue = """
+        const [r, g, b] = arguments[0];
+        return r > 1.8 * Math.max(g, b) ? 'red' : b > 1.8 * Math.max(r, g) ? 'blue' : 'other';"""
+
+    # the shape in the 3D view: each visible face in its voxel's colour, times its shade
+    faces = browser.execute_script(visible_face_pixels)
     assert len(faces) > 50
     for name, px in faces:
         z = int(name.split(",")[2])
@@ -308,15 +310,7 @@ def test_the_net_editor_gallery_and_3d_views_show_the_faces_colours(server, brow
 
     # folded up in the 3D view: the outside of each face in its colour times its shade
     browser.execute_script("window.voxfabNetView.fold(1);")
-    folded = browser.execute_script("""
-        const v = window.voxfabPaint.viewer, ctx = v.canvas.getContext('2d'), out = [];
-        for (const p of v._polys) {
-          const x = p.pts.reduce((a, q) => a + q[0], 0) / 4, y = p.pts.reduce((a, q) => a + q[1], 0) / 4;
-          const hit = v.pick(x, y);
-          if (!hit || hit.face !== p.name) continue;
-          out.push([p.name, Array.from(ctx.getImageData(Math.round(x), Math.round(y), 1, 1).data)]);
-        }
-        return out;""")
+    folded = browser.execute_script(visible_face_pixels)
     assert len(folded) > 50
     for name, px in folded:
         assert browser.execute_script(red_or_blue, px) == ("red" if int(name.split(",")[2]) < 12 else "blue"), (name, px)
