@@ -22,11 +22,11 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Mapping
 from pathlib import Path
+from typing import TYPE_CHECKING
 
+from voxfab._shared.lazy import lazy_names
 from voxfab.errors import UnknownFormatError
 
-from ._cutters import CUTTERS, Cutter, CutterMarks, clear_of_marks, cutter_area, registration_marks
-from ._font import text_polylines, text_width
 from ._layers import (
     DASH_PATTERNS,
     HAIRLINE,
@@ -38,11 +38,24 @@ from ._layers import (
     aci,
     parse_colors,
 )
-from ._legend import Legend
-from ._model import HALO, Drawing, Fill, Ink, Page, PlacedImage
-from ._polylines import Polylines
 from ._sheets import MAX_SHEET, SHEETS, parse_sheet, sheet_problem
 from .dxf import DEFAULT_DXF_VERSION
+
+if TYPE_CHECKING:
+    from ._cutters import CUTTERS, Cutter, CutterMarks, clear_of_marks, cutter_area, registration_marks
+    from ._font import text_polylines, text_width
+    from ._legend import Legend
+    from ._model import HALO, Drawing, Fill, Ink, Page, PlacedImage
+    from ._polylines import Polylines
+
+#: Names whose modules load on first use: the options of a drawing (layers, sheets) need none of them.
+_LAZY = {**dict.fromkeys(("CUTTERS", "Cutter", "CutterMarks", "clear_of_marks", "cutter_area", "registration_marks"),
+                         "_cutters"),
+         "text_polylines": "_font", "text_width": "_font", "Legend": "_legend",
+         **dict.fromkeys(("HALO", "Drawing", "Fill", "Ink", "Page", "PlacedImage"), "_model"),
+         "Polylines": "_polylines"}
+
+__getattr__, __dir__ = lazy_names(__name__, _LAZY, globals())
 
 __all__ = [
     "CUTTERS",

@@ -17,6 +17,7 @@ import io
 from collections.abc import Mapping, Sequence
 from enum import Enum
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -25,7 +26,9 @@ from voxfab._shared.options import option
 
 from ._format import numbers, polyline_text
 from ._layers import DASH_PATTERNS, LAYERS, LayerStyle, LineStyle, aci
-from ._model import Page
+
+if TYPE_CHECKING:
+    from ._model import Page
 
 __all__ = ["DEFAULT_DXF_VERSION", "DxfVersion", "LINETYPE_NAMES", "dxf_version_option", "page_dxf", "page_dxf_r12",
            "page_dxf_r2000", "write_dxf"]

@@ -27,18 +27,19 @@ import dataclasses
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from voxfab._shared.lazy import lazy_names
 from voxfab.drawing import LayerStyle, LineStyle, parse_colors
 from voxfab.fabricate._outputs import Artefact, OutputFile
-from voxfab.shape import VoxelShape
-from voxfab.unfold import Net
 
-from ._net_options import NetOptions
+from ._net_options import NetOptions, SheetNets
 from ._options import SHEETS, DrawingOptions, parse_sheet
-from ._sheets import SheetFitError, drawable_area
 
 if TYPE_CHECKING:
+    from voxfab.shape import VoxelShape
+    from voxfab.unfold import Net
+
     from ._drawing import NetDrawing
-    from ._fit import FaceSizeError, SheetNets
+    from ._fit import FaceSizeError
     from ._gallery import (
         Gallery,
         GalleryNet,
@@ -50,6 +51,17 @@ if TYPE_CHECKING:
         net_layout,
     )
     from ._pipeline import NetFiles, check_request, net_files, parse_box, search_nets
+    from ._sheets import SheetFitError, drawable_area
+
+#: Names whose modules load on first use, so that ``voxfab net`` reads its options without the search,
+#: the sheets and the drawing code (and shapely behind it).
+_LAZY = {"NetDrawing": "_drawing", "FaceSizeError": "_fit",
+         **dict.fromkeys(("NetFiles", "check_request", "net_files", "parse_box", "search_nets"), "_pipeline"),
+         **dict.fromkeys(("Gallery", "GalleryNet", "fit_and_placement", "gallery_face_size", "gallery_json",
+                          "gallery_options", "net_gallery", "net_layout"), "_gallery"),
+         "SheetFitError": "_sheets", "drawable_area": "_sheets"}
+
+__getattr__, __dir__ = lazy_names(__name__, _LAZY, globals())
 
 __all__ = [
     "SHEETS",
@@ -90,33 +102,10 @@ __all__ = [
 _DEFAULTS = DrawingOptions()
 
 
-def __getattr__(name: str) -> Any:
-    # Keep `import voxfab.fabricate.netdraw` light for the CLI: the drawing code
-    # (and shapely behind it) loads on first use.
-    if name == "NetDrawing":
-        from ._drawing import NetDrawing
-
-        return NetDrawing
-    if name in ("SheetNets", "FaceSizeError"):
-        from . import _fit
-
-        return getattr(_fit, name)
-    if name in ("NetFiles", "check_request", "net_files", "parse_box", "search_nets"):
-        from . import _pipeline
-
-        return getattr(_pipeline, name)
-    if name in ("Gallery", "GalleryNet", "fit_and_placement", "gallery_face_size", "gallery_json", "gallery_options",
-                "net_gallery", "net_layout"):
-        from . import _gallery
-
-        return getattr(_gallery, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
 def shape_colours(shape: Any, filled: bool = False) -> tuple[Any, Any]:
     """``(grid, colours)`` of a :class:`~voxfab.shape.VoxelShape` (its colours, None when uncoloured) or of a
     bool grid (None); with ``filled``, the grid's enclosed cavities filled (a net of the outer surface)."""
-    from voxfab.shape import fill_cavities
+    from voxfab.shape import VoxelShape, fill_cavities
 
     grid, colours = (shape.grid, shape.colours) if isinstance(shape, VoxelShape) else (shape, None)
     if not filled:
@@ -239,6 +228,8 @@ def save_drawing(drawing: NetDrawing, path: str | Path, options: DrawingOptions)
 
 def _draw_any(grid: Any, nets: Net | list[Net], options: DrawingOptions, title: str,
               placement: Any = None, colours: Any = None) -> NetDrawing:
+    from voxfab.unfold import Net
+
     from ._drawing import draw_net as _draw_one
     from ._drawing import draw_pieces as _draw_many
 

@@ -33,6 +33,7 @@ from voxfab.unfold._search import MAX_FIT_SIDE
 
 from ._labels import label_length
 from ._legible import legibility_problem, smallest_face_size
+from ._net_options import SheetNets
 from ._options import DrawingOptions
 from ._sheets import (
     check_pieces_sheet,
@@ -50,29 +51,6 @@ MEASURE_TIMEOUT = 20.0
 
 #: What :func:`distinct_cuts` keeps of each distinct net.
 Kept = TypeVar("Kept")
-
-
-@dataclasses.dataclass(frozen=True, eq=False)
-class SheetNets:
-    """Nets found for a sheet.
-
-    Attributes
-    ----------
-    nets : list of list of Net
-        Each result as its pieces (one Net for a one-piece net).
-    options : DrawingOptions
-        The drawing options with the face size settled.
-    notes : list of str
-        Report lines (how many distinct nets were found, the face size chosen).
-    best_extent : (int, int) or None
-        When no one-piece net fits at the face size asked for (``show_unfit``): the extent of the
-        net measured to fit the sheet at the largest face size, for the words of each net shown.
-    """
-
-    nets: list[list[Net]]
-    options: DrawingOptions
-    notes: list[str]
-    best_extent: tuple[int, int] | None = None
 
 
 def _surface_faces(grid: Any, fill: bool) -> int:

@@ -301,7 +301,7 @@ def fit_and_placement(pieces: list[Net], options: DrawingOptions, graph: Any,
     placement : dict or None
 
     ``best_extent`` is the extent of the net measured to fit the sheet at the largest face size
-    (:attr:`._fit.SheetNets.best_extent`): a net that does not fit names that face size.
+    (:attr:`._net_options.SheetNets.best_extent`): a net that does not fit names that face size.
     """
     fit, placement, _ = _laid_out(pieces, options, graph, best_extent)
     return fit, placement

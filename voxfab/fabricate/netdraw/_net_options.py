@@ -1,4 +1,5 @@
-"""The search options of a paper net, declared once (CLI flags, recipe keys, checks, README table).
+"""The search options of a paper net, declared once (CLI flags, recipe keys, checks, README table), and what
+a search for a sheet gives back (:class:`SheetNets`).
 
 The drawing options (sheet, tabs, styles) are :class:`DrawingOptions`.
 """
@@ -6,8 +7,14 @@ The drawing options (sheet, tabs, styles) are :class:`DrawingOptions`.
 from __future__ import annotations
 
 import dataclasses
+from typing import TYPE_CHECKING
 
 from voxfab._shared.options import Options, option
+
+if TYPE_CHECKING:
+    from voxfab.unfold import Net
+
+    from ._options import DrawingOptions
 
 #: Longest search budget accepted, seconds.
 MAX_TIMEOUT = 3600.0
@@ -47,3 +54,26 @@ class NetOptions(Options):
     fit: bool = option(True, help="kept for old recipes: drawn nets always fit their sheet", cli=False)
     formats: tuple[str, ...] = option(("svg", "dxf", "pdf"), help="drawings written beside net.json (png: a "
                                       "preview)", choices=("svg", "dxf", "pdf", "png"), cli=False)
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class SheetNets:
+    """Nets found for a sheet.
+
+    Attributes
+    ----------
+    nets : list of list of Net
+        Each result as its pieces (one Net for a one-piece net).
+    options : DrawingOptions
+        The drawing options with the face size settled.
+    notes : list of str
+        Report lines (how many distinct nets were found, the face size chosen).
+    best_extent : (int, int) or None
+        When no one-piece net fits at the face size asked for (``show_unfit``): the extent of the
+        net measured to fit the sheet at the largest face size, for the words of each net shown.
+    """
+
+    nets: list[list[Net]]
+    options: DrawingOptions
+    notes: list[str]
+    best_extent: tuple[int, int] | None = None

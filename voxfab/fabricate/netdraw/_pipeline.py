@@ -15,14 +15,15 @@ import math
 import re
 from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from voxfab.errors import InvalidShapeError, UnknownFormatError
-from voxfab.unfold import EdgeConstraints, Net
 
-from ._fit import SheetNets
-from ._net_options import NetOptions
+from ._net_options import NetOptions, SheetNets
 from ._options import DrawingOptions
+
+if TYPE_CHECKING:
+    from voxfab.unfold import EdgeConstraints, Net
 
 _BOX = re.compile(r"\s*([0-9]+(?:\.[0-9]*)?)\s*[xX×]\s*([0-9]+(?:\.[0-9]*)?)\s*")  # ASCII digits, matched whole
 
