@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import ast
 import json
 import subprocess
 import sys
@@ -212,26 +213,41 @@ def test_printed_figures_agree_with_the_json_on_the_pawn(tmp_path):
 
 
 #: What ``voxfab net`` never runs on a small shape: the pictures, the plates, the census, the other makers,
-#: the net editor and hunter, the repository's database (the shape is a file), and the heavy libraries of
-#: other commands (and numba: a small surface runs the plain-Python kernels).
+#: the net editor and hunter, the repository's database (the shape is a file), recipes, and the heavy
+#: libraries of other commands (and numba: a small surface runs the plain-Python kernels); nor what numpy
+#: loads on first use of a part the search does without: numpy.ma (np.unique), numpy.random (a board's
+#: seed is hashed as SeedSequence hashes it) and hashlib (a shape's key).
 NOT_RUN_BY_NET = ("voxfab.render", "voxfab.fabricate.plates", "voxfab.census", "voxfab.digitize",
                   "voxfab.studio", "voxfab.batch", "voxfab.generate", "voxfab.unfold._edit", "voxfab.unfold._hunt",
-                  "voxfab.unfold._many", "voxfab.repo._repository", "sqlite3", "dask", "distributed", "ortools",
-                  "build123d", "OCP", "numba", "trimesh", "matplotlib", "PIL")
+                  "voxfab.unfold._many", "voxfab.repo._repository", "voxfab.recipe", "sqlite3", "tomllib", "dask",
+                  "distributed", "ortools", "build123d", "OCP", "numba", "trimesh", "matplotlib", "PIL", "scipy",
+                  "ezdxf", "tqdm", "importlib.metadata", "numpy.ma", "numpy.random", "hashlib")
+#: What a JSON net on a small shape never runs besides: the sheets, the search for a face size, the drawing
+#: and its geometry (shapely).
+NOT_RUN_BY_JSON_NET = ("voxfab.drawing._model", "voxfab.drawing._font", "voxfab.drawing._legend",
+                       "voxfab.fabricate.netdraw._sheets", "voxfab.fabricate.netdraw._fit",
+                       "voxfab.fabricate.netdraw._drawing", "voxfab.unfold._boxfit", "shapely")
+
+
+def _modules_loaded(tmp_path, argv: list[str], names: tuple[str, ...]) -> tuple[int, list[str]]:
+    """The exit status of ``voxfab`` run on ``argv`` in a fresh interpreter, and the modules of ``names``
+    (each a module or a package) it loaded."""
+    code = ("import sys\nfrom voxfab.cli import main\n"
+            f"status = main({argv!r})\n"
+            f"print(status, sorted(m for m in sys.modules if any(m == n or m.startswith(n + '.') for n in {names!r})))\n")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path, timeout=300)
+    assert r.returncode == 0, r.stderr
+    status, loaded = r.stdout.splitlines()[-1].split(" ", 1)
+    return int(status), ast.literal_eval(loaded)
 
 
 def test_net_on_a_cube_imports_only_what_it_runs(tmp_path):
     np.save(tmp_path / "cube.npy", np.ones((1, 1, 1), dtype=bool))
-    code = (
-        "import sys\nfrom voxfab.cli import main\n"
-        "status = main(['net', 'cube.npy', '-o', 'cube.json', '-o', 'cube.svg'])\n"
-        f"print(status, sorted(m for m in sys.modules if m.split('.')[0] in {NOT_RUN_BY_NET!r} "
-        f"or m.startswith({NOT_RUN_BY_NET!r})))\n"
-    )
-    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path, timeout=300)
-    assert r.returncode == 0, r.stderr
-    assert r.stdout.splitlines()[-1] == "0 []"
+    assert _modules_loaded(tmp_path, ["net", "cube.npy", "-o", "cube.json", "-o", "cube.svg"],
+                           NOT_RUN_BY_NET) == (0, [])
     assert Net.from_json((tmp_path / "cube.json").read_text()).face_count == 6
+    assert _modules_loaded(tmp_path, ["net", "cube.npy", "-o", "cube.json"],
+                           NOT_RUN_BY_NET + NOT_RUN_BY_JSON_NET) == (0, [])
 
 
 def test_a_hopeless_sheet_for_pieces_is_refused_before_any_search_with_or_without_a_face_size(tmp_path):

@@ -28,6 +28,7 @@ width: expected a positive number of mm, got -3
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import types
 import typing
@@ -224,6 +225,13 @@ def option_specs(cls: type) -> list[OptionSpec]:
     A plain dataclass (fields without :func:`option`) gets specs from its type
     hints alone, so its values are type-checked as well.
     """
+    return list(_specs(cls))
+
+
+@functools.cache
+def _specs(cls: type) -> tuple[OptionSpec, ...]:
+    # Once per class: resolving the type hints compiles every annotation, and a command reads
+    # its options classes some twenty times (flags, checks, values).
     hints = typing.get_type_hints(cls)
     specs = []
     for f in dataclasses.fields(cls):
@@ -237,7 +245,7 @@ def option_specs(cls: type) -> list[OptionSpec]:
             flag=meta.get("flag") or "--" + f.name.replace("_", "-"), negate=meta.get("negate", False),
             flag_help=meta.get("flag_help"), metavar=meta.get("metavar"), cli=meta.get("cli", True), recipe=meta.get("recipe", True),
         ))
-    return specs
+    return tuple(specs)
 
 
 def _expected(spec: OptionSpec) -> str:

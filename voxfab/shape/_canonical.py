@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import hashlib
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -50,4 +49,6 @@ def canonical_key(grid: npt.ArrayLike, *, symmetric: bool = False, colours: Voxe
         )
     else:
         data = _key_bytes(cells, palette)
+    import hashlib  # here, not at the top: it loads OpenSSL (3 ms), which a command keying no shape never needs
+
     return hashlib.sha256(data).hexdigest()

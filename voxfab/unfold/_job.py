@@ -8,7 +8,7 @@ import enum
 import numpy as np
 import numpy.typing as npt
 
-from voxfab._shared.rng import as_rng
+from voxfab._shared.rng import as_rng, check_seed
 from voxfab.errors import UnfoldError
 from voxfab.shape import SurfaceGraph
 
@@ -77,8 +77,7 @@ def surface_parts(sg: SurfaceGraph, faces: npt.NDArray[np.int64] | None = None) 
 def seed_of(rng: np.random.Generator | int) -> int:
     """The int seed of ``rng``: the seed itself, or one drawn from the generator."""
     if isinstance(rng, (int, np.integer)) and not isinstance(rng, bool):
-        as_rng(rng)  # validates the seed
-        return int(rng)
+        return check_seed(rng)
     return int(as_rng(rng).integers(0, 2**31 - 1))
 
 

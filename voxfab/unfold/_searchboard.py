@@ -9,6 +9,7 @@ import numpy as np
 import numpy.typing as npt
 
 from voxfab._shared.progress import Meter, check_cancelled
+from voxfab._shared.rng import seed_state
 from voxfab.shape import SurfaceGraph
 
 from ._constraints import Resolved
@@ -117,7 +118,7 @@ class SearchBoard:
         else:
             ys, xs = np.nonzero(board == -1)
             cells = (ys * self.width + xs).astype(np.int64)
-        state = np.random.SeedSequence(seed).generate_state(1, dtype=np.uint64)[0]
+        state = seed_state(seed)
         self.sf = _surface(sg, resolved, _board)
         self.b = _board.make_board(faces, sg.face_count, board.ravel(), self.width, cells,
                                    int(state), resolved is not None)

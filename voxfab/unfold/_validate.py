@@ -15,6 +15,8 @@ from collections.abc import Sequence
 import numpy as np
 import numpy.typing as npt
 
+from voxfab._shared.arrays import unique
+
 # check_cancelled() in the face-by-face walks: a cancelled studio job stops within a face, not a whole check.
 from voxfab._shared.progress import check_cancelled
 from voxfab._shared.validate import as_grid
@@ -186,16 +188,6 @@ def _rule_neighbours(gp, v, n, u):
     return voxel, normal, kind
 
 
-def _repeats(values: npt.NDArray[np.int64]) -> bool:
-    """Whether a value occurs more than once.
-
-    Sorted neighbours, not ``np.unique``: its first call loads numpy.ma, about 8 ms of the start of
-    ``voxfab net`` on a small shape.
-    """
-    s = np.sort(values)
-    return bool((s[1:] == s[:-1]).any())
-
-
 def _sound_piece(g, faces, net: Net, owner: dict):
     """Every condition of one net checked over whole arrays: ``(seams, no_room, (ids, faces))``, or None.
 
@@ -231,7 +223,7 @@ def _sound_piece(g, faces, net: Net, owner: dict):
     lo = cell.min(axis=0) - 2
     span = int((cell.max(axis=0) - lo).max()) + 3
     cell_key = (cell[:, 0] - lo[0]) * span + (cell[:, 1] - lo[1])
-    if _repeats(cell_key):
+    if unique(cell_key).size != nf:
         return None
     # Folds: two faces that are rule neighbours across their shared edge, at the same place in 2D.
     folds = np.asarray(net.folds, dtype=np.int64).reshape(-1, 2)
@@ -239,7 +231,7 @@ def _sound_piece(g, faces, net: Net, owner: dict):
     if folds.size and ((folds < 0).any() or (folds >= nf).any() or (i == j).any()):
         return None
     pair = np.minimum(i, j) * nf + np.maximum(i, j)
-    if _repeats(pair):
+    if unique(pair).size != pair.size:
         return None
     gp = np.pad(np.asarray(g, dtype=bool), 1)
     if folds.size:

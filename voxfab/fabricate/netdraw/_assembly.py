@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
+from voxfab._shared.arrays import unique
 from voxfab.drawing import Page, Polylines, text_polylines, text_width
 
 from ._tabs import TabPlan
@@ -31,7 +32,7 @@ def piece_joins(face_piece: npt.NDArray[np.int64], sides: npt.NDArray[np.int64])
     a = face_piece[sides[:, 0, 0]]
     b = face_piece[np.maximum(sides[:, 1, 0], 0)]
     keep = (sides[:, 1, 0] >= 0) & (a != b)
-    pairs = np.unique(np.stack([np.minimum(a, b), np.maximum(a, b)], axis=1)[keep], axis=0)
+    pairs = unique(np.stack([np.minimum(a, b), np.maximum(a, b)], axis=1)[keep], axis=0)
     return [(int(x), int(y)) for x, y in pairs.tolist()]
 
 
@@ -185,7 +186,7 @@ def paper_boxes(pos: npt.NDArray[np.float64], fs: npt.NDArray[np.int64], sides: 
     lo = np.concatenate([pos.min(axis=1), poly.min(axis=1)])
     hi = np.concatenate([pos.max(axis=1), poly.max(axis=1)])
     sheets = np.concatenate([fs, fs[seam_face[tabs.placed]]])
-    return {int(s): (lo[sheets == s], hi[sheets == s]) for s in np.unique(sheets).tolist()}
+    return {int(s): (lo[sheets == s], hi[sheets == s]) for s in unique(sheets).tolist()}
 
 
 def number_text(names: list[str], centres: npt.NDArray[np.float64], heights: npt.NDArray[np.float64]) -> Polylines:

@@ -7,6 +7,7 @@ import dataclasses
 import numpy as np
 import numpy.typing as npt
 
+from voxfab._shared.arrays import unique
 from voxfab.drawing import (
     LAYERS,
     Cutter,
@@ -488,7 +489,7 @@ def _tab_sides(corners: npt.NDArray[np.int64], sides: npt.NDArray[np.int64]
     step = np.array([[0, -1], [1, 0], [0, 1], [-1, 0]], dtype=np.int64)
     cells = corners.min(axis=1)
     m = int(corners.max()) + 4
-    occupied = np.unique((cells[:, 0] + 1) * m + cells[:, 1] + 1)
+    occupied = unique((cells[:, 0] + 1) * m + cells[:, 1] + 1)
 
     def taken(c: npt.NDArray[np.int64]) -> npt.NDArray[np.bool_]:
         return np.isin((c[..., 0] + 1) * m + c[..., 1] + 1, occupied)
@@ -622,13 +623,13 @@ def _draw_sheet(
     inks: dict[tuple[str, int], list[Polylines]] = {}
 
     def by_ink(layer: str, ink: npt.NDArray[np.int64], make) -> None:  # noqa: ANN001 - mask -> Polylines
-        for i in np.unique(ink).tolist():
+        for i in unique(ink).tolist():
             lines = make(ink == i)
             layers[layer].append(lines)
             inks.setdefault((layer, i), []).append(lines)
 
     folds = joined & canon & on_e
-    ink_values = np.unique(edge_ink[folds]).tolist() or [0]
+    ink_values = unique(edge_ink[folds]).tolist() or [0]
     lines_by_type = {(t, i): runs(folds & (edges.fold_type == t) & (edge_ink == i))
                      for t in ((1, -1, 0) if opts.grid_lines else (1, -1)) for i in ink_values}
     # Tab folds on this sheet, typed like the seam they close (coplanar: a full fold, mountain).
@@ -785,7 +786,7 @@ def _mark_boxes(pos: npt.NDArray[np.float64], fs: npt.NDArray[np.int64], sides: 
         hi.append(np.maximum(a, b))
         sheet.append(on[no_tab])
     los, his, sheets = np.concatenate(lo), np.concatenate(hi), np.concatenate(sheet)
-    return {int(s): (los[sheets == s], his[sheets == s]) for s in np.unique(sheets).tolist()}
+    return {int(s): (los[sheets == s], his[sheets == s]) for s in unique(sheets).tolist()}
 
 
 def _polygon_area(polys: npt.NDArray[np.float64]) -> float:

@@ -12,6 +12,7 @@ import dataclasses
 import numpy as np
 import numpy.typing as npt
 
+from voxfab._shared.arrays import unique
 from voxfab.errors import FormatError
 from voxfab.shape import SurfaceGraph
 from voxfab.unfold import Net
@@ -94,7 +95,7 @@ def face_map(graph: SurfaceGraph, net: Net) -> npt.NDArray[np.int64]:
     pos = np.searchsorted(graph_keys, net_keys)
     pos = np.minimum(pos, graph_keys.size - 1)
     found = graph_keys[pos] == net_keys
-    if not found.all() or np.unique(pos).size != pos.size or not np.array_equal(net.corners3d, graph.corners[pos]):
+    if not found.all() or unique(pos).size != pos.size or not np.array_equal(net.corners3d, graph.corners[pos]):
         raise FormatError(
             f"net: its {net.face_count} faces do not match the shape's {graph.face_count} "
             "surface faces (a net of another shape?)"
@@ -130,7 +131,7 @@ def classify_edges(graph: SurfaceGraph, net: Net, corners2d: npt.NDArray[np.int6
     folds = net.folds
     if folds.size and (folds.min() < 0 or folds.max() >= n):
         raise FormatError("net: a fold names a face the net does not have")
-    fold_keys = np.unique(np.minimum(folds[:, 0], folds[:, 1]) * n + np.maximum(folds[:, 0], folds[:, 1]))
+    fold_keys = unique(np.minimum(folds[:, 0], folds[:, 1]) * n + np.maximum(folds[:, 0], folds[:, 1]))
     f = np.repeat(np.arange(n)[:, None], 4, axis=1)
     edge_keys = np.where(inside, np.minimum(f, g) * n + np.maximum(f, g), -1)
     is_fold = np.isin(edge_keys, fold_keys) & inside
@@ -186,7 +187,7 @@ def merge_unit_segments(a: npt.NDArray[np.int64], b: npt.NDArray[np.int64]) -> t
     axis = np.where(horizontal, 0, 1)
     line = np.where(horizontal, lo[:, 1], lo[:, 0])
     pos = np.where(horizontal, lo[:, 0], lo[:, 1])
-    key = np.unique(np.stack([axis, line, pos], axis=1), axis=0)
+    key = unique(np.stack([axis, line, pos], axis=1), axis=0)
     new_run = np.ones(key.shape[0], dtype=bool)
     new_run[1:] = (key[1:, 0] != key[:-1, 0]) | (key[1:, 1] != key[:-1, 1]) | (key[1:, 2] != key[:-1, 2] + 1)
     starts = np.flatnonzero(new_run)
