@@ -213,15 +213,16 @@ def test_printed_figures_agree_with_the_json_on_the_pawn(tmp_path):
 
 
 #: What ``voxfab net`` never runs on a small shape: the pictures, the plates, the census, the other makers,
-#: the net editor and hunter, the repository's database (the shape is a file), recipes, and the heavy
-#: libraries of other commands (and numba: a small surface runs the plain-Python kernels); nor what numpy
-#: loads on first use of a part the search does without: numpy.ma (np.unique), numpy.random (a board's
-#: seed is hashed as SeedSequence hashes it) and hashlib (a shape's key).
+#: the net editor and hunter, the repository's database (the shape is a file), recipes, the readers of other
+#: formats (and the .npz archive code), the heavy libraries of other commands (and numba: a small surface runs
+#: the plain-Python kernels), nor what numpy loads on first use of a part the search does without: numpy.ma
+#: (np.unique), numpy.random (a board's seed is hashed as SeedSequence hashes it); nor hashlib (a shape's key).
 NOT_RUN_BY_NET = ("voxfab.render", "voxfab.fabricate.plates", "voxfab.census", "voxfab.digitize",
                   "voxfab.studio", "voxfab.batch", "voxfab.generate", "voxfab.unfold._edit", "voxfab.unfold._hunt",
                   "voxfab.unfold._many", "voxfab.repo._repository", "voxfab.recipe", "sqlite3", "tomllib", "dask",
                   "distributed", "ortools", "build123d", "OCP", "numba", "trimesh", "matplotlib", "PIL", "scipy",
-                  "ezdxf", "tqdm", "importlib.metadata", "numpy.ma", "numpy.random", "hashlib")
+                  "ezdxf", "tqdm", "importlib.metadata", "numpy.ma", "numpy.random", "hashlib", "voxfab.io.mesh",
+                  "voxfab.io.vox", "voxfab.io.png", "voxfab.io.text", "voxfab.io.binvox", "zipfile")
 #: What a JSON net on a small shape never runs besides: the sheets, the search for a face size, the drawing
 #: and its geometry (shapely).
 NOT_RUN_BY_JSON_NET = ("voxfab.drawing._model", "voxfab.drawing._font", "voxfab.drawing._legend",

@@ -79,16 +79,21 @@ def register(extension: str, *, reader: Reader | None = None, writer: Writer | N
         _WRITERS[ext] = writer
 
 
-def _load_all() -> None:
+def _load_all(until: str | None = None) -> None:
+    """Import the format modules in order: all of them, or only until one has registered a reader of the
+    extension ``until`` (reading a ``.npy`` loads no mesh or image code)."""
     global _loaded
-    if not _loaded:
-        for name in FORMAT_MODULES:
-            try:
-                importlib.import_module(name)
-            except ModuleNotFoundError as exc:
-                if exc.name != name:
-                    raise  # a format module that exists but lacks a dependency is a bug
-        _loaded = True
+    if _loaded:
+        return
+    for name in FORMAT_MODULES:
+        if until is not None and until in _READERS:
+            return
+        try:
+            importlib.import_module(name)
+        except ModuleNotFoundError as exc:
+            if exc.name != name:
+                raise  # a format module that exists but lacks a dependency is a bug
+    _loaded = True
 
 
 def _extension(path: PathLike) -> str:
@@ -139,8 +144,8 @@ def read(path: PathLike, **options: Any) -> ReadResult:
         For an option the format does not take, or a grid that is empty or
         over 256 voxels per side.
     """
-    _load_all()
     ext = _extension(path)
+    _load_all(until=ext)
     if not ext and not Path(path).exists():
         raise FormatError(f"{path}: no such file or folder")
     if ext not in _READERS:

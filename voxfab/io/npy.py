@@ -9,7 +9,6 @@ read back is the object that was written: ``shape`` (bool grid), ``pitch_mm``
 from __future__ import annotations
 
 import io
-import zipfile
 import zlib
 from typing import TYPE_CHECKING
 
@@ -23,6 +22,8 @@ from voxfab.errors import FormatError, InvalidShapeError, VoxfabError
 from ._registry import ReadResult, register
 
 if TYPE_CHECKING:
+    import zipfile
+
     from voxfab.shape._colour import VoxelColours
 
 
@@ -68,6 +69,8 @@ _KEPT = ("pitch_mm", "colour_index", "palette")
 def read_npz(path: PathLike) -> ReadResult:
     """Read a ``.npz`` archive: the array named ``shape``, or its only array, with its
     ``pitch_mm``, ``colour_index`` and ``palette`` when it keeps them."""
+    import zipfile  # here: a .npy file, the common case, needs no archive
+
     try:
         with np.load(path, allow_pickle=False) as data:
             names = list(data.files)
@@ -124,6 +127,8 @@ def write_npz(grid: BoolGrid, path: PathLike, *, pitch: float | None = None,
 
     The zip entries carry a fixed timestamp so equal shapes give equal bytes.
     """
+    import zipfile
+
     members: dict[str, np.ndarray] = {"shape": np.ascontiguousarray(grid, dtype=bool)}
     if pitch is not None:
         members["pitch_mm"] = np.asarray(float(pitch))
