@@ -1,13 +1,20 @@
 """Benchmark: where the artist waits on the command line, interpreter start included.
 
-Run: python bench/bench_cli.py [--smoke]   (--smoke: one run of each command instead of 7)
+Run: python bench/bench_cli.py [--smoke] [--before CHECKOUT] [--save]
+(--smoke: one run of each command instead of 7; --before: a checkout of voxfab to measure side by side,
+e.g. ``git worktree add /tmp/before COMMIT``; its runs alternate with this checkout's.)
 Goals: ``voxfab net`` on a unit cube within 0.3 s (the CLI's floor: a command imports only what it
 runs); a sheet hopeless for a net in pieces (the chess queen on 60x60 mm) refused within 0.2 s above
-that floor, with a face size or without.  Each row is a whole ``python -m voxfab`` process.
+that floor, with a face size or without.  Each row is a whole ``python -m voxfab`` process, run from
+this checkout (or the one given); wall and CPU seconds (user + system, the operating system's count)
+are medians.  Without ``--before``, the column "before" holds the figures recorded before issue #46.
 """
 
 from __future__ import annotations
 
+import argparse
+import os
+import resource
 import statistics
 import subprocess
 import sys
@@ -16,24 +23,38 @@ import time
 from pathlib import Path
 
 import numpy as np
+from _table import Table, add_save_option
 
 from voxfab.recipe import load_recipe, make_shape
 
 ROOT = Path(__file__).resolve().parents[1]
 
+#: Median wall seconds before issue #46 (commit 27fbcf1, 15 runs on the shared 2-core machine at a load of
+#: about 5; CPU 0.23 s and 0.33 s): the cube's two rows.
+RECORDED_BEFORE = {"voxfab net cube -o cube.json": 0.576, "voxfab net cube -o cube.svg": 0.784}
 
-def wall(cmd: list[str], cwd: Path, runs: int) -> tuple[float, float, int]:
-    """Median and largest wall seconds of ``cmd``, and its exit status."""
-    times, status = [], 0
-    for _ in range(runs):
-        t = time.perf_counter()
-        status = subprocess.run(cmd, capture_output=True, cwd=cwd).returncode
-        times.append(time.perf_counter() - t)
-    return statistics.median(times), max(times), status
+
+def _cpu() -> float:
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+def run_once(cmd: list[str], cwd: Path, checkout: Path) -> tuple[float, float, int]:
+    """Wall and CPU seconds of one run of ``cmd`` with ``checkout``'s voxfab, and its exit status."""
+    env = {**os.environ, "PYTHONPATH": str(checkout)}
+    cpu, t = _cpu(), time.perf_counter()
+    status = subprocess.run(cmd, capture_output=True, cwd=cwd, env=env).returncode
+    return time.perf_counter() - t, _cpu() - cpu, status
 
 
 def main() -> None:
-    runs = 1 if "--smoke" in sys.argv[1:] else 7
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--smoke", action="store_true", help="one run of each command")
+    parser.add_argument("--before", type=Path, metavar="CHECKOUT",
+                        help="a checkout of voxfab (the folder holding voxfab/) to measure side by side")
+    add_save_option(parser)
+    args = parser.parse_args()
+    runs = 1 if args.smoke else 7
     voxfab = [sys.executable, "-m", "voxfab"]
     with tempfile.TemporaryDirectory() as tmp:
         here = Path(tmp)
@@ -48,12 +69,22 @@ def main() -> None:
             ("queen, pieces, 60x60: refused", hopeless, "floor + 0.2 s"),
             ("queen, pieces, 60x60, 8.6 mm: refused", [*hopeless, "--face-size", "8.6"], "floor + 0.2 s"),
         ]
-        print(f"{'command':<40} {'median s':>9} {'max s':>7} {'exit':>5}  goal")
+        before = "before s" if args.before else "before s (recorded)"
+        table = Table("cli", ["command", before, "wall s", "max s", "cpu s", "exit", "goal"])
         for label, cmd, goal in rows:
-            med, worst, status = wall(cmd, here, runs)
-            print(f"{label:<40} {med:9.3f} {worst:7.3f} {status:>5}  {goal}")
+            now, then = [], []
+            for _ in range(runs):  # alternated, so a change in the machine's load falls on both
+                if args.before:
+                    then.append(run_once(cmd, here, args.before))
+                now.append(run_once(cmd, here, ROOT))
+            walls = [w for w, _, _ in now]
+            was = (f"{statistics.median(w for w, _, _ in then):.3f}" if then
+                   else f"{RECORDED_BEFORE[label]:.3f}" if label in RECORDED_BEFORE else "")
+            table.row(label, was, f"{statistics.median(walls):.3f}", f"{max(walls):.3f}",
+                      f"{statistics.median(c for _, c, _ in now):.3f}", now[-1][2], goal)
         print(f"medians of {runs} runs; the queen's refusals exit 6 (a sheet too small); 2-core machine shared "
-              "with other jobs, figures are noisy")
+              "with other jobs: wall figures are noisy, CPU seconds less so")
+    table.save(args.save)
 
 
 if __name__ == "__main__":
