@@ -15,10 +15,16 @@ cli        the ``voxfab`` command
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
+from ._shared.lazy import lazy_names
 from ._version import __version__
-from .shape import VoxelShape
+
+if TYPE_CHECKING:
+    from .shape import VoxelShape
+
+# The shapes (and numpy) load on first use of ``voxfab.VoxelShape``: ``voxfab --version`` needs neither.
+__getattr__, __dir__ = lazy_names(__name__, {"VoxelShape": "shape"}, globals())
 
 __all__ = ["__version__", "VoxelShape", "load", "save"]
 

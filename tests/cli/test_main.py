@@ -20,6 +20,18 @@ def test_version_through_the_real_entry_point():
     assert r.stdout.startswith("voxfab ")
 
 
+def test_version_loads_no_command_nor_numpy():
+    # The version is a constant: neither the shapes (numpy) nor any command's module, nor the
+    # installed distribution's metadata.
+    code = ("import sys\nfrom voxfab.cli import main\ntry:\n    main(['--version'])\nexcept SystemExit:\n    pass\n"
+            "print(sorted(m for m in sys.modules if m.split('.')[0] in ('numpy', 'importlib_metadata')\n"
+            "             or m.startswith(('voxfab.cli.', 'voxfab.shape', 'importlib.metadata'))))\n")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    loaded = r.stdout.splitlines()[-1]
+    assert loaded == str(["voxfab.cli._common", "voxfab.cli._main", "voxfab.cli._reference"])
+
+
 def test_info_json_is_one_object_with_the_required_keys(tmp_path):
     g = examples.random_shape(2)
     np.save(tmp_path / "s.npy", g)
