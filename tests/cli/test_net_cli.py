@@ -213,13 +213,15 @@ def test_printed_figures_agree_with_the_json_on_the_pawn(tmp_path):
 
 
 #: What ``voxfab net`` never runs on a small shape: the pictures, the plates, the census, the other makers,
-#: the net editor and hunter, the repository's database (the shape is a file), recipes, the readers of other
-#: formats (and the .npz archive code), the heavy libraries of other commands (and numba: a small surface runs
-#: the plain-Python kernels), nor what numpy loads on first use of a part the search does without: numpy.ma
-#: (np.unique), numpy.random (a board's seed is hashed as SeedSequence hashes it); nor hashlib (a shape's key).
+#: the net editor and hunter, the exact search and the pieces, the repository's database (the shape is a
+#: file), recipes, the readers of other formats (and the .npz archive code), the heavy libraries of other
+#: commands (and numba: a small surface runs the plain-Python kernels), nor what numpy loads on first use
+#: of a part the search does without: numpy.ma (np.unique), numpy.random (a board's seed is hashed as
+#: SeedSequence hashes it); nor hashlib (a shape's key).
 NOT_RUN_BY_NET = ("voxfab.render", "voxfab.fabricate.plates", "voxfab.census", "voxfab.digitize",
                   "voxfab.studio", "voxfab.batch", "voxfab.generate", "voxfab.unfold._edit", "voxfab.unfold._hunt",
-                  "voxfab.unfold._many", "voxfab.repo._repository", "voxfab.recipe", "sqlite3", "tomllib", "dask",
+                  "voxfab.unfold._many", "voxfab.unfold._exact", "voxfab.unfold._cpsat", "voxfab.unfold._pieces",
+                  "voxfab.unfold._patches", "voxfab.repo._repository", "voxfab.recipe", "sqlite3", "tomllib", "dask",
                   "distributed", "ortools", "build123d", "OCP", "numba", "trimesh", "matplotlib", "PIL", "scipy",
                   "ezdxf", "tqdm", "importlib.metadata", "numpy.ma", "numpy.random", "hashlib", "voxfab.io.mesh",
                   "voxfab.io.vox", "voxfab.io.png", "voxfab.io.text", "voxfab.io.binvox", "zipfile")

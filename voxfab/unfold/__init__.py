@@ -15,24 +15,24 @@ from voxfab._shared.lazy import lazy_names
 from voxfab.errors import NoNetExistsError
 
 from ._constraints import EdgeConstraints
-from ._exact import Undecided
 from ._job import NoFitError, Pieces, Strategy
 from ._layout import seam_pairs, tab_room
 from ._net import NET_FORMAT, Net, fold_tree
-from ._outline import outline_key
 from ._search import unfold
 from ._validate import ValidationReport, validate
 
 if TYPE_CHECKING:
     from ._cpsat import solve_with_nogoods
     from ._edit import EditResult, cut_edge, join_edge
+    from ._exact import Undecided
     from ._hunt import HUNT_NET, HUNT_ZIPPER, HuntOutcome, hunt_shape
     from ._many import unfold_many
+    from ._outline import outline_key
 
 #: Names whose modules load on first use: a command that searches one net never runs them.
 _LAZY = {"solve_with_nogoods": "_cpsat", "EditResult": "_edit", "cut_edge": "_edit", "join_edge": "_edit",
          "HUNT_NET": "_hunt", "HUNT_ZIPPER": "_hunt", "HuntOutcome": "_hunt", "hunt_shape": "_hunt",
-         "unfold_many": "_many"}
+         "unfold_many": "_many", "Undecided": "_exact", "outline_key": "_outline"}
 
 __getattr__, __dir__ = lazy_names(__name__, _LAZY, globals())
 

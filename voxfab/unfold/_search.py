@@ -15,7 +15,6 @@ from voxfab.errors import InvalidShapeError, NoNetExistsError, UnfoldError
 from voxfab.shape import cavity_count, component_count, fill_cavities, surface_graph
 
 from ._constraints import EdgeConstraints, Resolved, check_one_piece, resolve
-from ._exact import ExactLayout, any_box, exact_layout, min_box_layout
 from ._job import (
     FIT_STEPS_PER_FACE,
     Job,
@@ -29,7 +28,6 @@ from ._job import (
 from ._layout import build_net, count_without_tab_room
 from ._net import Net
 from ._onepiece import one_piece
-from ._pieces import split
 from ._searchboard import SearchBoard
 
 __all__ = ["unfold"]
@@ -187,6 +185,8 @@ def unfold(
     resolved = resolve(constraints, sg)  # every named edge must be on this surface
     asked = fit
     if strat is Strategy.EXACT and fit is None and not (min_box or zipper):
+        from ._exact import any_box
+
         # No box in particular: one that holds every net of the surface, so the
         # search finds one (the same on every run) and has nothing to prove.
         fit = any_box(sg.face_count)
@@ -210,6 +210,8 @@ def unfold(
             _refuse_parts(g, len(parts))
         check_one_piece(sg, resolved)  # in milliseconds, not after the whole budget
         return dataclasses.replace(one_piece(job, parts[0]), filled=fill)
+    from ._pieces import split  # here: a search for one piece (a command's usual one) never cuts pieces
+
     nets: list[Net] = []
     for t, part in enumerate(parts):
         remaining = max(deadline - time.monotonic(), 0.0)
@@ -242,6 +244,7 @@ def _check_exact(strat: Strategy, mode: Pieces, fit: tuple[int, int] | None, com
 def _exact_piece(job: Job, faces: npt.NDArray[np.int64], resolved: Resolved | None, min_box: bool,
                  zipper: bool) -> Net:
     """The exact strategy's net of one surface part (no seed: recorded as 0)."""
+    from ._exact import exact_layout, min_box_layout
     from ._validate import validate
 
     with meter(1, desc="net: exact search") as bar:
@@ -272,6 +275,8 @@ def _growth_hint(job: Job, faces: npt.NDArray[np.int64], resolved: Resolved | No
     A fixed seed and a fixed budget of growth steps in each orientation (no
     clock) make the hint, and so the exact result, the same on every run.
     """
+    from ._exact import ExactLayout
+
     n = int(faces.size)
     w, h = job.fit
     if w * h < n:
