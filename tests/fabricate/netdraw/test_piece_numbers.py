@@ -151,3 +151,29 @@ def test_a_number_box_is_on_its_piece_only_where_its_nine_points_fall_on_cells_o
     assert not _on_cells(wrapped, wrapped + 0.5, origin, pitch, cells).any()
     assert _on_cells(origin + [[0.3, 0.3], [2.3, 2.3]], origin + [[2.0, 1.0], [2.8, 2.8]], origin, pitch,
                      cells).tolist() == [True, True]
+
+
+def test_a_number_takes_the_first_clear_spot_of_all_though_the_spots_are_tried_a_block_at_a_time() -> None:
+    """The spot found a block at a time is the first of the whole table: in the first block, past it (a
+    piece whose first faces are crowded with labels), or none; on the piece's cells or inside the area."""
+    from voxfab.fabricate.netdraw._assembly import _BLOCK, NUMBER_CLEAR, _first_clear
+
+    rng = np.random.default_rng(1)
+    n = 3 * _BLOCK + 17
+    lo = rng.uniform(0, 200, (n, 2))
+    hi = lo + 4.0
+    area = (10.0, 10.0, 190.0, 190.0)
+    for taken in (0, _BLOCK + 40, 2 * _BLOCK - 1, n):  # labels cover the spots before this one
+        lo_b, hi_b = lo[:taken] + 0.5, hi[:taken] - 0.5
+        inside = (lo[:, 0] >= area[0]) & (lo[:, 1] >= area[1]) & (hi[:, 0] <= area[2]) & (hi[:, 1] <= area[3])
+        clear = ~((lo[:, None] < hi_b[None] + NUMBER_CLEAR) & (hi[:, None] > lo_b[None] - NUMBER_CLEAR)).all(axis=2).any(axis=1)
+        ok = inside & clear
+        want = int(np.argmax(ok)) if ok.any() else None
+        assert _first_clear(lo, hi, lo_b, hi_b, area=area) == want
+        assert want is None or want >= taken
+    # On the cells: a 30 x 30 block of cells of 8.6 mm from the origin; the first spot past it is not one.
+    pitch, origin = 8.6, np.zeros(2)
+    cells = np.array([(x, y) for x in range(30) for y in range(30)])
+    spots = np.concatenate([np.full((_BLOCK + 5, 2), 300.0), [[20.0, 20.0]]])
+    got = _first_clear(spots, spots + 4.0, np.zeros((0, 2)), np.zeros((0, 2)), on=(origin, pitch, cells))
+    assert got == _BLOCK + 5
