@@ -7,7 +7,7 @@ Goals: ``voxfab net`` on a unit cube within 0.3 s (the CLI's floor: a command im
 runs); a sheet hopeless for a net in pieces (the chess queen on 60x60 mm) refused within 0.2 s above
 that floor, with a face size or without.  Each row is a whole ``python -m voxfab`` process, run from
 this checkout (or the one given); wall and CPU seconds (user + system, the operating system's count)
-are medians.  Without ``--before``, the column "before" holds the figures recorded before issue #46.
+are medians.  Without ``--before``, the columns "before" hold the figures recorded before issue #46.
 """
 
 from __future__ import annotations
@@ -29,9 +29,10 @@ from voxfab.recipe import load_recipe, make_shape
 
 ROOT = Path(__file__).resolve().parents[1]
 
-#: Median wall seconds before issue #46 (commit 27fbcf1, 15 runs on the shared 2-core machine at a load of
-#: about 5; CPU 0.23 s and 0.33 s): the cube's two rows.
-RECORDED_BEFORE = {"voxfab net cube -o cube.json": 0.576, "voxfab net cube -o cube.svg": 0.784}
+#: Median wall and CPU seconds before issue #46 (commit 27fbcf1), measured on the shared 2-core machine at a
+#: load of about 5: wall side by side with the change (--before), CPU over 15 runs.
+RECORDED_BEFORE = {"voxfab --version": (0.214, 0.150), "voxfab net cube -o cube.json": (0.308, 0.228),
+                   "voxfab net cube -o cube.svg": (0.434, 0.328)}
 
 
 def _cpu() -> float:
@@ -69,8 +70,9 @@ def main() -> None:
             ("queen, pieces, 60x60: refused", hopeless, "floor + 0.2 s"),
             ("queen, pieces, 60x60, 8.6 mm: refused", [*hopeless, "--face-size", "8.6"], "floor + 0.2 s"),
         ]
-        before = "before s" if args.before else "before s (recorded)"
-        table = Table("cli", ["command", before, "wall s", "max s", "cpu s", "exit", "goal"])
+        recorded = "" if args.before else " (recorded)"
+        table = Table("cli", ["command", f"before wall s{recorded}", "wall s", "max s", f"before cpu s{recorded}",
+                              "cpu s", "exit", "goal"])
         for label, cmd, goal in rows:
             now, then = [], []
             for _ in range(runs):  # alternated, so a change in the machine's load falls on both
@@ -78,9 +80,11 @@ def main() -> None:
                     then.append(run_once(cmd, here, args.before))
                 now.append(run_once(cmd, here, ROOT))
             walls = [w for w, _, _ in now]
-            was = (f"{statistics.median(w for w, _, _ in then):.3f}" if then
-                   else f"{RECORDED_BEFORE[label]:.3f}" if label in RECORDED_BEFORE else "")
-            table.row(label, was, f"{statistics.median(walls):.3f}", f"{max(walls):.3f}",
+            if then:
+                was = (f"{statistics.median(w for w, _, _ in then):.3f}", f"{statistics.median(c for _, c, _ in then):.3f}")
+            else:
+                was = tuple(f"{x:.3f}" for x in RECORDED_BEFORE.get(label, ())) or ("", "")
+            table.row(label, was[0], f"{statistics.median(walls):.3f}", f"{max(walls):.3f}", was[1],
                       f"{statistics.median(c for _, c, _ in now):.3f}", now[-1][2], goal)
         print(f"medians of {runs} runs; the queen's refusals exit 6 (a sheet too small); 2-core machine shared "
               "with other jobs: wall figures are noisy, CPU seconds less so")
