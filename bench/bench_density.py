@@ -4,8 +4,9 @@ Run: python bench/bench_density.py [--sheet A4] [--face-size 8.6] [--shapes quee
 (--smoke: the ball alone.)
 
 Each shape (cavities filled) is cut as ``voxfab net SHAPE --pieces auto --sheet A4 --face-size 8.6``
-cuts it, in the box of the sheet's cells: once from flat patches (``pieces="flat"``, today's default
-cut) and once as the few large pieces of ``pieces="auto"``, then as the pipeline cuts it by default
+cuts it, in the box of the sheet's cells: once from flat patches (``pieces="flat"``), once as bands
+round the shape (``pieces="bands"``: straight strips of the rows of faces across an axis, stacked where
+they line up), once as the few large pieces of ``pieces="auto"``, then as the pipeline cuts it by default
 (the flat patches, or the large pieces where those take fewer sheets).  Each cut is refolded
 (:func:`voxfab.unfold.validate`) and packed as the drawing packs them (:func:`sheets_needed`).  Per cut:
 the sheets, the fill (paper of faces and tabs over the sheets' usable area), the pieces, the seams (cut
@@ -24,7 +25,7 @@ from pathlib import Path
 import numpy as np
 
 ROOT = Path(__file__).parents[1]
-CUTS = ("flat", "auto", "default")
+CUTS = ("flat", "bands", "auto", "default")
 
 
 def _blob() -> np.ndarray:
@@ -50,8 +51,8 @@ def shapes() -> dict[str, object]:
 def measure(grid: np.ndarray, cut: str, face: float, sheet: str, seed: int = 0) -> dict[str, float]:
     """One cut of ``grid`` packed on ``sheet``: sheets, goal, fill, pieces, seams, untabbed, seconds.
 
-    ``cut`` "default" is the cut ``voxfab net --pieces auto`` makes (:func:`find_sheet_nets`); "flat" and
-    "auto" are :func:`voxfab.unfold.unfold`'s, in a box of the sheet's cells less a face for the tabs.
+    ``cut`` "default" is the cut ``voxfab net --pieces auto`` makes (:func:`find_sheet_nets`); "flat",
+    "bands" and "auto" are :func:`voxfab.unfold.unfold`'s, in a box of the sheet's cells less a face for the tabs.
     """
     from voxfab.fabricate.netdraw import DrawingOptions, draw_pieces, drawable_area, find_sheet_nets
     from voxfab.unfold import unfold, validate

@@ -85,33 +85,90 @@ def _tiles(sg: SurfaceGraph, patch: npt.NDArray[np.int64], cell: npt.NDArray[np.
     return out
 
 
-def patch_pieces(job: Job, faces: npt.NDArray[np.int64]) -> list[tuple[SearchBoard, npt.NDArray[np.int64]]]:
-    """Pieces grown from whole flat patches of the surface, each joined rigidly to the piece along a shared edge.
+def flat_layouts(sg: SurfaceGraph, faces: npt.NDArray[np.int64], side: int, pcell: npt.NDArray[np.int64],
+                 prot: npt.NDArray[np.int64], ppar: npt.NDArray[np.int64]) -> list[npt.NDArray[np.int64]]:
+    """``faces`` as flat patches (those past ``side`` cells cut into tiles), each laid out from its first face.
 
-    A flat patch unfolds to its own shape, so pieces made of patches are as
-    compact as the surface and pack densely on a sheet.  A piece starts from
-    the largest patch left (a patch larger than the box is cut into tiles of
-    the box) and takes, one at a time, the neighbouring patch whose rigid
-    placement shares the most edges with the piece in the plane (then keeps
-    its bounding box smallest), so strips of a band round the shape line up.
-    A placement must fit the box either way round, overlap no face, and lay no
-    face beside another across an edge they do not share on the surface: every
-    seam then keeps the cell beyond it free on both sides for its glue tab.
+    Writes each patch's layout into ``pcell``, ``prot`` and ``ppar``.
     """
-    sg = job.sg
-    f_all = sg.face_count
-    box = job.fit
-    pcell = np.zeros((f_all, 2), dtype=np.int64)
-    prot = np.zeros(f_all, dtype=np.int64)
-    ppar = np.full(f_all, -1, dtype=np.int64)
-    in_patch = np.zeros(f_all, dtype=bool)
-    side = min(box)
+    in_patch = np.zeros(sg.face_count, dtype=bool)
     patches: list[npt.NDArray[np.int64]] = []
     for patch in _flat_patches(sg, faces):
         in_patch[patch] = True
         _lay_flat(sg, int(patch[0]), in_patch, pcell, prot, ppar)
         in_patch[patch] = False
-        patches += _tiles(sg, patch, pcell, (side, side))
+        tiles = _tiles(sg, patch, pcell, (side, side))
+        if len(tiles) > 1:
+            for tile in tiles:  # each tile laid out from its own first face, as a patch of its own
+                in_patch[tile] = True
+                _lay_flat(sg, int(tile[0]), in_patch, pcell, prot, ppar)
+                in_patch[tile] = False
+        patches += tiles
+    return patches
+
+
+def _hang(sg: SurfaceGraph, root: int, in_patch: npt.NDArray[np.bool_], cell: npt.NDArray[np.int64],
+          rot: npt.NDArray[np.int64], par: npt.NDArray[np.int64]) -> None:
+    """The fold tree of a laid-out patch, breadth first from ``root``: across the edges whose faces meet in the plane.
+
+    Writes ``par`` only (``root`` gets none); ``cell`` and ``rot`` of the patch are read.
+    For a flat patch this is the tree :func:`_lay_flat` makes; a band cut open
+    is not crossed at its cut, where its ends do not meet.
+    """
+    par[root] = -1
+    seen = {root}
+    walk = [root]
+    for a in walk:
+        for k in range(4):
+            c = int(sg.neighbor[a, k])
+            if not in_patch[c] or c in seen:
+                continue
+            s = (k + int(rot[a])) % 4
+            if (int(cell[c, 0]) - int(cell[a, 0]), int(cell[c, 1]) - int(cell[a, 1])) != _STEP[s] or \
+                    int(rot[c]) != (s + 2 - int(sg.neighbor_edge[a, k])) % 4:
+                continue
+            seen.add(c)
+            par[c] = a
+            walk.append(c)
+
+
+def patch_pieces(job: Job, faces: npt.NDArray[np.int64]) -> list[tuple[SearchBoard, npt.NDArray[np.int64]]]:
+    """Pieces grown from whole flat patches of the surface, each joined rigidly to the piece along a shared edge.
+
+    A flat patch unfolds to its own shape, so pieces made of patches are as
+    compact as the surface and pack densely on a sheet (:func:`join_patches`).
+    """
+    f_all = job.sg.face_count
+    pcell = np.zeros((f_all, 2), dtype=np.int64)
+    prot = np.zeros(f_all, dtype=np.int64)
+    ppar = np.full(f_all, -1, dtype=np.int64)
+    patches = flat_layouts(job.sg, faces, min(job.fit), pcell, prot, ppar)
+    return join_patches(job, patches, pcell, prot, _PATCH_SHARE)
+
+
+def join_patches(job: Job, patches: list[npt.NDArray[np.int64]], pcell: npt.NDArray[np.int64],
+                 prot: npt.NDArray[np.int64], share: float, loose: npt.NDArray[np.bool_] | None = None
+                 ) -> list[tuple[SearchBoard, npt.NDArray[np.int64]]]:
+    """Pieces of rigid patches (each laid out at ``pcell``, ``prot``, in one piece in the plane), joined along shared edges.
+
+    A piece starts from the largest patch left and takes, one at a time, the
+    neighbouring patch whose rigid placement shares the most edges with the
+    piece in the plane (then keeps its bounding box smallest), so strips of a
+    band round the shape line up; it stops growing at ``share`` of the box's
+    cells.  A placement must fit the box either way round, overlap no face,
+    and lay no face beside another across an edge they do not share on the
+    surface: every seam then keeps the cell beyond it free on both sides for
+    its glue tab.  A face is laid beside an edge only once the edge's partner
+    is laid, so no patch left loses the edge it could hang from, unless the
+    partner is ``loose`` (a face of a patch large enough to start a piece):
+    the partner's own side then keeps the seam's tab room.
+    """
+    sg = job.sg
+    f_all = sg.face_count
+    loose = np.zeros(f_all, dtype=bool) if loose is None else loose
+    box = job.fit
+    pcell, prot = pcell.copy(), prot.copy()
+    in_patch = np.zeros(f_all, dtype=bool)
     patch_of = np.full(f_all, -1, dtype=np.int64)
     for t, p in enumerate(patches):
         patch_of[p] = t
@@ -149,7 +206,7 @@ def patch_pieces(job: Job, faces: npt.NDArray[np.int64]) -> list[tuple[SearchBoa
                         continue
                     tried.add(key)
                     found = _place_patch(sg, patches[t], pcell, prot, q, (tx - vx, ty - vy), occ, rot, lo, hi,
-                                         box, blocked, placed)
+                                         box, blocked, placed, loose)
                     if found is not None and _blocks_ok(found[2], sg):
                         score = (-found[0], found[1], len(found[2]), t)
                         if best is None or score < best[0]:
@@ -166,9 +223,7 @@ def patch_pieces(job: Job, faces: npt.NDArray[np.int64]) -> list[tuple[SearchBoa
             rot[patch] = (prot[patch] + q) % 4
             # The fold tree of the patch hangs from the shared edge the placement came from.
             in_patch[patch] = True
-            keep_cell, keep_rot = cell[patch].copy(), rot[patch].copy()
-            _lay_flat(sg, c, in_patch, cell, rot, par)
-            cell[patch], rot[patch] = keep_cell, keep_rot
+            _hang(sg, c, in_patch, cell, rot, par)
             in_patch[patch] = False
             par[c] = a
             free[t] = False
@@ -186,11 +241,13 @@ def patch_pieces(job: Job, faces: npt.NDArray[np.int64]) -> list[tuple[SearchBoa
                 continue
             free[start] = False
             placed[patches[start]] = True
+            cell[patches[start]] = pcell[patches[start]]
+            rot[patches[start]] = prot[patches[start]]
             in_patch[patches[start]] = True
-            _lay_flat(sg, int(patches[start][0]), in_patch, cell, rot, par)
+            _hang(sg, int(patches[start][0]), in_patch, cell, rot, par)
             in_patch[patches[start]] = False
             members = list(patches[start].tolist())
-            grow(members, _PATCH_SHARE * box[0] * box[1])
+            grow(members, share * box[0] * box[1])
             groups.append(members)
 
     groups: list[list[int]] = []
@@ -258,8 +315,9 @@ def _absorb(sg: SurfaceGraph, groups: list[list[int]], cell: npt.NDArray[np.int6
                         if (qq,) + off in tried:
                             continue
                         tried.add((qq,) + off)
+                        everywhere = np.ones(sg.face_count, dtype=bool)
                         found = _place_patch(sg, small, pcell, prot, qq, off, occ, rot, lo, hi, box, blocked,
-                                             np.ones(sg.face_count, dtype=bool))
+                                             everywhere, everywhere)
                         if found is not None and _blocks_ok(found[2], sg):
                             done = (qq, off, a, c)
                             blocked.update(found[2])
@@ -292,8 +350,8 @@ def _absorb(sg: SurfaceGraph, groups: list[list[int]], cell: npt.NDArray[np.int6
 def _place_patch(sg: SurfaceGraph, patch: npt.NDArray[np.int64], pcell: npt.NDArray[np.int64],
                  prot: npt.NDArray[np.int64], q: int, offset: tuple[int, int], occ: dict,
                  rot: npt.NDArray[np.int64], lo: npt.NDArray[np.int64], hi: npt.NDArray[np.int64],
-                 box: tuple[int, int], blocked: set[tuple[int, int]], placed: npt.NDArray[np.bool_]
-                 ) -> tuple[int, int, list] | None:
+                 box: tuple[int, int], blocked: set[tuple[int, int]], placed: npt.NDArray[np.bool_],
+                 loose: npt.NDArray[np.bool_]) -> tuple[int, int, list] | None:
     """A patch turned ``q`` quarter turns and moved by ``offset`` beside a piece: how well it sits.
 
     Returns the edges it shares with the piece in the plane, the piece's
@@ -330,8 +388,8 @@ def _place_patch(sg: SurfaceGraph, patch: npt.NDArray[np.int64], pcell: npt.NDAr
             for e in ((g, kg), (h_, kh)):
                 partner = (int(nb[e[0], e[1]]), int(ne[e[0], e[1]]))
                 # The seam's other side must be laid already (its cell beyond stays free), so no face
-                # left to place loses the edge it could hang from.
-                if partner in blocked or partner in new or not placed[partner[0]]:
+                # left to place loses the edge it could hang from (a loose face has other ways to go).
+                if partner in blocked or partner in new or not (placed[partner[0]] or loose[partner[0]]):
                     return None
                 new.append(e)
     return joined, w * h, new

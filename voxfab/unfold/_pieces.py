@@ -19,6 +19,7 @@ import numpy.typing as npt
 from voxfab.errors import UnfoldError
 from voxfab.shape import SurfaceGraph
 
+from ._bands import band_cuts
 from ._job import FIT_STEPS_PER_FACE, MIN_SHARE, Job, Strategy, growth_settings, orientations, surface_parts
 from ._net import Net
 from ._onepiece import one_piece
@@ -69,7 +70,13 @@ def _partition(job: Job, faces: npt.NDArray[np.int64]) -> list[tuple[SearchBoard
     group must not be cut) each piece is instead the largest net that
     ruin-and-recreate packs into the box from the faces left over.
     """
-    if job.constraints is None and job.fit is not None and job.flat:
+    if job.constraints is None and job.fit is not None and job.bands:
+        for cut in band_cuts(job, faces):
+            try:
+                return _balance(job, cut)
+            except UnfoldError:
+                pass  # this cut breaks the size rule: the next, else flat patches
+    if job.constraints is None and job.fit is not None and (job.flat or job.bands):
         patches = patch_pieces(job, faces)
         try:
             return _balance(job, list(patches))

@@ -198,7 +198,7 @@ def unfold(
             raise NoNetExistsError(*(asked or (None, None)), why=str(exc)) from None
     _check_groups_fit(resolved, fit)
     job = Job(g, sg, seed, strat, fit, tab_aware, compact, deadline, float(timeout), constraints,
-              mode is Pieces.FLAT)
+              mode is Pieces.FLAT, mode is Pieces.BANDS)
     parts = surface_parts(sg)
     if strat is Strategy.EXACT:
         if len(parts) > 1:
