@@ -34,6 +34,7 @@ _BAND_SHARE = 0.5
 #: Strips of at least this many faces may lose an edge they could hang from
 #: to a strip laid beside it: the rectangles of strips that line up in part.
 _LOOSE = 3
+_PHASED = True
 
 
 def _loops(sg: SurfaceGraph, faces: npt.NDArray[np.int64], axis: int) -> list[list[int]]:
@@ -115,12 +116,13 @@ def band_pieces(job: Job, faces: npt.NDArray[np.int64], axis: int, loose: bool =
     prot = np.zeros(f_all, dtype=np.int64)
     ppar = np.full(f_all, -1, dtype=np.int64)
     patches = band_layouts(job.sg, faces, axis, job.fit, pcell, prot, ppar)
+    strips = [bool((job.sg.direction[p] // 2 != axis).all()) for p in patches]
     free = np.zeros(f_all, dtype=bool)
     if loose:
-        for p in patches:
-            if p.size >= _LOOSE and (job.sg.direction[p] // 2 != axis).all():
+        for p, strip in zip(patches, strips):
+            if strip and p.size >= _LOOSE:
                 free[p] = True  # a strip: it starts a piece of its own when no edge takes it
-    return join_patches(job, patches, pcell, prot, _BAND_SHARE, free)
+    return join_patches(job, patches, pcell, prot, _BAND_SHARE, free, strips if _PHASED else None, apart=True)
 
 
 def seams_of(job: Job, pieces: list[tuple[SearchBoard, npt.NDArray[np.int64]]]) -> int:

@@ -56,6 +56,13 @@ def split(job: Job, faces: npt.NDArray[np.int64]) -> list[Net]:
     for b, placed in boards:
         b.exclude_unplaced()
         if job.tab_aware and job.strategy is Strategy.DEFAULT:
+            if job.bands:
+                # A piece of bands laid rigidly keeps room for every tab, though the board counts a seam
+                # to another piece as without room: only pieces that lack room in the net are repaired.
+                net = b.net(job, placed)
+                if net.seams_without_tab_room == 0:
+                    nets.append(net)
+                    continue
             b.anneal(job.growth(placed.size), job.deadline)
         nets.append(b.net(job, placed))
     return nets
