@@ -79,3 +79,41 @@ def test_a_band_lays_out_as_a_straight_strip_of_upright_faces(axis):
                 assert s in (1, 3) and tuple(cell[a] - cell[b]) == _SIDE_STEP[s]
                 assert rot[a] == (s + 2 - sg.neighbor_edge[b, k]) % 4
         assert np.count_nonzero(par[p] < 0) == 1
+
+
+def _cylinder() -> np.ndarray:
+    """A round column 20 voxels high: its wall goes straight on from layer to layer."""
+    x, y, z = np.ogrid[:25, :25, :25]
+    return ((x - 12) ** 2 + (y - 12) ** 2 <= 36) & (z >= 2) & (z < 22)
+
+
+def test_the_wall_of_a_column_comes_as_rectangles_of_strips():
+    grid = _cylinder()
+    sg = surface_graph(grid)
+    nets = unfold(grid, rng=0, fit=BOX, pieces="bands", timeout=60)
+    assert validate(grid, nets).ok
+    wall = 0
+    for n in nets:
+        w, h = np.ptp(n.corners2d.reshape(-1, 2), axis=0)
+        side = int(np.count_nonzero(n.normal[:, 2] == 0))
+        if side == n.face_count:  # a piece of the wall alone: a rectangle, every cell of its box a face
+            assert n.face_count == w * h
+            wall += side
+    assert wall == np.count_nonzero(sg.direction // 2 != 2)  # the whole wall, in rectangles
+    # Two rectangles of the wall and the two end discs: the paper's own number of A4 sheets.
+    opts = DrawingOptions(pitch=8.6, sheet="A4", label_height=2.0)
+    sheets, goal, untabbed = sheets_needed(grid, nets, opts)
+    assert sheets == goal == 3 and untabbed == 0
+
+
+def test_pieces_auto_keeps_the_cut_on_fewer_sheets():
+    """``voxfab net --pieces auto``: the bands of a column take fewer sheets than its flat patches, so they are kept."""
+    from voxfab.fabricate.netdraw import find_sheet_nets
+    from voxfab.fabricate.netdraw._sheets import sheet_cells
+
+    grid = _cylinder()
+    opts = DrawingOptions(pitch=8.6, sheet="A4", label_height=2.0)
+    flat = unfold(grid, rng=0, fit=sheet_cells(opts, 8.6), pieces="flat", timeout=60)
+    chosen = find_sheet_nets(grid, opts, rng=0, pieces="auto").nets[0]
+    assert validate(grid, chosen).ok
+    assert sheets_needed(grid, chosen, opts)[0] < sheets_needed(grid, flat, opts)[0]

@@ -30,11 +30,10 @@ from ._searchboard import SearchBoard
 #: A piece of bands stops growing at this share of the box's cells; larger
 #: pieces than flat patches' (a quarter): rectangles of strips leave the box
 #: little room to fill anyway, and fewer pieces mean fewer seams.
-_BAND_SHARE = 0.5
+_BAND_SHARE = 1.0
 #: Strips of at least this many faces may lose an edge they could hang from
 #: to a strip laid beside it: the rectangles of strips that line up in part.
 _LOOSE = 3
-_PHASED = True
 
 
 def _loops(sg: SurfaceGraph, faces: npt.NDArray[np.int64], axis: int) -> list[list[int]]:
@@ -122,7 +121,8 @@ def band_pieces(job: Job, faces: npt.NDArray[np.int64], axis: int, loose: bool =
         for p, strip in zip(patches, strips):
             if strip and p.size >= _LOOSE:
                 free[p] = True  # a strip: it starts a piece of its own when no edge takes it
-    return join_patches(job, patches, pcell, prot, _BAND_SHARE, free, strips if _PHASED else None, apart=True)
+    # Strips start the pieces: the strips of a straight wall then stack before an end patch takes them.
+    return join_patches(job, patches, pcell, prot, _BAND_SHARE, free, apart=True, seed_first=strips)
 
 
 def seams_of(job: Job, pieces: list[tuple[SearchBoard, npt.NDArray[np.int64]]]) -> int:

@@ -18,9 +18,6 @@ from ._searchboard import SearchBoard, board_of
 #: pieces="auto" from flat patches: a piece stops growing at this share of the
 #: box's cells, so the box keeps room to take the small pieces left over.
 _PATCH_SHARE = 0.25
-#: Strips joined first (pieces="bands"): another patch hangs from them while their bounding box grows
-#: by at most this factor, so rectangles of strips stay near rectangles.
-_HANG_SLACK = 1.1
 
 
 def _flat_patches(sg: SurfaceGraph, faces: npt.NDArray[np.int64]) -> list[npt.NDArray[np.int64]]:
@@ -152,7 +149,7 @@ def patch_pieces(job: Job, faces: npt.NDArray[np.int64]) -> list[tuple[SearchBoa
 
 def join_patches(job: Job, patches: list[npt.NDArray[np.int64]], pcell: npt.NDArray[np.int64],
                  prot: npt.NDArray[np.int64], share: float, loose: npt.NDArray[np.bool_] | None = None,
-                 strips: list[bool] | None = None, apart: bool = False
+                 apart: bool = False, seed_first: list[bool] | None = None
                  ) -> list[tuple[SearchBoard, npt.NDArray[np.int64]]]:
     """Pieces of rigid patches (each laid out at ``pcell``, ``prot``, in one piece in the plane), joined along shared edges.
 
@@ -166,14 +163,13 @@ def join_patches(job: Job, patches: list[npt.NDArray[np.int64]], pcell: npt.NDAr
     its glue tab.  A face is laid beside an edge only once the edge's partner
     is laid, so no patch left loses the edge it could hang from, unless the
     partner is ``loose`` (a face of a patch large enough to start a piece):
-    the partner's own side then keeps the seam's tab room.  With ``strips``
-    (one flag per patch), pieces start from the marked patches alone and
-    take the others afterwards only where the piece's bounding box grows by
-    at most :data:`_HANG_SLACK`; the patches left start pieces of their own.
+    the partner's own side then keeps the seam's tab room.  Patches marked
+    ``seed_first`` start pieces before the others.
     """
     sg = job.sg
     f_all = sg.face_count
     loose = np.zeros(f_all, dtype=bool) if loose is None else loose
+    seed_first = seed_first or []
     box = job.fit
     pcell, prot = pcell.copy(), prot.copy()
     in_patch = np.zeros(f_all, dtype=bool)
@@ -191,12 +187,8 @@ def join_patches(job: Job, patches: list[npt.NDArray[np.int64]], pcell: npt.NDAr
     blocked: set[tuple[int, int]] = set()  # edges with a face beside them that is not their partner
     placed = np.zeros(f_all, dtype=bool)
 
-    def grow(members: list[int], limit: float, only: list[bool] | None = None, slack: float | None = None) -> None:
-        """Add the best-placed free neighbouring patch to the piece ``members`` until none fits or it reaches ``limit``.
-
-        ``only`` marks the patches it may take; with ``slack``, only while its bounding box grows
-        by at most that factor each time.
-        """
+    def grow(members: list[int], limit: float) -> None:
+        """Add the best-placed free neighbouring patch to the piece ``members`` until none fits or it reaches ``limit``."""
         occ = {(int(cell[f, 0]), int(cell[f, 1])): f for f in members}
         lo = cell[members].min(axis=0).tolist()
         hi = cell[members].max(axis=0).tolist()
@@ -212,7 +204,6 @@ def join_patches(job: Job, patches: list[npt.NDArray[np.int64]], pcell: npt.NDAr
 
         frontier = edges_out(members)
         while len(members) < limit:
-            area = (hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1)
             check_cancelled()  # between patches: a cancelled studio job stops within one patch's placements
             best = None
             tried: set[tuple[int, int, int, int]] = set()
@@ -220,8 +211,6 @@ def join_patches(job: Job, patches: list[npt.NDArray[np.int64]], pcell: npt.NDAr
             frontier = [e for e in frontier if patch_of[e[1]] >= 0 and free[patch_of[e[1]]]]
             for a, c, tx, ty, turn in frontier:
                 t = patch_of[c]
-                if only is not None and not only[t]:
-                    continue
                 q = (turn - int(prot[c])) % 4
                 vx, vy = int(pcell[c, 0]), int(pcell[c, 1])
                 for _ in range(q):
@@ -234,7 +223,7 @@ def join_patches(job: Job, patches: list[npt.NDArray[np.int64]], pcell: npt.NDAr
                     turns[t, q] = _turned(patches[t], pcell, prot, q)
                 found = _place_patch(nbl, nel, turns[t, q], (tx - vx, ty - vy), occ, rot, (lo[0], lo[1]),
                                      (hi[0], hi[1]), box, blocked, placed, loose)
-                if found is not None and _blocks_ok(found[2], sg) and (slack is None or found[1] <= slack * area):
+                if found is not None and _blocks_ok(found[2], sg):
                     score = (-found[0], found[1], len(found[2]), t)
                     if best is None or score < best[0]:
                         best = (score, t, q, key[2:], a, c, found[2])
@@ -262,10 +251,11 @@ def join_patches(job: Job, patches: list[npt.NDArray[np.int64]], pcell: npt.NDAr
             lo = np.minimum(lo, cell[patch].min(axis=0)).tolist()
             hi = np.maximum(hi, cell[patch].max(axis=0)).tolist()
 
-    def seed_pieces(groups: list[list[int]], only: list[bool] | None = None) -> None:
-        """New pieces from the free patches left (of ``only``), each from the largest one left."""
-        for start in sorted(range(len(patches)), key=lambda t: (-patches[t].size, int(patches[t][0]))):
-            if not free[start] or (only is not None and not only[start]):
+    def seed_pieces(groups: list[list[int]]) -> None:
+        """New pieces from the free patches left, each from the largest one left."""
+        for start in sorted(range(len(patches)), key=lambda t: (t >= len(seed_first) or not seed_first[t],
+                                                                -patches[t].size, int(patches[t][0]))):
+            if not free[start]:
                 continue
             free[start] = False
             placed[patches[start]] = True
@@ -275,15 +265,10 @@ def join_patches(job: Job, patches: list[npt.NDArray[np.int64]], pcell: npt.NDAr
             _hang(sg, int(patches[start][0]), in_patch, cell, rot, par)
             in_patch[patches[start]] = False
             members = list(patches[start].tolist())
-            grow(members, share * box[0] * box[1], only)
+            grow(members, share * box[0] * box[1])
             groups.append(members)
 
     groups: list[list[int]] = []
-    if strips is not None:
-        # Rectangles of strips first, then the other patches where they fit without growing them much.
-        seed_pieces(groups, strips)
-        for m in groups:
-            grow(m, math.inf, None, _HANG_SLACK)
     seed_pieces(groups)
     # Pieces under the size rule go back to single faces, which the other pieces (the smallest
     # first) take where they have room; what is left starts new pieces.

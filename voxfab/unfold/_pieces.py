@@ -78,11 +78,17 @@ def _partition(job: Job, faces: npt.NDArray[np.int64]) -> list[tuple[SearchBoard
     ruin-and-recreate packs into the box from the faces left over.
     """
     if job.constraints is None and job.fit is not None and job.bands:
-        for cut in band_cuts(job, faces):
+        cuts = band_cuts(job, faces)
+        for cut in cuts:
             try:
-                return _balance(job, cut)
+                return _balance(job, list(cut))
             except UnfoldError:
-                pass  # this cut breaks the size rule: the next, else flat patches
+                pass  # this cut breaks the size rule: the next
+        try:
+            # No cut keeps the size rule as it is: the small pieces of the one with fewest seams joined to neighbours.
+            return _balance(job, _merge_small(job, list(cuts[0]), mend_only=True))
+        except UnfoldError:
+            pass  # cut from flat patches instead
     if job.constraints is None and job.fit is not None and (job.flat or job.bands):
         patches = patch_pieces(job, faces)
         try:
