@@ -9,7 +9,9 @@ edges parallel to the axis keep that direction.  Strips are cut to the box's
 long side; where the wall goes straight on, the strips of consecutive layers
 line up edge to edge and join (:func:`._patches.join_patches`) into
 rectangles, which pack on a sheet with little paper lost.  The end faces
-(normal along the axis) are flat patches, hung from the strips where they fit.
+(normal along the axis) are flat patches, hung from the strips where they fit;
+strips start the pieces.  Of the three axes, with strips loose or not
+(:func:`band_pieces`), the cut with the fewest seams is kept.
 """
 
 from __future__ import annotations
@@ -27,9 +29,9 @@ from ._layout import build_net
 from ._patches import flat_layouts, join_patches
 from ._searchboard import SearchBoard
 
-#: A piece of bands stops growing at this share of the box's cells; larger
-#: pieces than flat patches' (a quarter): rectangles of strips leave the box
-#: little room to fill anyway, and fewer pieces mean fewer seams.
+#: A piece of bands grows until the box is full, not to a quarter of it as flat
+#: patches do: the strips of a straight wall then stack into one rectangle as
+#: large as the box (a round column's wall: two rectangles of 26x20 on A4).
 _BAND_SHARE = 1.0
 #: Strips of at least this many faces may lose an edge they could hang from
 #: to a strip laid beside it: the rectangles of strips that line up in part.
