@@ -1,12 +1,14 @@
-"""Benchmark: how densely nets in pieces fill their sheets, cut by flat patches and as large pieces, side by side.
+"""Benchmark: how densely nets in pieces fill their sheets, cut by flat patches, as bands and as large pieces, side by side.
 
-Run: python bench/bench_density.py [--sheet A4] [--face-size 8.6] [--shapes queen,ball,torus,blob,vase] [--smoke]
+Run: python bench/bench_density.py [--sheet A4] [--face-size 8.6] [--shapes queen,ball,torus,blob,vase,column]
+[--smoke]
 (--smoke: the ball alone.)
 
 Each shape (cavities filled) is cut as ``voxfab net SHAPE --pieces auto --sheet A4 --face-size 8.6``
-cuts it, in the box of the sheet's cells: once from flat patches (``pieces="flat"``, today's default
-cut) and once as the few large pieces of ``pieces="auto"``, then as the pipeline cuts it by default
-(the flat patches, or the large pieces where those take fewer sheets).  Each cut is refolded
+cuts it, in the box of the sheet's cells: once from flat patches (``pieces="flat"``), once as bands
+round the shape (``pieces="bands"``: straight strips of the rows of faces across an axis, stacked where
+they line up), once as the few large pieces of ``pieces="auto"``, then as the pipeline cuts it by default
+(the flat patches or the bands, whichever packs on fewer sheets).  Each cut is refolded
 (:func:`voxfab.unfold.validate`) and packed as the drawing packs them (:func:`sheets_needed`).  Per cut:
 the sheets, the fill (paper of faces and tabs over the sheets' usable area), the pieces, the seams (cut
 edges glued shut) and those without room for a tab, and the seconds the cut took.  ``goal`` is
@@ -24,7 +26,7 @@ from pathlib import Path
 import numpy as np
 
 ROOT = Path(__file__).parents[1]
-CUTS = ("flat", "auto", "default")
+CUTS = ("flat", "bands", "auto", "default")
 
 
 def _blob() -> np.ndarray:
@@ -36,6 +38,12 @@ def _blob() -> np.ndarray:
     return g
 
 
+def _column() -> np.ndarray:
+    """A round column 20 voxels high: a wall that goes straight on, the bands' best case."""
+    x, y, z = np.ogrid[:25, :25, :25]
+    return ((x - 12) ** 2 + (y - 12) ** 2 <= 36) & (z >= 2) & (z < 22)
+
+
 def shapes() -> dict[str, object]:
     from voxfab.recipe import load_recipe, make_shape
     from voxfab.shape import examples
@@ -44,14 +52,15 @@ def shapes() -> dict[str, object]:
             "ball": lambda: examples.ball(7),
             "torus": lambda: examples.torus(7.0, 3.0),
             "blob": _blob,
-            "vase": lambda: make_shape(load_recipe(ROOT / "recipes/vase.toml")).grid}
+            "vase": lambda: make_shape(load_recipe(ROOT / "recipes/vase.toml")).grid,
+            "column": _column}
 
 
 def measure(grid: np.ndarray, cut: str, face: float, sheet: str, seed: int = 0) -> dict[str, float]:
     """One cut of ``grid`` packed on ``sheet``: sheets, goal, fill, pieces, seams, untabbed, seconds.
 
-    ``cut`` "default" is the cut ``voxfab net --pieces auto`` makes (:func:`find_sheet_nets`); "flat" and
-    "auto" are :func:`voxfab.unfold.unfold`'s, in a box of the sheet's cells less a face for the tabs.
+    ``cut`` "default" is the cut ``voxfab net --pieces auto`` makes (:func:`find_sheet_nets`); "flat",
+    "bands" and "auto" are :func:`voxfab.unfold.unfold`'s, in a box of the sheet's cells less a face for the tabs.
     """
     from voxfab.fabricate.netdraw import DrawingOptions, draw_pieces, drawable_area, find_sheet_nets
     from voxfab.unfold import unfold, validate

@@ -37,6 +37,7 @@ class Pieces(enum.StrEnum):
     ONE = "one"
     AUTO = "auto"
     FLAT = "flat"
+    BANDS = "bands"
 
 
 def growth_settings(strategy: Strategy, faces: int) -> Growth:
@@ -110,6 +111,7 @@ class Job:
     timeout: float
     constraints: EdgeConstraints | None
     flat: bool = False
+    bands: bool = False
 
     def growth(self, faces: int):
         return growth_settings(self.strategy, faces)

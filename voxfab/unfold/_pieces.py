@@ -19,6 +19,7 @@ import numpy.typing as npt
 from voxfab.errors import UnfoldError
 from voxfab.shape import SurfaceGraph
 
+from ._bands import band_cuts
 from ._job import FIT_STEPS_PER_FACE, MIN_SHARE, Job, Strategy, growth_settings, orientations, surface_parts
 from ._net import Net
 from ._onepiece import one_piece
@@ -55,6 +56,13 @@ def split(job: Job, faces: npt.NDArray[np.int64]) -> list[Net]:
     for b, placed in boards:
         b.exclude_unplaced()
         if job.tab_aware and job.strategy is Strategy.DEFAULT:
+            if job.bands:
+                # A piece of bands laid rigidly keeps room for every tab, though the board counts a seam
+                # to another piece as without room: only pieces that lack room in the net are repaired.
+                net = b.net(job, placed)
+                if net.seams_without_tab_room == 0:
+                    nets.append(net)
+                    continue
             b.anneal(job.growth(placed.size), job.deadline)
         nets.append(b.net(job, placed))
     return nets
@@ -69,7 +77,19 @@ def _partition(job: Job, faces: npt.NDArray[np.int64]) -> list[tuple[SearchBoard
     group must not be cut) each piece is instead the largest net that
     ruin-and-recreate packs into the box from the faces left over.
     """
-    if job.constraints is None and job.fit is not None and job.flat:
+    if job.constraints is None and job.fit is not None and job.bands:
+        cuts = band_cuts(job, faces)
+        for cut in cuts:
+            try:
+                return _balance(job, list(cut))
+            except UnfoldError:
+                pass  # this cut breaks the size rule: the next
+        try:
+            # No cut keeps the size rule as it is: the small pieces of the one with fewest seams joined to neighbours.
+            return _balance(job, _merge_small(job, list(cuts[0]), mend_only=True))
+        except UnfoldError:
+            pass  # cut from flat patches instead
+    if job.constraints is None and job.fit is not None and (job.flat or job.bands):
         patches = patch_pieces(job, faces)
         try:
             return _balance(job, list(patches))

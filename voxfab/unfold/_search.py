@@ -119,7 +119,7 @@ def unfold(
         the final count is in ``Net.seams_without_tab_room``.
     fill : bool
         Fill enclosed cavities first (their surfaces cannot join the outer one).
-    pieces : {"one", "auto", "flat"}
+    pieces : {"one", "auto", "flat", "bands"}
         ``"one"``: return one Net or raise UnfoldError.  ``"auto"``: always return a
         list of Nets, as few pieces as the budget allows: one per separate
         surface part (cavity walls, separate components), and when no one-piece
@@ -128,7 +128,10 @@ def unfold(
         split is found).  ``"flat"``: like ``"auto"``, but the pieces are grown
         from whole flat patches of the surface, each as compact as the surface
         itself, with room for a tab at every seam: more pieces that pack densely
-        on sheets (with constraints or without ``fit``, as ``"auto"``).  Face ``i`` of a piece is then
+        on sheets (with constraints or without ``fit``, as ``"auto"``).  ``"bands"``: like ``"flat"``, but
+        the side faces across an axis are cut into rows round the shape, each laid flat as a straight
+        strip, strips stacked into rectangles where the wall goes straight on (:mod:`._bands`); the
+        axis with the fewest seams wins.  Face ``i`` of a piece is then
         *not* face ``i`` of the surface graph: faces are identified by
         ``(voxel, normal)``.
     compact : bool
@@ -198,7 +201,7 @@ def unfold(
             raise NoNetExistsError(*(asked or (None, None)), why=str(exc)) from None
     _check_groups_fit(resolved, fit)
     job = Job(g, sg, seed, strat, fit, tab_aware, compact, deadline, float(timeout), constraints,
-              mode is Pieces.FLAT)
+              mode is Pieces.FLAT, mode is Pieces.BANDS)
     parts = surface_parts(sg)
     if strat is Strategy.EXACT:
         if len(parts) > 1:

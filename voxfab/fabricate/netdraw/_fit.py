@@ -10,9 +10,9 @@ The default order of a paper net (issue: buildable objects):
    search found a net on this sheet and the smallest sheet that takes it at this
    face size; never a silent split; every way out offered was checked on the
    shape first (a net found, or the sheet's bound for pieces);
-3. with ``pieces="auto"``, pieces from flat patches (the few large pieces of
-   the net search when flat patches give none), packed once by the drawing
-   (:func:`_cut_pieces`).
+3. with ``pieces="auto"``, pieces from flat patches or bands round the shape,
+   whichever packs on fewer sheets (the few large pieces of the net search when
+   neither gives pieces), packed once by the drawing (:func:`_cut_pieces`).
 
 Faces too small for legible marks are refused before any search (with ways out checked the same way).
 """
@@ -220,7 +220,7 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     room = faces <= fit[0] * fit[1]
     if pieces == "auto" and not room:
         check_pieces_sheet(faces, options, float(options.pitch), smallest_face_size(options, chars))
-        return SheetNets(_piece_nets(grid, rng, fit, count, budget, progress, search, notes), options,
+        return SheetNets(_piece_nets(grid, options, rng, fit, count, budget, progress, search, notes), options,
                          notes)
     found: list[Net] | None = None
     failed: UnfoldError | None = None
@@ -232,7 +232,7 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
     if found is None:
         if pieces == "auto":
             check_pieces_sheet(faces, options, float(options.pitch), smallest_face_size(options, chars))
-            return SheetNets(_piece_nets(grid, rng, fit, count, budget, progress, search, notes),
+            return SheetNets(_piece_nets(grid, options, rng, fit, count, budget, progress, search, notes),
                              options, notes)
         if failed is not None and not isinstance(failed, NoFitError):
             raise failed  # out of time, or marks that leave no net: not a question of the sheet
@@ -297,18 +297,18 @@ def _nets(grid: Any, count: int, rng: int, budget: float, progress: Callable[[in
     return found
 
 
-def _piece_nets(grid: Any, rng: int, fit: tuple[int, int], count: int, budget: float,
+def _piece_nets(grid: Any, options: DrawingOptions, rng: int, fit: tuple[int, int], count: int, budget: float,
                 progress: Callable[[int, int], None] | None, search: dict[str, Any],
                 notes: list[str]) -> list[list[Net]]:
     """Nets in pieces, one per seed: seed ``rng`` for one net, seeds drawn from it for several."""
     if count == 1:
-        return [_cut_pieces(grid, fit, rng, search)]
+        return [_cut_pieces(grid, options, fit, rng, search)]
     gen = np.random.default_rng(rng)
     timeout = float(search.pop("timeout", 60.0))
 
     def cut(seconds: float) -> list[Net]:
         seed = int(gen.integers(0, 2**31 - 1))
-        return _cut_pieces(grid, fit, seed, {**search, "timeout": min(timeout, seconds)})
+        return _cut_pieces(grid, options, fit, seed, {**search, "timeout": min(timeout, seconds)})
 
     return distinct_cuts(cut, list, count=count, budget=budget, notes=notes, progress=progress)
 
@@ -356,21 +356,47 @@ def distinct_cuts(cut: Callable[[float], list[Net]], keep: Callable[[list[Net]],
     return out
 
 
-def _cut_pieces(grid: Any, fit: tuple[int, int], rng: int, search: dict[str, Any]) -> list[Net]:
-    """The pieces, cut once, before any packing: from flat patches, or the few large pieces of ``"auto"``
-    when flat patches give none.
+def _cut_pieces(grid: Any, options: DrawingOptions, fit: tuple[int, int], rng: int, search: dict[str, Any]
+                ) -> list[Net]:
+    """The pieces, cut once, before any packing: from flat patches and as bands round the shape, the cut
+    packed on fewer sheets of ``options`` kept (then the one with fewer seams without room for a tab, then
+    fewer seams); the few large pieces of ``"auto"`` when neither gives pieces.
 
-    Measured at 8.6 mm faces: pieces from flat patches pack on fewer pages than Blender's Paper Model
-    on every bundled shape (A4: queen 4 against 5, pawn 4 against 6, egg 10 against 18), in about a
-    third of the time the few large pieces take to cut; those win a sheet only on a surface of about
-    one sheet and a third (the queen on A4: 3 sheets against 4, at twice the time).
+    Measured at 8.6 mm faces on A4 (``bench/bench_density.py``): flat patches pack on fewer pages than
+    Blender's Paper Model on every bundled shape (queen 4 against 5, pawn 4 against 6, egg 10 against 18);
+    bands win where walls go straight on (the vase: 15 sheets against 18, a round column: 3 against 4) and
+    lose a sheet or so on the other chess pieces, so both are cut and packed (the winner's packing is the
+    drawing's, cached).
     """
+    import time
+
     from voxfab.unfold import unfold
 
-    try:
-        return list(unfold(grid, rng=rng, fit=fit, pieces="flat", **search))
-    except UnfoldError:
+    end = time.monotonic() + float(search.get("timeout", 60.0))
+    cuts = []
+    for way in ("flat", "bands"):
+        left = end - time.monotonic()
+        if cuts and left <= 0:
+            break  # the budget is spent: the cut made is the one drawn
+        try:
+            cuts.append(list(unfold(grid, rng=rng, fit=fit, pieces=way, **({**search, "timeout": left} if cuts else search))))
+        except UnfoldError:
+            pass
+    if not cuts:
         return list(unfold(grid, rng=rng, fit=fit, pieces="auto", **search))
+    return min(cuts, key=lambda pieces: _packing_rank(grid, pieces, options))
+
+
+def _packing_rank(grid: Any, pieces: list[Net], options: DrawingOptions) -> tuple[int, int, int]:
+    """Sheets, seams without room for a tab, and seams of ``pieces`` as the drawing packs them."""
+    from voxfab.shape import fill_cavities, surface_graph
+
+    from ._drawing import _packed
+
+    g = np.asarray(grid, dtype=bool)
+    _, plan, _, _, tabs, seams = _packed(surface_graph(fill_cavities(g) if pieces[0].filled else g), pieces,
+                                         options)
+    return plan.count, seams - tabs, seams
 
 
 def largest_fitting(grid: Any, options: DrawingOptions, *, rng: int, search: dict[str, Any],

@@ -9,7 +9,7 @@ work (``ways_out``); they are ordered by how well they fit: fewest sheets,
 then the highest mean fill, then the smallest extent.
 
 A gallery of nets in pieces varies only what is worth varying: the cut.  The
-first seed is cut both ways (flat patches, and few large pieces), later seeds
+first seed is cut each way (flat patches, bands, few large pieces), later seeds
 the way that packed on fewer sheets; each cut is laid out once, and handed to
 ``on_item`` as soon as it is, so the studio shows it while the next is cut.
 Nets in pieces stay in the order they were made (the page has shown them so).
@@ -224,8 +224,9 @@ def _one_piece_room(grid: Any, net: NetOptions, options: DrawingOptions) -> bool
     return False
 
 
-#: The two ways to cut a net in pieces (:func:`voxfab.unfold.unfold`'s ``pieces``): flat patches, few large pieces.
-CUTS = ("flat", "auto")
+#: The ways to cut a net in pieces (:func:`voxfab.unfold.unfold`'s ``pieces``): flat patches, bands round the
+#: shape, few large pieces.
+CUTS = ("flat", "bands", "auto")
 
 
 def _piece_gallery(grid: Any, net: NetOptions, options: DrawingOptions, *, count: int, seed: int,
@@ -233,8 +234,8 @@ def _piece_gallery(grid: Any, net: NetOptions, options: DrawingOptions, *, count
                    on_item: ItemHook | None) -> list[GalleryNet]:
     """``count`` nets in pieces, each cut once and laid out once, handed to ``on_item`` as each is made.
 
-    Seed ``seed`` is cut both ways (the flat patches first: they are the quicker to cut),
-    so the artist sees both kinds of net; the later seeds, drawn from ``seed`` as
+    Seed ``seed`` is cut each way (the flat patches first: they are the quicker to cut),
+    so the artist sees every kind of net; the later seeds, drawn from ``seed`` as
     ``voxfab net --count`` draws them, are cut the way that packed better (fewer
     sheets, then fewer seams without room for a tab, then fewer pieces, as
     ``voxfab net --pieces auto`` chooses).  A cut whose outlines repeat one shown is
