@@ -575,15 +575,17 @@ def _best_spots(sheet: _Sheet, turns: list[_Spectra], touch: bool = True
 
 
 def _pack_once(pieces: list[list[_Spectra]], order: list[int], raster: tuple[int, int], clear: int,
-               touch: bool) -> tuple[int, dict]:
+               touch: bool, sheets: list[_Sheet] | None = None) -> tuple[int, dict]:
     """One packing of the pieces in ``order``: the sheets used, and per piece ``(sheet, shape, offset)``.
 
     The offset (in steps) is that of the piece's cell (0, 0); shape None for a
     piece that meets no spot even on an empty sheet (it gets a sheet alone).
+    ``sheets`` are sheets already part filled (a re-layout's), taken first and
+    changed in place.
     """
     from voxfab._shared.progress import check_cancelled
 
-    sheets: list[_Sheet] = []
+    sheets = [] if sheets is None else sheets
     where: dict[int, tuple[int, _Shape | None, tuple[int, int]]] = {}
     for i in order:
         check_cancelled()  # between pieces: a cancelled studio job stops within one piece's spot search
@@ -610,6 +612,19 @@ def _pack_once(pieces: list[list[_Spectra]], order: list[int], raster: tuple[int
         sheets[s].block(_dilated(sh.mask, clear), ox - clear, oy - clear)
         where[i] = (s, sh, (ox - sh.start[0], oy - sh.start[1]))
     return len(sheets), where
+
+
+def _spot_mm(corners: npt.NDArray[np.int64], shape: _Shape | None, at: tuple[int, int], options: DrawingOptions,
+             sheet: Paper) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.float64]]:
+    """A packed piece's corners as it lies (turned, from cell (0, 0)) and the mm from the drawable area's corner
+    to its cell (0, 0); a piece without a ``shape`` (no spot even on an empty sheet) alone, centred."""
+    if shape is not None:
+        return shape.corners, np.asarray(at, dtype=np.float64) * sheet.step
+    x0, y0, x1, y1 = sheet.area
+    ex, ey = _quarter_turns(corners, 0).reshape(-1, 2).max(axis=0)
+    c = _quarter_turns(corners, 1 if fits((int(ex), int(ey)), options, sheet.pitch) else 0)
+    ex, ey = c.reshape(-1, 2).max(axis=0)
+    return c, np.array([(x1 - x0 - ex * sheet.pitch) / 2, (y1 - y0 - ey * sheet.pitch) / 2])
 
 
 def raster_of(options: DrawingOptions, pitch: float) -> tuple[float, int, tuple[int, int]]:
@@ -739,7 +754,7 @@ def _pack_pieces(pieces: list[npt.NDArray[np.int64]], options: DrawingOptions,
     if tab_edges is None:
         tab_edges = [np.zeros((0, 2), dtype=np.int64) for _ in pieces]
     sheet = paper(options, pitch)
-    step, clear, raster = sheet.step, sheet.clear, sheet.raster
+    clear, raster = sheet.clear, sheet.raster
     x0, y0, x1, y1 = sheet.area
     shapes = [_turns(c, tab_edges[i], sheet.per_cell, sheet.tab_steps, raster, sheet.tab_trim)
               for i, c in enumerate(pieces)]
@@ -760,14 +775,7 @@ def _pack_pieces(pieces: list[npt.NDArray[np.int64]], options: DrawingOptions,
         if count <= least:
             break
     for i, (s, sh, at) in list(where.items()):
-        if sh is None:  # a piece alone on its sheet, centred
-            c = _quarter_turns(pieces[i], 0)
-            ex, ey = c.reshape(-1, 2).max(axis=0)
-            c = _quarter_turns(pieces[i], 1 if fits((int(ex), int(ey)), options, pitch) else 0)
-            ex, ey = c.reshape(-1, 2).max(axis=0)
-            where[i] = (s, c, np.array([(x1 - x0 - ex * pitch) / 2, (y1 - y0 - ey * pitch) / 2]))
-        else:
-            where[i] = (s, sh.corners, np.asarray(at, dtype=np.float64) * step)
+        where[i] = (s, *_spot_mm(pieces[i], sh, at, options, sheet))
     # Each piece in cells of its own, two cells apart from the next: no two
     # pieces ever share or touch a cell, so edges of different pieces never meet.
     placed, sheets, shifts = [], [], []
