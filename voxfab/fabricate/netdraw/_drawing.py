@@ -497,11 +497,13 @@ def _tab_sides(corners: npt.NDArray[np.int64], sides: npt.NDArray[np.int64],
     """
     step = np.array([[0, -1], [1, 0], [0, 1], [-1, 0]], dtype=np.int64)
     cells = corners.min(axis=1)
-    m = int(corners.max()) + 4
-    occupied = np.unique((cells[:, 0] + 1) * m + cells[:, 1] + 1)
+    # The cells looked at lie at most two off the faces' (beyond an edge, then round that): a grid padded by two.
+    lo = cells.min(axis=0) - 2
+    occupied = np.zeros(tuple(cells.max(axis=0) - lo + 3), dtype=bool)
+    occupied[tuple((cells - lo).T)] = True
 
     def taken(c: npt.NDArray[np.int64]) -> npt.NDArray[np.bool_]:
-        return np.isin((c[..., 0] + 1) * m + c[..., 1] + 1, occupied)
+        return occupied[tuple((c - lo).T)]
 
     room, score = [], []
     for j in (0, 1):

@@ -183,22 +183,19 @@ def relayout(pieces: Sequence[Net], tab_edges: list[npt.NDArray[np.int64]] | Non
     # The tries of the module's list, each until one takes no more sheets than before: 1, the pieces kept
     # and the changed ones near their old place, or packed; 2, the sheets of the changed ones packed
     # again; 3, all packed again, as :func:`._sheets.pack_pieces` does (stopping at the sheets of before).
-    tries = [(lambda: [k if k is not None else n for k, n in zip(kept, near)], by[:1]), (lambda: kept, by[:1]),
-             (lambda: [k if k is not None and k.sheet not in touched else None for k in kept], by),
-             (lambda: [None] * len(pieces), by)]
+    both = (True, False)
+    tries = [(lambda: [k if k is not None else n for k, n in zip(kept, near)], by[:1], both),
+             (lambda: kept, by[:1], both),
+             (lambda: [k if k is not None and k.sheet not in touched else None for k in kept], by, (True,)),
+             (lambda: [None] * len(pieces), by, both)]
     least = math.ceil(sum(t[0].size for t in turns) / (sheet.raster[0] * sheet.raster[1]))  # no packing beats it
     best: tuple[int, list[PiecePlace]] | None = None
-    for stay, orders in tries:
-        for touch in (True, False):
-            for order in orders:
-                got = laid(stay(), order, touch)
-                if best is None or got[0] < best[0]:
-                    best = got
-                if best[0] <= max(old.sheets, least):
-                    count, places = best
-                    return Placement((float(options.sheet_size[0]), float(options.sheet_size[1])),
-                                     float(options.margin), pitch, count, tuple(places))
+    for stay, order, touch in ((stay, o, t) for stay, orders, rules in tries for t in rules for o in orders):
+        got = laid(stay(), order, touch)
+        if best is None or got[0] < best[0]:
+            best = got
+        if best[0] <= max(old.sheets, least):
+            break
     assert best is not None
-    count, places = best
     return Placement((float(options.sheet_size[0]), float(options.sheet_size[1])), float(options.margin), pitch,
-                     count, tuple(places))
+                     best[0], tuple(best[1]))
