@@ -123,3 +123,26 @@ def test_build_open_curves_of_revolution_join_into_the_closed_one(tmp_path):
     r = voxfab("build", tmp_path / "bad.toml", "-o", tmp_path / "out")
     assert r.returncode != 0 and r.stderr.startswith("voxfab: error: arc:") and r.stderr.count("\n") == 1
     assert not (tmp_path / "out" / "bad").exists()
+
+
+def test_the_program_leaves_its_objects_to_the_exit_and_a_call_leaves_the_collector_as_it_was(tmp_path):
+    """Run as the program, a command collects young objects every GC_YOUNG allocations, not every 700, and
+    leaves what it made unscanned at the exit (numba's objects cost a net a third of a second to collect);
+    called (tests, scripts), main puts the collector back as it found it and freezes nothing."""
+    import gc
+
+    from voxfab.cli._main import GC_YOUNG
+
+    np.save(tmp_path / "s.npy", examples.ball(3))
+    code = ("import gc, json, sys\nimport voxfab.cli.info as info\nfrom voxfab.cli import main\nseen = []\n"
+            "run = info.run\ninfo.run = lambda args: seen.append(gc.get_threshold()) or run(args)\n"
+            "sys.argv = ['voxfab', 'info', 's.npy', '--json']\nstatus = main()\n"
+            "print(json.dumps([status, seen, gc.get_threshold(), gc.get_freeze_count() > 0]))\n")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path, timeout=300)
+    assert r.returncode == 0, r.stderr
+    status, seen, after, frozen = json.loads(r.stdout.splitlines()[-1])
+    default = list(gc.get_threshold())
+    assert status == 0 and seen == [[GC_YOUNG, *default[1:]]] and after == default and frozen
+    frozen_before = gc.get_freeze_count()
+    assert main(["info", str(tmp_path / "s.npy"), "--json"]) == 0
+    assert list(gc.get_threshold()) == default and gc.get_freeze_count() == frozen_before

@@ -121,3 +121,59 @@ def test_piece_numbers_are_boxed_apart_from_each_other_and_from_the_seam_labels(
     assert boxes == len(pieces) > 1
     if shape == "ball":
         assert sum(p.face_count == 1 for p in pieces) >= 10
+
+
+def test_a_number_box_is_on_its_piece_only_where_its_nine_points_fall_on_cells_of_the_piece() -> None:
+    """The cells of a piece looked up as a raster: a box whose points fall past the raster on any side (left
+    and below too, where an index would wrap round to the far side) is off the piece, as is one over a
+    notch; every answer is that of the nine points looked up one by one."""
+    from voxfab.fabricate.netdraw._assembly import _on_cells
+
+    pitch, origin = 8.6, np.array([30.0, 40.0])
+    # An L of cells with a notch: (0, 0) (1, 0) (2, 0) (0, 1) (0, 2), and (2, 2) alone across the notch.
+    cells = np.array([[0, 0], [1, 0], [2, 0], [0, 1], [0, 2], [2, 2]])
+    rng = np.random.default_rng(0)
+    lo = origin + rng.uniform(-2.5, 3.5, (4000, 2)) * pitch
+    hi = lo + rng.uniform(0.1, 2.0, (4000, 2)) * pitch
+    on = {tuple(c) for c in cells.tolist()}
+    eps = 1e-6 * pitch
+    want = []
+    for a, b in zip(lo, hi):
+        points = [(a[0] + eps if fx == 0 else b[0] - eps if fx == 1 else (a[0] + b[0]) / 2,
+                   a[1] + eps if fy == 0 else b[1] - eps if fy == 1 else (a[1] + b[1]) / 2)
+                  for fx in (0, 0.5, 1) for fy in (0, 0.5, 1)]
+        want.append(all((int(np.floor((x - origin[0]) / pitch)), int(np.floor((y - origin[1]) / pitch))) in on
+                        for x, y in points))
+    got = _on_cells(lo, hi, origin, pitch, cells)
+    assert got.tolist() == want
+    assert 50 < sum(want) < 3000  # boxes on the piece and off it, on every side
+    wrapped = np.array([[-1.0, 2.0], [2.0, -1.0], [-1.0, -1.0], [3.0, 0.0], [1.0, 3.0]]) * pitch + origin + 0.3
+    assert not _on_cells(wrapped, wrapped + 0.5, origin, pitch, cells).any()
+    assert _on_cells(origin + [[0.3, 0.3], [2.3, 2.3]], origin + [[2.0, 1.0], [2.8, 2.8]], origin, pitch,
+                     cells).tolist() == [True, True]
+
+
+def test_a_number_takes_the_first_clear_spot_of_all_though_the_spots_are_tried_a_block_at_a_time() -> None:
+    """The spot found a block at a time is the first of the whole table: in the first block, past it (a
+    piece whose first faces are crowded with labels), or none; on the piece's cells or inside the area."""
+    from voxfab.fabricate.netdraw._assembly import _BLOCK, NUMBER_CLEAR, _first_clear
+
+    rng = np.random.default_rng(1)
+    n = 3 * _BLOCK + 17
+    lo = rng.uniform(0, 200, (n, 2))
+    hi = lo + 4.0
+    area = (10.0, 10.0, 190.0, 190.0)
+    for taken in (0, _BLOCK + 40, 2 * _BLOCK - 1, n):  # labels cover the spots before this one
+        lo_b, hi_b = lo[:taken] + 0.5, hi[:taken] - 0.5
+        inside = (lo[:, 0] >= area[0]) & (lo[:, 1] >= area[1]) & (hi[:, 0] <= area[2]) & (hi[:, 1] <= area[3])
+        clear = ~((lo[:, None] < hi_b[None] + NUMBER_CLEAR) & (hi[:, None] > lo_b[None] - NUMBER_CLEAR)).all(axis=2).any(axis=1)
+        ok = inside & clear
+        want = int(np.argmax(ok)) if ok.any() else None
+        assert _first_clear(lo, hi, lo_b, hi_b, area=area) == want
+        assert want is None or want >= taken
+    # On the cells: a 30 x 30 block of cells of 8.6 mm from the origin; the first spot past it is not one.
+    pitch, origin = 8.6, np.zeros(2)
+    cells = np.array([(x, y) for x in range(30) for y in range(30)])
+    spots = np.concatenate([np.full((_BLOCK + 5, 2), 300.0), [[20.0, 20.0]]])
+    got = _first_clear(spots, spots + 4.0, np.zeros((0, 2)), np.zeros((0, 2)), on=(origin, pitch, cells))
+    assert got == _BLOCK + 5

@@ -167,3 +167,27 @@ def test_a_packing_after_an_edit_transforms_only_the_pieces_it_changed() -> None
         assert np.array_equal(a, b)
     assert np.array_equal(second[0].shift, fresh[0].shift) and np.array_equal(second[0].face_sheet, fresh[0].face_sheet)
     assert len(first[1]) == 2
+
+
+def test_the_packer_pads_to_the_least_fast_size_without_loading_scipy_fft() -> None:
+    """Each side padded to the least 2^i 3^j 5^k at least it, as scipy.fft.next_fast_len(n, real=True)
+    answers; and packing the strips (a process of its own) loads no scipy.fft (a tenth of a second of a
+    net's whole run)."""
+    import subprocess
+    import sys
+
+    from scipy.fft import next_fast_len
+
+    from voxfab.fabricate.netdraw._sheets import _fast
+
+    sizes = list(range(1, 3000)) + [7919, 15625, 15626, 59049, 100000]
+    assert [_fast((n, n + 1)) for n in sizes] == [(next_fast_len(n, real=True), next_fast_len(n + 1, real=True))
+                                                    for n in sizes]
+    code = ("import sys\nimport numpy as np\nfrom voxfab.fabricate.netdraw import DrawingOptions\n"
+            "from voxfab.fabricate.netdraw._sheets import pack_pieces\n"
+            "strip = np.array([[[x, y], [x + 1, y], [x + 1, y + 1], [x, y + 1]] for x in range(2) for y in range(6)])\n"
+            "plan, _ = pack_pieces([strip, strip.copy()], DrawingOptions(pitch=20.0, sheet='210x170', margin=5.0))\n"
+            "print(plan.count, 'scipy.fft' in sys.modules)\n")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.split() == ["1", "False"]

@@ -111,7 +111,7 @@ def place_numbers(names: list[str], face_piece: npt.NDArray[np.int64], face_shee
         faces = faces[face_sheet[faces] == sheet]
         faces = np.concatenate([[first], faces[faces != first]])
         origin = lows[first]
-        keys = {(int(a), int(b)) for a, b in np.rint((lows[faces] - origin) / pitch).astype(np.int64).tolist()}
+        cells = np.rint((lows[faces] - origin) / pitch).astype(np.int64)
         centres = (lows[faces][:, None, :] + pitch / 2 + np.array(_OFFSETS)[None] * pitch).reshape(-1, 2)
         lo_b, hi_b = blocked.get(sheet, (np.zeros((0, 2)), np.zeros((0, 2))))
         mine = placed.setdefault(sheet, [])
@@ -122,11 +122,9 @@ def place_numbers(names: list[str], face_piece: npt.NDArray[np.int64], face_shee
         for scale in NUMBER_SCALES:
             h = scale * label_h
             lo, hi = number_box(name, np.zeros(2), h)
-            lo, hi = centres + lo, centres + hi
-            ok = _on_cells(lo, hi, origin, pitch, keys)
-            ok &= ~_meets(lo, hi, lo_b, hi_b).any(axis=1)
-            if ok.any():
-                spot = (centres[int(np.argmax(ok))], h)
+            at = _first_clear(centres + lo, centres + hi, lo_b, hi_b, on=(origin, pitch, cells))
+            if at is not None:
+                spot = (centres[at], h)
                 break
         if spot is None:  # beside the piece, on free paper
             # the nearest spots to any face of the piece first, so the number reads as its piece's
@@ -136,17 +134,40 @@ def place_numbers(names: list[str], face_piece: npt.NDArray[np.int64], face_shee
             for scale in NUMBER_SCALES:
                 h = scale * label_h
                 lo, hi = number_box(name, np.zeros(2), h)
-                lo, hi = near + lo, near + hi
-                ok = (lo[:, 0] >= area[0]) & (lo[:, 1] >= area[1]) & (hi[:, 0] <= area[2]) & (hi[:, 1] <= area[3])
-                ok &= ~_meets(lo, hi, lo_all, hi_all).any(axis=1)
-                if ok.any():
-                    spot = (near[int(np.argmax(ok))], h)
+                at = _first_clear(near + lo, near + hi, lo_all, hi_all, area=area)
+                if at is not None:
+                    spot = (near[at], h)
                     break
         if spot is None:
             spot = (lows[first] + pitch / 2, NUMBER_SCALES[-1] * label_h)
         mine.append(number_box(name, spot[0], spot[1]))
         out.append((sheet, spot[0], spot[1]))
     return out
+
+
+#: Boxes tried at once for a number's spot: the first few faces' spots mostly hold one, and a piece's
+#: every spot against every label of its sheet is a large table (the queen's take a tenth of a second).
+_BLOCK = 256
+
+
+def _first_clear(lo: npt.NDArray[np.float64], hi: npt.NDArray[np.float64], lo_b: npt.NDArray[np.float64],
+                 hi_b: npt.NDArray[np.float64], *,
+                 on: tuple[npt.NDArray[np.float64], float, npt.NDArray[np.int64]] | None = None,
+                 area: tuple[float, float, float, float] | None = None) -> int | None:
+    """The first of the boxes ``lo``-``hi`` clear of every box ``lo_b``-``hi_b`` and wholly on the cells of
+    ``on`` (origin, pitch, cells: :func:`_on_cells`) or inside ``area``; tried :data:`_BLOCK` at a time."""
+    for start in range(0, lo.shape[0], _BLOCK):
+        a, b = lo[start:start + _BLOCK], hi[start:start + _BLOCK]
+        if on is not None:
+            ok = _on_cells(a, b, *on)
+        else:
+            ok = np.ones(a.shape[0], dtype=bool)
+        if area is not None:
+            ok &= (a[:, 0] >= area[0]) & (a[:, 1] >= area[1]) & (b[:, 0] <= area[2]) & (b[:, 1] <= area[3])
+        ok[ok] = ~_meets(a[ok], b[ok], lo_b, hi_b).any(axis=1)
+        if ok.any():
+            return start + int(np.argmax(ok))
+    return None
 
 
 def _meets(lo: npt.NDArray[np.float64], hi: npt.NDArray[np.float64], lo_b: npt.NDArray[np.float64],
@@ -157,15 +178,22 @@ def _meets(lo: npt.NDArray[np.float64], hi: npt.NDArray[np.float64], lo_b: npt.N
 
 
 def _on_cells(lo: npt.NDArray[np.float64], hi: npt.NDArray[np.float64], origin: npt.NDArray[np.float64],
-              pitch: float, keys: set[tuple[int, int]]) -> npt.NDArray[np.bool_]:
-    """Which boxes (at most two faces across) lie wholly on the cells ``keys`` counted from ``origin``."""
+              pitch: float, cells: npt.NDArray[np.int64]) -> npt.NDArray[np.bool_]:
+    """Which boxes (at most two faces across) lie wholly on the cells ``cells`` ``(K, 2)`` counted from ``origin``."""
+    # The cells as a raster, looked up all at once: every face of the queen's pieces is tried, at each
+    # scale, at nine points of each box.
+    base = cells.min(axis=0)
+    on = np.zeros(tuple((cells.max(axis=0) - base + 1).tolist()), dtype=bool)
+    on[cells[:, 0] - base[0], cells[:, 1] - base[1]] = True
     ok = np.ones(lo.shape[0], dtype=bool)
     eps = 1e-6 * pitch
     for fx in (0.0, 0.5, 1.0):
         for fy in (0.0, 0.5, 1.0):
             pt = lo + (hi - lo) * (fx, fy) + np.where(np.array([fx, fy]) == 0.0, eps, np.where(np.array([fx, fy]) == 1.0, -eps, 0.0))
-            cell = np.floor((pt - origin) / pitch).astype(np.int64)
-            ok &= np.array([(int(a), int(b)) in keys for a, b in cell.tolist()], dtype=bool)
+            cell = np.floor((pt - origin) / pitch).astype(np.int64) - base
+            inside = (cell >= 0).all(axis=1) & (cell < on.shape).all(axis=1)
+            ok &= inside
+            ok[inside] &= on[cell[inside, 0], cell[inside, 1]]
     return ok
 
 
