@@ -282,6 +282,29 @@ def test_queen_to_a4_in_pieces_moved_on_the_page(server, browser):
     assert (lo <= want_lo + 1e-3).all() and (hi >= want_hi - 1e-3).all()
     assert attr(browser, "download-net-dxf", "href") not in before
 
+    # Cut a fold of the largest piece in the net view: it splits in two, and every other piece, the one
+    # moved and turned by hand too, stays where the sheets showed it; the files follow the new layout.
+    from .test_browser_netedit import _edit_by_click, _layout
+    from .test_relayout_api import pieces_of, spots
+
+    shown = {"layout": _layout(browser), "placement": turned_place}
+    biggest = max(pieces_of(shown).items(), key=lambda kv: len(kv[1]))[0]
+    lay = shown["layout"]
+    folds = [(i, j) for i, j in np.array(lay["folds"]).reshape(-1, 2).tolist() if lay["piece"][i] == biggest]
+    browser.execute_script("arguments[0].scrollIntoView({block: 'center'})", by_id(browser, "net-2d"))
+    before = _hrefs(browser)
+    _edit_by_click(browser, by_id(browser, "net-2d"), lay, folds[len(folds) // 2:][:6], "cut")
+    wait(browser, lambda d: len(_placement(d)["pieces"]) == len(pieces) + 1, what="the pieces laid out again")
+    cut = {"layout": _layout(browser), "placement": _placement(browser)}
+    alone = set(pieces_of(shown).values()) & set(pieces_of(cut).values())
+    assert len(alone) == len(pieces) - 1
+    was, now = spots(shown), spots(cut)
+    for face in frozenset().union(*alone):
+        assert was[face][0] == now[face][0] and np.allclose(was[face][1], now[face][1], atol=1e-6)
+    wait(browser, lambda d: _files_ready(d, before), timeout=240, what="the files of the cut net")
+    browser.save_screenshot(str(SHOTS / "net-7-cut.png"))
+    _check_files(_downloads(browser, server), grid, cut["placement"])
+
 
 def test_a_net_that_does_not_fit_says_so_plainly_and_one_click_splits_it(server, browser):
     from selenium.webdriver.support.ui import Select

@@ -276,4 +276,26 @@ def test_whole_array_and_face_by_face_checks_agree(monkeypatch, tab_aware):
     fast = [validate(g, n, strict=False) for g, n in nets]
     assert all(r.ok for r in fast) and any(r.seams_without_tab_room for r in fast) == (not tab_aware)
     monkeypatch.setattr(_validate, "_sound_piece", lambda *a: None)
+    monkeypatch.setattr(_validate, "_SOUND", {})  # no piece known sound: each checked face by face
     assert [validate(g, n, strict=False) for g, n in nets] == fast
+
+
+def test_a_piece_found_sound_is_not_refolded_again_yet_any_change_to_it_is_caught(ball_net, monkeypatch):
+    from voxfab.unfold import _validate
+
+    grid, net = ball_net
+    monkeypatch.setattr(_validate, "_SOUND", {})
+    assert validate(grid, net).ok
+    calls = []
+    real = _validate._sound_piece
+    monkeypatch.setattr(_validate, "_sound_piece", lambda *a: calls.append(1) or real(*a))
+    # An edit validates many pieces it did not change: each is known sound.
+    assert validate(grid, net).ok and calls == []
+    # Any field changed is a piece of its own, checked again (and caught).
+    problems = validate(grid, _replace(net, mountain=net.mountain + 1), strict=False).problems
+    assert any("fold counts" in p for p in problems) and len(calls) == 1
+    moved = _replace(net, corners2d=net.corners2d + 3)
+    assert validate(grid, moved).ok and len(calls) == 2
+    # A sound piece twice: the second copy repeats the first's faces.
+    problems = validate(grid, [net, net], strict=False).problems
+    assert any("repeats" in p for p in problems)

@@ -14,6 +14,13 @@ when the gallery job did not keep its shape, ``"marks"`` (``{"cut": [...], "keep
 for a net already in pieces).  Answer: ``{"job": NEWID, "net": ITEM}``
 with ITEM as a gallery item plus ``"marks"``, ``"moved"``, ``"cut"``, ``"joined"``
 and ``"undo"`` (edits that undo can take back).
+
+A net in pieces is laid out again on its sheets after each edit: the pieces the edit
+left as they were keep their sheet and spot (as the page shows them: ``"placement"``
+sent, else as the net's job placed them), the others go into the room left
+(:func:`voxfab.fabricate.netdraw.fit_and_placement` with ``before``).  ``"repack":
+true`` packs the net again from scratch instead, without editing it.  The new job
+keeps the placement, so ``/api/make`` draws the files as the editor shows them.
 """
 
 from __future__ import annotations
@@ -34,11 +41,12 @@ def _pieces(net: Any) -> list[Any]:
 
 
 def net_item(grid: np.ndarray, net: Any, marks: Any, *, history: int, extra: dict[str, Any],
-             drawing: Any = None) -> dict[str, Any]:
+             drawing: Any = None, before: tuple[list[Any], Any] | None = None) -> dict[str, Any]:
     """A gallery item for an edited net, with its marks and how many edits undo can take back.
 
     The layout, and with the gallery's drawing options the fit and placement on the sheets,
-    are the library gallery's own (:mod:`voxfab.fabricate.netdraw`).
+    are the library gallery's own (:mod:`voxfab.fabricate.netdraw`); ``before`` (the pieces
+    before the edit and their placement) keeps the pieces the edit left alone in place.
     """
     from voxfab.fabricate.netdraw import fit_and_placement, net_layout
     from voxfab.shape import fill_cavities, surface_graph
@@ -48,7 +56,7 @@ def net_item(grid: np.ndarray, net: Any, marks: Any, *, history: int, extra: dic
     graph = surface_graph(fill_cavities(grid) if first.filled else grid)
     placed: dict[str, Any] = {}
     if drawing is not None:
-        fit, placement = fit_and_placement(pieces, drawing, graph)
+        fit, placement = fit_and_placement(pieces, drawing, graph, before=before)
         placed = {"fit": fit, "placement": placement}
     return {**placed,
         "index": 0, "seed": int(first.seed), "faces": sum(p.face_count for p in pieces), "pieces": len(pieces),
@@ -96,6 +104,20 @@ def _edge(value: Any, name: str) -> tuple[tuple, tuple]:
     return parse_edge(value, name)
 
 
+def shown_placement(job: Any, index: int, sent: Any) -> Any:
+    """The placement the page shows net ``index`` of ``job`` with: the one ``sent`` (the artist may have
+    moved pieces), else the one the job gave it; None when it has none (a net that does not fit)."""
+    from voxfab.fabricate.netdraw._placement import Placement
+
+    if sent is None:
+        sent = job.data.get("placement") if index == 0 else None
+    if sent is None:
+        items = job.items or (job.result or {}).get("nets") or []
+        item = items[index] if index < len(items) and isinstance(items[index], dict) else {}
+        sent = item.get("placement")
+    return None if sent is None else Placement.from_dict(sent)
+
+
 def apply_edit(job: Any, data: dict[str, Any]) -> dict[str, Any]:
     """What one edit makes: the record a new job keeps (``nets``, ``grid``, ``marks``, ``history``) and its answer."""
     from voxfab.unfold import EdgeConstraints, cut_edge, join_edge
@@ -131,17 +153,23 @@ def apply_edit(job: Any, data: dict[str, Any]) -> dict[str, Any]:
         marks = sent_marks
     history = list(job.data.get("history", []))
     undo = flag(data.get("undo"), name="undo")
-    kinds = [k for k in ("cut", "join") if data.get(k) is not None] + (["undo"] if undo else [])
+    repack = flag(data.get("repack"), name="repack")
+    kinds = ([k for k in ("cut", "join") if data.get(k) is not None] + (["undo"] if undo else [])
+             + (["repack"] if repack else []))
     if len(kinds) != 1:
         raise InvalidShapeError("edit: give exactly one of \"cut\": [face, face], \"join\": [face, face], "
-                                "\"undo\": true")
+                                "\"undo\": true, \"repack\": true")
     kind = kinds[0]
+    placed = shown_placement(job, index, data.get("placement"))
+    before = None if kind == "repack" or placed is None else (_pieces(net), placed)
     start = time.perf_counter()
-    if kind == "undo":
+    if kind == "repack":
+        extra: dict[str, Any] = {"moved": 0, "cut": [], "joined": []}
+    elif kind == "undo":
         if not history:
             raise InvalidShapeError("undo: no edit of this net to take back")
         net, marks = history.pop()
-        extra: dict[str, Any] = {"moved": 0, "cut": [], "joined": []}
+        extra = {"moved": 0, "cut": [], "joined": []}
     else:
         a, b = _edge(data[kind], kind)
         split = data.get("split")
@@ -167,6 +195,8 @@ def apply_edit(job: Any, data: dict[str, Any]) -> dict[str, Any]:
     # The gallery's options (search, drawing) travel with every edited net, for its fit and files.
     options = job.data.get("options")
     item = net_item(grid, net, marks, history=len(history), extra=extra,
-                    drawing=options[1] if options is not None else None)
-    record = {"nets": [net], "grid": grid, "marks": marks, "history": history, "options": options}
+                    drawing=options[1] if options is not None else None, before=before)
+    # The placement shown is the one the files are drawn with (/api/make without one sent).
+    record = {"nets": [net], "grid": grid, "marks": marks, "history": history, "options": options,
+              "placement": item.get("placement")}
     return {"record": record, "item": item}

@@ -43,7 +43,7 @@ from ._options import DrawingOptions, Perforate
 from ._paint import INKS, Paint, net_paint, sheet_fills, tint
 from ._placement import Placement, placement_of, plan_placement
 from ._sheets import SheetPlan, pack_pieces, plan_sheets
-from ._tabs import TabPlan, place_tabs, tab_heights
+from ._tabs import TabPlan, place_tabs, tab_heights, tab_sides
 
 _NEXT = np.array([1, 2, 3, 0])
 #: Shade of glue tabs in previews and prints (Blender's paper-model convention).
@@ -425,12 +425,15 @@ def sheets_needed(grid: npt.ArrayLike, pieces: list[Net], options: DrawingOption
     return plan.count, math.ceil(1.25 * paper / ((x1 - x0) * (y1 - y0)) - 1e-9), seams - tabs
 
 
-def _packed(graph: SurfaceGraph, pieces: list[Net], opts: DrawingOptions, placement: Placement | None = None
+def _packed(graph: SurfaceGraph, pieces: list[Net], opts: DrawingOptions, placement: Placement | None = None,
+            before: tuple[list[Net], Placement] | None = None
             ) -> tuple[Net, SheetPlan, npt.NDArray[np.bool_], npt.NDArray[np.int64], int, int]:
     """The pieces as one net packed on sheets: the net, its plan, each seam's tab side, each face's piece,
     the number of tabs the packer kept room for and the number of seams.
 
     A ``placement`` (the studio's layout) puts the pieces where it says, checked, instead of packing them.
+    ``before`` (the net before an edit and its placement) lays them out again keeping the pieces the edit
+    left as they were in place (:func:`._relayout.relayout`).
     """
     for piece in pieces:
         check_net(graph, piece)
@@ -450,7 +453,7 @@ def _packed(graph: SurfaceGraph, pieces: list[Net], opts: DrawingOptions, placem
     corners = np.concatenate(apart)
     edges = classify_edges(graph, joined_net(apart), corners)
     sides = _seam_sides(edges, edges.joined)
-    swap, reserved = _tab_sides(corners, sides)
+    swap, reserved = tab_sides(corners, sides, edges.global_low[sides[:, 1, 0], sides[:, 1, 1]])
     face_piece = np.repeat(np.arange(len(pieces)), [p.face_count for p in pieces])
     tab_edges = None
     if opts.tabs:
@@ -458,6 +461,10 @@ def _packed(graph: SurfaceGraph, pieces: list[Net], opts: DrawingOptions, placem
         of = face_piece[chosen[:, 0]]
         tab_edges = [np.stack([chosen[of == i, 0] - counts[i], chosen[of == i, 1]], axis=1)
                      for i in range(len(pieces))]
+    if placement is None and before is not None:
+        from ._relayout import relayout
+
+        placement = relayout(pieces, tab_edges, opts, before)
     if placement is None:
         plan, placed = pack_pieces([p.corners2d for p in pieces], opts, tab_edges)
     else:
@@ -474,36 +481,6 @@ def _apart(corners: list[npt.NDArray[np.int64]]) -> list[npt.NDArray[np.int64]]:
         out.append(c + (x, 0))
         x += int(c[..., 0].max()) + 2
     return out
-
-
-def _tab_sides(corners: npt.NDArray[np.int64], sides: npt.NDArray[np.int64]
-               ) -> tuple[npt.NDArray[np.bool_], npt.NDArray[np.bool_]]:
-    """Which side of every seam takes its tab: ``(swap, reserved)``, each ``(S,)``.
-
-    A side has room when the cell beyond its edge holds no face; of two sides
-    with room the one whose cell has more faces round it wins (its tab then
-    sits in a notch of its own piece, where it costs the sheet no paper), the
-    first on a tie.  ``swap`` is True where the second side wins, ``reserved``
-    where either has room.
-    """
-    step = np.array([[0, -1], [1, 0], [0, 1], [-1, 0]], dtype=np.int64)
-    cells = corners.min(axis=1)
-    m = int(corners.max()) + 4
-    occupied = unique((cells[:, 0] + 1) * m + cells[:, 1] + 1)
-
-    def taken(c: npt.NDArray[np.int64]) -> npt.NDArray[np.bool_]:
-        return np.isin((c[..., 0] + 1) * m + c[..., 1] + 1, occupied)
-
-    room, score = [], []
-    for j in (0, 1):
-        f, k = sides[:, j, 0], sides[:, j, 1]
-        a, b = corners[f, k], corners[f, _NEXT[k]]
-        d = b - a
-        beyond = cells[f] + np.stack([d[:, 1], -d[:, 0]], axis=1)  # faces run counter-clockwise
-        room.append(~taken(beyond))
-        score.append(sum(taken(beyond + st).astype(np.int64) for st in step))
-    swap = (room[1] & ~room[0]) | (room[0] & room[1] & (score[1] > score[0]))
-    return swap, room[0] | room[1]
 
 
 def _draw(graph: SurfaceGraph, net: Net, plan: SheetPlan, opts: DrawingOptions, *, name: str,

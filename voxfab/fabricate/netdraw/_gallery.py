@@ -32,6 +32,7 @@ from voxfab.unfold import EdgeConstraints, Net, fold_tree
 
 from ._net_options import NetOptions
 from ._options import DrawingOptions
+from ._placement import Placement
 
 _DIRS = ("+x", "-x", "+y", "-y", "+z", "-z")
 
@@ -286,7 +287,9 @@ def fit_order(fit: dict[str, Any]) -> tuple[Any, ...]:
 
 
 def fit_and_placement(pieces: list[Net], options: DrawingOptions, graph: Any,
-                      best_extent: tuple[int, int] | None = None) -> tuple[dict[str, Any], dict[str, Any] | None]:
+                      best_extent: tuple[int, int] | None = None, *,
+                      before: tuple[list[Net], Placement] | None = None
+                      ) -> tuple[dict[str, Any], dict[str, Any] | None]:
     """The net's fit to the sheet and the PLACEMENT of its pieces on the sheets (None when it does not fit).
 
     ``graph`` is the surface graph of the shape the pieces unfold; the sheets are the drawing's own
@@ -303,13 +306,16 @@ def fit_and_placement(pieces: list[Net], options: DrawingOptions, graph: Any,
 
     ``best_extent`` is the extent of the net measured to fit the sheet at the largest face size
     (:attr:`._net_options.SheetNets.best_extent`): a net that does not fit names that face size.
+    ``before`` is the net before an edit and its placement: the pieces the edit left as they were keep
+    their sheet and spot, the others go into the room left (:func:`._relayout.relayout`), and the
+    placement returned is the one to draw the files with.
     """
-    fit, placement, _ = _laid_out(pieces, options, graph, best_extent)
+    fit, placement, _ = _laid_out(pieces, options, graph, best_extent, before)
     return fit, placement
 
 
-def _laid_out(pieces: list[Net], options: DrawingOptions, graph: Any, best_extent: tuple[int, int] | None = None
-              ) -> tuple[dict[str, Any], dict[str, Any] | None, int]:
+def _laid_out(pieces: list[Net], options: DrawingOptions, graph: Any, best_extent: tuple[int, int] | None = None,
+              before: tuple[list[Net], Placement] | None = None) -> tuple[dict[str, Any], dict[str, Any] | None, int]:
     """:func:`fit_and_placement` from one packing, and the seams it leaves without room for a tab."""
     from ._drawing import _packed
     from ._placement import placement_of
@@ -333,7 +339,7 @@ def _laid_out(pieces: list[Net], options: DrawingOptions, graph: Any, best_exten
         if len(pieces) == 1:
             plan = plan_sheets(pieces[0].corners2d, options)
         else:
-            _, plan, _, _, tabs, seams = _packed(graph, pieces, options)
+            _, plan, _, _, tabs, seams = _packed(graph, pieces, options, before=before)
             untabbed = seams - tabs
     except SheetFitError:
         from ._fit import split_checked

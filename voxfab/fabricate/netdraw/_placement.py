@@ -84,6 +84,12 @@ class Placement:
     sheets: int
     pieces: tuple[PiecePlace, ...]
 
+    def suits(self, options: DrawingOptions) -> bool:
+        """Whether it was made for the sheet, margin and face size of ``options`` (any face size when unset)."""
+        return (max(abs(a - b) for a, b in zip(self.sheet, options.sheet_size)) <= 1e-3
+                and abs(self.margin - float(options.margin)) <= TOLERANCE
+                and (options.pitch is None or abs(self.face_size - float(options.pitch)) <= TOLERANCE))
+
     def to_dict(self) -> dict[str, Any]:
         """The contract's JSON form (mm, rounded to 1e-6 mm so it reads back on the same grid)."""
         return {
@@ -288,7 +294,7 @@ def plan_placement(placement: Placement, pieces: list[npt.NDArray[np.int64]], op
         local = cells - lo + (offset, 0)
         placed.append(local)
         shifts.append(np.repeat([base - (offset * pitch, 0.0)], own.shape[0], axis=0))
-        offset += int(local[..., 0].max()) + 2
+        offset = int(local[..., 0].max()) + 2  # the next piece two cells past this one
     face_sheet = np.concatenate([np.full(c.shape[0], renumber[p.sheet], dtype=np.int64)
                                  for p, c in zip(placement.pieces, placed)])
     single = len(pieces) == 1 and placement.pieces[0].turns % 2 == 1

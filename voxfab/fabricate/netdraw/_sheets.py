@@ -9,10 +9,12 @@ quarter turns, on as few sheets as possible.
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 import functools
 import math
 import threading
+from collections.abc import Callable
 
 import numpy as np
 import numpy.typing as npt
@@ -361,12 +363,6 @@ def fit_error(extent: tuple[int, int], options: DrawingOptions, pitch: float, *,
     )
 
 
-def _turned(c: npt.NDArray[np.int64], rotated: bool) -> npt.NDArray[np.int64]:
-    if rotated:
-        c = np.stack([-c[..., 1], c[..., 0]], axis=-1)
-    return c - c.reshape(-1, 2).min(axis=0)
-
-
 def auto_face_size(extent: tuple[int, int], options: DrawingOptions) -> float:
     """The face size of ``options`` or, when unset, the largest that fits a net of ``extent`` on one sheet."""
     if options.pitch is not None:
@@ -391,7 +387,7 @@ def plan_sheets(corners2d: npt.NDArray[np.int64], options: DrawingOptions, *, wh
     if rotated is None:
         raise fit_error(extent, options, pitch, what=what)
     x0, y0, x1, y1 = paper(options, pitch).area
-    c = _turned(corners2d, rotated)
+    c = _quarter_turns(corners2d, 1 if rotated else 0)
     ex, ey = c.reshape(-1, 2).max(axis=0)
     origin = np.array([[x0 + (x1 - x0 - ex * pitch) / 2, y0 + (y1 - y0 - ey * pitch) / 2]])
     return SheetPlan(pitch, rotated, c, np.zeros(c.shape[0], dtype=np.int64), origin, (x0, y0, x1, y1),
@@ -488,6 +484,12 @@ class _Spectra:
         self.mask = np.fft.rfft2(mask[::-1, ::-1].astype(np.float64), s=_fast(raster))
         self.ring = np.fft.rfft2(ring[::-1, ::-1].astype(np.float64), s=_fast((raster[0] + 2, raster[1] + 2)))
 
+    def facing(self, corners: npt.NDArray[np.int64]) -> _Spectra:
+        """The same, for the piece as ``corners`` lists its faces (turned this way, from cell (0, 0))."""
+        out = copy.copy(self)
+        out.shape = dataclasses.replace(self.shape, corners=corners)
+        return out
+
 
 @functools.lru_cache(maxsize=256)
 def _fast(size: tuple[int, int]) -> tuple[int, int]:
@@ -577,15 +579,17 @@ def _best_spots(sheet: _Sheet, turns: list[_Spectra], touch: bool = True
 
 
 def _pack_once(pieces: list[list[_Spectra]], order: list[int], raster: tuple[int, int], clear: int,
-               touch: bool) -> tuple[int, dict]:
+               touch: bool, sheets: list[_Sheet] | None = None) -> tuple[int, dict]:
     """One packing of the pieces in ``order``: the sheets used, and per piece ``(sheet, shape, offset)``.
 
     The offset (in steps) is that of the piece's cell (0, 0); shape None for a
     piece that meets no spot even on an empty sheet (it gets a sheet alone).
+    ``sheets`` are sheets already part filled (a re-layout's), taken first and
+    changed in place.
     """
     from voxfab._shared.progress import check_cancelled
 
-    sheets: list[_Sheet] = []
+    sheets = [] if sheets is None else sheets
     where: dict[int, tuple[int, _Shape | None, tuple[int, int]]] = {}
     for i in order:
         check_cancelled()  # between pieces: a cancelled studio job stops within one piece's spot search
@@ -614,11 +618,25 @@ def _pack_once(pieces: list[list[_Spectra]], order: list[int], raster: tuple[int
     return len(sheets), where
 
 
-def raster_of(options: DrawingOptions, pitch: float) -> tuple[float, int, tuple[int, int]]:
-    """The packer's raster at face size ``pitch``: its step (mm), the clearance (steps) kept between
-    pieces and the drawable area's size in steps (:class:`Paper`)."""
-    p = paper(options, pitch)
-    return p.step, p.clear, p.raster
+def _orders(faces: list[int], shapes: list[list[_Spectra]]) -> tuple[Callable[[int], tuple[int, int]], ...]:
+    """The orders the packer tries, largest first, as sort keys of a piece's index: by faces, by paper, by
+    bounding box (ties by index)."""
+    area = [sh[0].size for sh in shapes]
+    box = [sh[0].shape.mask.shape[0] * sh[0].shape.mask.shape[1] for sh in shapes]
+    return (lambda i: (-faces[i], i), lambda i: (-area[i], i), lambda i: (-box[i], i))
+
+
+def _spot_mm(corners: npt.NDArray[np.int64], shape: _Shape | None, at: tuple[int, int], options: DrawingOptions,
+             sheet: Paper) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.float64]]:
+    """A packed piece's corners as it lies (turned, from cell (0, 0)) and the mm from the drawable area's corner
+    to its cell (0, 0); a piece without a ``shape`` (no spot even on an empty sheet) alone, centred."""
+    if shape is not None:
+        return shape.corners, np.asarray(at, dtype=np.float64) * sheet.step
+    x0, y0, x1, y1 = sheet.area
+    ex, ey = _quarter_turns(corners, 0).reshape(-1, 2).max(axis=0)
+    c = _quarter_turns(corners, 1 if fits((int(ex), int(ey)), options, sheet.pitch) else 0)
+    ex, ey = c.reshape(-1, 2).max(axis=0)
+    return c, np.array([(x1 - x0 - ex * sheet.pitch) / 2, (y1 - y0 - ey * sheet.pitch) / 2])
 
 
 def piece_mask(corners: npt.NDArray[np.int64], tab_edges: npt.NDArray[np.int64], options: DrawingOptions,
@@ -699,8 +717,9 @@ def pack_pieces(pieces: list[npt.NDArray[np.int64]], options: DrawingOptions,
     return packed
 
 
-#: Each piece's four turns as the packer sees them, by the piece, its tabs and the raster: after a cut or
-#: a join only the pieces it changed are transformed again (a tenth of a second on the queen's 35 pieces).
+#: Each piece's four turns as the packer sees them, by the piece (its cells, in any order, anywhere), its
+#: tabs and the raster: after a cut or a join only the pieces it changed are transformed again (a tenth of a
+#: second on the queen's 35 pieces), though the edit lists their faces in another order.
 _TURNS: dict[bytes, list[_Spectra]] = {}
 _TURNS_KEPT = 64
 _TURNS_LOCK = threading.Lock()
@@ -713,14 +732,16 @@ def _turns(corners: npt.NDArray[np.int64], tab_edges: npt.NDArray[np.int64], per
 
     h = hashlib.sha256(repr((per_cell, tab_steps, tuple(raster), tuple(tab_trim), corners.shape,
                              tab_edges.shape)).encode())
-    h.update(np.ascontiguousarray(corners, dtype=np.int64).tobytes())
-    h.update(np.ascontiguousarray(tab_edges, dtype=np.int64).tobytes())
+    rows = (corners - corners.reshape(-1, 2).min(axis=0)).reshape(corners.shape[0], -1).astype(np.int64)
+    order = np.lexsort(rows.T[::-1])
+    tabs = np.column_stack([np.argsort(order)[tab_edges[:, 0]], tab_edges[:, 1]]).astype(np.int64)
+    h.update(rows[order].tobytes() + tabs[np.lexsort(tabs.T[::-1])].tobytes())
     key = h.digest()
     with _TURNS_LOCK:
         known = _TURNS.pop(key, None)
         if known is not None:
             _TURNS[key] = known  # most recently used last
-            return known
+            return [s.facing(_quarter_turns(corners, t)) for t, s in enumerate(known)]
     # A quarter turn keeps each face's corner order, so the tab edges stay the same pairs.
     made = [_Spectra(_shape(_quarter_turns(corners, t), tab_edges, per_cell, tab_steps, tab_trim), raster)
             for t in range(4)]
@@ -741,19 +762,17 @@ def _pack_pieces(pieces: list[npt.NDArray[np.int64]], options: DrawingOptions,
     if tab_edges is None:
         tab_edges = [np.zeros((0, 2), dtype=np.int64) for _ in pieces]
     sheet = paper(options, pitch)
-    step, clear, raster = sheet.step, sheet.clear, sheet.raster
+    clear, raster = sheet.clear, sheet.raster
     x0, y0, x1, y1 = sheet.area
     shapes = [_turns(c, tab_edges[i], sheet.per_cell, sheet.tab_steps, raster, sheet.tab_trim)
               for i, c in enumerate(pieces)]
-    area = [sh[0].size for sh in shapes]
-    box = [sh[0].shape.mask.shape[0] * sh[0].shape.mask.shape[1] for sh in shapes]
-    least = math.ceil(sum(area) / (raster[0] * raster[1]))
+    least = math.ceil(sum(sh[0].size for sh in shapes) / (raster[0] * raster[1]))
     where: dict[int, tuple[int, npt.NDArray[np.int64], npt.NDArray[np.float64]]] = {}
     count = 0
     # Orders and rules tried in turn, the fewest sheets kept (the first on a tie); a packing on as
     # few sheets as the paper needs ends the tries.
     for touch in (True, False):
-        for by in (lambda i: (-pieces[i].shape[0], i), lambda i: (-area[i], i), lambda i: (-box[i], i)):
+        for by in _orders([c.shape[0] for c in pieces], shapes):
             n, spots = _pack_once(shapes, sorted(range(len(pieces)), key=by), raster, clear, touch)
             if not where or n < count:
                 count, where = n, spots
@@ -762,14 +781,7 @@ def _pack_pieces(pieces: list[npt.NDArray[np.int64]], options: DrawingOptions,
         if count <= least:
             break
     for i, (s, sh, at) in list(where.items()):
-        if sh is None:  # a piece alone on its sheet, centred
-            c = _quarter_turns(pieces[i], 0)
-            ex, ey = c.reshape(-1, 2).max(axis=0)
-            c = _quarter_turns(pieces[i], 1 if fits((int(ex), int(ey)), options, pitch) else 0)
-            ex, ey = c.reshape(-1, 2).max(axis=0)
-            where[i] = (s, c, np.array([(x1 - x0 - ex * pitch) / 2, (y1 - y0 - ey * pitch) / 2]))
-        else:
-            where[i] = (s, sh.corners, np.asarray(at, dtype=np.float64) * step)
+        where[i] = (s, *_spot_mm(pieces[i], sh, at, options, sheet))
     # Each piece in cells of its own, two cells apart from the next: no two
     # pieces ever share or touch a cell, so edges of different pieces never meet.
     placed, sheets, shifts = [], [], []

@@ -177,3 +177,39 @@ def place_tabs(
     height = np.where(placed, heights[np.maximum(chosen, 0)], 0.0)
     polygon = np.where(placed[:, None, None], local[np.maximum(chosen, 0)], np.nan)
     return TabPlan(side.astype(np.int64), height, polygon)
+
+
+def tab_sides(corners: npt.NDArray[np.int64], sides: npt.NDArray[np.int64],
+              second_low: npt.NDArray[np.bool_] | None = None
+              ) -> tuple[npt.NDArray[np.bool_], npt.NDArray[np.bool_]]:
+    """Which side of every seam takes its tab: ``(swap, reserved)``, each ``(S,)``.
+
+    A side has room when the cell beyond its edge holds no face; of two sides
+    with room the one whose cell has more faces round it wins (its tab then
+    sits in a notch of its own piece, where it costs the sheet no paper), on a
+    tie the side seen from the lower surface face (``second_low``: the second
+    side is), else the first.  So a tie does not hang on the order of the
+    pieces, which an edit renumbers: the pieces it left alone keep their tabs.
+    ``swap`` is True where the second side wins, ``reserved`` where either has room.
+    """
+    step = np.array([[0, -1], [1, 0], [0, 1], [-1, 0]], dtype=np.int64)
+    cells = corners.min(axis=1)
+    # The cells looked at lie at most two off the faces' (beyond an edge, then round that): a grid padded by two.
+    lo = cells.min(axis=0) - 2
+    occupied = np.zeros(tuple(cells.max(axis=0) - lo + 3), dtype=bool)
+    occupied[tuple((cells - lo).T)] = True
+
+    def taken(c: npt.NDArray[np.int64]) -> npt.NDArray[np.bool_]:
+        return occupied[tuple((c - lo).T)]
+
+    room, score = [], []
+    for j in (0, 1):
+        f, k = sides[:, j, 0], sides[:, j, 1]
+        a, b = corners[f, k], corners[f, _NEXT[k]]
+        d = b - a
+        beyond = cells[f] + np.stack([d[:, 1], -d[:, 0]], axis=1)  # faces run counter-clockwise
+        room.append(~taken(beyond))
+        score.append(sum(taken(beyond + st).astype(np.int64) for st in step))
+    tie = np.zeros(sides.shape[0], dtype=bool) if second_low is None else second_low & (score[1] == score[0])
+    swap = (room[1] & ~room[0]) | (room[0] & room[1] & ((score[1] > score[0]) | tie))
+    return swap, room[0] | room[1]

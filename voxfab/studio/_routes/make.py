@@ -60,6 +60,12 @@ async def make(session: Session, request: Request) -> dict[str, Any]:
     settings = _work.download_settings(artefact, opts)
     net = chosen_net(session, artefact, data.get("net"))
     placement = data.get("placement")
+    kept = None if placement is not None or net is None else session.job(data["net"]["job"]).data.get("placement")
+    if kept is not None and hasattr(settings, "drawing"):
+        from voxfab.fabricate.netdraw._placement import Placement as Kept
+
+        # an edited net's files as the editor laid it out (its job keeps the placement it showed), on its paper
+        placement = kept if Kept.from_dict(kept).suits(settings.drawing) else None
     if placement is not None:
         if net is None:
             raise InvalidShapeError("placement: pick a net first (\"net\": {\"job\": ID, \"index\": N})")

@@ -421,7 +421,8 @@ async function openShape(name, file = null) { // a kept shape by name, or a file
 // --- Net ----------------------------------------------------------------------------------------
 
 const marker = new NetView($('#net-canvas'), {viewer, shape: () => state.shape, say, fold: $('#net-fold'), play: $('#net-fold-play'), undo: $('#net-undo'),
-  pieces: $('#net-view-pieces'), onChange: () => {
+  pieces: $('#net-view-pieces'), placement: () => (state.gallery && state.chosen !== null ? state.gallery.placement : null),
+  onChange: () => {
   const c = marker.constraints();
   $('#marks-count').textContent = `${c.cut.length} cut, ${c.keep.length} kept`;
   $('#marks-count').dataset.constraints = JSON.stringify(c);

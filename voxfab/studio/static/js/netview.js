@@ -211,8 +211,9 @@ export class NetView {
   // canvas: the net-2d canvas; viewer: the 3D Viewer; shape(): the current Grid; say(text, ok): status;
   // onChange(): the marks changed.
   // pieces: the box of the buttons that show the whole net or one piece of it, fitted.
-  constructor(canvas, {viewer, shape, say, onChange, fold = null, play = null, undo = null, pieces = null}) {
-    Object.assign(this, {canvas, viewer, shape, say, onChange, foldInput: fold, playButton: play, piecesBox: pieces});
+  constructor(canvas, {viewer, shape, say, onChange, fold = null, play = null, undo = null, pieces = null, placement = null}) {
+    Object.assign(this, {canvas, viewer, shape, say, onChange, foldInput: fold, playButton: play, piecesBox: pieces,
+      shownPlacement: placement});
     this.layout = null; this.job = null; this.index = 0; this.marks = {cut: [], keep: []};
     this.view = null; this.hover = null; this.busy = false; this.version = 0; this.undos = 0;
     this._drag = null;
@@ -524,8 +525,10 @@ export class NetView {
     const t0 = performance.now();
     try {
       const shape = this.shape && this.shape();
+      // the pieces as the sheets show them (moved by hand perhaps): those the edit leaves alone stay there
+      const placement = this.shownPlacement ? this.shownPlacement() : null;
       const r = await post('/api/nets/edit', {job: this.job, index: this.index, ...change, grid: shape ? shape.pack() : null,
-        marks: this.marks});
+        marks: this.marks, ...(placement ? {placement} : {})});
       const ms = performance.now() - t0;
       this.marks = r.net.marks; this.undos = r.net.undo;
       this.item = {...r.net, job: r.job}; // the edited net: its layout, fit and placement on the sheets
