@@ -258,11 +258,12 @@ def test_mark_an_edge_then_regenerate_honours_it(server, browser):
     for dx, dy in ((0, 0), (7, 3), (-5, 9), (3, -11), (12, 12)):
         ActionChains(browser).move_to_element_with_offset(canvas, dx, dy).click().perform()
         # a click on an edge cuts it at once: the page asks the server (which a loaded machine may keep
-        # waiting) and ignores clicks until the answer; off an edge nothing happens. A redraw of the view
-        # is no answer: wait for the marks themselves.
-        end = time.monotonic() + 30
+        # waiting: the canvas says busy meanwhile) and ignores clicks until the answer; off an edge nothing
+        # happens. A redraw of the view is no answer: wait for the marks themselves.
+        end, quiet = time.monotonic() + 120, time.monotonic() + 2
         while time.monotonic() < end and not attr(browser, "marks-count", "data-constraints") \
-                and not attr(browser, "net-canvas", "data-error"):
+                and not attr(browser, "net-canvas", "data-error") \
+                and (attr(browser, "net-canvas", "data-busy") or time.monotonic() < quiet):
             time.sleep(0.05)
         if attr(browser, "marks-count", "data-constraints"):
             break

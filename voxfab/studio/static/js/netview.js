@@ -522,6 +522,7 @@ export class NetView {
 
   async _send(change, kind) {
     this.busy = true;
+    this.canvas.dataset.busy = '1'; // the page waits for the server's answer: clicks meanwhile are ignored
     const t0 = performance.now();
     try {
       const shape = this.shape && this.shape();
@@ -541,7 +542,7 @@ export class NetView {
     } catch (e) {
       if (this.say) this.say(e.message);
       this.canvas.dataset.error = e.message;
-    } finally { this.busy = false; }
+    } finally { this.busy = false; delete this.canvas.dataset.busy; }
   }
 
   clear() { this.marks = {cut: [], keep: []}; this.draw(); if (this.onChange) this.onChange(); }
