@@ -220,8 +220,9 @@ def main() -> None:
         print(fill_repository(root / "r.sqlite", args.source, args.shapes, args.volume))
         from voxfab.warmup import GROUPS, is_compiled, warm_up
 
-        # A real run finds the kernels in numba's cache (`voxfab warmup`): compile any missing, untimed.
-        cold = [g for g in GROUPS if not is_compiled(g)]
+        # A real run finds the kernels in numba's cache (`voxfab warmup`): compile any missing, untimed.  The
+        # smoke run's outputs (a mesh) call the print kernels alone; its explore compiled the makers' already.
+        cold = [g for g in (["print"] if args.smoke else GROUPS) if not is_compiled(g)]
         if cold:
             t = time.perf_counter()
             warm_up(cold)

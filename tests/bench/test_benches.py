@@ -1,27 +1,21 @@
 """Every script in ``bench/`` runs in its smoke mode, and reaches the library through public names only.
 
-The smoke runs are real: each bench starts as a subprocess (``python bench/NAME.py --smoke``) and goes
-through its whole path on the smallest real inputs, printing its table.  Two run at a time, one per
-core.  A bench that needs a system tool that is missing (Chromium) says so in its output and goes on.
+The smoke runs are real (see ``_bench_smoke``): half of them run here, the other half in
+``test_benches_other_half.py``, so that each worker of pytest-xdist takes a half.  A bench that needs a
+system tool that is missing (Chromium) says so in its output and goes on.
 """
 
 from __future__ import annotations
 
 import ast
-import concurrent.futures
-import os
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
+from _bench_smoke import BENCHES, HALVES, Run, check_smoke, smoke_all
 
 ROOT = Path(__file__).resolve().parents[2]
-BENCHES = sorted(p.name for p in (ROOT / "bench").glob("bench_*.py"))
 #: Every module of bench/, the benches' helpers (``_peer.py``) included.
 BENCH_MODULES = sorted(p.name for p in (ROOT / "bench").glob("*.py"))
-#: Seconds one smoke run may take on a loaded 2-core machine; a smoke run takes a few seconds alone.
-SMOKE_TIMEOUT = 300
 
 
 def private_uses(source: str) -> list[str]:
@@ -99,28 +93,12 @@ def test_no_bench_reaches_into_private_names() -> None:
     assert {name: u for name, u in uses.items() if u} == {}
 
 
-def _smoke(name: str) -> subprocess.CompletedProcess[str] | str:
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]))
-    try:
-        return subprocess.run([sys.executable, str(ROOT / "bench" / name), "--smoke"], capture_output=True,
-                              text=True, cwd=ROOT, env=env, timeout=SMOKE_TIMEOUT, stdin=subprocess.DEVNULL)
-    except subprocess.TimeoutExpired as exc:
-        return f"over {SMOKE_TIMEOUT} s; its output so far:\n{exc.stdout or ''}\n{exc.stderr or ''}"
-
-
 @pytest.fixture(scope="module")
-def smoke_runs() -> dict[str, subprocess.CompletedProcess[str] | str]:
-    """Every bench's smoke run, two at a time (one per core), started once for the module."""
-    with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
-        return dict(zip(BENCHES, pool.map(_smoke, BENCHES)))
+def smoke_runs() -> dict[str, Run]:
+    """The smoke runs of the first half of the benches, started once for the module."""
+    return smoke_all(HALVES[0])
 
 
-@pytest.mark.parametrize("name", BENCHES)
-def test_bench_runs_in_smoke_mode(name: str, smoke_runs: dict[str, subprocess.CompletedProcess[str] | str]) -> None:
-    run = smoke_runs[name]
-    assert not isinstance(run, str), f"{name} --smoke: {run}"
-    assert run.returncode == 0, f"{name} --smoke exited {run.returncode}:\n{run.stdout[-3000:]}\n{run.stderr[-3000:]}"
-    assert "Traceback" not in run.stderr, run.stderr[-3000:]
-    # A table: a header and at least one row of figures.
-    lines = [line for line in run.stdout.splitlines() if line.strip()]
-    assert len(lines) >= 2 and any(ch.isdigit() for ch in "".join(lines[1:])), run.stdout
+@pytest.mark.parametrize("name", HALVES[0])
+def test_bench_runs_in_smoke_mode(name: str, smoke_runs: dict[str, Run]) -> None:
+    check_smoke(name, smoke_runs[name])
