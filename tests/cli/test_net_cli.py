@@ -116,7 +116,8 @@ def test_net_refuses_faces_too_small_for_the_marks(tmp_path):
     np.save(tmp_path / "box.npy", np.ones((2, 2, 2), dtype=bool))
     r = _run("box.npy", "-o", "n.svg", "--face-size", "5", cwd=tmp_path)
     assert r.returncode != 0 and r.stderr.count("\n") == 1
-    assert "smallest face size that works is 7.5 mm" in r.stderr and "--no-tabs" in r.stderr
+    assert "what works: make the faces 7.5 mm (--face-size 7.5), or draw without seam labels and glue tabs " \
+           "(--no-numbers --no-tabs)" in r.stderr
     assert not (tmp_path / "n.svg").exists()
     r = _run("box.npy", "-o", "n.svg", "--face-size", "5", "--no-numbers", "--no-tabs", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
@@ -271,3 +272,27 @@ def test_a_hopeless_sheet_for_pieces_is_refused_before_any_search_with_or_withou
     # Without a face size, pieces take the smallest with legible marks (8.6 mm): the same refusal.
     assert lines[()] == lines[("--face-size", "8.6")]
     assert not list(tmp_path.glob("q*.pdf"))
+
+
+def test_a_builds_shape_file_is_titled_by_its_recipe_and_a_refusal_gives_flags_that_work(tmp_path):
+    """The queen at its recipe's scale (3.4 mm voxels) has faces too small for the marks: the refusal names
+    each way out with the flags that take it, and the first way taken makes a net titled queen, not shape."""
+    import re
+    from pathlib import Path
+
+    recipe = Path(__file__).parents[2] / "recipes" / "chess" / "queen.toml"
+    r = subprocess.run([sys.executable, "-m", "voxfab", "build", str(recipe), "-o", "out"],
+                       capture_output=True, text=True, cwd=tmp_path, timeout=300)
+    assert r.returncode == 0, r.stderr
+    r = _run("out/queen/shape.npz", "-o", "q.svg", cwd=tmp_path)
+    assert r.returncode != 0 and r.stderr.count("\n") == 1 and "Traceback" not in r.stderr
+    assert "faces of 3.4 mm are too small" in r.stderr and "what works:" in r.stderr
+    flags = re.findall(r"\((--[^)]*)\)", r.stderr.split("what works:")[1])
+    assert flags and flags[0] == "--face-size 8.6 --pieces auto", r.stderr
+    r = _run("out/queen/shape.npz", "-o", "q.svg", *flags[0].split(), cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    sheets = sorted(tmp_path.glob("q*.svg"))  # one file a sheet
+    assert sheets
+    for sheet in sheets:
+        svg = sheet.read_text(encoding="utf-8")
+        assert "<title>queen " in svg and "<title>shape " not in svg, sheet.name

@@ -411,7 +411,7 @@ def test_gallery_of_faces_too_small_has_ways_out(client):
     g = small_shape()
     r = client.post("/api/nets", json={"grid": pack(g), "count": 2, "options": {"face_size": 3}})
     s = wait_job(client, r.json()["job"])
-    assert s["state"] == "error" and "smallest face size that works is" in s["message"]
+    assert s["state"] == "error" and "what works: make the faces" in s["message"]
     assert "\n" not in s["message"]
 
 

@@ -134,7 +134,8 @@ def load_command_shape(args: argparse.Namespace, *, pitch: float | None = None) 
     -------
     shape : VoxelShape
     title : str
-        Its repository name, else the file's stem: the name its artefacts carry.
+        Its repository name, else the file's stem (a build's shape file: its recipe's name): the name its
+        artefacts carry.
     scaled : bool
         Whether its scale is known (``pitch``, or the file's own).
     """
@@ -143,7 +144,16 @@ def load_command_shape(args: argparse.Namespace, *, pitch: float | None = None) 
     shape, name, notes, scaled = load_shape(args.shape, args.repo, pitch=pitch, **reader_options(args))
     shape = joined_if_asked(args, shape, notes)
     print_notes(notes)
-    return shape, name or Path(args.shape).stem, scaled
+    return shape, name or file_title(args.shape), scaled
+
+
+def file_title(path: str) -> str:
+    """The name a shape file's artefacts carry: its stem, or its recipe's name for a build's shape file."""
+    if (Path(path).parent / "manifest.json").is_file():  # a build's folder: only then load the recipe code
+        from voxfab.recipe import built_shape_name
+
+        return built_shape_name(path) or Path(path).stem
+    return Path(path).stem
 
 
 def joined_if_asked(args: argparse.Namespace, shape: VoxelShape, notes: list[str]) -> VoxelShape:

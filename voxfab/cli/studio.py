@@ -62,10 +62,12 @@ def _initial(args: argparse.Namespace):  # noqa: ANN202 - voxfab.studio._grid.In
     from voxfab.repo import load_shape
     from voxfab.studio._grid import InitialShape
 
-    from ._common import joined_if_asked, print_notes, shape_pitch
+    from ._common import file_title, joined_if_asked, print_notes, shape_pitch
 
     shape, name, notes, scaled = load_shape(args.shape, args.repo, pitch=shape_pitch(args))
     shape = joined_if_asked(args, shape, notes)
     print_notes(notes)
-    return InitialShape.of(shape.grid, label=name or Path(args.shape).name, name=name,
+    title = file_title(args.shape)  # a build's shape file goes by its recipe's name, any other by its file name
+    label = name or (title if title != Path(args.shape).stem else Path(args.shape).name)
+    return InitialShape.of(shape.grid, label=label, name=name,
                            pitch=float(shape.pitch) if scaled else None, colours=shape.colours)

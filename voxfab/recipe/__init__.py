@@ -10,6 +10,7 @@ from ._build import (
     apply_operation,
     build,
     build_recipe,
+    built_shape_name,
     make_shape,
     make_source,
 )
@@ -26,6 +27,7 @@ __all__ = [
     "apply_operation",
     "build",
     "build_recipe",
+    "built_shape_name",
     "load_recipe",
     "make_shape",
     "make_source",

@@ -33,6 +33,20 @@ SHAPE_FILES = {
 }
 
 
+def built_shape_name(path: PathLike) -> str | None:
+    """The recipe's name when ``path`` is one of a build's :data:`SHAPE_FILES` beside its ``manifest.json``,
+    else None: a net or a print made from ``output/queen/shape.npz`` is titled "queen", not "shape"."""
+    path = Path(path)
+    if path.name not in SHAPE_FILES:
+        return None
+    try:
+        manifest = json.loads((path.parent / "manifest.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    name = manifest.get("recipe") if isinstance(manifest, dict) and manifest.get("format") == MANIFEST_FORMAT else None
+    return name if isinstance(name, str) and name.strip() else None
+
+
 def make_source(source: SourceSpec, base_dir: Path, pitch: float = 1.0) -> VoxelShape:
     """Return the shape a source describes (a maker's output, or a file's content with its colours)."""
     if source.file is not None:

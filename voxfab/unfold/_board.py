@@ -22,7 +22,7 @@ import numpy as np
 import numpy.typing as npt
 
 from ._constraints import CUT, KEEP
-from ._jit import njit
+from ._jit import inline, njit
 
 # ``link[f, row, k]``: the surface graph and constraints per face and edge.
 NB = 0  # neighbour face across edge k
@@ -150,7 +150,7 @@ def make_board(faces: npt.NDArray[np.int64], f: int, board: npt.NDArray[np.int64
 
 # --- random numbers: a seeded xorshift kept in cnt, never a global generator ---
 
-@njit(cache=True)
+@inline
 def randint(cnt, n):
     """Uniform integer in ``[0, n)``."""
     x = np.uint64(cnt[C_RNG])
@@ -161,7 +161,7 @@ def randint(cnt, n):
     return np.int64(((x * np.uint64(2685821657736338717)) >> np.uint64(11)) % np.uint64(n))
 
 
-@njit(cache=True)
+@inline
 def random(cnt):
     """Uniform float in ``[0, 1)``."""
     return randint(cnt, 9007199254740992) * (1.0 / 9007199254740992.0)
@@ -169,7 +169,7 @@ def random(cnt):
 
 # --- geometry of a placement ---
 
-@njit(cache=True)
+@inline
 def forced(link, face, cnt, h):
     """Face, cell and rotation that half-edge h lays."""
     i = h >> 2
@@ -215,13 +215,20 @@ def member_cell(link, board, cnt, j, c, r, m):
     return y * w + x, (link[m, GRP, G_ROT] + turn) & 3
 
 
-@njit(cache=True)
+@inline
 def fits(link, gmem, face, board, cnt, j, c, r):
     """Whether face j (with its kept group) can lie on cell c with rotation r."""
     if board[c] != -1:
         return False
     if cnt[C_CONSTRAINED] == 0:
         return True
+    return _fits_constrained(link, gmem, face, board, cnt, j, c, r)
+
+
+@njit(cache=True)
+def _fits_constrained(link, gmem, face, board, cnt, j, c, r):
+    # The rest of fits, for cut and kept edges: called, not inlined, since
+    # growth without constraints never gets here.
     g = link[j, GRP, G_ID]
     if g < 0:
         return not meets_cut(link, face, cnt, j, c, r)
@@ -235,7 +242,7 @@ def fits(link, gmem, face, board, cnt, j, c, r):
 
 # --- the placeable set and the seams without tab room ---
 
-@njit(cache=True)
+@inline
 def _set(half, cnt, col_list, col_pos, slot, key, present):
     # Add ``key`` to the list in column col_list (positions in col_pos, size in
     # cnt[slot]) or take it out.
@@ -255,7 +262,7 @@ def _set(half, cnt, col_list, col_pos, slot, key, present):
         cnt[slot] = n
 
 
-@njit(cache=True)
+@inline
 def update(link, gmem, face, half, board, cnt, h):
     """Put half-edge h in the placeable set or take it out, as it now is."""
     i = h >> 2
@@ -267,7 +274,7 @@ def update(link, gmem, face, half, board, cnt, h):
     _set(half, cnt, CL, CP, C_NCAND, h, ok)
 
 
-@njit(cache=True)
+@inline
 def seam_update(link, face, half, board, cnt, h):
     """Put the seam across half-edge h in the list of seams without tab room, or take it out.
 
@@ -323,7 +330,7 @@ def _touch(link, gmem, face, half, board, cnt, j, c):
                 seam_update(link, face, half, board, cnt, 4 * q + (((s + 2) - face[q, ROT]) & 3))
 
 
-@njit(cache=True)
+@inline
 def _log(face, half, cnt, j):
     # Remember face j's state before the current move first touched it.
     if cnt[C_LOGGING] and face[j, STAMP] != cnt[C_MOVE]:
@@ -335,7 +342,7 @@ def _log(face, half, cnt, j):
         face[j, LPAR] = face[j, PAR]
 
 
-@njit(cache=True)
+@inline
 def _free_list(face, half, cnt, j, present):
     # The unplaced faces: listed in slots 4F + t of CL, positions in slots 4F + j of CP.
     f4 = 4 * face.shape[0]
@@ -409,7 +416,7 @@ def place_via(link, gmem, face, half, board, cnt, h):
     place_group(link, gmem, face, half, board, cnt, j, c, r, h >> 2)
 
 
-@njit(cache=True)
+@inline
 def entry(link, face, cnt, m):
     """The face through which m's kept group hangs in the tree (m itself when alone)."""
     if cnt[C_CONSTRAINED] == 0:
@@ -445,7 +452,7 @@ def remove_subtree(link, gmem, face, half, board, cnt, m):
     return n
 
 
-@njit(cache=True)
+@inline
 def _meets(link, face, cnt, u, e):
     # Whether u's neighbour across edge e lies where a fold across e would lay it.
     z = link[u, NB, e]
@@ -533,7 +540,7 @@ def subtree_size(link, face, half, m, i, cap):
     return n
 
 
-@njit(cache=True)
+@inline
 def in_subtree(face, i, m):
     """Whether face i hangs (directly or not) from face m."""
     a = i

@@ -53,7 +53,7 @@ from ._board import (
     update,
 )
 from ._constraints import CUT
-from ._jit import njit
+from ._jit import inline, njit
 
 #: Random roots tried before a start gives up (a kept group may not fit a small box).
 _ROOT_TRIES = 64
@@ -154,7 +154,7 @@ def _blocked_options(link, face, half, board, cnt):
     return n
 
 
-@njit(cache=True)
+@inline
 def blocker(face, board, cnt, h):
     """The face on the cell that option ``h`` would take."""
     i = h >> 2
@@ -240,7 +240,7 @@ def _blockers(link, gmem, face, half, board, cnt, h):
     return n
 
 
-@njit(cache=True)
+@inline
 def _blocker_face(link, code):
     return code if code >= 0 else link[(~code) >> 2, NB, (~code) & 3]
 

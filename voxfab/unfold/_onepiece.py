@@ -32,7 +32,7 @@ def one_piece(job: Job, faces: npt.NDArray[np.int64]) -> Net:
     if job.fit is not None:
         b = _grow_to_fit(job, faces, resolved)
     else:
-        b = SearchBoard(job.sg, faces, job.seed, None, resolved)
+        b = SearchBoard(job.sg, faces, job.seed, None, resolved, tab_restarts=True)
         with meter(int(faces.size), desc="net: faces placed") as bar:
             grown = b.grow(p, job.deadline, bar=bar)
         if not grown:

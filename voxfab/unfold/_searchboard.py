@@ -13,7 +13,7 @@ from voxfab._shared.rng import seed_state
 from voxfab.shape import SurfaceGraph
 
 from ._constraints import Resolved
-from ._job import FIT_STEPS_PER_FACE, Job, Strategy, growth_settings
+from ._job import FIT_STEPS_PER_FACE, Job, Strategy, growth_settings, tab_growth
 from ._layout import build_net, count_without_tab_room
 from ._net import Net
 from ._params import Annealing
@@ -98,9 +98,12 @@ class SearchBoard:
 
     def __init__(self, sg: SurfaceGraph, faces: npt.NDArray[np.int64], seed: int | list[int],
                  fit: tuple[int, int] | None, resolved: Resolved | None = None,
-                 kernel_faces: int | None = None) -> None:
+                 kernel_faces: int | None = None, tab_restarts: bool = False) -> None:
         # ``kernel_faces`` picks the kernels by a larger search than this board
-        # (the pieces of one surface): many small boards add up.
+        # (the pieces of one surface): many small boards add up.  With
+        # ``tab_restarts``, annealing rounds after the first start from a net
+        # grown for tab room (see :func:`anneal`).
+        self.tab_restarts = tab_restarts
         _board, _growth, _tabroom = _kernels(faces.size if kernel_faces is None else kernel_faces)
         self.k = _board
         self.growth = _growth
@@ -153,10 +156,13 @@ class SearchBoard:
     def best(self) -> int:
         return int(self.cnt[self.k.C_BEST])
 
-    def grow(self, gw, deadline: float, max_steps: int | None = None, bar: Meter | None = None) -> bool:
+    def grow(self, gw, deadline: float, max_steps: int | None = None, bar: Meter | None = None,
+             sparse: bool = False) -> bool:
         """Grow until every face is placed; False when the clock or ``max_steps`` runs out.
 
-        ``bar`` counts the faces of the largest partial net so far.
+        ``bar`` counts the faces of the largest partial net so far.  ``sparse``
+        grows as annealing regrows: each tournament's winner touches the
+        fewest placed faces.
         """
         spent = 0
         if not self.started:
@@ -167,7 +173,7 @@ class SearchBoard:
                 return False
             chunk = _CHUNK if max_steps is None else min(_CHUNK, max_steps - spent)
             with _quiet():
-                done = self.growth.grow(*self.sf, *self.b, gw, chunk, False)
+                done = self.growth.grow(*self.sf, *self.b, gw, chunk, sparse)
             if not done and self.unplaced == self.faces.size:
                 return False  # a restart found no room for a root
             spent += chunk
@@ -199,6 +205,12 @@ class SearchBoard:
         in an old one), all within a fixed number of moves, so the outcome
         depends on the seed alone unless the clock runs out first.  The state
         ends at the best net seen.  ``bar`` counts the moves tried.
+
+        On a board with ``tab_restarts`` the fresh nets are grown, and their
+        rounds regrow, for tab room (:func:`voxfab.unfold._job.tab_growth`):
+        such a net starts with fewer seams without room and is fixed in a
+        fraction of the moves, though with a few more seams.  The first round
+        keeps the net it is given, so a net fixed at once is as before.
         """
         face, half, board, cnt, _ = self.b
         best = np.zeros((face.shape[0], 3), dtype=np.int64)
@@ -209,8 +221,10 @@ class SearchBoard:
         spent = 0
         while spent < budget:
             if spent:
+                if self.tab_restarts:
+                    gw = tab_growth(gw)
                 self.restart()
-                if not self.grow(gw, deadline, FIT_STEPS_PER_FACE * int(self.faces.size)):
+                if not self.grow(gw, deadline, FIT_STEPS_PER_FACE * int(self.faces.size), sparse=self.tab_restarts):
                     break
             left, used = self._anneal_round(gw, deadline, best, budget - spent, bar)
             spent += max(used, 1)

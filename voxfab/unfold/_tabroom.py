@@ -93,9 +93,11 @@ def _ruin_near_seams(link, gmem, face, half, board, cnt, sched):
 
 @njit(cache=True)
 def _save(face, cnt, best):
-    best[:, 0] = face[:, POS]
-    best[:, 1] = face[:, ROT]
-    best[:, 2] = face[:, PAR]
+    # A loop, not slices: copying a slice may allocate, and the kernels run without numba's allocator.
+    for j in range(face.shape[0]):
+        best[j, 0] = face[j, POS]
+        best[j, 1] = face[j, ROT]
+        best[j, 2] = face[j, PAR]
     cnt[C_BESTBAD] = cnt[C_NBAD]
 
 

@@ -171,7 +171,7 @@ def test_faces_too_small_fail_with_ways_out() -> None:
     from voxfab.fabricate.netdraw import FaceSizeError
 
     net, drawing = gallery_options({"face_size": 3})
-    with pytest.raises(FaceSizeError, match="smallest face size that works") as err:
+    with pytest.raises(FaceSizeError, match=r"what works: make the faces [0-9.]+ mm \(--face-size") as err:
         net_gallery(examples.ball(2), net, drawing, count=2, seed=0)
     options = [w["options"] for w in err.value.ways_out]
     assert {"numbers": False, "tabs": False} in options and any("face_size" in o for o in options)

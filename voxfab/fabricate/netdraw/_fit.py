@@ -117,6 +117,24 @@ def pieces_ways_out(faces: int, options: DrawingOptions, pitch: float, *, split:
     return [{"label": f"{label} on a larger sheet ({sheet})", "options": {**chosen, "sheet": sheet}}]
 
 
+def ways_in_words(ways: list[dict[str, Any]]) -> str:
+    """Ways out as one clause, each with the options that take it: ``make the faces 8.6 mm and split the net
+    into pieces (--face-size 8.6 --pieces auto), or draw without ... (--no-numbers --no-tabs)``."""
+    from voxfab._shared.options import option_specs
+
+    from ._net_options import NetOptions
+
+    flags = {spec.name: spec.flag for cls in (DrawingOptions, NetOptions) for spec in option_specs(cls)}
+
+    def flag(name: str, value: Any) -> str:
+        if value is False:
+            return "--no-" + flags[name].removeprefix("--")
+        return flags[name] if value is True else f"{flags[name]} {value:g}" if isinstance(value, float) else \
+            f"{flags[name]} {value}"
+
+    return ", or ".join(f"{w['label']} ({' '.join(flag(k, v) for k, v in w['options'].items())})" for w in ways)
+
+
 def split_checked(faces: int, options: DrawingOptions, pitch: float) -> bool:
     """Whether "split it into pieces" at ``pitch`` passes the checks a net in pieces meets first: legible
     marks (pieces number every edge) and the sheet's bound."""
@@ -213,9 +231,10 @@ def find_sheet_nets(grid: Any, options: DrawingOptions, *, rng: int, pieces: str
                                                       notes)], options, notes)
     try:
         fit = sheet_room(options, faces, pieces)
-    except FaceSizeError as err:  # each way out checked on this shape before it is offered
-        raise FaceSizeError(str(err), _checked_legibility_ways(grid, options, faces, chars, pieces, rng=rng,
-                                                               search=search)) from None
+    except FaceSizeError as err:  # each way out checked on this shape before it is offered, and named so
+        ways = _checked_legibility_ways(grid, options, faces, chars, pieces, rng=rng, search=search)
+        head = str(err).split("; the smallest face size that works", 1)[0]
+        raise FaceSizeError(f"{head}; what works: {ways_in_words(ways)}" if ways else str(err), ways) from None
     # A surface larger than the sheet has no one-piece net on it: no search can find one.
     room = faces <= fit[0] * fit[1]
     if pieces == "auto" and not room:
