@@ -11,8 +11,8 @@ waist, a gold crown column over a beige body), then printed to 3MF:
 
 Goal (issue 47, item 4): colour adds at most 10 % to ``voxfab mesh`` on the
 coloured queen, and nothing on an uncoloured shape (whose code path is the one
-it had: ``colours`` is None all the way).  ``--smoke`` runs each figure a few
-times only.
+it had: ``colours`` is None all the way).  ``--smoke`` runs each figure once
+(after a warm-up call).
 """
 
 from __future__ import annotations
@@ -98,8 +98,8 @@ def main() -> None:
     smoke = "--smoke" in sys.argv[1:]
     with tempfile.TemporaryDirectory() as tmp:
         plain, coloured = queens(Path(tmp))
-        wall = command_times(plain, coloured, 2 if smoke else 9)
-        inproc = pipeline_times(plain, coloured, 3 if smoke else 60)
+        wall = command_times(plain, coloured, 1 if smoke else 9)
+        inproc = pipeline_times(plain, coloured, 1 if smoke else 60)
     print(f"{'queen, 3MF':<34}{'uncoloured':>12}{'4 colours':>12}{'added':>9}")
     for label, fig, unit, scale in (("voxfab mesh, wall (median)", wall, "s", 1.0),
                                     ("fabricate_mesh in process (best)", inproc, "ms", 1000.0)):
