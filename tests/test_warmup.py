@@ -62,3 +62,15 @@ def test_warmup_fills_a_fresh_cache_with_the_build_kernels(tmp_path):
     assert run_python(check, tmp_path) == "True False"
     assert any(p.suffix == ".nbi" for p in tmp_path.rglob("*"))
 
+
+
+def test_the_warm_up_net_search_leaves_its_kernels_time_to_compile(monkeypatch, tmp_path):
+    """The search's clock runs while its kernels compile: on a loaded machine a first compile took over the
+    60 s a net search has by default, and the warm-up failed with "no one-piece net in 60 s"."""
+    from voxfab.fabricate import netdraw
+    from voxfab.warmup import GROUPS
+
+    seen = []
+    monkeypatch.setattr(netdraw, "fabricate_net", lambda shape, net, drawing, folder, **kw: seen.append(net))
+    GROUPS["net"](tmp_path)
+    assert len(seen) == 1 and seen[0].timeout >= 600

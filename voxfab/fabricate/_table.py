@@ -332,14 +332,20 @@ def _warm_mesh(folder: Path) -> None:
     fabricate_mesh(VoxelShape(examples.torus(5, 2)), MeshOptions(), folder / "mesh.3mf", name="warm-up")
 
 
+#: Seconds the warm-up's net search may take, its kernels' first compile included.
+WARM_NET_TIMEOUT = 1800.0
+
+
 def _warm_net(folder: Path) -> None:
     from voxfab.fabricate.netdraw import DrawingOptions, NetOptions, fabricate_net
     from voxfab.shape import VoxelShape, examples
 
     # More faces than the net engine leaves to its plain-Python kernels, and tabs to make room for.
     shape = VoxelShape(examples.ball(4))
-    fabricate_net(shape, NetOptions(formats=("svg",)), DrawingOptions(pitch=10.0), folder, name="warm-up",
-                  seed=0)
+    # The search's clock runs while its kernels compile (minutes of a loaded machine's wall time): no budget
+    # that a slow compile could use up.
+    fabricate_net(shape, NetOptions(formats=("svg",), timeout=WARM_NET_TIMEOUT), DrawingOptions(pitch=10.0), folder,
+                  name="warm-up", seed=0)
 
 
 # ---- the table ----------------------------------------------------------------------------------
