@@ -268,8 +268,10 @@ def test_mark_an_edge_then_regenerate_honours_it(server, browser):
         if attr(browser, "marks-count", "data-constraints"):
             break
     marks = json.loads(attr(browser, "marks-count", "data-constraints"))
-    assert len(marks["cut"]) == 1 and not marks["keep"]
-    assert browser.find_element("id", "marks-count").text == "1 cut, 0 kept"
+    # a page that took more than the quiet wait to see a click may have taken the next one too: every cut marked
+    # must be honoured
+    assert marks["cut"] and not marks["keep"]
+    assert browser.find_element("id", "marks-count").text == f"{len(marks['cut'])} cut, 0 kept"
     browser.save_screenshot(str(SHOTS / "net-marked.png"))
     browser.find_element("id", "net-regen").click()
     wait(browser, lambda d: len(d.find_elements("css selector", "#net-gallery figure")) == 2
@@ -285,10 +287,10 @@ def test_mark_an_edge_then_regenerate_honours_it(server, browser):
     net = Net.from_json(js.read_text())
     names = {"+x": (1, 0, 0), "-x": (-1, 0, 0), "+y": (0, 1, 0), "-y": (0, -1, 0), "+z": (0, 0, 1), "-z": (0, 0, -1)}
     index = {(tuple(v), tuple(n)): i for i, (v, n) in enumerate(zip(net.voxel.tolist(), net.normal.tolist()))}
-    (a, b), = marks["cut"]
-    ia, ib = index[(tuple(a[:3]), names[a[3]])], index[(tuple(b[:3]), names[b[3]])]
     folds = {tuple(sorted(p)) for p in net.folds.tolist()}
-    assert tuple(sorted((ia, ib))) not in folds  # the marked edge is cut in the new net
+    for a, b in marks["cut"]:
+        ia, ib = index[(tuple(a[:3]), names[a[3]])], index[(tuple(b[:3]), names[b[3]])]
+        assert tuple(sorted((ia, ib))) not in folds  # the marked edge is cut in the new net
 
 
 def test_tube_animation_eggs_by_clicking_and_a_bitmap_upload(server, browser, tmp_path):

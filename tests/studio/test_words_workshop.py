@@ -28,7 +28,7 @@ def pawn_pieces():
 
 def test_a_refused_join_names_its_two_pieces_in_plain_words(pawn_pieces):
     grid, pieces = pawn_pieces
-    job = types.SimpleNamespace(id="j1", data={"nets": [pieces], "grid": grid})
+    job = types.SimpleNamespace(id="j1", data={"nets": [pieces], "grid": grid}, items=[], result=None)
     # face [7,9,0,-y] is on piece 28 and [7,9,0,-z] on piece 1: joining them would make the piece overlap itself
     with pytest.raises(UnfoldError) as info:
         apply_edit(job, {"index": 0, "join": [[7, 9, 0, "-y"], [7, 9, 0, "-z"]]})

@@ -285,17 +285,19 @@ def test_a_piece_found_sound_is_not_refolded_again_yet_any_change_to_it_is_caugh
 
     grid, net = ball_net
     monkeypatch.setattr(_validate, "_SOUND", {})
-    assert validate(grid, net).ok
+    assert validate(grid, [net]).ok
     calls = []
     real = _validate._sound_piece
     monkeypatch.setattr(_validate, "_sound_piece", lambda *a: calls.append(1) or real(*a))
     # An edit validates many pieces it did not change: each is known sound.
-    assert validate(grid, net).ok and calls == []
+    assert validate(grid, [net]).ok and calls == []
     # Any field changed is a piece of its own, checked again (and caught).
-    problems = validate(grid, _replace(net, mountain=net.mountain + 1), strict=False).problems
+    problems = validate(grid, [_replace(net, mountain=net.mountain + 1)], strict=False).problems
     assert any("fold counts" in p for p in problems) and len(calls) == 1
     moved = _replace(net, corners2d=net.corners2d + 3)
-    assert validate(grid, moved).ok and len(calls) == 2
+    assert validate(grid, [moved]).ok and len(calls) == 2
+    # A net given alone (a one-piece net, checked once) is neither looked up nor kept.
+    assert validate(grid, moved).ok and len(calls) == 3
     # A sound piece twice: the second copy repeats the first's faces.
     problems = validate(grid, [net, net], strict=False).problems
     assert any("repeats" in p for p in problems)

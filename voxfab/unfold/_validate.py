@@ -9,7 +9,6 @@ along the net's folds.
 from __future__ import annotations
 
 import dataclasses
-import hashlib
 import threading
 from collections import deque
 from collections.abc import Sequence
@@ -152,7 +151,7 @@ def validate(
     seams = no_room = 0
     for p, piece in enumerate(nets):
         tag = f"piece {p}: " if len(nets) > 1 else ""
-        s, r = _check_piece(g, faces, piece, p, owner, problems, tag)
+        s, r = _check_piece(g, faces, piece, p, owner, problems, tag, remember=not isinstance(net, Net))
         seams += s
         no_room += r
     missing = len(faces) - len(owner)
@@ -176,6 +175,8 @@ _SOUND_LOCK = threading.Lock()  # studio edits run on worker threads
 
 
 def _sound_key(g: npt.NDArray[np.bool_], net: Net) -> bytes:
+    import hashlib  # here: it loads OpenSSL, which a command validating a one-piece net never needs
+
     h = hashlib.sha256(repr(g.shape).encode() + np.packbits(g).tobytes())
     for field in dataclasses.fields(net):
         v = getattr(net, field.name)
@@ -186,16 +187,20 @@ def _sound_key(g: npt.NDArray[np.bool_], net: Net) -> bytes:
     return h.digest()
 
 
-def _check_piece(g, faces, net: Net, p: int, owner: dict, problems: list[str], tag: str):
-    """Check one net; a sound net is confirmed by whole-array checks, any other face by face with reasons."""
-    key = _sound_key(g, net)
+def _check_piece(g, faces, net: Net, p: int, owner: dict, problems: list[str], tag: str, *, remember: bool):
+    """Check one net; a sound net is confirmed by whole-array checks, any other face by face with reasons.
+
+    ``remember``: look the piece up among, and add it to, the pieces found sound (a net given as its list of
+    pieces, which edits change a few at a time; a net given alone is checked once).
+    """
+    key = _sound_key(g, net) if remember else None
     with _SOUND_LOCK:
-        sound = _SOUND.get(key)
+        sound = _SOUND.get(key) if remember else None
     if sound is not None and any(i in owner for i in sound[2][0]):
         sound = None  # a face an earlier piece has too: found and worded face by face
     elif sound is None:
         sound = _sound_piece(g, faces, net, owner)
-        if sound is not None:
+        if sound is not None and remember:
             with _SOUND_LOCK:
                 _SOUND[key] = sound
                 while len(_SOUND) > _SOUND_KEPT:
