@@ -233,3 +233,20 @@ def test_every_join_after_a_cut_is_laid_out_as_the_drawing_checks_it_or_refused_
         on_sheets(joined, after, options)
         placed += 1
     assert refused >= 1 and placed >= 5
+
+
+def test_every_cut_after_a_cut_is_laid_out_as_the_drawing_checks_it(a4_cut) -> None:
+    grid, options, graph, cut, placement = a4_cut
+    folds = [(p, *ij) for p, n in enumerate(cut) for ij in n.folds.reshape(-1, 2).tolist()]
+    done = 0
+    for p, i, j in folds[::40]:
+        try:
+            again = list(cut_edge(grid, cut, name(cut[p], i), name(cut[p], j), split=True).pieces)
+        except UnfoldError:
+            continue
+        fit, after = fit_and_placement(again, options, graph, before=(cut, Placement.from_dict(placement)))
+        full, _ = fit_and_placement(again, options, graph)
+        assert fit["fits"] and full["fits"] and fit["sheets"] <= max(placement["sheets"], full["sheets"])
+        on_sheets(again, after, options)
+        done += 1
+    assert done >= 5
