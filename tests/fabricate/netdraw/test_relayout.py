@@ -168,3 +168,85 @@ def test_the_tabs_a_piece_keeps_room_for_do_not_hang_on_the_order_of_the_pieces(
         return {faces_of(p): sorted((name(p, f), k) for f, k in e.tolist()) for p, e in zip(order, edges)}
 
     assert tabs(pieces, seen[0]) == tabs(pieces[::-1], seen[1])
+
+
+@pytest.fixture(scope="module")
+def a4_cut():
+    """The queen in pieces on A4 as the studio's gallery of one net makes it, its largest piece cut at a fold
+    and laid out again around the cut (the browser's net editor, step one)."""
+    from voxfab.fabricate.netdraw import net_gallery
+
+    grid = queen()
+    search, drawing = gallery_options({"sheet": "A4", "pieces": "auto"})
+    gallery = net_gallery(grid, search, drawing, count=1, seed=0)
+    options, item = gallery.options, gallery.nets[0]
+    graph = surface_graph(grid)
+    pieces = list(item.pieces)
+    big = max(pieces, key=lambda n: n.face_count)
+    i, j = big.folds[0].tolist()
+    cut = list(cut_edge(grid, pieces, name(big, i), name(big, j), split=True).pieces)
+    fit, placement = fit_and_placement(cut, options, graph, before=(pieces, Placement.from_dict(item.placement)))
+    assert fit["fits"] and len(cut) == len(pieces) + 1
+    return grid, options, graph, cut, placement
+
+
+def on_sheets(pieces, placement: dict, drawing) -> None:
+    """Every face inside the margin of its sheet, and no face of one piece over a face of another (faces
+    squared from the placement alone, not from the packer's masks)."""
+    import shapely
+
+    w, h = drawing.sheet_size
+    m = drawing.margin
+    sheets: dict[int, list] = {}
+    for p, (net, place) in enumerate(zip(pieces, placement["pieces"])):
+        mm = np.array([place["x"], place["y"]]) + turned(net.corners2d, place["turns"]) * placement["face_size"]
+        assert mm[..., 0].min() >= m - 1e-6 and mm[..., 1].min() >= m - 1e-6, f"piece {p + 1} below the margin"
+        assert mm[..., 0].max() <= w - m + 1e-6 and mm[..., 1].max() <= h - m + 1e-6, f"piece {p + 1} past it"
+        sheets.setdefault(place["sheet"], []).extend(shapely.Polygon(c) for c in mm)
+    for faces in sheets.values():
+        assert abs(shapely.unary_union(faces).area - sum(f.area for f in faces)) < 1e-3, "faces overlap"
+
+
+def test_every_join_after_a_cut_is_laid_out_as_the_drawing_checks_it_or_refused_as_a_full_packing_is(a4_cut) -> None:
+    grid, options, graph, cut, placement = a4_cut
+    owner = {int(f): (p, k) for p, n in enumerate(cut) for k, f in enumerate(face_map(graph, n))}
+    folded = {tuple(sorted((int(m[a]), int(m[b])))) for m, n in ((face_map(graph, n), n) for n in cut)
+              for a, b in n.folds.reshape(-1, 2).tolist()}
+    # Seams inside one piece: joining one closes a loop, which the editor opens elsewhere (a piece may grow).
+    seams = sorted((f, int(g)) for f in range(graph.face_count) for g in graph.neighbor[f]
+                   if f < g and owner[f][0] == owner[int(g)][0] and (f, int(g)) not in folded)
+    refused = placed = 0
+    for f, g in seams[::3]:
+        (pa, ka), (pb, kb) = owner[f], owner[g]
+        try:
+            joined = list(join_edge(grid, cut, name(cut[pa], ka), name(cut[pb], kb)).pieces)
+        except UnfoldError:
+            continue
+        fit, after = fit_and_placement(joined, options, graph, before=(cut, Placement.from_dict(placement)))
+        full, _ = fit_and_placement(joined, options, graph)
+        if not full["fits"]:  # a piece no sheet takes: refused in the packer's words, not laid across the margin
+            assert not fit["fits"] and after is None and fit["message"] == full["message"]
+            assert "does not fit sheet A4" in fit["message"]
+            refused += 1
+            continue
+        assert fit["fits"] and fit["sheets"] <= max(placement["sheets"], full["sheets"])
+        on_sheets(joined, after, options)
+        placed += 1
+    assert refused >= 1 and placed >= 5
+
+
+def test_every_cut_after_a_cut_is_laid_out_as_the_drawing_checks_it(a4_cut) -> None:
+    grid, options, graph, cut, placement = a4_cut
+    folds = [(p, *ij) for p, n in enumerate(cut) for ij in n.folds.reshape(-1, 2).tolist()]
+    done = 0
+    for p, i, j in folds[::40]:
+        try:
+            again = list(cut_edge(grid, cut, name(cut[p], i), name(cut[p], j), split=True).pieces)
+        except UnfoldError:
+            continue
+        fit, after = fit_and_placement(again, options, graph, before=(cut, Placement.from_dict(placement)))
+        full, _ = fit_and_placement(again, options, graph)
+        assert fit["fits"] and full["fits"] and fit["sheets"] <= max(placement["sheets"], full["sheets"])
+        on_sheets(again, after, options)
+        done += 1
+    assert done >= 5

@@ -33,7 +33,7 @@ import numpy.typing as npt
 from voxfab.unfold import Net
 
 from ._options import DrawingOptions
-from ._placement import PiecePlace, Placement, turned
+from ._placement import PiecePlace, Placement, PlacementError, plan_placement, turned
 from ._sheets import (
     _dilated,
     _orders,
@@ -44,6 +44,7 @@ from ._sheets import (
     _turns,
     auto_face_size,
     extent_of,
+    fits,
     paper,
 )
 
@@ -116,14 +117,17 @@ def relayout(pieces: Sequence[Net], tab_edges: list[npt.NDArray[np.int64]] | Non
     """The placement of ``pieces`` after an edit of the net ``before[0]`` placed as ``before[1]``.
 
     ``tab_edges`` are the pieces' tab edges as the drawing chose them (the packer keeps room for them).
-    None when no piece can keep its place (another sheet, margin or face size, or every piece changed):
-    the caller packs them all.
+    None when no piece can keep its place (another sheet, margin or face size, or every piece changed)
+    or a piece fits no sheet (a join made it too big): the caller packs them all, and refuses such a
+    piece as the packer does.  Every layout returned passes :func:`._placement.plan_placement`.
     """
     corners = [np.asarray(p.corners2d, dtype=np.int64) for p in pieces]
     old_net, old = before
     pitch = auto_face_size(max((extent_of(c) for c in corners), key=lambda e: e[0] * e[1]), options)
     if not old.suits(dataclasses.replace(options, pitch=pitch)):
         return None
+    if any(fits(extent_of(c), options, pitch) is None for c in corners):
+        return None  # centred alone on a sheet it would cross the margin: the packer's refusal instead
     if tab_edges is None:
         tab_edges = [np.zeros((0, 2), dtype=np.int64) for _ in pieces]
     kept, near, touched = _places(pieces, old_net, old)
@@ -189,13 +193,19 @@ def relayout(pieces: Sequence[Net], tab_edges: list[npt.NDArray[np.int64]] | Non
              (lambda: [k if k is not None and k.sheet not in touched else None for k in kept], by, (True,)),
              (lambda: [None] * len(pieces), by, both)]
     least = math.ceil(sum(t[0].size for t in turns) / (sheet.raster[0] * sheet.raster[1]))  # no packing beats it
-    best: tuple[int, list[PiecePlace]] | None = None
+    size = (float(options.sheet_size[0]), float(options.sheet_size[1]))
+    checked = dataclasses.replace(options, pitch=pitch)
+    best: Placement | None = None
     for stay, order, touch in ((stay, o, t) for stay, orders, rules in tries for t in rules for o in orders):
-        got = laid(stay(), order, touch)
-        if best is None or got[0] < best[0]:
-            best = got
-        if best[0] <= max(old.sheets, least):
+        count, places = laid(stay(), order, touch)
+        if best is not None and count >= best.sheets:
+            continue
+        got = Placement(size, float(options.margin), pitch, count, tuple(places))
+        try:  # a layout the drawing would refuse is never offered: the next try, else the caller's packing
+            plan_placement(got, corners, checked, tab_edges)
+        except PlacementError:
+            continue
+        best = got
+        if best.sheets <= max(old.sheets, least):
             break
-    assert best is not None
-    return Placement((float(options.sheet_size[0]), float(options.sheet_size[1])), float(options.margin), pitch,
-                     best[0], tuple(best[1]))
+    return best
