@@ -43,8 +43,8 @@ def nest_last_sheet(grid: npt.ArrayLike, pieces: list[Net], options: DrawingOpti
     """``pieces`` with those of the last sheet cut into branches packed in the free room of the sheets
     before, when that saves the drawing a sheet; else ``pieces`` as they are.
 
-    Tried twice: on the pieces as cut, then with every piece over half the largest cut in two at its most
-    even branch first (the size rule's floor halves with the largest: the vase's last sheet holds pieces
+    Tried on the pieces as cut, then, when the gaps were worth trying, with every piece over half the
+    largest cut in two at its most even branch first (the size rule's floor halves with the largest: the vase's last sheet holds pieces
     under twice the floor, which no cut may split).
     """
     from voxfab.shape import fill_cavities, surface_graph
@@ -57,47 +57,79 @@ def nest_last_sheet(grid: npt.ArrayLike, pieces: list[Net], options: DrawingOpti
     g = fill_cavities(g) if pieces[0].filled else g
     graph = surface_graph(g)
     before = _packing_rank(g, pieces, options)
-    for start in (pieces, _halved(g, graph, pieces)):
-        out = None if start is None else _nested(g, graph, start, options)
-        if out is not None:
-            after = _packing_rank(g, out, options)
-            if after[0] < before[0] and after[1] <= before[1]:
-                return out
+    out, roomy = _nested(g, graph, pieces, options)
+    if out is None and roomy:  # gaps enough, but a piece under twice the floor found none: lower the floor
+        halved = _halved(g, graph, pieces)
+        out = None if halved is None else _nested(g, graph, halved, options)[0]
+    if out is not None:
+        after = _packing_rank(g, out, options)
+        if after[0] < before[0] and after[1] <= before[1]:
+            return out
     return pieces
 
 
 def _nested(g: npt.NDArray[np.bool_], graph, pieces: list[Net], options: DrawingOptions  # noqa: ANN001
-            ) -> list[Net] | None:
+            ) -> tuple[list[Net] | None, bool]:
     """The pieces with those of the last sheet of their packing cut into branches put in the free room of
-    the sheets before, or None when some branch finds no gap."""
+    the sheets before (None when some branch finds no gap), and whether that room was worth trying
+    (:data:`MOST_OF_FREE`)."""
     from voxfab.unfold._job import MIN_SHARE
 
     from ._drawing import piece_tabs
-    from ._sheets import _best_packing, _turns, paper
+    from ._sheets import paper
 
     _, _, tab_edges = piece_tabs(graph, pieces, options)
     if tab_edges is None:
         tab_edges = [np.zeros((0, 2), dtype=np.int64) for _ in pieces]
     sheet = paper(options, float(options.pitch))
-    shapes = [_turns(p.corners2d, tab_edges[i], sheet.per_cell, sheet.tab_steps, sheet.raster, sheet.tab_trim)
-              for i, p in enumerate(pieces)]
-    count, where, sheets = _best_packing(shapes, [p.face_count for p in pieces], sheet.raster, sheet.clear)
-    last = count - 1
-    moving = sorted((i for i, (s, _, _) in where.items() if s == last), key=lambda i: (-pieces[i].face_count, i))
-    if count < 2 or any(where[i][1] is None for i in range(len(pieces))) or (
-            sum(shapes[i][0].size for i in moving) > MOST_OF_FREE * sum(s.free for s in sheets[:last])):
-        return None
+    packed = _as_packed(graph, pieces, options, tab_edges)
+    if packed is None:
+        return None, False
+    sheets, on, size = packed
+    last = len(sheets) - 1
+    moving = sorted((i for i in range(len(pieces)) if on[i] == last), key=lambda i: (-pieces[i].face_count, i))
+    if last < 1 or sum(size[i] for i in moving) > MOST_OF_FREE * sum(s.free for s in sheets[:last]):
+        return None, False
     floor = math.ceil(MIN_SHARE * max(p.face_count for p in pieces))
     parts: dict[int, list[npt.NDArray[np.int64]]] = {}
     for i in moving:
         found = _fill_gaps(pieces[i], tab_edges[i], sheets[:last], sheet, floor)
         if found is None:
-            return None
+            return None, True
         parts[i] = found
     out: list[Net] = []
     for i, p in enumerate(pieces):
         out += [_sub_net(g, graph, p, faces) for faces in parts[i]] if len(parts.get(i, ())) > 1 else [p]
-    return out
+    return out, True
+
+
+def _as_packed(graph, pieces: list[Net], options: DrawingOptions, tab_edges: list[npt.NDArray[np.int64]]  # noqa: ANN001
+               ) -> tuple[list, list[int], list[int]] | None:
+    """The drawing's packing of ``pieces`` as the packer left its sheets (each piece's raster blocked where it
+    lies, with the clearance round it), each piece's sheet and its raster's size; None when a piece lies alone,
+    centred off the raster."""
+    from ._drawing import _packed
+    from ._sheets import _dilated, _shape, _Sheet, paper
+
+    net, plan, *_ = _packed(graph, pieces, options)
+    sheet = paper(options, plan.pitch)
+    sheets = [_Sheet(sheet.raster) for _ in range(plan.count)]
+    on, size = [], []
+    at = 0
+    for i, p in enumerate(pieces):
+        placed = net.corners2d[at:at + p.face_count]
+        bx = int(placed[..., 0].min())
+        steps = (plan.shift[at] + (bx * plan.pitch, 0.0)) / sheet.step
+        s = int(plan.face_sheet[at])
+        at += p.face_count
+        if not np.allclose(steps, np.rint(steps), atol=1e-6):
+            return None
+        shape = _shape(placed - (bx, 0), tab_edges[i], sheet.per_cell, sheet.tab_steps, sheet.tab_trim)
+        ox, oy = (np.rint(steps).astype(np.int64) + shape.start - sheet.clear).tolist()
+        sheets[s].block(_dilated(shape.mask, sheet.clear), ox, oy)
+        on.append(s)
+        size.append(int(shape.mask.sum()))
+    return sheets, on, size
 
 
 def _halved(g: npt.NDArray[np.bool_], graph, pieces: list[Net]) -> list[Net] | None:  # noqa: ANN001

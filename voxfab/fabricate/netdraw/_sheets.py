@@ -626,22 +626,6 @@ def _orders(faces: list[int], shapes: list[list[_Spectra]]) -> tuple[Callable[[i
     return (lambda i: (-faces[i], i), lambda i: (-area[i], i), lambda i: (-box[i], i))
 
 
-def _best_packing(shapes: list[list[_Spectra]], faces: list[int], raster: tuple[int, int], clear: int
-                  ) -> tuple[int, dict, list[_Sheet]]:
-    """The packing on fewest sheets (the first on a tie) of every order and rule, and its sheets; one on as few
-    as the paper needs ends the tries."""
-    least = math.ceil(sum(sh[0].size for sh in shapes) / (raster[0] * raster[1]))
-    best: tuple[int, dict, list[_Sheet]] | None = None
-    for touch in (True, False):
-        for by in _orders(faces, shapes):
-            sheets: list[_Sheet] = []
-            n, spots = _pack_once(shapes, sorted(range(len(shapes)), key=by), raster, clear, touch, sheets)
-            best = (n, spots, sheets) if best is None or n < best[0] else best
-            if best[0] <= least:
-                return best
-    return best  # type: ignore[return-value]  # six tries made
-
-
 def _spot_mm(corners: npt.NDArray[np.int64], shape: _Shape | None, at: tuple[int, int], options: DrawingOptions,
              sheet: Paper) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.float64]]:
     """A packed piece's corners as it lies (turned, from cell (0, 0)) and the mm from the drawable area's corner
@@ -778,9 +762,24 @@ def _pack_pieces(pieces: list[npt.NDArray[np.int64]], options: DrawingOptions,
     if tab_edges is None:
         tab_edges = [np.zeros((0, 2), dtype=np.int64) for _ in pieces]
     sheet = paper(options, pitch)
-    shapes = [_turns(c, tab_edges[i], sheet.per_cell, sheet.tab_steps, sheet.raster, sheet.tab_trim)
+    clear, raster = sheet.clear, sheet.raster
+    x0, y0, x1, y1 = sheet.area
+    shapes = [_turns(c, tab_edges[i], sheet.per_cell, sheet.tab_steps, raster, sheet.tab_trim)
               for i, c in enumerate(pieces)]
-    count, where, _ = _best_packing(shapes, [c.shape[0] for c in pieces], sheet.raster, sheet.clear)
+    least = math.ceil(sum(sh[0].size for sh in shapes) / (raster[0] * raster[1]))
+    where: dict[int, tuple[int, npt.NDArray[np.int64], npt.NDArray[np.float64]]] = {}
+    count = 0
+    # Orders and rules tried in turn, the fewest sheets kept (the first on a tie); a packing on as
+    # few sheets as the paper needs ends the tries.
+    for touch in (True, False):
+        for by in _orders([c.shape[0] for c in pieces], shapes):
+            n, spots = _pack_once(shapes, sorted(range(len(pieces)), key=by), raster, clear, touch)
+            if not where or n < count:
+                count, where = n, spots
+            if count <= least:
+                break
+        if count <= least:
+            break
     for i, (s, sh, at) in list(where.items()):
         where[i] = (s, *_spot_mm(pieces[i], sh, at, options, sheet))
     # Each piece in cells of its own, two cells apart from the next: no two
@@ -793,7 +792,7 @@ def _pack_pieces(pieces: list[npt.NDArray[np.int64]], options: DrawingOptions,
         sheets.append(np.full(c.shape[0], s, dtype=np.int64))
         shifts.append(np.tile(at - (bx * pitch, 0.0), (c.shape[0], 1)))
         bx += int(corners[..., 0].max()) + 2
-    origin = np.tile(sheet.area[:2], (count, 1)).astype(np.float64)
-    plan = SheetPlan(pitch, False, np.concatenate(placed), np.concatenate(sheets), origin, sheet.area,
+    origin = np.tile([x0, y0], (count, 1)).astype(np.float64)
+    plan = SheetPlan(pitch, False, np.concatenate(placed), np.concatenate(sheets), origin, (x0, y0, x1, y1),
                      options.sheet_size, np.concatenate(shifts))
     return plan, placed
