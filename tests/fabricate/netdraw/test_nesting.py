@@ -25,7 +25,7 @@ def torus():
     """The torus cut by default without the step, and with it (the default)."""
     grid = fill_cavities(examples.torus(7.0, 3.0))
     with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(_nesting, "nest_last_sheet", lambda grid, pieces, options: pieces)
+        mp.setattr(_nesting, "nest_last_sheet", lambda grid, pieces, options, constraints=None: pieces)
         without = list(find_sheet_nets(grid, OPTIONS, rng=0, pieces="auto").nets[0])
     nested = list(find_sheet_nets(grid, OPTIONS, rng=0, pieces="auto").nets[0])
     return grid, without, nested
@@ -82,7 +82,22 @@ def test_a_last_sheet_too_full_for_the_gaps_is_left_as_it_is() -> None:
     grid = fill_cavities(queen())
     options = DrawingOptions(pitch=8.6, sheet="A4", label_height=2.0)
     with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(_nesting, "nest_last_sheet", lambda grid, pieces, options: pieces)
+        mp.setattr(_nesting, "nest_last_sheet", lambda grid, pieces, options, constraints=None: pieces)
         pieces = list(find_sheet_nets(grid, options, rng=0, pieces="auto").nets[0])
     out = _nesting.nest_last_sheet(grid, pieces, options)
     assert out is pieces and np.array_equal(sheets_needed(grid, out, options), sheets_needed(grid, pieces, options))
+
+
+def test_edges_kept_folded_stay_folded(torus) -> None:
+    """Marks that keep every fold of the cut: no branch may be cut off, the pieces come back as they are."""
+    from voxfab.unfold import EdgeConstraints
+
+    grid, without, nested = torus
+    sign = {(1, 0, 0): "+x", (-1, 0, 0): "-x", (0, 1, 0): "+y", (0, -1, 0): "-y", (0, 0, 1): "+z", (0, 0, -1): "-z"}
+
+    def face(net, i: int) -> tuple:
+        return (*net.voxel[i].tolist(), sign[tuple(net.normal[i].tolist())])
+
+    keep = {(face(p, a), face(p, b)) for p in without for a, b in p.folds.tolist()}
+    assert len(nested) > len(without)  # unmarked, the step cuts some of them
+    assert _nesting.nest_last_sheet(grid, without, OPTIONS, EdgeConstraints(keep=keep)) is without

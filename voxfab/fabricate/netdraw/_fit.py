@@ -387,7 +387,8 @@ def _cut_pieces(grid: Any, options: DrawingOptions, fit: tuple[int, int], rng: i
         return list(unfold(grid, rng=rng, fit=fit, pieces="auto", **search))
     from ._nesting import nest_last_sheet
 
-    return nest_last_sheet(grid, min(cuts, key=lambda pieces: _packing_rank(grid, pieces, options)), options)
+    best = min(cuts, key=lambda pieces: _packing_rank(grid, pieces, options))
+    return nest_last_sheet(grid, best, options, search.get("constraints"))
 
 
 def _packing_rank(grid: Any, pieces: list[Net], options: DrawingOptions) -> tuple[int, int, int]:

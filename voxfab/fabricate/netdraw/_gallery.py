@@ -246,6 +246,7 @@ def _piece_gallery(grid: Any, net: NetOptions, options: DrawingOptions, *, count
     from voxfab.unfold import unfold
 
     from ._fit import distinct_cuts
+    from ._nesting import nest_last_sheet
     from ._pipeline import validate_net
     from ._sheets import sheet_cells
 
@@ -269,6 +270,8 @@ def _piece_gallery(grid: Any, net: NetOptions, options: DrawingOptions, *, count
 
     def lay_out(pieces: list[Net]) -> GalleryNet:
         validate_net(g, pieces, constraints=search.get("constraints"))
+        # The last sheet emptied, as ``voxfab net`` draws them.
+        pieces = nest_last_sheet(g, pieces, options, search.get("constraints"))
         fit_of, placement, untabbed = _laid_out(pieces, options, graph)
         rng, cut = tried
         if rng == seed and fit_of["fits"]:

@@ -24,7 +24,7 @@ from collections import deque
 import numpy as np
 import numpy.typing as npt
 
-from voxfab.unfold import Net
+from voxfab.unfold import EdgeConstraints, Net, validate
 
 from ._options import DrawingOptions
 
@@ -39,9 +39,11 @@ MOST_OF_FREE = 0.5
 SHRINK = 0.9
 
 
-def nest_last_sheet(grid: npt.ArrayLike, pieces: list[Net], options: DrawingOptions) -> list[Net]:
+def nest_last_sheet(grid: npt.ArrayLike, pieces: list[Net], options: DrawingOptions,
+                    constraints: EdgeConstraints | None = None) -> list[Net]:
     """``pieces`` with those of the last sheet cut into branches packed in the free room of the sheets
-    before, when that saves the drawing a sheet; else ``pieces`` as they are.
+    before, when that saves the drawing a sheet and keeps every edge ``constraints`` keep folded (the
+    result refolds: :func:`voxfab.unfold.validate`); else ``pieces`` as they are.
 
     Tried on the pieces as cut, then, when the gaps were worth trying, with every piece over half the
     largest cut in two at its most even branch first (the size rule's floor halves with the largest: the vase's last sheet holds pieces
@@ -50,20 +52,25 @@ def nest_last_sheet(grid: npt.ArrayLike, pieces: list[Net], options: DrawingOpti
     from voxfab.shape import fill_cavities, surface_graph
 
     from ._fit import _packing_rank
+    from ._sheets import SheetFitError
 
     if len(pieces) < 2:
         return pieces
     g = np.asarray(grid, dtype=bool)
     g = fill_cavities(g) if pieces[0].filled else g
     graph = surface_graph(g)
-    before = _packing_rank(g, pieces, options)
+    try:
+        before = _packing_rank(g, pieces, options)
+    except SheetFitError:  # a piece larger than the sheet: the caller says so
+        return pieces
     out, roomy = _nested(g, graph, pieces, options)
     if out is None and roomy:  # gaps enough, but a piece under twice the floor found none: lower the floor
         halved = _halved(g, graph, pieces)
         out = None if halved is None else _nested(g, graph, halved, options)[0]
     if out is not None:
         after = _packing_rank(g, out, options)
-        if after[0] < before[0] and after[1] <= before[1]:
+        if after[0] < before[0] and after[1] <= before[1] and validate(g, out, strict=False,
+                                                                      constraints=constraints).ok:
             return out
     return pieces
 
