@@ -1,8 +1,8 @@
 """Emptying the last sheet: its pieces cut along folds into branches that fill the gaps of the sheets before.
 
 Pieces packed largest first leave the last sheet mostly empty and notches and
-holes on the others.  When the paper of the last sheet's pieces is no more than
-the free room of the sheets before, each of them (largest first) goes whole
+holes on the others.  When the paper of the last sheet's pieces is at most half
+the free room of the sheets before (:data:`MOST_OF_FREE`), each of them (largest first) goes whole
 into a gap if one takes it, else its fold tree is cut: of the branches that
 leave both sides at least the size rule's floor (no piece under
 :data:`voxfab.unfold._job.MIN_SHARE` of the largest), the largest that fits a
@@ -46,15 +46,15 @@ def nest_last_sheet(grid: npt.ArrayLike, pieces: list[Net], options: DrawingOpti
     result refolds: :func:`voxfab.unfold.validate`); else ``pieces`` as they are.
 
     Tried on the pieces as cut, then, when the gaps were worth trying, with every piece over half the
-    largest cut in two at its most even branch first (the size rule's floor halves with the largest: the vase's last sheet holds pieces
-    under twice the floor, which no cut may split).
+    largest cut in two at its most even branch first: the size rule's floor halves with the largest (the
+    vase's last sheet holds pieces under twice the floor, which no cut could split).
     """
     from voxfab.shape import fill_cavities, surface_graph
 
     from ._fit import _packing_rank
     from ._sheets import SheetFitError
 
-    if len(pieces) < 2:
+    if len(pieces) < 2 or options.pitch is None:
         return pieces
     g = np.asarray(grid, dtype=bool)
     g = fill_cavities(g) if pieces[0].filled else g
@@ -276,7 +276,7 @@ def _new_seams(net: Net, link: dict, faces: npt.NDArray[np.int64], inside: npt.N
     if not pairs:
         return set()
     c = np.asarray(net.corners2d).copy()
-    c[~mine] += c.reshape(-1, 2)[:, 0].max() + 4  # the rest laid apart: nothing beyond a cut edge
+    c[~mine] += int(np.ptp(c[..., 0])) + 4  # the rest laid apart: nothing beyond a cut edge
     sides = np.array([[[a, ka], [b, kb]] for a, ka, b, kb in pairs], dtype=np.int64)
     swap, room = tab_sides(c, sides)
     return {(int(s[1 if w else 0, 0]), int(s[1 if w else 0, 1])) for s, w, r in zip(sides, swap, room) if r}
