@@ -185,7 +185,7 @@ def net_gallery(grid: Any, net: NetOptions, drawing: DrawingOptions, *, count: i
                                progress=progress, on_item=on_item)
         return Gallery(items, options, net, count, round(time.monotonic() - start, 3), notes)
     found = find_sheet_nets(grid, options, rng=seed, pieces=net.pieces, count=count, budget=net.budget,
-                            show_unfit=True, progress=progress, **search)
+                            show_unfit=True, nest=False, progress=progress, **search)
     options = found.options
     notes += found.notes
     for pieces in found.nets:  # every net shown is a valid net of the shape (and of the marks)
@@ -246,7 +246,6 @@ def _piece_gallery(grid: Any, net: NetOptions, options: DrawingOptions, *, count
     from voxfab.unfold import unfold
 
     from ._fit import distinct_cuts
-    from ._nesting import nest_last_sheet
     from ._pipeline import validate_net
     from ._sheets import sheet_cells
 
@@ -270,8 +269,6 @@ def _piece_gallery(grid: Any, net: NetOptions, options: DrawingOptions, *, count
 
     def lay_out(pieces: list[Net]) -> GalleryNet:
         validate_net(g, pieces, constraints=search.get("constraints"))
-        # The last sheet emptied, as ``voxfab net`` draws them.
-        pieces = nest_last_sheet(g, pieces, options, search.get("constraints"))
         fit_of, placement, untabbed = _laid_out(pieces, options, graph)
         rng, cut = tried
         if rng == seed and fit_of["fits"]:
