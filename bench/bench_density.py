@@ -17,6 +17,9 @@ that last step changed: sheets, pieces and seams of the default against the bett
 (packed as the pipeline ranks them).  ``goal`` is
 ``ceil(1.25 A / U)`` of the flat cut, A the paper and U a sheet's drawable area.  A goal to measure,
 not a test.
+
+Measured (A4, 8.6 mm; default sheets before -> after the last sheet is emptied): queen 3 -> 3, ball 3 -> 3,
+torus 4 -> 4, blob 5 -> 5, vase 15 -> 14 (+11 pieces, +95 seams), column 3 -> 3; on A5 the torus 9 -> 8.
 """
 
 from __future__ import annotations
