@@ -437,30 +437,7 @@ def _packed(graph: SurfaceGraph, pieces: list[Net], opts: DrawingOptions, placem
     """
     for piece in pieces:
         check_net(graph, piece)
-    counts = np.cumsum([0] + [p.face_count for p in pieces])
-
-    def joined_net(corners: list[npt.NDArray[np.int64]]) -> Net:
-        return Net(
-            voxel=np.concatenate([p.voxel for p in pieces]), normal=np.concatenate([p.normal for p in pieces]),
-            corners3d=np.concatenate([p.corners3d for p in pieces]), corners2d=np.concatenate(corners),
-            folds=np.concatenate([p.folds.reshape(-1, 2) + c for p, c in zip(pieces, counts[:-1])]),
-            seed=pieces[0].seed, strategy=pieces[0].strategy, filled=pieces[0].filled,
-        )
-
-    # Tab sides are chosen on the pieces laid apart (a quarter turn changes none), so the packer can
-    # keep room for exactly those tabs.
-    apart = _apart([p.corners2d for p in pieces])
-    corners = np.concatenate(apart)
-    edges = classify_edges(graph, joined_net(apart), corners)
-    sides = _seam_sides(edges, edges.joined)
-    swap, reserved = tab_sides(corners, sides, edges.global_low[sides[:, 1, 0], sides[:, 1, 1]])
-    face_piece = np.repeat(np.arange(len(pieces)), [p.face_count for p in pieces])
-    tab_edges = None
-    if opts.tabs:
-        chosen = np.where(swap[:, None], sides[:, 1], sides[:, 0])[reserved]
-        of = face_piece[chosen[:, 0]]
-        tab_edges = [np.stack([chosen[of == i, 0] - counts[i], chosen[of == i, 1]], axis=1)
-                     for i in range(len(pieces))]
+    swap, sides, tab_edges = piece_tabs(graph, pieces, opts)
     if placement is None and before is not None:
         from ._relayout import relayout
 
@@ -470,7 +447,38 @@ def _packed(graph: SurfaceGraph, pieces: list[Net], opts: DrawingOptions, placem
     else:
         plan, placed = plan_placement(placement, [p.corners2d for p in pieces], opts, tab_edges)
     tabs = 0 if tab_edges is None else sum(int(t.shape[0]) for t in tab_edges)
-    return joined_net(placed), plan, swap, face_piece, tabs, int(sides.shape[0]) if opts.tabs else 0
+    face_piece = np.repeat(np.arange(len(pieces)), [p.face_count for p in pieces])
+    return _joined(pieces, placed), plan, swap, face_piece, tabs, int(sides.shape[0]) if opts.tabs else 0
+
+
+def _joined(pieces: list[Net], corners: list[npt.NDArray[np.int64]]) -> Net:
+    """The pieces as one net, laid at ``corners``."""
+    counts = np.cumsum([0] + [p.face_count for p in pieces])
+    return Net(voxel=np.concatenate([p.voxel for p in pieces]), normal=np.concatenate([p.normal for p in pieces]),
+               corners3d=np.concatenate([p.corners3d for p in pieces]), corners2d=np.concatenate(corners),
+               folds=np.concatenate([p.folds.reshape(-1, 2) + c for p, c in zip(pieces, counts[:-1])]),
+               seed=pieces[0].seed, strategy=pieces[0].strategy, filled=pieces[0].filled)
+
+
+def piece_tabs(graph: SurfaceGraph, pieces: list[Net], opts: DrawingOptions
+               ) -> tuple[npt.NDArray[np.bool_], npt.NDArray[np.int64], list[npt.NDArray[np.int64]] | None]:
+    """Each seam's tab side ``swap``, the seams' ``sides`` and each piece's ``(t_i, 2)`` face and edge pairs that
+    take a tab (None without tabs), as the drawing chooses them."""
+    # Tab sides are chosen on the pieces laid apart (a quarter turn changes none), so the packer can
+    # keep room for exactly those tabs.
+    apart = _apart([p.corners2d for p in pieces])
+    corners = np.concatenate(apart)
+    edges = classify_edges(graph, _joined(pieces, apart), corners)
+    sides = _seam_sides(edges, edges.joined)
+    swap, reserved = tab_sides(corners, sides, edges.global_low[sides[:, 1, 0], sides[:, 1, 1]])
+    if not opts.tabs:
+        return swap, sides, None
+    counts = np.cumsum([0] + [p.face_count for p in pieces])
+    face_piece = np.repeat(np.arange(len(pieces)), [p.face_count for p in pieces])
+    chosen = np.where(swap[:, None], sides[:, 1], sides[:, 0])[reserved]
+    of = face_piece[chosen[:, 0]]
+    return swap, sides, [np.stack([chosen[of == i, 0] - counts[i], chosen[of == i, 1]], axis=1)
+                         for i in range(len(pieces))]
 
 
 def _apart(corners: list[npt.NDArray[np.int64]]) -> list[npt.NDArray[np.int64]]:

@@ -185,7 +185,7 @@ def net_gallery(grid: Any, net: NetOptions, drawing: DrawingOptions, *, count: i
                                progress=progress, on_item=on_item)
         return Gallery(items, options, net, count, round(time.monotonic() - start, 3), notes)
     found = find_sheet_nets(grid, options, rng=seed, pieces=net.pieces, count=count, budget=net.budget,
-                            show_unfit=True, progress=progress, **search)
+                            show_unfit=True, nest=False, progress=progress, **search)
     options = found.options
     notes += found.notes
     for pieces in found.nets:  # every net shown is a valid net of the shape (and of the marks)
