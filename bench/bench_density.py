@@ -1,8 +1,8 @@
 """Benchmark: how densely nets in pieces fill their sheets, cut by flat patches, as bands and as large pieces, side by side.
 
 Run: python bench/bench_density.py [--sheet A4] [--face-size 8.6] [--shapes queen,ball,torus,blob,vase,column]
-[--smoke]
-(--smoke: the ball alone.)
+[--smoke] [--save]
+(--smoke: the ball alone; --save: the table kept as docs/data/bench/density.json for the documentation.)
 
 Each shape (cavities filled) is cut as ``voxfab net SHAPE --pieces auto --sheet A4 --face-size 8.6``
 cuts it, in the box of the sheet's cells: once from flat patches (``pieces="flat"``), once as bands
@@ -30,6 +30,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from _table import Table, add_save_option
 
 ROOT = Path(__file__).parents[1]
 CUTS = ("flat", "bands", "auto", "default")
@@ -102,24 +103,26 @@ def main() -> None:
     ap.add_argument("--face-size", type=float, default=8.6)
     ap.add_argument("--shapes", default=",".join(makers), help=f"of {', '.join(makers)}")
     ap.add_argument("--smoke", action="store_true", help="the ball alone: the whole path in seconds")
+    add_save_option(ap)
     args = ap.parse_args()
     names = ["ball"] if args.smoke else args.shapes.split(",")
-    print(f"sheet {args.sheet}, faces {args.face_size:g} mm; per cut: sheets, fill %, pieces, seams, "
-          f"seams without tab room, seconds to cut")
-    head = "".join(f"  {c + ' sheets':>14}{'fill':>5}{'pcs':>4}{'seams':>6}{'notab':>6}{'s':>5}" for c in CUTS)
-    print(f"{'shape':<7}{'faces':>6}{'goal':>5}" + head + f"  {'nest sh/pcs/seams':>18}")
+    print(f"sheet {args.sheet}, faces {args.face_size:g} mm; per cut: sheets (fill %), pieces, seams, seams without "
+          f"tab room, seconds to cut")
+    table = Table("density", ["shape", "faces", "goal", *CUTS, "nest: sheets / pieces / seams"])
     for name in names:
         grid = fill_cavities(np.asarray(makers[name](), dtype=bool))
         got = [measure(grid, cut, args.face_size, args.sheet) for cut in CUTS]
-        line = f"{name:<7}{got[0]['faces']:>6}{got[0]['goal']:>5}"
-        for m in got:
-            line += (f"  {m['sheets']:>14}{m['fill']:>5.0f}{m['pieces']:>4}{m['seams']:>6}{m['untabbed']:>6}"
-                     f"{m['seconds']:>5.0f}")
         cut = min(got[:2], key=lambda m: (m["sheets"], m["untabbed"], m["seams"]))
-        line += f"  {'/'.join(f'{got[3][k] - cut[k]:+d}' for k in ('sheets', 'pieces', 'seams')):>18}"
-        print(line, flush=True)
+        table.row(name, got[0]["faces"], got[0]["goal"], *(_cell(m) for m in got),
+                  " / ".join(f"{got[3][k] - cut[k]:+d}" for k in ("sheets", "pieces", "seams")))
+    table.save(args.save)
     print("goal: ceil(1.25 A / U) of the flat cut; fill: faces and tabs over the sheets' usable area")
 
+
+def _cell(m: dict[str, float]) -> str:
+    """One cut in a cell: sheets (fill), pieces, seams, seams without tab room (when any), seconds."""
+    untabbed = f", {m['untabbed']} untabbed" if m["untabbed"] else ""
+    return f"{m['sheets']} ({m['fill']:.0f} %), {m['pieces']} pcs, {m['seams']} seams{untabbed}, {m['seconds']:.0f} s"
 
 if __name__ == "__main__":
     main()
