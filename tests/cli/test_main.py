@@ -158,3 +158,27 @@ def test_the_program_leaves_its_objects_to_the_exit_and_a_call_leaves_the_collec
     frozen_before = gc.get_freeze_count()
     assert main(["info", str(tmp_path / "s.npy"), "--json"]) == 0
     assert list(gc.get_threshold()) == default and gc.get_freeze_count() == frozen_before
+
+
+def test_an_interrupted_command_ends_its_process_at_once_though_a_thread_still_runs(tmp_path):
+    """A thread a library leaves running when Ctrl-C stops a command (a solver's workers) must not hold the
+    process at its exit, nor abort it: the process ends with 130 once its exit handlers ran."""
+    np.save(tmp_path / "cube.npy", np.ones((1, 1, 1), dtype=bool))
+    code = """
+import atexit, sys, threading, time
+import voxfab.repo
+from voxfab.cli import main
+
+threading.Thread(target=time.sleep, args=(60,)).start()  # not a daemon: the interpreter's exit waits for it
+atexit.register(lambda: print("exit handlers ran", file=sys.stderr))
+
+def interrupted(*args, **kwargs):
+    raise KeyboardInterrupt
+
+voxfab.repo.load_shape = interrupted
+sys.argv = ["voxfab", "info", "cube.npy"]
+sys.exit(main())
+"""
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path, timeout=30)
+    assert r.returncode == 130, r.stderr
+    assert r.stderr.splitlines() == ["voxfab: interrupted", "exit handlers ran"]

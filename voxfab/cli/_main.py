@@ -183,6 +183,25 @@ def _quiet_warnings(debug: bool) -> Iterator[None]:
 GC_YOUNG = 10_000
 
 
+def _stopped(code: int, ends_process: bool) -> int:
+    """The exit status of a stopped command; a process that ends with it ends here, once its exit handlers ran.
+
+    What the command made is cleaned up already (its ``finally`` blocks ran as the interrupt left them).  A
+    thread a library still runs (a solver's workers that the same Ctrl-C stopped half way) is not waited for
+    nor torn down by the interpreter's exit, which aborted such a process ("terminate called without an
+    active exception") instead of ending it with ``code``.
+    """
+    if not ends_process:
+        return code
+    import atexit
+    import os
+
+    atexit._run_exitfuncs()  # noqa: SLF001 - the handlers an exit runs (Dask's, logging's), then no teardown
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(code)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the CLI; return the exit status.
 
@@ -217,10 +236,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         return _exit_code(exc)
     except Terminated:
         print("voxfab: terminated", file=sys.stderr)
-        return 143
+        return _stopped(143, ends_process)
     except KeyboardInterrupt:
         print("voxfab: interrupted", file=sys.stderr)
-        return 130
+        return _stopped(130, ends_process)
     finally:
         gc.set_threshold(*thresholds)
         if ends_process:
