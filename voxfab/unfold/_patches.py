@@ -48,15 +48,20 @@ def _flat_patches(sg: SurfaceGraph, faces: npt.NDArray[np.int64]) -> list[npt.ND
 
 
 def _lay_flat(sg: SurfaceGraph, root: int, in_patch: npt.NDArray[np.bool_], cell: npt.NDArray[np.int64],
-              rot: npt.NDArray[np.int64], par: npt.NDArray[np.int64]) -> None:
+              rot: npt.NDArray[np.int64], par: npt.NDArray[np.int64], *, laid: bool = False) -> None:
     """Unfold the flat patch of ``root`` (``in_patch`` marks its faces) breadth first from ``root``.
 
     Writes each face's cell, rotation and fold-tree parent into ``cell``,
     ``rot`` and ``par``, ``root`` at cell (0, 0) turned 0 with no parent.  A flat
     patch lies in a plane, so its unfolding is its own shape and never overlaps.
+
+    ``laid``: the patch is laid out already (``cell`` and ``rot`` are read, not written): only its fold tree
+    is made, across the edges whose faces meet in the plane (a band cut open is not crossed at its cut,
+    where its ends do not meet).
     """
-    cell[root] = (0, 0)
-    rot[root] = 0
+    if not laid:
+        cell[root] = (0, 0)
+        rot[root] = 0
     par[root] = -1
     seen = {root}
     walk = [root]
@@ -65,10 +70,15 @@ def _lay_flat(sg: SurfaceGraph, root: int, in_patch: npt.NDArray[np.bool_], cell
             c = int(sg.neighbor[a, k])
             if not in_patch[c] or c in seen:
                 continue
-            seen.add(c)
             s = (k + int(rot[a])) % 4
-            cell[c] = cell[a] + _STEP[s]
-            rot[c] = (s + 2 - int(sg.neighbor_edge[a, k])) % 4
+            turned = (s + 2 - int(sg.neighbor_edge[a, k])) % 4
+            if not laid:
+                cell[c] = cell[a] + _STEP[s]
+                rot[c] = turned
+            elif (int(cell[c, 0]) - int(cell[a, 0]), int(cell[c, 1]) - int(cell[a, 1])) != _STEP[s] or \
+                    int(rot[c]) != turned:
+                continue
+            seen.add(c)
             par[c] = a
             walk.append(c)
 
@@ -106,31 +116,6 @@ def flat_layouts(sg: SurfaceGraph, faces: npt.NDArray[np.int64], side: int, pcel
                 in_patch[tile] = False
         patches += tiles
     return patches
-
-
-def _hang(sg: SurfaceGraph, root: int, in_patch: npt.NDArray[np.bool_], cell: npt.NDArray[np.int64],
-          rot: npt.NDArray[np.int64], par: npt.NDArray[np.int64]) -> None:
-    """The fold tree of a laid-out patch, breadth first from ``root``: across the edges whose faces meet in the plane.
-
-    Writes ``par`` only (``root`` gets none); ``cell`` and ``rot`` of the patch are read.
-    For a flat patch this is the tree :func:`_lay_flat` makes; a band cut open
-    is not crossed at its cut, where its ends do not meet.
-    """
-    par[root] = -1
-    seen = {root}
-    walk = [root]
-    for a in walk:
-        for k in range(4):
-            c = int(sg.neighbor[a, k])
-            if not in_patch[c] or c in seen:
-                continue
-            s = (k + int(rot[a])) % 4
-            if (int(cell[c, 0]) - int(cell[a, 0]), int(cell[c, 1]) - int(cell[a, 1])) != _STEP[s] or \
-                    int(rot[c]) != (s + 2 - int(sg.neighbor_edge[a, k])) % 4:
-                continue
-            seen.add(c)
-            par[c] = a
-            walk.append(c)
 
 
 def patch_pieces(job: Job, faces: npt.NDArray[np.int64]) -> list[tuple[SearchBoard, npt.NDArray[np.int64]]]:
@@ -239,7 +224,7 @@ def join_patches(job: Job, patches: list[npt.NDArray[np.int64]], pcell: npt.NDAr
             rot[patch] = (prot[patch] + q) % 4
             # The fold tree of the patch hangs from the shared edge the placement came from.
             in_patch[patch] = True
-            _hang(sg, c, in_patch, cell, rot, par)
+            _lay_flat(sg, c, in_patch, cell, rot, par, laid=True)
             in_patch[patch] = False
             par[c] = a
             free[t] = False
@@ -262,7 +247,7 @@ def join_patches(job: Job, patches: list[npt.NDArray[np.int64]], pcell: npt.NDAr
             cell[patches[start]] = pcell[patches[start]]
             rot[patches[start]] = prot[patches[start]]
             in_patch[patches[start]] = True
-            _hang(sg, int(patches[start][0]), in_patch, cell, rot, par)
+            _lay_flat(sg, int(patches[start][0]), in_patch, cell, rot, par, laid=True)
             in_patch[patches[start]] = False
             members = list(patches[start].tolist())
             grow(members, share * box[0] * box[1])
