@@ -6,15 +6,9 @@ from __future__ import annotations
 import pytest
 
 from .test_browser import open_page, slim_column, wait
-from .test_browser_net import by_id
+from .test_browser_net import by_id, type_into
 
 pytestmark = pytest.mark.slow
-
-
-def _type(browser, testid: str, text: str) -> None:
-    field = by_id(browser, testid)
-    field.clear()
-    field.send_keys(text)
 
 
 def _ways(browser) -> list:
@@ -29,13 +23,9 @@ def _a_yes_on_a3(browser, server) -> None:
     by_id(browser, "tab-net").click()
     Select(by_id(browser, "net-sheet")).select_by_value("A3")
     Select(by_id(browser, "net-pieces")).select_by_value("one")
-    _type(browser, "net-face-size", "10")
-    field = browser.find_element("id", "net-timeout")
-    field.clear()
-    field.send_keys("5")
-    field = browser.find_element("id", "net-count")
-    field.clear()
-    field.send_keys("1")
+    type_into(browser, "net-face-size", "10")
+    type_into(browser, "net-timeout", "5")
+    type_into(browser, "net-count", "1")
     # "does one piece fit?": yes, and the net found is open, named by its sheet (it has no seed worth naming)
     by_id(browser, "net-fits").click()
     answer = wait(browser, lambda d: by_id(d, "net-fits-answer").get_attribute("data-answer"), timeout=120,
@@ -55,7 +45,7 @@ def test_a_new_answer_replaces_the_last_one(server, browser):
     _a_yes_on_a3(browser, server)
     # a gallery on a sheet the net does not fit: its refusal and ways out, and the old "yes" is gone
     Select(by_id(browser, "net-sheet")).select_by_value("A5")
-    _type(browser, "net-face-size", "20")
+    type_into(browser, "net-face-size", "20")
     by_id(browser, "net-generate").click()
     buttons = wait(browser, _ways, timeout=120, what="the ways out")
     assert buttons

@@ -38,6 +38,13 @@ def by_id(driver, testid, many=False):
     return find("css selector", f'[data-testid="{testid}"]')
 
 
+def type_into(driver, name: str, text: str) -> None:
+    """Replace what the field of id or test id ``name`` holds with ``text``."""
+    field = driver.find_element("css selector", f'[id="{name}"], [data-testid="{name}"]')
+    field.clear()
+    field.send_keys(text)
+
+
 def _fetch(url: str) -> bytes:
     with urllib.request.urlopen(url, timeout=60) as resp:
         assert resp.status == 200
@@ -321,16 +328,10 @@ def test_a_net_that_does_not_fit_says_so_plainly_and_one_click_splits_it(server,
     Select(by_id(browser, "net-sheet")).select_by_value("A5")
     assert not by_id(browser, "net-sheet-custom").is_displayed()
     Select(by_id(browser, "net-pieces")).select_by_value("one")
-    face = by_id(browser, "net-face-size")
-    face.clear()
-    face.send_keys("20")
-    field = browser.find_element("id", "net-timeout")
-    field.clear()
-    field.send_keys("5")
+    type_into(browser, "net-face-size", "20")
+    type_into(browser, "net-timeout", "5")
     # One net shows the refusal and its ways out, and the split that follows: not the page's default 8.
-    field = browser.find_element("id", "net-count")
-    field.clear()
-    field.send_keys("1")
+    type_into(browser, "net-count", "1")
     by_id(browser, "net-generate").click()
     buttons = wait(browser, lambda d: d.find_elements("css selector", '[data-testid="net-ways-out"] button'),
                    timeout=120, what="the ways out")
